@@ -1,0 +1,37 @@
+# OpenGL side: the glad2 loader (generated at build time by Debian's python3-glad, never vendored),
+# the GL context, techniques with their embedded shaders, and the gibench executable.
+
+set(GLAD_DIR ${CMAKE_BINARY_DIR}/glad)
+add_custom_command(
+  OUTPUT ${GLAD_DIR}/src/gl.c ${GLAD_DIR}/include/glad/gl.h
+  COMMAND ${GLAD_EXECUTABLE} --reproducible --quiet --api gl:core=4.5 --out-path ${GLAD_DIR} c
+  COMMENT "Generating the glad2 GL 4.5 core loader"
+  VERBATIM)
+add_library(gib_glad STATIC ${GLAD_DIR}/src/gl.c)
+target_include_directories(gib_glad SYSTEM PUBLIC ${GLAD_DIR}/include)
+target_compile_options(gib_glad PRIVATE -w)
+
+# Shaders live next to their technique and are embedded as C strings (cmake/embed_shaders.cmake).
+file(GLOB_RECURSE GIB_SHADERS CONFIGURE_DEPENDS
+  ${CMAKE_SOURCE_DIR}/techniques/*.glsl ${CMAKE_SOURCE_DIR}/techniques/*.vert
+  ${CMAKE_SOURCE_DIR}/techniques/*.frag ${CMAKE_SOURCE_DIR}/techniques/*.geom
+  ${CMAKE_SOURCE_DIR}/techniques/*.comp)
+set(GIB_SHADER_C ${CMAKE_BINARY_DIR}/generated/shaders.c)
+add_custom_command(
+  OUTPUT ${GIB_SHADER_C}
+  COMMAND ${CMAKE_COMMAND} -DROOT=${CMAKE_SOURCE_DIR} -DOUT=${GIB_SHADER_C}
+          "-DFILES=${GIB_SHADERS}" -P ${CMAKE_SOURCE_DIR}/cmake/embed_shaders.cmake
+  DEPENDS ${GIB_SHADERS} ${CMAKE_SOURCE_DIR}/cmake/embed_shaders.cmake
+  COMMENT "Embedding shaders")
+
+# GL runtime: context (EGL, OSMesa), ledger, timers, techniques.
+file(GLOB GIB_GL_SOURCES CONFIGURE_DEPENDS harness/gl/*.c techniques/*.c techniques/*/*.c)
+add_library(gib_gl STATIC ${GIB_GL_SOURCES} ${GIB_SHADER_C})
+# OSMesa must come before any libOpenGL: linking -lOpenGL first makes every call a silent no-op
+# (DESIGN.md). We link libEGL and libOSMesa only and load every GL function through them.
+target_link_libraries(gib_gl PUBLIC gib_scene gib_glad PkgConfig::OSMESA PkgConfig::EGL ${CMAKE_DL_LIBS})
+
+# The gibench executable: CLI, matrix runner, CSV, cache, plots.
+file(GLOB GIB_APP_SOURCES CONFIGURE_DEPENDS harness/app/*.c)
+add_executable(gibench ${GIB_APP_SOURCES})
+target_link_libraries(gibench PRIVATE gib_gl gib_reference)

@@ -1,0 +1,34 @@
+/* gibench — image metrics, as DESIGN.md "Metrics" defines them.
+ *
+ * RMSE over all linear RGB samples; relative RMSE = RMSE / mean of the reference's samples;
+ * PSNR = 20 log10(peak / RMSE) with peak = max reference sample (linear data have no fixed range);
+ * SSIM (Wang et al. 2004) on one channel srgb_encode(clamp(exposure * Y, 0, 1)),
+ * Y = 0.2126 R + 0.7152 G + 0.0722 B, 11x11 Gaussian window (sigma 1.5, truncated at 3.5 sigma
+ * as scikit-image does, i.e. radius 5), K1 = 0.01, K2 = 0.03, data range 1, population
+ * covariance, mean over the valid (border-cropped) window positions — equal to scikit-image's
+ * structural_similarity(a, b, gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
+ * data_range=1) to 1e-4. */
+#ifndef GIB_METRICS_H
+#define GIB_METRICS_H
+
+#include "image.h"
+
+typedef struct gib_metrics {
+    double rmse, rel_rmse, psnr, ssim;
+    double ref_mean;
+    long nonfinite; /* NaN/Inf samples in the test image (the reference's are counted too) */
+} gib_metrics;
+
+/* Both images must have the same size and >= 3 channels (only RGB is compared). When any sample
+ * is non-finite, nonfinite > 0 and the other fields are computed over the finite pairs only
+ * (a row with nonfinite > 0 is never `ok`). */
+int gib_metrics_compute(const gib_image *ref, const gib_image *test, float exposure,
+                        gib_metrics *out, gib_error *err);
+
+/* SSIM of two single-channel images already in [0,1] (w*h floats each), as above. */
+double gib_ssim_gray(const float *a, const float *b, int width, int height);
+
+/* The SSIM channel of a linear RGB image: srgb_encode(clamp(exposure * Y, 0, 1)). out: w*h floats. */
+void gib_ssim_channel(const gib_image *img, float exposure, float *out);
+
+#endif

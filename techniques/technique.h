@@ -1,0 +1,101 @@
+/* gibench — the uniform technique interface (DESIGN.md, "The technique interface").
+ *
+ * A technique is a module in techniques/<name>/ that fills one gib_technique, listed in
+ * techniques/registry.c. It never creates a GL context, opens files or prints: the harness gives it
+ * the scene on the GPU, its validated parameters, a memory ledger and a timer set, and reads back
+ * the images it renders into the targets it is handed. */
+#ifndef GIB_TECHNIQUE_H
+#define GIB_TECHNIQUE_H
+
+#include <stdint.h>
+
+#include "../harness/base/error.h"
+#include "../scenes/scene.h"
+
+/* ---- parameters ---- */
+
+enum gib_param_type { GIB_PARAM_INT = 0, GIB_PARAM_FLOAT = 1 };
+
+typedef struct gib_param_spec {
+    const char *name;     /* "shadow_res" — the CLI (--param name=value), matrix and CSV name */
+    int type;             /* enum gib_param_type */
+    double def;           /* default */
+    double min, max;      /* inclusive range; a value outside is rejected before any rendering */
+    const char *help;
+} gib_param_spec;
+
+#define GIB_MAX_PARAMS 16
+
+/* Validated values, in the order of the technique's spec list. */
+typedef struct gib_params {
+    int count;
+    double values[GIB_MAX_PARAMS];
+} gib_params;
+
+/* ---- components (light-transport parts a technique outputs) ---- */
+
+enum gib_component_bit {
+    GIB_OUT_AO = 1u << 0,
+    GIB_OUT_DIRECT = 1u << 1,
+    GIB_OUT_INDIRECT = 1u << 2,
+    GIB_OUT_GLOSSY = 1u << 3,
+    GIB_OUT_CAUSTIC = 1u << 4,
+};
+
+/* ---- what the harness hands a technique ---- */
+
+typedef struct gib_ledger gib_ledger;  /* harness/gl/ledger.h */
+typedef struct gib_timers gib_timers;  /* harness/gl/timers.h */
+typedef struct gib_gpu_scene gib_gpu_scene; /* harness/gl/gpu_scene.h */
+
+typedef struct gib_view {
+    const gib_camera *camera;
+    int width, height;
+    float time;           /* seconds, for animated scenes */
+    float view[16], proj[16], view_proj[16]; /* column-major, GL conventions */
+} gib_view;
+
+/* One RGBA32F colour texture per output component (in the order of the component bits), bound to
+ * the FBO the harness made; the technique renders into it with bottom-up GL rows and the harness
+ * flips on read-back. */
+typedef struct gib_image_target {
+    unsigned component;   /* one GIB_OUT_* bit */
+    unsigned fbo;         /* framebuffer with the colour texture at attachment 0 and a depth buffer */
+    unsigned texture;     /* GL_RGBA32F, width x height */
+} gib_image_target;
+
+typedef struct gib_technique {
+    const char *name;            /* "direct" */
+    const char *source;          /* "rasterised direct light with PCF shadow maps (Williams 1978)" */
+    unsigned components;         /* GIB_OUT_* bits it outputs */
+    const gib_param_spec *params;/* terminated by {0} */
+    unsigned scene_needs;        /* GIB_FEAT_* bits the scene must have (all of them) */
+    unsigned scene_needs_any;    /* GIB_FEAT_* bits of which the scene needs at least one (0: none) */
+    void *(*create)(const gib_gpu_scene *scene, const gib_params *params, gib_ledger *ledger,
+                    gib_error *err);
+    /* Renders one frame; targets[i] matches the i-th set bit of components. Every pass is bracketed
+     * by gib_timer_begin/end. Returns 0, or -1 with err set (a shader or overflow failure). */
+    int (*render)(void *self, const gib_view *view, gib_timers *timers,
+                  const gib_image_target *targets, int target_count, gib_error *err);
+    /* Optional: a status word for conditions found while rendering ("overflow"), or NULL. */
+    const char *(*status)(void *self);
+    void (*destroy)(void *self);
+} gib_technique;
+
+/* registry.c */
+const gib_technique *const *gib_techniques(int *count);
+const gib_technique *gib_technique_find(const char *name);
+
+/* Index of a parameter by name, or -1. */
+int gib_param_index(const gib_technique *t, const char *name);
+/* Fills defaults. */
+void gib_params_default(const gib_technique *t, gib_params *p);
+/* Parses "value" for parameter `name` of technique t and stores it; errors name the technique, the
+ * parameter, the value and the valid range. */
+int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
+                  gib_error *err);
+/* Integer and float accessors by name (the name must exist: asserted). */
+int gib_param_int(const gib_technique *t, const gib_params *p, const char *name);
+double gib_param_float(const gib_technique *t, const gib_params *p, const char *name);
+
+#endif
