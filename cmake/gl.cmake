@@ -17,12 +17,15 @@ file(GLOB_RECURSE GIB_SHADERS CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/techniques/*.frag ${CMAKE_SOURCE_DIR}/techniques/*.geom
   ${CMAKE_SOURCE_DIR}/techniques/*.comp)
 set(GIB_SHADER_C ${CMAKE_BINARY_DIR}/generated/shaders.c)
+# A CMake list would be split into several shell words: pass it '|'-separated.
+string(REPLACE ";" "|" GIB_SHADER_LIST "${GIB_SHADERS}")
 add_custom_command(
   OUTPUT ${GIB_SHADER_C}
   COMMAND ${CMAKE_COMMAND} -DROOT=${CMAKE_SOURCE_DIR} -DOUT=${GIB_SHADER_C}
-          "-DFILES=${GIB_SHADERS}" -P ${CMAKE_SOURCE_DIR}/cmake/embed_shaders.cmake
+          "-DFILES=${GIB_SHADER_LIST}" -P ${CMAKE_SOURCE_DIR}/cmake/embed_shaders.cmake
   DEPENDS ${GIB_SHADERS} ${CMAKE_SOURCE_DIR}/cmake/embed_shaders.cmake
-  COMMENT "Embedding shaders")
+  COMMENT "Embedding shaders"
+  VERBATIM)
 
 # GL runtime: context (EGL, OSMesa), ledger, timers, techniques.
 file(GLOB GIB_GL_SOURCES CONFIGURE_DEPENDS harness/gl/*.c techniques/*.c techniques/*/*.c)

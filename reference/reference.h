@@ -46,9 +46,18 @@ typedef struct gib_ref_stats {
 int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_image *out,
                          gib_image *stderr_img, gib_ref_stats *stats, gib_error *err);
 
-/* Fills the EXR header attributes describing a reference render (component, spp, seconds,
- * scene_hash, renderer version, noise_rmse, width, height, dmax, seed, camera). Returns the count. */
+/* Fills the EXR header attributes describing a reference render, all strings: component, spp,
+ * seconds, scene_hash (16 hex digits), renderer_version, noise_rmse, mean, width, height, dmax
+ * ("inf" when unbounded, since dmax <= 0 and inf give the same image), seed, camera. Returns the
+ * count written, at most max_attrs; GIB_REF_ATTR_COUNT is how many there are. */
+#define GIB_REF_ATTR_COUNT 12
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
+
+/* The ray offset the renderer uses for the scene: secondary rays leave a surface point moved by
+ * this along the geometric normal, toward the side the ray goes to, with tnear = 0. It is
+ * 1e-4 x the diagonal of the vertices' bounding box, floored at 2^-17 x the largest coordinate
+ * magnitude (float precision far from the origin). Tests use it to state exact expected values. */
+float gib_reference_ray_eps(const gib_scene *scene);
 
 #endif

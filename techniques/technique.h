@@ -71,8 +71,9 @@ typedef struct gib_technique {
     const gib_param_spec *params;/* terminated by {0} */
     unsigned scene_needs;        /* GIB_FEAT_* bits the scene must have (all of them) */
     unsigned scene_needs_any;    /* GIB_FEAT_* bits of which the scene needs at least one (0: none) */
-    void *(*create)(const gib_gpu_scene *scene, const gib_params *params, gib_ledger *ledger,
-                    gib_error *err);
+    /* Allocates everything for images of width x height (through the ledger) and builds shaders. */
+    void *(*create)(const gib_gpu_scene *scene, const gib_params *params, int width, int height,
+                    gib_ledger *ledger, gib_error *err);
     /* Renders one frame; targets[i] matches the i-th set bit of components. Every pass is bracketed
      * by gib_timer_begin/end. Returns 0, or -1 with err set (a shader or overflow failure). */
     int (*render)(void *self, const gib_view *view, gib_timers *timers,

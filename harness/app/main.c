@@ -1,10 +1,41 @@
-/* gibench — command-line entry point. */
+/* gibench — command-line entry point: dispatches to the subcommands in harness/app/cmd_*.c. */
 #include <stdio.h>
+#include <string.h>
+
+#include "app.h"
+
+static const char usage[] =
+    "gibench — benchmark real-time global illumination against path-traced references\n"
+    "\n"
+    "usage: gibench COMMAND [options]   (gibench COMMAND --help for each)\n"
+    "\n"
+    "  list                         techniques with parameters and defaults, scenes with features\n"
+    "  render    --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
+    "  reference --scene S --component C --spp N --size WxH --out F.exr\n"
+    "  compare   REF.exr TEST.exr [--exposure E] [--json] [--map F.png] [--fail ...]\n"
+    "  run       MATRIX [--profile quick|paper] [--out DIR]\n"
+    "\n"
+    "Scene data (Crytek Sponza, Sibenik, ...) is found through $GIBENCH_SCENES\n"
+    "(default ../shared/scenes beside the project); the procedural scenes need none.\n";
 
 int main(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "gibench: usage: gibench list|render|reference|compare|run ...\n");
+    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") ||
+        !strcmp(argv[1], "help")) {
+        fputs(usage, argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "list"))
+        return gib_cmd_list(argc - 1, argv + 1);
+    if (!strcmp(cmd, "render"))
+        return gib_cmd_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "reference"))
+        return gib_cmd_reference(argc - 1, argv + 1);
+    if (!strcmp(cmd, "compare"))
+        return gib_cmd_compare(argc - 1, argv + 1);
+    if (!strcmp(cmd, "run"))
+        return gib_cmd_run(argc - 1, argv + 1);
+    fprintf(stderr, "gibench: unknown command '%s'\n\n%s", cmd, usage);
     return 2;
 }

@@ -28,7 +28,7 @@ int gib_error_prefix(gib_error *err, const char *fmt, ...)
     va_end(ap);
     char old[sizeof err->msg];
     memcpy(old, err->msg, sizeof old);
-    snprintf(err->msg, sizeof err->msg, "%s: %s", prefix, old);
+    snprintf(err->msg, sizeof err->msg, "%.500s: %.1500s", prefix, old);
     return -1;
 }
 
@@ -50,7 +50,7 @@ void *gib_realloc_array(void *p, size_t n, size_t size, gib_error *err)
         gib_fail(err, "allocation of %zu x %zu bytes overflows", n, size);
         return NULL;
     }
-    void *q = realloc(p, n * size ? n * size : 1);
+    void *q = realloc(p, (n && size) ? n * size : 1);
     if (!q)
         gib_fail(err, "out of memory allocating %zu x %zu bytes", n, size);
     return q;

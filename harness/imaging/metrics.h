@@ -25,7 +25,8 @@ typedef struct gib_metrics {
 int gib_metrics_compute(const gib_image *ref, const gib_image *test, float exposure,
                         gib_metrics *out, gib_error *err);
 
-/* SSIM of two single-channel images already in [0,1] (w*h floats each), as above. */
+/* SSIM of two single-channel images already in [0,1] (w*h floats each), as above. NaN when
+ * either side is under 11 pixels (no valid window position; scikit-image refuses such images). */
 double gib_ssim_gray(const float *a, const float *b, int width, int height);
 
 /* The SSIM channel of a linear RGB image: srgb_encode(clamp(exposure * Y, 0, 1)). out: w*h floats. */

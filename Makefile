@@ -1,0 +1,65 @@
+# gibench — thin wrapper over CMake and ctest. Two commands set everything up on a fresh Debian 12:
+#   make reproduce   install missing packages, build, run the quick profile, draw the plots
+#   make test        install missing packages, build (normal + ASan/UBSan), run every test
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+PROFILE    ?= quick
+RESULTS    ?= results
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+
+# Debian 12 packages gibench builds and runs with (DESIGN.md, toolchain facts).
+PACKAGES = build-essential cmake pkg-config python3 python3-glad \
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
+  libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
+  libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git
+
+MATRICES = $(wildcard harness/matrices/*.matrix)
+
+.PHONY: all deps build build-asan test reproduce plots baselines clean help
+
+all: build
+
+help:
+	@echo "make reproduce | make test | make deps | make build | make plots | make baselines | make clean"
+
+# Installs only what is missing, with sudo when not root, without recommended packages.
+deps:
+	@missing=""; for p in $(PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing$$missing"; \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update -q && \
+	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -q --no-install-recommends $$missing; \
+	else echo "make deps: all Debian packages present"; fi
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j$(JOBS)
+
+# Unit tests run again under AddressSanitizer and UndefinedBehaviorSanitizer.
+build-asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DGIB_SANITIZE=ON $(CMAKE_ARGS)
+	cmake --build $(ASAN_BUILD) -j$(JOBS)
+
+test: build build-asan
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest -L unit --output-on-failure -j$(JOBS)
+	cd $(BUILD) && ctest --output-on-failure
+
+reproduce: build
+	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
+	  rc=$$?; $(MAKE) --no-print-directory plots; exit $$rc
+
+plots:
+	python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
+
+# Accepts the current quality numbers as the new baselines: a deliberate step, never automatic.
+baselines: build
+	python3 tests/quality/check_quality.py --gibench $(BUILD)/gibench --work $(BUILD)/quality \
+	  --update tests/quality/baselines.csv
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)

@@ -1,0 +1,55 @@
+/* gibench — the command-line application: subcommands and what they share. */
+#ifndef GIB_APP_H
+#define GIB_APP_H
+
+#include "../../reference/reference.h"
+#include "../../scenes/scene.h"
+#include "../../techniques/technique.h"
+#include "../gl/context.h"
+#include "../imaging/metrics.h"
+
+int gib_cmd_list(int argc, char **argv);
+int gib_cmd_render(int argc, char **argv);
+int gib_cmd_reference(int argc, char **argv);
+int gib_cmd_compare(int argc, char **argv);
+int gib_cmd_run(int argc, char **argv);
+
+/* "256x256" → w, h; errors name the option. */
+int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *err);
+/* Integer / float option values with range checks; errors name the option. */
+int gib_parse_int(const char *opt, const char *s, long min, long max, long *out, gib_error *err);
+int gib_parse_float(const char *opt, const char *s, double min, double max, double *out,
+                    gib_error *err);
+/* Makes a directory and its parents. */
+int gib_mkdirs(const char *path, gib_error *err);
+/* The git revision the binary was built from ("unknown" outside a checkout). */
+const char *gib_git_revision(void);
+
+/* Reference images, from the cache or rendered and cached (harness/app/refcache.c). */
+typedef struct gib_ref_request {
+    const gib_scene *scene;
+    int camera;
+    int width, height;
+    int component;       /* enum gib_component */
+    int spp;
+    float dmax;          /* ao */
+    const char *cache_dir;
+    int force;           /* render even when a valid entry exists */
+} gib_ref_request;
+
+typedef struct gib_ref_result {
+    gib_image image;
+    int spp;
+    double noise_rmse, seconds;
+    int from_cache;
+    char path[1024];
+} gib_ref_result;
+
+int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err);
+
+/* Scores a technique image against a reference and writes the images: DIR/NAME.exr, NAME.png
+ * (preview at the scene's exposure) and NAME_error.png. */
+int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,
+                       const char *name, gib_metrics *m, gib_error *err);
+
+#endif

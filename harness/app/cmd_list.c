@@ -1,0 +1,71 @@
+/* gibench list — techniques with their parameters and defaults, scenes with their features. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+
+static void print_components(unsigned bits)
+{
+    const char *names[] = {"ao", "direct", "indirect", "glossy", "caustic"};
+    int first = 1;
+    for (int i = 0; i < 5; i++)
+        if (bits & (1u << i)) {
+            printf("%s%s", first ? "" : ",", names[i]);
+            first = 0;
+        }
+}
+
+int gib_cmd_list(int argc, char **argv)
+{
+    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        puts("usage: gibench list\n\nPrints every technique (its source, output components and "
+             "parameters with defaults and ranges) and every scene file (availability and "
+             "features).");
+        return 0;
+    }
+    int n;
+    const gib_technique *const *all = gib_techniques(&n);
+    puts("techniques:");
+    for (int i = 0; i < n; i++) {
+        const gib_technique *t = all[i];
+        printf("  %-14s outputs ", t->name);
+        print_components(t->components);
+        printf("  — %s\n", t->source);
+        for (int k = 0; t->params && t->params[k].name; k++) {
+            const gib_param_spec *p = &t->params[k];
+            printf("      %-16s %-5s default %-8g [%g, %g]  %s\n", p->name,
+                   p->type == GIB_PARAM_INT ? "int" : "float", p->def, p->min, p->max, p->help);
+        }
+    }
+    gib_scene_info *infos = NULL;
+    int count = 0;
+    gib_error err;
+    if (gib_scene_list(&infos, &count, &err) < 0) {
+        fprintf(stderr, "gibench list: %s\n", err.msg);
+        return 1;
+    }
+    const char *root = gib_scene_data_root();
+    printf("scenes (scene files in %s; shared data in %s):\n", gib_scene_dir(),
+           root ? root : "(none: set GIBENCH_SCENES)");
+    for (int i = 0; i < count; i++) {
+        if (!infos[i].available) {
+            printf("  %-16s unavailable: %s\n", infos[i].name, infos[i].why_unavailable);
+            continue;
+        }
+        gib_scene s;
+        char feats[256] = "?";
+        if (gib_scene_load(infos[i].name, &s, &err) == 0) {
+            gib_features_str(s.features, feats, sizeof feats);
+            printf("  %-16s %u triangles, %u lights, features: %s\n", infos[i].name,
+                   s.triangle_count, s.light_count, feats);
+            gib_scene_free(&s);
+        } else {
+            printf("  %-16s error: %s\n", infos[i].name, err.msg);
+        }
+        if (infos[i].description[0])
+            printf("  %-16s %s\n", "", infos[i].description);
+    }
+    free(infos);
+    return 0;
+}

@@ -1,0 +1,446 @@
+/* gibench run — runs matrix files: every (scene, technique, parameters, size) of the chosen
+ * profile, each scored against its cached reference, one CSV row per output component appended as
+ * it finishes (DESIGN.md, "Data flow" and "Matrices, CSV and reproduction"). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "../gl/runner.h"
+#include "app.h"
+#include "csv.h"
+#include "matrix.h"
+
+static const char help[] =
+    "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
+    "                   [--backend egl|osmesa|auto] [--no-images]\n"
+    "\n"
+    "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
+    "it: DIR/<matrix>.csv gets one row per run and component, DIR/<matrix>_passes.csv the per-pass\n"
+    "GPU times, DIR/images/<matrix>/ the images, previews and error maps. Rows are appended as\n"
+    "runs finish; a rerun skips the runs already in the CSV. References come from --cache\n"
+    "(default results/cache), rendered when missing or stale. Scenes whose data is absent are\n"
+    "skipped with a message. Exit status 1 when any row is not `ok`.\n";
+
+enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
+       C_HEIGHT, C_WARMUP, C_FRAMES, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU, C_MEM, C_SCENE_MEM,
+       C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_NONFINITE, C_REF_SPP, C_REF_NOISE, C_REF_NOISY,
+       C_STATUS, C_MESSAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
+
+static const char *const base_columns[C_BASE_COUNT] = {
+    "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
+    "warmup", "frames", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms", "mem_bytes",
+    "scene_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "nonfinite", "ref_spp",
+    "ref_noise_rmse", "ref_noisy", "status", "message", "backend", "renderer", "gl_version",
+    "git_revision", "timestamp"};
+static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
+                                  C_WIDTH, C_HEIGHT};
+#define NKEY ((int)(sizeof key_columns / sizeof key_columns[0]))
+
+static const char *const pass_columns[] = {"matrix", "profile", "scene", "technique", "params",
+                                           "width", "height", "pass", "ms_median", "ms_min",
+                                           "ms_max", "renderer", "git_revision"};
+
+#define MAX_COLS 96
+typedef struct columns {
+    const char *names[MAX_COLS];
+    int count;
+} columns;
+
+/* Base columns, then every parameter name of every technique once, in registry order. */
+static void make_columns(columns *c)
+{
+    c->count = 0;
+    for (int i = 0; i < C_BASE_COUNT; i++)
+        c->names[c->count++] = base_columns[i];
+    int n;
+    const gib_technique *const *all = gib_techniques(&n);
+    for (int t = 0; t < n; t++)
+        for (int p = 0; all[t]->params && all[t]->params[p].name; p++) {
+            int seen = 0;
+            for (int k = C_BASE_COUNT; k < c->count; k++)
+                seen |= !strcmp(c->names[k], all[t]->params[p].name);
+            if (!seen && c->count < MAX_COLS)
+                c->names[c->count++] = all[t]->params[p].name;
+        }
+}
+
+typedef struct row {
+    char v[MAX_COLS][256];
+    const char *ptr[MAX_COLS];
+} row;
+
+static void row_set(row *r, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void row_set(row *r, int col, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->v[col], sizeof r->v[col], fmt, ap);
+    va_end(ap);
+    r->ptr[col] = r->v[col];
+}
+
+static void row_key(const row *r, char *key, size_t len)
+{
+    key[0] = 0;
+    for (int k = 0; k < NKEY; k++) {
+        strncat(key, k ? "|" : "", len - strlen(key) - 1);
+        strncat(key, r->v[key_columns[k]], len - strlen(key) - 1);
+    }
+}
+
+static void fmt_num(row *r, int col, double v)
+{
+    if (isnan(v))
+        row_set(r, col, "nan");
+    else if (isinf(v))
+        row_set(r, col, v > 0 ? "inf" : "-inf");
+    else
+        row_set(r, col, "%.9g", v);
+}
+
+typedef struct run_ctx {
+    const gib_matrix *m;
+    const columns *cols;
+    gib_csv *csv, *passes;
+    const char *out, *cache;
+    int images;
+    gib_gl_info info;
+    int rows_written, rows_failed, runs_skipped;
+} run_ctx;
+
+/* The identity part of a row: what makes it this run. */
+static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned comp)
+{
+    memset(r->ptr, 0, sizeof r->ptr);
+    row_set(r, C_MATRIX, "%s", ctx->m->name);
+    row_set(r, C_PROFILE, "%s", ctx->m->profile);
+    row_set(r, C_SCENE, "%s", mr->scene);
+    row_set(r, C_CAMERA, "%d", ctx->m->camera);
+    row_set(r, C_TECHNIQUE, "%s", mr->technique->name);
+    row_set(r, C_COMPONENT, "%s", gib_output_name(comp));
+    row_set(r, C_PARAMS, "%s", mr->params_key);
+    row_set(r, C_WIDTH, "%d", mr->width);
+    row_set(r, C_HEIGHT, "%d", mr->height);
+    row_set(r, C_WARMUP, "%d", ctx->m->warmup);
+    row_set(r, C_FRAMES, "%d", ctx->m->frames);
+    row_set(r, C_BACKEND, "%s", ctx->info.backend);
+    row_set(r, C_RENDERER, "%s", ctx->info.renderer);
+    row_set(r, C_GL_VERSION, "%s", ctx->info.version);
+    row_set(r, C_GIT, "%s", gib_git_revision());
+    time_t now = time(NULL);
+    strftime(r->v[C_TIME], sizeof r->v[C_TIME], "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+    r->ptr[C_TIME] = r->v[C_TIME];
+    const gib_technique *t = mr->technique;
+    for (int p = 0; t->params && t->params[p].name; p++)
+        for (int k = C_BASE_COUNT; k < ctx->cols->count; k++)
+            if (!strcmp(ctx->cols->names[k], t->params[p].name))
+                fmt_num(r, k, mr->params.values[p]);
+}
+
+static int run_done(const run_ctx *ctx, const gib_matrix_run *mr)
+{
+    for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
+        if (!(mr->technique->components & bit))
+            continue;
+        row r;
+        char key[4096];
+        row_identity(&r, ctx, mr, bit);
+        row_key(&r, key, sizeof key);
+        if (!gib_csv_has(ctx->csv, key))
+            return 0;
+    }
+    return 1;
+}
+
+static void append_row(run_ctx *ctx, row *r)
+{
+    gib_error err;
+    if (gib_csv_append(ctx->csv, r->ptr, &err) < 0)
+        fprintf(stderr, "gibench run: %s\n", err.msg);
+    ctx->rows_written++;
+    if (strcmp(r->v[C_STATUS], "ok"))
+        ctx->rows_failed++;
+}
+
+static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
+                      const gib_matrix_run *mr, gib_run_result *res)
+{
+    const gib_technique *t = mr->technique;
+    char img_dir[2048];
+    snprintf(img_dir, sizeof img_dir, "%s/images/%s", ctx->out, ctx->m->name);
+    gib_error err;
+    if (ctx->images && gib_mkdirs(img_dir, &err) < 0) {
+        fprintf(stderr, "gibench run: %s\n", err.msg);
+        ctx->images = 0;
+    }
+    for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
+        if (!(t->components & bit))
+            continue;
+        row r;
+        row_identity(&r, ctx, mr, bit);
+        row_set(&r, C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
+        row_set(&r, C_MEM, "%llu", (unsigned long long)res->technique_bytes);
+        if (!res->ok) {
+            row_set(&r, C_STATUS, "%s", res->status);
+            row_set(&r, C_MESSAGE, "%s", res->err.msg);
+            append_row(ctx, &r);
+            continue;
+        }
+        fmt_num(&r, C_GPU_MED, res->gpu_total.median_ms);
+        fmt_num(&r, C_GPU_MIN, res->gpu_total.min_ms);
+        fmt_num(&r, C_GPU_MAX, res->gpu_total.max_ms);
+        fmt_num(&r, C_CPU, res->cpu_total.median_ms);
+        const gib_image *img = &res->images[i++];
+        const char *comp = gib_output_name(bit);
+        int component = gib_component_parse(comp);
+        int dmax_i = gib_param_index(t, "dmax");
+        gib_ref_request rq = {.scene = scene, .camera = ctx->m->camera, .width = mr->width,
+                              .height = mr->height, .component = component,
+                              .spp = component >= 0 && ctx->m->ref_spp[component]
+                                         ? ctx->m->ref_spp[component] : 64,
+                              .dmax = dmax_i >= 0 ? (float)mr->params.values[dmax_i] : INFINITY,
+                              .cache_dir = ctx->cache};
+        gib_ref_result ref;
+        if (component < 0 || gib_reference_get(&rq, &ref, &err) < 0) {
+            row_set(&r, C_STATUS, "reference_failed");
+            row_set(&r, C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
+                                                       : err.msg);
+            append_row(ctx, &r);
+            continue;
+        }
+        char name[512];
+        snprintf(name, sizeof name, "%s_%s_%s_%dx%d_%s", mr->scene, t->name, mr->params_key,
+                 mr->width, mr->height, comp);
+        for (char *p = name; *p; p++)
+            if (*p == ';' || *p == '=')
+                *p = *p == ';' ? '_' : '-';
+        gib_metrics m;
+        if (gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
+                               name, &m, &err) < 0) {
+            row_set(&r, C_STATUS, "scoring_failed");
+            row_set(&r, C_MESSAGE, "%s", err.msg);
+        } else {
+            fmt_num(&r, C_RMSE, m.rmse);
+            fmt_num(&r, C_REL_RMSE, m.rel_rmse);
+            fmt_num(&r, C_PSNR, m.psnr);
+            fmt_num(&r, C_SSIM, m.ssim);
+            row_set(&r, C_NONFINITE, "%ld", m.nonfinite);
+            /* A reference noisier than a fifth of the error cannot rank techniques. */
+            row_set(&r, C_REF_NOISY, "%d", ref.noise_rmse > 0.2 * m.rmse);
+            row_set(&r, C_STATUS, "%s", m.nonfinite ? "nonfinite" : "ok");
+            if (m.nonfinite)
+                row_set(&r, C_MESSAGE, "%ld NaN/Inf values in the image", m.nonfinite);
+        }
+        row_set(&r, C_REF_SPP, "%d", ref.spp);
+        fmt_num(&r, C_REF_NOISE, ref.noise_rmse);
+        append_row(ctx, &r);
+        printf("  %-10s %-8s %-36s %4dx%-4d gpu %8.3f ms  rmse %.4g  ssim %.4f  %s\n", mr->scene,
+               t->name, mr->params_key, mr->width, mr->height, res->gpu_total.median_ms, m.rmse,
+               m.ssim, r.v[C_STATUS]);
+        gib_image_free(&ref.image);
+    }
+    for (int p = 0; res->ok && p < res->pass_count; p++) {
+        char v[13][256];
+        const char *ptr[13];
+        snprintf(v[0], 256, "%s", ctx->m->name);
+        snprintf(v[1], 256, "%s", ctx->m->profile);
+        snprintf(v[2], 256, "%s", mr->scene);
+        snprintf(v[3], 256, "%s", t->name);
+        snprintf(v[4], 256, "%s", mr->params_key);
+        snprintf(v[5], 256, "%d", mr->width);
+        snprintf(v[6], 256, "%d", mr->height);
+        snprintf(v[7], 256, "%s", res->passes[p].name);
+        snprintf(v[8], 256, "%.6g", res->passes[p].median_ms);
+        snprintf(v[9], 256, "%.6g", res->passes[p].min_ms);
+        snprintf(v[10], 256, "%.6g", res->passes[p].max_ms);
+        snprintf(v[11], 256, "%s", ctx->info.renderer);
+        snprintf(v[12], 256, "%s", gib_git_revision());
+        for (int k = 0; k < 13; k++)
+            ptr[k] = v[k];
+        if (gib_csv_append(ctx->passes, ptr, &err) < 0)
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+    }
+}
+
+static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, size_t len)
+{
+    if ((s->features & t->scene_needs) != t->scene_needs) {
+        char f[256];
+        gib_features_str(t->scene_needs & ~s->features, f, sizeof f);
+        snprintf(why, len, "scene lacks %s", f);
+        return 0;
+    }
+    if (t->scene_needs_any && !(s->features & t->scene_needs_any)) {
+        char f[256];
+        gib_features_str(t->scene_needs_any, f, sizeof f);
+        snprintf(why, len, "scene has none of %s", f);
+        return 0;
+    }
+    return 1;
+}
+
+static void run_matrix(run_ctx *ctx)
+{
+    const gib_matrix *m = ctx->m;
+    char *done_scene = calloc(m->run_count, 1);
+    for (int i = 0; done_scene && i < m->run_count; i++) {
+        if (done_scene[i])
+            continue;
+        const char *sname = m->runs[i].scene;
+        int pending = 0;
+        for (int j = i; j < m->run_count; j++)
+            if (!strcmp(m->runs[j].scene, sname) && !run_done(ctx, &m->runs[j]))
+                pending++;
+        for (int j = i; j < m->run_count; j++)
+            if (!strcmp(m->runs[j].scene, sname))
+                done_scene[j] = 1;
+        if (!pending) {
+            printf("%s: every run already in %s\n", sname, ctx->csv->path);
+            continue;
+        }
+        gib_scene scene;
+        gib_gpu_scene gpu;
+        gib_error err;
+        int rc = gib_scene_load(sname, &scene, &err);
+        if (rc == GIB_SCENE_UNAVAILABLE) {
+            printf("%s: skipped (%d runs): %s\n", sname, pending, err.msg);
+            ctx->runs_skipped += pending;
+            continue;
+        }
+        if (rc < 0 || gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
+            fprintf(stderr, "gibench run: scene '%s': %s\n", sname, err.msg);
+            if (rc == 0)
+                gib_scene_free(&scene);
+            ctx->rows_failed += pending;
+            continue;
+        }
+        printf("%s: %u triangles, %d runs to do\n", sname, scene.triangle_count, pending);
+        for (int j = i; j < m->run_count; j++) {
+            const gib_matrix_run *mr = &m->runs[j];
+            if (strcmp(mr->scene, sname) || run_done(ctx, mr))
+                continue;
+            char why[512];
+            if (!scene_wanted(&scene, mr->technique, why, sizeof why)) {
+                printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
+                ctx->runs_skipped++;
+                continue;
+            }
+            gib_run_result res;
+            gib_run_technique(&gpu, mr->technique, &mr->params, m->camera, mr->width, mr->height,
+                              m->warmup, m->frames, &res);
+            if (!res.ok)
+                fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
+                        mr->params_key, res.status, res.err.msg);
+            score_run(ctx, &scene, &gpu, mr, &res);
+            gib_run_result_free(&res);
+        }
+        gib_gpu_scene_free(&gpu);
+        gib_scene_free(&scene);
+    }
+    free(done_scene);
+}
+
+int gib_cmd_run(int argc, char **argv)
+{
+    const char *profile = "quick", *out = GIB_PROJECT_ROOT "/results", *cache = NULL;
+    const char *files[64];
+    int nfiles = 0, backend = GIB_BACKEND_AUTO, images = 1;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--no-images")) {
+            images = 0;
+            continue;
+        }
+        if (a[0] != '-') {
+            if (nfiles < 64)
+                files[nfiles++] = a;
+            continue;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "gibench run: option %s needs a value\n%s", a, help);
+            return 2;
+        }
+        const char *v = argv[++i];
+        if (!strcmp(a, "--profile")) profile = v;
+        else if (!strcmp(a, "--out")) out = v;
+        else if (!strcmp(a, "--cache")) cache = v;
+        else if (!strcmp(a, "--backend")) {
+            if ((backend = gib_backend_parse(v)) < 0) {
+                fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "gibench run: unknown option '%s'\n%s", a, help);
+            return 2;
+        }
+    }
+    if (!nfiles) {
+        fprintf(stderr, "gibench run: no matrix file given\n%s", help);
+        return 2;
+    }
+    /* Every matrix is expanded and validated before anything renders. */
+    gib_matrix *ms = calloc(nfiles, sizeof *ms);
+    gib_error err;
+    int total = 0;
+    for (int i = 0; i < nfiles; i++) {
+        if (gib_matrix_load(files[i], profile, &ms[i], &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            for (int k = 0; k < i; k++)
+                gib_matrix_free(&ms[k]);
+            free(ms);
+            return 2;
+        }
+        total += ms[i].run_count;
+    }
+    char cache_dir[2048];
+    snprintf(cache_dir, sizeof cache_dir, "%s", cache ? cache : GIB_PROJECT_ROOT "/results/cache");
+    run_ctx ctx = {.out = out, .cache = cache_dir, .images = images};
+    if (gib_mkdirs(out, &err) < 0 || gib_gl_init(backend, &ctx.info, &err) < 0) {
+        fprintf(stderr, "gibench run: %s\n", err.msg);
+        for (int k = 0; k < nfiles; k++)
+            gib_matrix_free(&ms[k]);
+        free(ms);
+        return 1;
+    }
+    printf("gibench run: %d matrices, %d runs, profile %s, on %s (%s, %s)\n", nfiles, total,
+           profile, ctx.info.renderer, ctx.info.backend, ctx.info.version);
+    columns cols;
+    make_columns(&cols);
+    int status = 0;
+    for (int i = 0; i < nfiles; i++) {
+        gib_csv csv, passes;
+        char path[2048], ppath[2048];
+        snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
+        snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
+        if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
+            gib_csv_open(&passes, ppath, pass_columns, 13, key_columns, 0, &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            status = 1;
+            continue;
+        }
+        printf("matrix %s (%d runs): %s\n", ms[i].name, ms[i].run_count, ms[i].description);
+        ctx.m = &ms[i];
+        ctx.cols = &cols;
+        ctx.csv = &csv;
+        ctx.passes = &passes;
+        run_matrix(&ctx);
+        gib_csv_close(&csv);
+        gib_csv_close(&passes);
+    }
+    printf("gibench run: %d rows written (%d not ok), %d runs skipped\n", ctx.rows_written,
+           ctx.rows_failed, ctx.runs_skipped);
+    if (ctx.rows_failed)
+        status = 1;
+    gib_gl_shutdown();
+    for (int k = 0; k < nfiles; k++)
+        gib_matrix_free(&ms[k]);
+    free(ms);
+    return status;
+}

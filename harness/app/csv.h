@@ -1,0 +1,32 @@
+/* gibench — tidy CSV results (DESIGN.md, "Matrices, CSV and reproduction").
+ *
+ * One row per (run, output component), appended and flushed as each run finishes, so an
+ * interrupted matrix keeps what it did; a rerun skips runs whose rows are all present. The
+ * columns are fixed for a build: the base columns below plus one column per parameter name of every
+ * registered technique (empty where a technique lacks it). A second file holds per-pass timings. */
+#ifndef GIB_CSV_H
+#define GIB_CSV_H
+
+#include <stdio.h>
+
+#include "../base/error.h"
+
+typedef struct gib_csv {
+    FILE *f;
+    char path[1024];
+    int ncols;
+    char **keys;      /* identity keys of rows already present (for resume) */
+    int nkeys;
+} gib_csv;
+
+/* Opens for appending. An existing file with the same header is kept (its rows' identity keys are
+ * loaded); one with a different header is moved aside to PATH.old and a fresh file started. */
+int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int ncols,
+                 const int *key_columns, int nkey_columns, gib_error *err);
+/* Appends one row (ncols values, NULL = empty), quoted as RFC 4180 needs, and flushes. */
+int gib_csv_append(gib_csv *c, const char *const *values, gib_error *err);
+/* Whether a row with this identity key (key columns joined by '|') is present. */
+int gib_csv_has(const gib_csv *c, const char *key);
+void gib_csv_close(gib_csv *c);
+
+#endif

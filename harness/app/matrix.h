@@ -1,0 +1,53 @@
+/* gibench — matrix files: scenes x techniques x parameter lists x sizes, with profiles.
+ *
+ *   [matrix]
+ *   description = what this matrix reproduces
+ *   scenes = cornell, plane_box
+ *   techniques = direct
+ *   sizes = 256x256, 512x512
+ *   camera = 0
+ *   frames = 10            ; timed frames per run
+ *   warmup = 3
+ *   ref_spp_direct = 4     ; reference samples per pixel, per component
+ *   ref_spp_ao = 256
+ *   [params.direct]        ; comma-separated lists; the cross product is run
+ *   shadow_res = 512, 1024
+ *   [profile.quick]        ; overrides for --profile quick: any [matrix] key, and TECH.PARAM lists
+ *   sizes = 128x128
+ *   direct.shadow_res = 256
+ *
+ * Parsing expands and validates everything (names, parameter ranges, sizes) before any rendering;
+ * errors name the file and line. */
+#ifndef GIB_MATRIX_H
+#define GIB_MATRIX_H
+
+#include "../../techniques/technique.h"
+
+#define GIB_MATRIX_MAX_LIST 32
+
+typedef struct gib_matrix_run {
+    char scene[64];
+    const gib_technique *technique;
+    gib_params params;
+    char params_key[256];   /* "pcf=1;shadow_res=512" in spec order: identifies the run in CSV */
+    int width, height;
+} gib_matrix_run;
+
+typedef struct gib_matrix {
+    char name[64];          /* file name without .matrix */
+    char path[1024];
+    char profile[32];
+    char description[512];
+    int camera, frames, warmup;
+    int ref_spp[8];         /* by enum gib_component; 0 = not set */
+    gib_matrix_run *runs;
+    int run_count;
+} gib_matrix;
+
+int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_error *err);
+void gib_matrix_free(gib_matrix *m);
+
+/* "name=value;..." of a parameter set, in spec order. */
+void gib_params_key(const gib_technique *t, const gib_params *p, char *out, int out_len);
+
+#endif

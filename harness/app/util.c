@@ -1,0 +1,114 @@
+/* gibench — small helpers shared by the subcommands: option parsing, directories, revision. */
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "app.h"
+
+int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *err)
+{
+    char *end;
+    errno = 0;
+    long a = strtol(s, &end, 10);
+    if (end == s || (*end != 'x' && *end != 'X'))
+        return gib_fail(err, "%s expects WIDTHxHEIGHT (e.g. 256x256), got '%s'", opt, s);
+    const char *p = end + 1;
+    long b = strtol(p, &end, 10);
+    if (end == p || *end || errno || a < 1 || b < 1 || a > 16384 || b > 16384)
+        return gib_fail(err, "%s expects WIDTHxHEIGHT with sides 1..16384, got '%s'", opt, s);
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
+
+int gib_parse_int(const char *opt, const char *s, long min, long max, long *out, gib_error *err)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || errno)
+        return gib_fail(err, "%s expects an integer, got '%s'", opt, s);
+    if (v < min || v > max)
+        return gib_fail(err, "%s = %ld is outside [%ld, %ld]", opt, v, min, max);
+    *out = v;
+    return 0;
+}
+
+int gib_parse_float(const char *opt, const char *s, double min, double max, double *out,
+                    gib_error *err)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || errno)
+        return gib_fail(err, "%s expects a number, got '%s'", opt, s);
+    if (!(v >= min && v <= max))
+        return gib_fail(err, "%s = %g is outside [%g, %g]", opt, v, min, max);
+    *out = v;
+    return 0;
+}
+
+int gib_mkdirs(const char *path, gib_error *err)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", path);
+    for (char *p = buf + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = 0;
+        if (mkdir(buf, 0777) < 0 && errno != EEXIST)
+            return gib_fail(err, "cannot create directory '%s': %s", buf, strerror(errno));
+        *p = '/';
+    }
+    if (mkdir(buf, 0777) < 0 && errno != EEXIST)
+        return gib_fail(err, "cannot create directory '%s': %s", buf, strerror(errno));
+    return 0;
+}
+
+const char *gib_git_revision(void)
+{
+    static char rev[64];
+    if (rev[0])
+        return rev;
+    snprintf(rev, sizeof rev, "unknown");
+    FILE *p = popen("git -C '" GIB_PROJECT_ROOT "' rev-parse --short=12 HEAD 2>/dev/null", "r");
+    if (p) {
+        char line[64];
+        if (fgets(line, sizeof line, p)) {
+            line[strcspn(line, "\r\n")] = 0;
+            if (line[0])
+                snprintf(rev, sizeof rev, "%s", line);
+        }
+        pclose(p);
+        /* A dirty tree is marked, so a result is never attributed to a commit it did not come from. */
+        p = popen("git -C '" GIB_PROJECT_ROOT "' status --porcelain --untracked-files=no 2>/dev/null", "r");
+        if (p) {
+            char l2[8];
+            if (fgets(l2, sizeof l2, p) && strcmp(rev, "unknown"))
+                strncat(rev, "-dirty", sizeof rev - strlen(rev) - 1);
+            pclose(p);
+        }
+    }
+    return rev;
+}
+
+int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,
+                       const char *name, gib_metrics *m, gib_error *err)
+{
+    if (gib_metrics_compute(ref, img, exposure, m, err) < 0)
+        return -1;
+    if (!dir)
+        return 0;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s.exr", dir, name);
+    if (gib_exr_write(path, img, NULL, 0, err) < 0)
+        return -1;
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    if (gib_png_write_preview(path, img, exposure, err) < 0)
+        return -1;
+    snprintf(path, sizeof path, "%s/%s_error.png", dir, name);
+    return gib_png_write_error_map(path, ref, img, 0.0f, err);
+}

@@ -1,0 +1,172 @@
+#include "gpu_scene.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../imaging/image.h"
+#include "context.h"
+
+/* Textures are linear floats in the scene model; on the GPU they are sRGB8 (the 8-bit data they came
+ * from), decoded by the sampler, so filtering happens on linear values as in the path tracer. */
+static unsigned upload_texture(gib_gpu_scene *gpu, const gib_texture *t, int srgb, gib_error *err)
+{
+    size_t n = (size_t)t->width * t->height;
+    unsigned char *bytes = malloc(n * 4);
+    if (!bytes) {
+        gib_fail(err, "out of memory uploading texture '%s'", t->path);
+        return 0;
+    }
+    for (size_t i = 0; i < n * 4; i++) {
+        float v = t->rgba[i];
+        if (srgb && (i & 3) != 3)
+            v = gib_srgb_encode(v);
+        v = v < 0 ? 0 : v > 1 ? 1 : v;
+        bytes[i] = (unsigned char)lrintf(v * 255.0f);
+    }
+    unsigned tex = gib_gpu_texture(&gpu->ledger, "scene.textures", GL_TEXTURE_2D, t->width,
+                                   t->height, 1, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, 0, err);
+    if (tex) {
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(tex, 0, 0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, bytes);
+        glGenerateTextureMipmap(tex);
+        glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    free(bytes);
+    return tex;
+}
+
+static unsigned upload_array(gib_gpu_scene *gpu, const char *label, const void *data, size_t bytes,
+                             gib_error *err)
+{
+    return gib_gpu_buffer(&gpu->ledger, label, bytes, data, 0, err);
+}
+
+int gib_gpu_scene_upload(const gib_scene *s, gib_gpu_scene *gpu, gib_error *err)
+{
+    memset(gpu, 0, sizeof *gpu);
+    gpu->scene = s;
+    gib_ledger_init(&gpu->ledger);
+    size_t nv = s->vertex_count;
+    if (!(gpu->positions = upload_array(gpu, "scene.positions", s->positions, nv * 12, err)) ||
+        !(gpu->normals = upload_array(gpu, "scene.normals", s->normals, nv * 12, err)) ||
+        !(gpu->uvs = upload_array(gpu, "scene.uvs", s->uvs, nv * 8, err)) ||
+        !(gpu->indices = upload_array(gpu, "scene.indices", s->indices,
+                                      (size_t)s->triangle_count * 12, err)))
+        goto fail;
+    glCreateVertexArrays(1, &gpu->vao);
+    const unsigned bufs[3] = {gpu->positions, gpu->normals, gpu->uvs};
+    const int comps[3] = {3, 3, 2};
+    for (int i = 0; i < 3; i++) {
+        glVertexArrayVertexBuffer(gpu->vao, i, bufs[i], 0, comps[i] * 4);
+        glVertexArrayAttribFormat(gpu->vao, i, comps[i], GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(gpu->vao, i, i);
+        glEnableVertexArrayAttrib(gpu->vao, i);
+    }
+    glVertexArrayElementBuffer(gpu->vao, gpu->indices);
+
+    /* std430 struct Material { vec4 albedo; vec4 specular; ivec4 flags; } = 48 bytes. */
+    struct { float albedo[4], specular[4]; int flags[4]; } *mats =
+        calloc(s->material_count ? s->material_count : 1, sizeof *mats);
+    if (!mats) {
+        gib_fail(err, "out of memory");
+        goto fail;
+    }
+    for (uint32_t i = 0; i < s->material_count; i++) {
+        const gib_material *m = &s->materials[i];
+        memcpy(mats[i].albedo, m->albedo, 12);
+        mats[i].albedo[3] = m->albedo_tex >= 0 ? 1.0f : 0.0f;
+        memcpy(mats[i].specular, m->specular, 12);
+        mats[i].specular[3] = m->phong_n;
+        mats[i].flags[0] = m->spec_type;
+        mats[i].flags[1] = m->two_sided;
+        mats[i].flags[2] = m->alpha_tex >= 0;
+    }
+    gpu->materials = upload_array(gpu, "scene.materials", mats,
+                                  sizeof *mats * (s->material_count ? s->material_count : 1), err);
+    free(mats);
+    if (!gpu->materials)
+        goto fail;
+
+    /* std430 struct Light { vec4 position_type; vec4 direction_exponent; vec4 intensity_outer; } */
+    float *lights = calloc(s->light_count ? s->light_count : 1, 48);
+    if (!lights) {
+        gib_fail(err, "out of memory");
+        goto fail;
+    }
+    for (uint32_t i = 0; i < s->light_count; i++) {
+        const gib_light *l = &s->lights[i];
+        float *o = lights + i * 12;
+        memcpy(o, l->position, 12);
+        o[3] = (float)l->type;
+        memcpy(o + 4, l->direction, 12);
+        o[7] = l->spot_exponent;
+        memcpy(o + 8, l->intensity, 12);
+        o[11] = l->type == GIB_LIGHT_SPOT ? cosf(l->spot_outer_deg * (float)M_PI / 180.0f) : -2.0f;
+    }
+    gpu->lights = upload_array(gpu, "scene.lights", lights,
+                               48 * (size_t)(s->light_count ? s->light_count : 1), err);
+    free(lights);
+    if (!gpu->lights)
+        goto fail;
+
+    gpu->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *gpu->textures);
+    if (!gpu->textures) {
+        gib_fail(err, "out of memory");
+        goto fail;
+    }
+    /* A texture used as an alpha mask keeps its bytes linear; colour textures are sRGB. */
+    for (uint32_t i = 0; i < s->texture_count; i++) {
+        int srgb = 1;
+        for (uint32_t m = 0; m < s->material_count; m++)
+            if (s->materials[m].alpha_tex == (int)i)
+                srgb = 0;
+        if (!(gpu->textures[i] = upload_texture(gpu, &s->textures[i], srgb, err)))
+            goto fail;
+    }
+    gib_texture white = {.width = 1, .height = 1, .rgba = (float[4]){1, 1, 1, 1}};
+    strcpy(white.path, "white");
+    if (!(gpu->white = upload_texture(gpu, &white, 0, err)))
+        goto fail;
+    return gib_gl_check("uploading the scene", err);
+fail:
+    gib_error_prefix(err, "scene '%s' upload", s->name);
+    gib_gpu_scene_free(gpu);
+    return -1;
+}
+
+void gib_gpu_scene_free(gib_gpu_scene *gpu)
+{
+    if (gpu->vao)
+        glDeleteVertexArrays(1, &gpu->vao);
+    gib_ledger_release_all(&gpu->ledger);
+    free(gpu->textures);
+    memset(gpu, 0, sizeof *gpu);
+}
+
+void gib_gpu_scene_bind(const gib_gpu_scene *gpu)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu->materials);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu->lights);
+}
+
+void gib_gpu_scene_draw(const gib_gpu_scene *gpu)
+{
+    const gib_scene *s = gpu->scene;
+    glBindVertexArray(gpu->vao);
+    gib_gpu_scene_bind(gpu);
+    for (uint32_t r = 0; r < s->range_count; r++) {
+        const gib_draw_range *dr = &s->ranges[r];
+        const gib_material *m = &s->materials[dr->material];
+        glUniform1i(0, (int)dr->material);
+        glBindTextureUnit(0, m->albedo_tex >= 0 ? gpu->textures[m->albedo_tex] : gpu->white);
+        glBindTextureUnit(1, m->alpha_tex >= 0 ? gpu->textures[m->alpha_tex] : gpu->white);
+        glDrawElements(GL_TRIANGLES, (GLsizei)dr->index_count, GL_UNSIGNED_INT,
+                       (const void *)((size_t)dr->first_index * 4));
+    }
+    glBindVertexArray(0);
+}

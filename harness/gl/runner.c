@@ -1,0 +1,136 @@
+#include "runner.h"
+
+#include <glad/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "context.h"
+#include "ledger.h"
+#include "view.h"
+
+const char *gib_output_name(unsigned bit)
+{
+    switch (bit) {
+    case GIB_OUT_AO: return "ao";
+    case GIB_OUT_DIRECT: return "direct";
+    case GIB_OUT_INDIRECT: return "indirect";
+    case GIB_OUT_GLOSSY: return "glossy";
+    case GIB_OUT_CAUSTIC: return "caustic";
+    default: return "unknown";
+    }
+}
+
+static void set_status(gib_run_result *r, const char *status)
+{
+    snprintf(r->status, sizeof r->status, "%s", status);
+    r->ok = !strcmp(status, "ok");
+}
+
+/* Reads an RGBA32F target into a 3-channel image with row 0 on top. */
+static int read_target(unsigned texture, int w, int h, gib_image *img, gib_error *err)
+{
+    if (gib_image_alloc(img, w, h, 3, err) < 0)
+        return -1;
+    size_t n = (size_t)w * h;
+    float *rgba = malloc(n * 16);
+    if (!rgba)
+        return gib_fail(err, "out of memory reading back a %dx%d image", w, h);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 3; c++)
+                img->px[((size_t)y * w + x) * 3 + c] = rgba[((size_t)(h - 1 - y) * w + x) * 4 + c];
+    free(rgba);
+    return gib_gl_check("reading back an image", err);
+}
+
+void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
+                       int camera, int w, int h, int warmup, int frames, gib_run_result *r)
+{
+    memset(r, 0, sizeof *r);
+    set_status(r, "ok");
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_timers timers;
+    gib_timers_init(&timers);
+    gib_image_target targets[GIB_MAX_OUTPUTS];
+    unsigned fbos[GIB_MAX_OUTPUTS] = {0};
+    int nt = 0;
+    void *self = NULL;
+    glGetError();
+
+    /* Output targets belong to the harness: their memory is not the technique's. */
+    gib_ledger out_ledger;
+    gib_ledger_init(&out_ledger);
+    unsigned depth = gib_gpu_renderbuffer(&out_ledger, "output.depth", GL_DEPTH_COMPONENT24, w, h,
+                                          &r->err);
+    for (unsigned bit = 1; bit && nt < GIB_MAX_OUTPUTS; bit <<= 1) {
+        if (!(t->components & bit))
+            continue;
+        unsigned tex = gib_gpu_texture(&out_ledger, "output.color", GL_TEXTURE_2D, w, h, 1,
+                                       GL_RGBA32F, 1, &r->err);
+        if (!tex || !depth) {
+            set_status(r, "alloc_failed");
+            goto done;
+        }
+        glCreateFramebuffers(1, &fbos[nt]);
+        glNamedFramebufferTexture(fbos[nt], GL_COLOR_ATTACHMENT0, tex, 0);
+        glNamedFramebufferRenderbuffer(fbos[nt], GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(fbos[nt], GL_COLOR, 0, zero);
+        targets[nt] = (gib_image_target){.component = bit, .fbo = fbos[nt], .texture = tex};
+        r->output_components[nt] = bit;
+        nt++;
+    }
+    r->output_count = nt;
+
+    self = t->create(scene, params, w, h, &ledger, &r->err);
+    if (!self) {
+        set_status(r, strstr(r->err.msg, "shader") || strstr(r->err.msg, "program")
+                          ? "shader_failed" : "create_failed");
+        goto done;
+    }
+    gib_view view;
+    gib_view_make(scene->scene, &scene->scene->cameras[camera], w, h, 0.0f, &view);
+    for (int f = 0; f < warmup + frames; f++) {
+        gib_timers_frame_begin(&timers, f >= warmup);
+        int rc = t->render(self, &view, &timers, targets, nt, &r->err);
+        gib_timers_frame_end(&timers);
+        if (rc < 0) {
+            set_status(r, "render_failed");
+            goto done;
+        }
+    }
+    if (t->status) {
+        const char *s = t->status(self);
+        if (s && strcmp(s, "ok")) {
+            set_status(r, s);
+            snprintf(r->err.msg, sizeof r->err.msg, "technique '%s' reported '%s'", t->name, s);
+        }
+    }
+    for (int i = 0; i < nt; i++)
+        if (read_target(targets[i].texture, w, h, &r->images[i], &r->err) < 0) {
+            set_status(r, "readback_failed");
+            goto done;
+        }
+    r->frames = timers.frames;
+    r->pass_count = gib_timers_stats(&timers, r->passes, GIB_TIMER_MAX_PASSES, &r->gpu_total,
+                                     &r->cpu_total);
+done:
+    r->technique_bytes = ledger.peak_bytes;
+    gib_ledger_summary(&ledger, r->memory_by_label, sizeof r->memory_by_label);
+    if (self)
+        t->destroy(self);
+    gib_ledger_release_all(&ledger); /* whatever a technique forgot to free */
+    for (int i = 0; i < nt; i++)
+        glDeleteFramebuffers(1, &fbos[i]);
+    gib_ledger_release_all(&out_ledger);
+    gib_timers_destroy(&timers);
+}
+
+void gib_run_result_free(gib_run_result *r)
+{
+    for (int i = 0; i < r->output_count; i++)
+        gib_image_free(&r->images[i]);
+}

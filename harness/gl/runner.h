@@ -1,0 +1,38 @@
+/* gibench — one run: a technique with validated parameters on an uploaded scene at one size.
+ * create → W warm-up frames → F timed frames → read back each component image (DESIGN.md, data
+ * flow). The result carries everything a CSV row needs except the metrics. */
+#ifndef GIB_RUNNER_H
+#define GIB_RUNNER_H
+
+#include "../../techniques/technique.h"
+#include "../imaging/image.h"
+#include "gpu_scene.h"
+#include "timers.h"
+
+#define GIB_MAX_OUTPUTS 5
+
+typedef struct gib_run_result {
+    int ok;                         /* 0: see status and err */
+    char status[32];                /* "ok", "create_failed", "render_failed", "overflow", ... */
+    int output_count;
+    unsigned output_components[GIB_MAX_OUTPUTS]; /* GIB_OUT_* bit of each image */
+    gib_image images[GIB_MAX_OUTPUTS];
+    int pass_count;
+    gib_pass_stats passes[GIB_TIMER_MAX_PASSES];
+    gib_pass_stats gpu_total, cpu_total;
+    int frames;
+    uint64_t technique_bytes;       /* peak bytes the technique's ledger held */
+    char memory_by_label[1024];
+    gib_error err;
+} gib_run_result;
+
+/* Never fails outright: problems are reported in result->status and result->err. */
+void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
+                       int camera, int width, int height, int warmup, int frames,
+                       gib_run_result *result);
+void gib_run_result_free(gib_run_result *r);
+
+/* Name of a GIB_OUT_* bit: "ao", "direct", ... (matching the reference's component names). */
+const char *gib_output_name(unsigned bit);
+
+#endif

@@ -1,0 +1,53 @@
+/* gibench — named per-pass GPU timers (GL_TIME_ELAPSED queries) and CPU frame time.
+ *
+ * A technique brackets each pass with gib_timer_begin/end. The harness marks frames; results are
+ * collected after each frame (queries are read back then, so they never overlap: TIME_ELAPSED
+ * queries cannot nest). Statistics are over the timed frames only; warm-up frames are discarded. */
+#ifndef GIB_TIMERS_H
+#define GIB_TIMERS_H
+
+#define GIB_TIMER_MAX_PASSES 16
+#define GIB_TIMER_MAX_FRAMES 256
+
+typedef struct gib_pass_stats {
+    char name[48];
+    double median_ms, min_ms, max_ms;
+} gib_pass_stats;
+
+struct gib_timers {
+    int pass_count;
+    char names[GIB_TIMER_MAX_PASSES][48];
+    unsigned queries[GIB_TIMER_MAX_PASSES];
+    int used_in_frame[GIB_TIMER_MAX_PASSES];
+    int active;                    /* pass index with an open query, -1 when none */
+    int frames;                    /* recorded (timed) frames */
+    int recording;                 /* 0 during warm-up */
+    double ms[GIB_TIMER_MAX_PASSES][GIB_TIMER_MAX_FRAMES];
+    double total_ms[GIB_TIMER_MAX_FRAMES];
+    double cpu_ms[GIB_TIMER_MAX_FRAMES];
+    double frame_cpu_start;
+};
+typedef struct gib_timers gib_timers;
+
+void gib_timers_init(gib_timers *t);
+void gib_timers_destroy(gib_timers *t);
+
+/* Used by techniques. Passes are identified by name; the same name in one frame accumulates. */
+void gib_timer_begin(gib_timers *t, const char *pass);
+void gib_timer_end(gib_timers *t);
+
+/* Used by the harness around each render() call. `record` = 0 for warm-up frames. frame_end waits
+ * for the GPU (glFinish), so the CPU time is the full frame's wall time. */
+void gib_timers_frame_begin(gib_timers *t, int record);
+void gib_timers_frame_end(gib_timers *t);
+
+/* Per-pass statistics (stats[i] for pass i, up to max) and totals. Returns the pass count. */
+int gib_timers_stats(const gib_timers *t, gib_pass_stats *stats, int max, gib_pass_stats *gpu_total,
+                     gib_pass_stats *cpu_total);
+
+/* Median, min, max of n values (n >= 1). */
+void gib_stats_median(const double *v, int n, double *median, double *min, double *max);
+
+double gib_now_ms(void);
+
+#endif

@@ -1,0 +1,21 @@
+/* gibench — view and projection matrices that reproduce gib_camera_ray() exactly under GL
+ * rasterisation: the pixel centre (i + 0.5, GL row j) maps to the ray through image pixel
+ * (i + 0.5, height - 1 - j + 0.5). Column-major 4x4, GL clip conventions. */
+#ifndef GIB_VIEW_H
+#define GIB_VIEW_H
+
+#include "../../scenes/scene.h"
+#include "../../techniques/technique.h"
+
+void gib_mat4_mul(const float a[16], const float b[16], float out[16]);
+/* Camera-style view matrix from an orthonormal basis (right, up, forward) and an origin. */
+void gib_mat4_view(const float right[3], const float up[3], const float forward[3],
+                   const float eye[3], float out[16]);
+void gib_mat4_perspective(float vfov_rad, float aspect, float znear, float zfar, float out[16]);
+void gib_mat4_ortho(float l, float r, float b, float t, float n, float f, float out[16]);
+
+/* Fills view->view, proj, view_proj for a scene camera; near and far planes from the scene bounds. */
+void gib_view_make(const gib_scene *scene, const gib_camera *cam, int width, int height, float time,
+                   gib_view *view);
+
+#endif

@@ -1,0 +1,420 @@
+/* gibench — mesh files through assimp 5.2's C API: OBJ with its MTL, PLY, gzipped PLY.
+ *
+ * Post-processing flags, and why:
+ *  - Triangulate: OBJ faces may be quads or n-gons (Dabrovic Sponza).
+ *  - SortByPType + AI_CONFIG_PP_SBP_REMOVE: drop point and line primitives, which neither side
+ *    renders, instead of carrying vertices nothing uses.
+ *  - GenSmoothNormals: only runs for meshes without normals (Sibenik, Dabrovic Sponza, the PLY
+ *    scans). Its smoothing angle is limited (smooth_angle, 60 degrees by default) so that the
+ *    right-angled edges of architecture stay hard; scans can ask for 180.
+ *  - JoinIdenticalVertices: the OBJ importer emits one vertex per face corner; joining (after the
+ *    normals are made) shrinks Sponza's vertex arrays about 4x, which matters because vertex work
+ *    is nearly single-threaded on llvmpipe.
+ *  - PreTransformVertices: bakes node transforms into the vertices and merges meshes that share a
+ *    material, so what we read is already in the file's coordinates.
+ * Not used: FindDegenerates (degenerate triangles are kept, DESIGN.md hard cases), FlipUVs (we keep
+ * OBJ's v-up convention; gib_texture documents t = 1 - v), FixInfacingNormals (guesses wrong on
+ * open architecture).
+ *
+ * A custom aiFileIO opens every file assimp asks for: it resolves names case-insensitively (an MTL
+ * named in the wrong case still loads) and records each file read, whose bytes then go into the
+ * content hash (the MTL changes the image as much as the OBJ does). */
+#include <assimp/cfileio.h>
+#include <assimp/cimport.h>
+#include <assimp/config.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <zlib.h>
+
+#include "../harness/base/hash.h"
+#include "scene_internal.h"
+
+/* ------------------------------------------------------------------ file access for assimp */
+
+#define MAX_OPENED 32
+
+typedef struct io_state {
+    char opened[MAX_OPENED][GIB_PATH_MAX];
+    int count;
+} io_state;
+
+static size_t f_read(struct aiFile *f, char *buf, size_t size, size_t count)
+{
+    return fread(buf, size, count, (FILE *)f->UserData);
+}
+
+static size_t f_write(struct aiFile *f, const char *buf, size_t size, size_t count)
+{
+    (void)f;
+    (void)buf;
+    (void)size;
+    (void)count;
+    return 0; /* read-only */
+}
+
+static size_t f_tell(struct aiFile *f)
+{
+    long p = ftell((FILE *)f->UserData);
+    return p < 0 ? 0 : (size_t)p;
+}
+
+static size_t f_size(struct aiFile *f)
+{
+    struct stat st;
+    if (fstat(fileno((FILE *)f->UserData), &st) != 0)
+        return 0;
+    return (size_t)st.st_size;
+}
+
+static enum aiReturn f_seek(struct aiFile *f, size_t off, enum aiOrigin origin)
+{
+    int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
+    return fseek((FILE *)f->UserData, (long)off, whence) == 0 ? aiReturn_SUCCESS
+                                                              : aiReturn_FAILURE;
+}
+
+static void f_flush(struct aiFile *f)
+{
+    (void)f;
+}
+
+static struct aiFile *io_open(struct aiFileIO *io, const char *name, const char *mode)
+{
+    if (!mode || mode[0] != 'r')
+        return NULL;
+    io_state *st = (io_state *)io->UserData;
+    char path[GIB_PATH_MAX];
+    if (gib_path_resolve_ci(name, path, sizeof path) != 0 || !gib_path_is_file(path))
+        return NULL;
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return NULL;
+    struct aiFile *f = calloc(1, sizeof *f);
+    if (!f) {
+        fclose(fp);
+        return NULL;
+    }
+    f->ReadProc = f_read;
+    f->WriteProc = f_write;
+    f->TellProc = f_tell;
+    f->FileSizeProc = f_size;
+    f->SeekProc = f_seek;
+    f->FlushProc = f_flush;
+    f->UserData = (aiUserData)fp;
+    int known = 0;
+    for (int i = 0; i < st->count && !known; i++)
+        known = strcmp(st->opened[i], path) == 0;
+    if (!known && st->count < MAX_OPENED)
+        snprintf(st->opened[st->count++], GIB_PATH_MAX, "%s", path);
+    return f;
+}
+
+static void io_close(struct aiFileIO *io, struct aiFile *f)
+{
+    (void)io;
+    if (f) {
+        fclose((FILE *)f->UserData);
+        free(f);
+    }
+}
+
+/* ------------------------------------------------------------------ gzip */
+
+static int read_gz(const char *path, unsigned char **out, size_t *out_len, uint64_t *hash,
+                   gib_error *err)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return gib_fail(err, "cannot open '%s'", path);
+    struct stat st;
+    if (fstat(fileno(fp), &st) != 0 || st.st_size <= 0) {
+        fclose(fp);
+        return gib_fail(err, "'%s' is empty or unreadable", path);
+    }
+    size_t in_len = (size_t)st.st_size;
+    unsigned char *in = malloc(in_len);
+    if (!in) {
+        fclose(fp);
+        return gib_fail(err, "out of memory reading '%s'", path);
+    }
+    size_t got = fread(in, 1, in_len, fp);
+    fclose(fp);
+    if (got != in_len) {
+        free(in);
+        return gib_fail(err, "cannot read '%s'", path);
+    }
+    *hash = gib_hash_bytes(*hash, in, in_len);
+
+    z_stream zs;
+    memset(&zs, 0, sizeof zs);
+    if (inflateInit2(&zs, 15 + 32) != Z_OK) { /* +32: accept gzip or zlib headers */
+        free(in);
+        return gib_fail(err, "zlib cannot start inflating '%s'", path);
+    }
+    size_t cap = in_len * 4 + 1024, len = 0;
+    unsigned char *buf = malloc(cap);
+    int zrc = Z_OK;
+    while (buf) {
+        zs.next_in = in + zs.total_in;
+        zs.avail_in = (uInt)(in_len - zs.total_in);
+        zs.next_out = buf + len;
+        zs.avail_out = (uInt)(cap - len);
+        zrc = inflate(&zs, Z_NO_FLUSH);
+        len = zs.total_out;
+        if (zrc == Z_STREAM_END || (zrc != Z_OK && zrc != Z_BUF_ERROR))
+            break;
+        if (zs.avail_out == 0) {
+            unsigned char *nb = realloc(buf, cap * 2);
+            if (!nb) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        } else if (zs.avail_in == 0) {
+            zrc = Z_DATA_ERROR; /* input ended before the stream did */
+            break;
+        }
+    }
+    inflateEnd(&zs);
+    free(in);
+    if (!buf)
+        return gib_fail(err, "out of memory decompressing '%s'", path);
+    if (zrc != Z_STREAM_END) {
+        free(buf);
+        return gib_fail(err, "'%s' is not a complete gzip file (zlib: %s)", path,
+                        zs.msg ? zs.msg : "truncated");
+    }
+    *out = buf;
+    *out_len = len;
+    return 0;
+}
+
+/* ------------------------------------------------------------------ materials */
+
+static int texture_path(const struct aiMaterial *am, enum aiTextureType type, const char *dir,
+                        char *out, size_t out_len, const char *mesh_path, gib_error *err)
+{
+    out[0] = '\0';
+    if (aiGetMaterialTextureCount(am, type) == 0)
+        return 0;
+    struct aiString s;
+    if (aiGetMaterialTexture(am, type, 0, &s, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+        return 0;
+    if (s.length == 0)
+        return 0;
+    if (s.data[0] == '*')
+        return gib_fail(err, "'%s': embedded textures are not supported ('%s')", mesh_path,
+                        s.data);
+    for (char *c = s.data; *c; c++)
+        if (*c == '\\')
+            *c = '/';
+    if (gib_path_join(dir, s.data, out, out_len))
+        return gib_fail(err, "'%s': texture path too long: '%s'", mesh_path, s.data);
+    return 0;
+}
+
+/* MTL to the scene model: Kd -> rho_d, Ks/Ns -> normalised Phong. MTL's Phong is not normalised
+ * and exporters rarely keep Kd + Ks <= 1, so both are scaled down together when a channel's sum
+ * exceeds 1 (energy conservation, DESIGN.md). Ks = 0 stays purely diffuse whatever Ns says
+ * (Sponza's MTL has Ns 7.8 with Ks 0 everywhere). map_Kd multiplies Kd; a zero Kd with a texture is
+ * read as 1, since an exporter that wrote 0 did not mean a black surface. */
+static int read_material(const struct aiMaterial *am, const char *dir, const char *mesh_path,
+                         gib_mat_desc *d, gib_error *err)
+{
+    struct aiString name;
+    if (aiGetMaterialString(am, AI_MATKEY_NAME, &name) != aiReturn_SUCCESS || name.length == 0) {
+        /* Formats without materials (PLY): assimp invents one with a grey specular lobe of
+         * exponent 1, which is nothing the file said. Use a plain diffuse material instead, named
+         * "default" so that a [material.default] section (or the mesh's `material` key) can
+         * replace it. */
+        *d = gib_mat_desc_diffuse("default", 0.8f, 0.8f, 0.8f);
+        return 0;
+    }
+    *d = gib_mat_desc_diffuse(name.data, 0.8f, 0.8f, 0.8f);
+
+    struct aiColor4D kd = {0.8f, 0.8f, 0.8f, 1.0f}, ks = {0.0f, 0.0f, 0.0f, 1.0f};
+    aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &kd);
+    aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &ks);
+    ai_real ns = 1;
+    unsigned int one = 1;
+    aiGetMaterialFloatArray(am, AI_MATKEY_SHININESS, &ns, &one);
+
+    if (texture_path(am, aiTextureType_DIFFUSE, dir, d->albedo_path, sizeof d->albedo_path,
+                     mesh_path, err) ||
+        texture_path(am, aiTextureType_OPACITY, dir, d->alpha_path, sizeof d->alpha_path,
+                     mesh_path, err))
+        return -1;
+
+    float a[3] = {(float)kd.r, (float)kd.g, (float)kd.b};
+    float s[3] = {(float)ks.r, (float)ks.g, (float)ks.b};
+    for (int c = 0; c < 3; c++) {
+        a[c] = isfinite(a[c]) ? fmaxf(a[c], 0.0f) : 0.0f;
+        s[c] = isfinite(s[c]) ? fmaxf(s[c], 0.0f) : 0.0f;
+    }
+    if (d->albedo_path[0] && a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f)
+        a[0] = a[1] = a[2] = 1.0f;
+    float worst = 0.0f;
+    for (int c = 0; c < 3; c++)
+        worst = fmaxf(worst, a[c] + s[c]);
+    const float k = worst > 1.0f ? 1.0f / worst : 1.0f;
+    for (int c = 0; c < 3; c++) {
+        d->m.albedo[c] = a[c] * k;
+        d->m.specular[c] = s[c] * k;
+    }
+    if (s[0] > 0.0f || s[1] > 0.0f || s[2] > 0.0f) {
+        d->m.spec_type = GIB_SPEC_PHONG;
+        d->m.phong_n = (isfinite((float)ns) && ns > 0) ? (float)ns : 1.0f;
+    } else {
+        d->m.specular[0] = d->m.specular[1] = d->m.specular[2] = 0.0f;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------------ geometry */
+
+static int append_scene(const struct aiScene *sc, const char *dir, const char *mesh_path,
+                        gib_geom *out, gib_error *err)
+{
+    int *mat_map = gib_calloc(sc->mNumMaterials ? sc->mNumMaterials : 1, sizeof *mat_map, err);
+    if (!mat_map)
+        return -1;
+    for (unsigned i = 0; i < sc->mNumMaterials; i++)
+        mat_map[i] = -1;
+    int rc = 0;
+    uint32_t tris_total = 0;
+    for (unsigned mi = 0; mi < sc->mNumMeshes && rc == 0; mi++) {
+        const struct aiMesh *m = sc->mMeshes[mi];
+        if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        unsigned ntri = 0;
+        for (unsigned f = 0; f < m->mNumFaces; f++)
+            ntri += m->mFaces[f].mNumIndices == 3;
+        if (ntri == 0)
+            continue;
+        unsigned am = m->mMaterialIndex < sc->mNumMaterials ? m->mMaterialIndex : 0;
+        if (sc->mNumMaterials == 0) {
+            rc = gib_fail(err, "'%s': mesh without any material", mesh_path);
+            break;
+        }
+        if (mat_map[am] < 0) {
+            gib_mat_desc d;
+            if ((rc = read_material(sc->mMaterials[am], dir, mesh_path, &d, err)) != 0)
+                break;
+            if ((mat_map[am] = gib_geom_material(out, &d, err)) < 0) {
+                rc = -1;
+                break;
+            }
+        }
+        if ((rc = gib_geom_reserve(out, m->mNumVertices, ntri, err)) != 0)
+            break;
+        const uint32_t base = out->vcount;
+        const struct aiVector3D *uvs = m->mTextureCoords[0];
+        for (unsigned v = 0; v < m->mNumVertices; v++) {
+            const float p[3] = {(float)m->mVertices[v].x, (float)m->mVertices[v].y,
+                                (float)m->mVertices[v].z};
+            /* Missing normals are left zero; scene_build repairs every invalid normal. */
+            float n[3] = {0.0f, 0.0f, 0.0f};
+            if (m->mNormals) {
+                n[0] = (float)m->mNormals[v].x;
+                n[1] = (float)m->mNormals[v].y;
+                n[2] = (float)m->mNormals[v].z;
+            }
+            float uv[2] = {0.0f, 0.0f};
+            if (uvs) {
+                uv[0] = (float)uvs[v].x;
+                uv[1] = (float)uvs[v].y;
+            }
+            gib_geom_vertex(out, p, n, uv);
+        }
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            const struct aiFace *face = &m->mFaces[f];
+            if (face->mNumIndices != 3)
+                continue;
+            gib_geom_triangle(out, base + face->mIndices[0], base + face->mIndices[1],
+                              base + face->mIndices[2], (uint32_t)mat_map[am]);
+        }
+        tris_total += ntri;
+    }
+    free(mat_map);
+    if (rc == 0 && tris_total == 0)
+        rc = gib_fail(err, "'%s' contains no triangles", mesh_path);
+    return rc;
+}
+
+static int has_suffix_ci(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    return n >= k && strcasecmp(s + n - k, suffix) == 0;
+}
+
+int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
+                    gib_error *err)
+{
+    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType |
+                           aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices |
+                           aiProcess_PreTransformVertices;
+    struct aiPropertyStore *props = aiCreatePropertyStore();
+    if (!props)
+        return gib_fail(err, "assimp: cannot create a property store");
+    aiSetImportPropertyFloat(props, AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE,
+                             (ai_real)smooth_angle_deg);
+    aiSetImportPropertyInteger(props, AI_CONFIG_PP_SBP_REMOVE,
+                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+
+    char dir[GIB_PATH_MAX];
+    gib_path_dirname(path, dir, sizeof dir);
+    const struct aiScene *sc = NULL;
+    int rc = 0;
+    if (has_suffix_ci(path, ".gz")) {
+        /* assimp picks the importer by extension, so the inner one is passed as a hint. Only
+         * self-contained formats work this way: the data comes from memory, and an OBJ's MTL
+         * could not be found. */
+        char hint[16] = "";
+        const char *end = path + strlen(path) - 3, *dot = end;
+        while (dot > path && dot[-1] != '.' && dot[-1] != '/')
+            dot--;
+        if (dot > path && dot[-1] == '.' && end - dot < (long)sizeof hint) {
+            memcpy(hint, dot, (size_t)(end - dot));
+            hint[end - dot] = '\0';
+        }
+        if (!hint[0] || strcasecmp(hint, "obj") == 0) {
+            aiReleasePropertyStore(props);
+            return gib_fail(err, "'%s': gzipped meshes must be self-contained (.ply.gz, ...); "
+                                 "decompress OBJ files, whose MTL sits beside them", path);
+        }
+        unsigned char *buf = NULL;
+        size_t len = 0;
+        rc = read_gz(path, &buf, &len, hash, err);
+        if (rc == 0 && len > 0xffffffffu)
+            rc = gib_fail(err, "'%s' decompresses to more than 4 GiB", path);
+        if (rc == 0)
+            sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags,
+                                                      hint, props);
+        free(buf);
+    } else {
+        io_state st;
+        st.count = 0;
+        struct aiFileIO io = {io_open, io_close, (aiUserData)&st};
+        sc = aiImportFileExWithProperties(path, flags, &io, props);
+        for (int i = 0; i < st.count && sc; i++)
+            if (gib_hash_file(hash, st.opened[i]) != 0)
+                rc = gib_fail(err, "cannot read '%s' to hash it", st.opened[i]);
+    }
+    aiReleasePropertyStore(props);
+    if (rc == 0 && !sc)
+        rc = gib_fail(err, "assimp cannot read '%s': %s", path, aiGetErrorString());
+    if (rc == 0)
+        rc = append_scene(sc, dir, path, out, err);
+    if (sc)
+        aiReleaseImport(sc);
+    return rc;
+}

@@ -1,0 +1,200 @@
+/* gibench — internals of the scene loader, shared by the files in scenes/ and by their tests.
+ * Not part of the public interface (scene.h): nothing outside scenes/ and tests/scenes/ should
+ * include this.
+ *
+ * Loading runs in stages, each in its own file:
+ *   scene_file.c   the .scene text (INI via libinih) -> gib_scene_spec, with file:line for every key
+ *   procedural.c   generators built in C (cornell_box, plane_box, room) -> gib_geom
+ *   mesh_import.c  mesh files through assimp (OBJ+MTL, PLY, gzipped PLY) -> gib_geom
+ *   scene_build.c  spec + geometry -> the flattened gib_scene (materials, ranges, hash, features)
+ *   textures.c     texture files -> linear float RGBA, cached per file
+ *   paths.c        data root, case-insensitive path resolution */
+#ifndef GIB_SCENE_INTERNAL_H
+#define GIB_SCENE_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "scene.h"
+
+/* Changes whenever the loader or a generator would build different data from the same files, so
+ * the content hash (and with it the reference cache) changes too. */
+#define GIB_SCENE_LOADER_VERSION "gib_scene 1"
+
+#define GIB_PATH_MAX 512
+
+/* ---------------------------------------------------------------- geometry under construction */
+
+/* A material as a mesh file or generator describes it, with its texture files not yet loaded. */
+typedef struct gib_mat_desc {
+    gib_material m;                /* albedo_tex / alpha_tex are -1 here */
+    char albedo_path[GIB_PATH_MAX]; /* texture file as named by the MTL, joined to the mesh's
+                                     * folder but not yet resolved on disk; "" for none */
+    char alpha_path[GIB_PATH_MAX];
+    int mesh_index;                /* the [mesh.*] it came from, for error messages; -1 if none */
+} gib_mat_desc;
+
+/* A growable triangle soup with its own material table; triangles index mats. */
+typedef struct gib_geom {
+    uint32_t vcount, vcap;
+    float *pos, *nrm, *uv;         /* 3, 3, 2 floats per vertex */
+    uint32_t tcount, tcap;
+    uint32_t *idx;                 /* 3 per triangle */
+    uint32_t *mat;                 /* 1 per triangle, into mats */
+    uint32_t mcount, mcap;
+    gib_mat_desc *mats;
+} gib_geom;
+
+/* Makes room for `verts` more vertices and `tris` more triangles. */
+int gib_geom_reserve(gib_geom *g, uint32_t verts, uint32_t tris, gib_error *err);
+/* Appends a vertex (room must have been reserved); uv may be NULL. Returns its index. */
+uint32_t gib_geom_vertex(gib_geom *g, const float p[3], const float n[3], const float uv[2]);
+/* Appends a triangle (room must have been reserved). */
+void gib_geom_triangle(gib_geom *g, uint32_t a, uint32_t b, uint32_t c, uint32_t material);
+/* Appends a material; returns its index, or -1 on allocation failure. */
+int gib_geom_material(gib_geom *g, const gib_mat_desc *m, gib_error *err);
+void gib_geom_free(gib_geom *g);
+/* A Lambertian, two-sided material description with the given albedo. */
+gib_mat_desc gib_mat_desc_diffuse(const char *name, float r, float g, float b);
+
+/* ---------------------------------------------------------------- procedural generators */
+
+typedef struct gib_proc_params {
+    int has_size;
+    float size[3];                 /* room: width (x), height (y), depth (z) */
+} gib_proc_params;
+
+/* 1 if `name` is a known generator. */
+int gib_procedural_known(const char *name);
+/* 1 if the generator takes `size`. */
+int gib_procedural_takes_size(const char *name);
+/* The comma-separated list of generator names, for error messages. */
+const char *gib_procedural_names(void);
+/* Builds the generator's triangles and materials into out (appending), and hashes its name and
+ * parameters into *hash. */
+int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *out,
+                         uint64_t *hash, gib_error *err);
+
+/* ---------------------------------------------------------------- mesh files */
+
+/* Imports a mesh file (OBJ+MTL, PLY, *.ply.gz, anything else assimp reads) into out (appending),
+ * in the file's own coordinates. Hashes the bytes of every file read (the mesh, its MTL) into
+ * *hash. smooth_angle_deg limits normal smoothing for meshes that carry no normals. Texture paths
+ * are stored joined to the mesh's folder, unresolved. Errors name the file. */
+int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
+                    gib_error *err);
+
+/* ---------------------------------------------------------------- textures */
+
+typedef struct gib_tex_cache {
+    gib_texture *tex;
+    int *srgb;                     /* per entry: 1 if decoded from sRGB (a colour texture) */
+    uint32_t count, cap;
+} gib_tex_cache;
+
+/* Returns the index of the texture at `resolved_path` (already resolved on disk), loading it on
+ * first use: colour textures (srgb = 1) have RGB decoded from sRGB to linear, masks (srgb = 0) are
+ * kept as stored. Each file is read and hashed into *hash once per decoding. -1 on error. */
+int gib_tex_cache_get(gib_tex_cache *c, const char *resolved_path, int srgb, uint64_t *hash,
+                      gib_error *err);
+/* Loads several textures at once, using threads: paths[i] with srgb[i] -> out_index[i]. */
+int gib_tex_cache_get_many(gib_tex_cache *c, const char *const *paths, const int *srgb, int n,
+                           int *out_index, uint64_t *hash, gib_error *err);
+/* Frees the cache's arrays but not the texture pixels, which move into the scene. */
+void gib_tex_cache_release(gib_tex_cache *c);
+/* sRGB transfer function decode (IEC 61966-2-1), exact piecewise form. */
+float gib_srgb_to_linear(float c);
+
+/* ---------------------------------------------------------------- paths */
+
+/* Resolves `path` on disk, matching each component case-insensitively when the exact name is
+ * absent, and reading '\\' as '/' (archives made on Windows). 0 with the path in out, or -1. */
+int gib_path_resolve_ci(const char *path, char *out, size_t out_len);
+int gib_path_is_dir(const char *path);
+int gib_path_is_file(const char *path);
+/* The folder part of path ("." when there is none), without the trailing '/'. */
+void gib_path_dirname(const char *path, char *out, size_t out_len);
+/* dir + '/' + rel (rel returned alone when absolute). -1 if it does not fit. */
+int gib_path_join(const char *dir, const char *rel, char *out, size_t out_len);
+
+/* ---------------------------------------------------------------- the parsed .scene file */
+
+enum {
+    GIB_MS_ALBEDO = 1u << 0,
+    GIB_MS_SPECULAR = 1u << 1,
+    GIB_MS_PHONG_N = 1u << 2,
+    GIB_MS_MIRROR = 1u << 3,
+    GIB_MS_TWO_SIDED = 1u << 4,
+};
+
+typedef struct gib_mesh_spec {
+    char name[64];
+    int line;                      /* of the [mesh.NAME] header */
+    char file[GIB_PATH_MAX];       /* relative to the data root; "" for procedural */
+    int file_line;
+    char procedural[64];
+    int procedural_line;
+    float scale[3], rotate_deg[3], translate[3];
+    char material[128];            /* "" when the mesh keeps its own materials */
+    int material_line;
+    gib_proc_params params;
+    int size_line;
+    float smooth_angle_deg;
+} gib_mesh_spec;
+
+typedef struct gib_material_spec {
+    char name[128];
+    int line;
+    unsigned set;                  /* GIB_MS_* bits: which keys the section gave */
+    int key_line[5];               /* line of each key, by bit position */
+    float albedo[3], specular[3], phong_n;
+    int mirror, two_sided;
+} gib_material_spec;
+
+typedef struct gib_light_spec {
+    gib_light l;
+    int line;
+    int type_set, position_set, direction_set, target_set, intensity_set;
+    float target[3];
+    int direction_line, target_line;
+} gib_light_spec;
+
+typedef struct gib_camera_spec {
+    gib_camera c;
+    int line;
+    int eye_set, target_set;
+} gib_camera_spec;
+
+typedef struct gib_scene_spec {
+    char path[GIB_PATH_MAX];       /* the .scene file as opened */
+    char name[64];                 /* file name without .scene */
+    char description[512];
+    float exposure;
+    char data[256];                /* shared data folder the scene needs, "" for none */
+    int data_line;
+    int closed;                    /* [scene] closed = 1: geometry encloses camera and lights */
+    int scene_line;
+    gib_mesh_spec *meshes;
+    int mesh_count;
+    gib_material_spec *materials;
+    int material_count;
+    gib_light_spec *lights;
+    int light_count;
+    gib_camera_spec *cameras;
+    int camera_count;
+    int line_count;
+} gib_scene_spec;
+
+/* Parses and validates a .scene file (syntax, keys, numbers, required keys); loads nothing else.
+ * Errors are "path:line: ...". */
+int gib_scene_parse(const char *path, gib_scene_spec *spec, gib_error *err);
+void gib_scene_spec_free(gib_scene_spec *spec);
+
+/* Checks that the shared data a parsed scene needs is present. Returns 0, or
+ * GIB_SCENE_UNAVAILABLE with a message saying where to get it. */
+int gib_scene_check_data(const gib_scene_spec *spec, gib_error *err);
+
+/* Builds the flattened scene from a parsed spec (loads meshes and textures). */
+int gib_scene_build(const gib_scene_spec *spec, gib_scene *scene, gib_error *err);
+
+#endif

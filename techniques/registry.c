@@ -1,0 +1,95 @@
+/* gibench — the list of techniques, and the parameter handling every technique shares. */
+#include <assert.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "technique.h"
+
+extern const gib_technique gib_technique_direct;
+
+static const gib_technique *const registry[] = {
+    &gib_technique_direct,
+};
+
+const gib_technique *const *gib_techniques(int *count)
+{
+    *count = (int)(sizeof registry / sizeof registry[0]);
+    return registry;
+}
+
+const gib_technique *gib_technique_find(const char *name)
+{
+    int n;
+    const gib_technique *const *all = gib_techniques(&n);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(all[i]->name, name))
+            return all[i];
+    return NULL;
+}
+
+int gib_param_index(const gib_technique *t, const char *name)
+{
+    for (int i = 0; t->params && t->params[i].name; i++)
+        if (!strcmp(t->params[i].name, name))
+            return i;
+    return -1;
+}
+
+void gib_params_default(const gib_technique *t, gib_params *p)
+{
+    memset(p, 0, sizeof *p);
+    for (int i = 0; t->params && t->params[i].name && i < GIB_MAX_PARAMS; i++) {
+        p->values[i] = t->params[i].def;
+        p->count = i + 1;
+    }
+}
+
+int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
+                  gib_error *err)
+{
+    int i = gib_param_index(t, name);
+    if (i < 0) {
+        char known[512] = "";
+        for (int k = 0; t->params && t->params[k].name; k++) {
+            strncat(known, k ? ", " : "", sizeof known - strlen(known) - 1);
+            strncat(known, t->params[k].name, sizeof known - strlen(known) - 1);
+        }
+        return gib_fail(err, "technique '%s' has no parameter '%s' (it has: %s)", t->name, name,
+                        known[0] ? known : "none");
+    }
+    const gib_param_spec *s = &t->params[i];
+    char *end = NULL;
+    errno = 0;
+    double v;
+    if (!strcmp(value, "inf") || !strcmp(value, "unbounded"))
+        v = INFINITY;
+    else
+        v = strtod(value, &end);
+    if (end && (end == value || *end || errno))
+        return gib_fail(err, "technique '%s': parameter '%s' expects a number, got '%s'", t->name,
+                        name, value);
+    if (s->type == GIB_PARAM_INT && (v != floor(v) || isinf(v)))
+        return gib_fail(err, "technique '%s': parameter '%s' expects an integer, got '%s'",
+                        t->name, name, value);
+    if (!(v >= s->min && v <= s->max))
+        return gib_fail(err, "technique '%s': parameter '%s' = %s is outside [%g, %g] (%s)",
+                        t->name, name, value, s->min, s->max, s->help);
+    p->values[i] = v;
+    return 0;
+}
+
+int gib_param_int(const gib_technique *t, const gib_params *p, const char *name)
+{
+    int i = gib_param_index(t, name);
+    assert(i >= 0);
+    return (int)p->values[i];
+}
+
+double gib_param_float(const gib_technique *t, const gib_params *p, const char *name)
+{
+    int i = gib_param_index(t, name);
+    assert(i >= 0);
+    return p->values[i];
+}

@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# gibench end to end through its command line. Each check prints PASS/FAIL with what it expected.
+set -u
+G=${GIBENCH:?set GIBENCH to the gibench executable}
+W=${1:?work directory}
+rm -rf "$W" && mkdir -p "$W"
+fails=0 passes=0
+pass() { echo "PASS: $*"; passes=$((passes + 1)); }
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+expect_rc() { # expected-rc description command...
+  local want=$1 what=$2; shift 2
+  "$@" >"$W/out.txt" 2>&1; local rc=$?
+  if [ "$rc" = "$want" ]; then pass "$what (exit $rc)"; else fail "$what: exit $rc, expected $want"; cat "$W/out.txt"; fi
+}
+
+# --help on every command exits 0 and prints a usage line.
+for c in "" list render reference compare run; do
+  if $G $c --help 2>&1 | grep -q usage; then pass "gibench $c --help"; else fail "gibench $c --help"; fi
+done
+expect_rc 2 "unknown command" $G frobnicate
+
+# The same scene through EGL and through OSMesa gives the same image.
+expect_rc 0 "render with EGL" $G render --scene cornell --technique direct --size 64x64 --backend egl --out "$W/egl" --frames 1 --warmup 0
+r_egl=$(grep -o 'renderer: .*' "$W/out.txt")
+expect_rc 0 "render with OSMesa" $G render --scene cornell --technique direct --size 64x64 --backend osmesa --out "$W/osmesa" --frames 1 --warmup 0
+r_osm=$(grep -o 'renderer: .*' "$W/out.txt")
+if [ "${r_egl#*|}" = "${r_osm#*|}" ]; then
+  # Same rasteriser (llvmpipe under both): the images must be identical.
+  expect_rc 0 "EGL and OSMesa images identical (${r_egl#*| })" $G compare "$W/egl/direct_direct.exr" "$W/osmesa/direct_direct.exr" --fail-rmse 0
+else
+  # Different devices (a GPU through EGL): the same up to rasterisation and float differences.
+  expect_rc 0 "EGL (${r_egl}) and OSMesa (${r_osm}) agree to 1e-3 relative RMSE" $G compare "$W/egl/direct_direct.exr" "$W/osmesa/direct_direct.exr" --fail-rel-rmse 1e-3
+fi
+
+# compare: JSON, thresholds and errors.
+$G compare "$W/egl/direct_direct.exr" "$W/egl/direct_direct.exr" --json >"$W/json.txt"
+if grep -q '"rmse": 0, "rel_rmse": 0' "$W/json.txt" && grep -q '"ssim": 1' "$W/json.txt" && grep -q '"nonfinite": 0' "$W/json.txt"; then
+  pass "compare --json of an image with itself: rmse 0, ssim 1"; else fail "compare --json: $(cat "$W/json.txt")"; fi
+expect_rc 0 "reference direct" $G reference --scene cornell --component direct --spp 1 --size 64x64 --out "$W/ref_direct.exr"
+expect_rc 1 "compare above --fail-rmse exits 1" $G compare "$W/ref_direct.exr" "$W/egl/direct_direct.exr" --fail-rmse 1e-9
+expect_rc 0 "compare within --fail-rel-rmse 0.5" $G compare "$W/ref_direct.exr" "$W/egl/direct_direct.exr" --fail-rel-rmse 0.5 --map "$W/map.png"
+[ -s "$W/map.png" ] && pass "compare --map wrote an error map" || fail "compare --map wrote nothing"
+expect_rc 2 "compare with a missing file exits 2" $G compare "$W/nope.exr" "$W/ref_direct.exr"
+grep -q "nope.exr" "$W/out.txt" && pass "the error names the missing file" || fail "error does not name the file: $(cat "$W/out.txt")"
+
+# Bad parameters are rejected before anything renders, naming the parameter.
+expect_rc 2 "render with an out-of-range parameter" $G render --scene cornell --technique direct --param shadow_res=3 --out "$W/bad"
+grep -q "shadow_res" "$W/out.txt" && pass "the error names the parameter" || fail "$(cat "$W/out.txt")"
+expect_rc 2 "render with an unknown parameter" $G render --scene cornell --technique direct --param shadowres=512 --out "$W/bad"
+
+# A matrix with a bad value: error names file and line; nothing rendered, no CSV.
+cat >"$W/bad.matrix" <<'M'
+[matrix]
+scenes = cornell
+techniques = direct
+sizes = 32x32
+[params.direct]
+pcf = 0, 1
+shadow_res = 256, 99999
+M
+expect_rc 2 "matrix with an out-of-range value" $G run "$W/bad.matrix" --profile default --out "$W/badrun"
+grep -q "bad.matrix:7" "$W/out.txt" && pass "matrix error names file and line 7" || fail "$(cat "$W/out.txt")"
+[ ! -e "$W/badrun/bad.csv" ] && pass "nothing was rendered for the bad matrix" || fail "bad matrix wrote a CSV"
+
+# Resume: a rerun adds no rows; a truncated last row is redone, the others are kept.
+cat >"$W/tiny.matrix" <<'M'
+[matrix]
+scenes = cornell, plane_box, sponza
+techniques = direct
+sizes = 32x32
+frames = 2
+warmup = 0
+ref_spp_direct = 1
+[params.direct]
+shadow_res = 64, 128
+M
+expect_rc 0 "tiny matrix (sponza skipped when its data is absent)" env GIBENCH_SCENES="$W/no-scenes" $G run "$W/tiny.matrix" --profile default --out "$W/run" --cache "$W/cache"
+grep -q "sponza: skipped" "$W/out.txt" && pass "sponza is reported unavailable and skipped" || fail "no skip message: $(cat "$W/out.txt")"
+rows=$(($(wc -l <"$W/run/tiny.csv") - 1))
+[ "$rows" = 4 ] && pass "4 rows written (2 scenes x 2 resolutions)" || fail "expected 4 rows, got $rows"
+expect_rc 0 "rerun" env GIBENCH_SCENES="$W/no-scenes" $G run "$W/tiny.matrix" --profile default --out "$W/run" --cache "$W/cache"
+rows2=$(($(wc -l <"$W/run/tiny.csv") - 1))
+[ "$rows2" = 4 ] && pass "rerun added no rows" || fail "rerun: $rows2 rows"
+head -c -40 "$W/run/tiny.csv" >"$W/t.csv" && mv "$W/t.csv" "$W/run/tiny.csv" # kill mid-row
+expect_rc 0 "run after an interruption" env GIBENCH_SCENES="$W/no-scenes" $G run "$W/tiny.matrix" --profile default --out "$W/run" --cache "$W/cache"
+grep -q "1 rows written" "$W/out.txt" && pass "only the interrupted row was redone" || fail "$(tail -3 "$W/out.txt")"
+notok=$(tail -n +2 "$W/run/tiny.csv" | grep -vc ',ok,')
+[ "$notok" = 0 ] && pass "every row's status is ok" || fail "$notok rows are not ok"
+
+echo "$passes passed, $fails failed"
+[ "$fails" = 0 ]

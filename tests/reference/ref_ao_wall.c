@@ -1,0 +1,141 @@
+/* Reference renderer, `ao` next to a large wall, against analytic values (DESIGN.md, "Reference
+ * renderer": AO of simple configurations).
+ *
+ * Setup: floor y = 0; a wall in the plane x = 1 spanning y in [0, 60], z in [-60, 60]; the camera
+ * looks straight down at floor points at distances a = 1 - x from 0.7 to 2.3 from the wall.
+ *
+ * Where the AO rays start: at the floor point P moved up by the renderer's ray offset eps
+ * (gib_reference_ray_eps, 1e-4 of the scene diagonal, 0.013 here), since every cosine-weighted
+ * direction points up. The expected values below are for that origin, so they are exact for what
+ * the renderer estimates; the offset is not hidden inside the tolerance.
+ *
+ * dmax = infinity. AO = 1 - F, F the form factor from the origin (normal +y) to the part of the
+ * wall above it, a rectangle, by Lambert's polygon formula:
+ *     F = (1 / 2 pi) | sum_i  angle(R_i, R_i+1) * (n . unit(R_i x R_i+1)) |,
+ * R_i the rectangle's corners relative to the origin. For an infinite wall every direction with
+ * d.x > 0 meets it, which is half the cosine-weighted hemisphere: F = 0.5, AO = 0.5 whatever a.
+ * A 60 m wall at a <= 2.3 m gives F within ~2% of that; the test uses the exact F.
+ *
+ * dmax = D finite (1.5 here). A direction d is occluded iff it reaches the wall within D, i.e.
+ * d.x >= c with c = a / D (the wall is far larger than D, so its edges never matter). Malley's
+ * method: cosine-weighted directions project to points (d.x, d.z) uniform on the unit disk, so
+ *     P(occluded) = area{disk, x >= c} / pi = (acos(c) - c sqrt(1 - c^2)) / pi,   c < 1,
+ * and 0 when c >= 1: AO = 1 - (acos(c) - c sqrt(1 - c^2)) / pi. (c = 0 gives 0.5, as above.)
+ * Pixels with a >= D must be exactly 1 with zero standard error.
+ *
+ * Tolerances: each sample is 0 or 1, so a pixel mean is binomial. The image-wide sum of
+ * (measured - expected) must lie within 3 of the renderer's own standard errors (root sum of
+ * squares), each pixel within 5 of its analytic binomial standard error, and the renderer's
+ * variance must match the analytic binomial variance sum to 5% (it is an average over 1024
+ * pixels; its own relative spread is ~1%). */
+#include <math.h>
+
+#include "ref_test_util.h"
+
+static double rt_angle(const double a[3], const double b[3])
+{
+    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+}
+
+/* Lambert's formula, normal +y, for a polygon entirely above the origin's horizon. */
+static double rt_form_factor(double R[][3], int n)
+{
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double *a = R[i], *b = R[(i + 1) % n];
+        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                       a[0] * b[1] - a[1] * b[0]};
+        double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (len > 0.0)
+            sum += rt_angle(a, b) * c[1] / len;
+    }
+    return fabs(sum) / (2.0 * M_PI);
+}
+
+int main(void)
+{
+    const float wall_x = 1.0f, wall_h = 60.0f, wall_z = 60.0f;
+    gib_scene s;
+    rt_scene_init(&s, "ao_wall");
+    int m = rt_material(&s, 0.5f, 0.5f, 0.5f);
+    rt_floor(&s, 0.0f, -3.0f, wall_x, -wall_z, wall_z, m);
+    {
+        const float a[3] = {wall_x, 0, wall_z}, b[3] = {wall_x, 0, -wall_z},
+                    c[3] = {wall_x, wall_h, -wall_z}, d[3] = {wall_x, wall_h, wall_z};
+        const float n[3] = {-1, 0, 0};
+        rt_quad(&s, a, b, c, d, n, m);
+    }
+    const float eye[3] = {-0.5f, 3.0f, 0.0f}, tgt[3] = {-0.5f, 0.0f, 0.0f}, up[3] = {0, 0, -1};
+    rt_camera(&s, eye, tgt, up, 30.0f);
+    const double eps = gib_reference_ray_eps(&s);
+
+    const int W = 32, H = 32, spp = 256;
+    const float dmaxes[2] = {INFINITY, 1.5f};
+    for (int k = 0; k < 2; k++) {
+        gib_ref_params p = rt_params(GIB_COMP_AO, W, H, spp);
+        p.dmax = dmaxes[k];
+        gib_image img, sd;
+        gib_ref_stats st;
+        rt_render(&s, &p, &img, &sd, &st);
+        double dsum = 0.0, var_r = 0.0, var_a = 0.0, esum = 0.0, msum = 0.0, worst_z = 0.0;
+        int n = 0, exact_ones = 0, exact_bad = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                double P[3];
+                if (!rt_hit_plane_y(&s, 0, W, H, x, y, 0.0, P))
+                    continue;
+                double a = wall_x - P[0], expect;
+                if (isinf(dmaxes[k])) {
+                    double z0 = -wall_z - P[2], z1 = wall_z - P[2], top = wall_h - eps;
+                    double R[4][3] = {{a, 0, z0}, {a, 0, z1}, {a, top, z1}, {a, top, z0}};
+                    expect = 1.0 - rt_form_factor(R, 4);
+                } else {
+                    double c = a / dmaxes[k];
+                    expect = c >= 1.0 ? 1.0 : 1.0 - (acos(c) - c * sqrt(1.0 - c * c)) / M_PI;
+                }
+                double got = img.px[(y * W + x) * 3], se = sd.px[(y * W + x) * 3];
+                if (expect == 1.0) {
+                    exact_ones++;
+                    exact_bad += got != 1.0 || se != 0.0;
+                    continue;
+                }
+                double se_a = sqrt(expect * (1.0 - expect) / spp);
+                double z = fabs(got - expect) / se_a;
+                worst_z = z > worst_z ? z : worst_z;
+                dsum += got - expect;
+                var_r += se * se;
+                var_a += se_a * se_a;
+                esum += expect;
+                msum += got;
+                n++;
+                if (x == W / 2 && y == H / 2)
+                    printf("dmax %-4s centre pixel: a = %.4f m, expected %.5f measured %.5f "
+                           "stderr %.5f\n",
+                           k ? "1.5" : "inf", a, expect, got, se);
+            }
+        double zsum = dsum / sqrt(var_r);
+        RT_CHECK(n > 100, "too few pixels with a non-trivial expected value: %d", n);
+        RT_CHECK(fabs(zsum) <= 3.0, "dmax %g: image-wide deviation %.2f standard errors (max 3)",
+                 dmaxes[k], zsum);
+        RT_CHECK(worst_z <= 5.0, "dmax %g: a pixel deviates %.2f binomial standard errors (max 5)",
+                 dmaxes[k], worst_z);
+        RT_CHECK(fabs(var_r / var_a - 1.0) <= 0.05,
+                 "dmax %g: renderer variance %.4g vs binomial %.4g (ratio must be within 5%%)",
+                 dmaxes[k], var_r, var_a);
+        RT_CHECK(exact_bad == 0, "dmax %g: %d of %d pixels beyond dmax are not exactly 1/0",
+                 dmaxes[k], exact_bad, exact_ones);
+        RT_CHECK(!k || exact_ones > 50, "test geometry: only %d pixels beyond dmax", exact_ones);
+        printf("dmax %-4s %d pixels: mean expected %.6f measured %.6f, stderr of the mean %.6f "
+               "(deviation %.2f sigma, max 3); worst pixel %.2f sigma; variance ratio %.4f; "
+               "%d pixels beyond dmax exactly 1; noise_rmse %.5f\n",
+               k ? "1.5" : "inf", n, esum / n, msum / n, sqrt(var_r) / n, zsum, worst_z,
+               var_r / var_a, exact_ones, st.noise_rmse);
+        gib_image_free(&img);
+        gib_image_free(&sd);
+    }
+    printf("(infinite wall limit 0.5; eps %.5f)\n", eps);
+    rt_scene_free(&s);
+    return rt_failures ? 1 : 0;
+}

@@ -1,0 +1,110 @@
+/* Reference renderer, interface: component names, EXR attributes, parameter errors, an empty scene
+ * and a scene with a bad index. Exact string and value comparisons: no tolerance is involved. */
+#include <math.h>
+#include <string.h>
+
+#include "ref_test_util.h"
+
+static const char *rt_get(const gib_kv *kv, int n, const char *key)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(kv[i].key, key) == 0)
+            return kv[i].value;
+    return NULL;
+}
+
+int main(void)
+{
+    /* names */
+    RT_CHECK(strcmp(gib_component_name(GIB_COMP_AO), "ao") == 0, "name of ao");
+    RT_CHECK(strcmp(gib_component_name(GIB_COMP_DIRECT), "direct") == 0, "name of direct");
+    RT_CHECK(gib_component_parse("ao") == GIB_COMP_AO, "parse ao");
+    RT_CHECK(gib_component_parse("direct") == GIB_COMP_DIRECT, "parse direct");
+    RT_CHECK(gib_component_parse("indirect") == -1 && gib_component_parse(NULL) == -1,
+             "unknown names parse to -1");
+    RT_CHECK(strcmp(gib_component_name(99), "unknown") == 0, "out-of-range name");
+
+    /* an empty scene: every pixel misses, so everything is 0 */
+    gib_scene s;
+    rt_scene_init(&s, "empty");
+    const float eye[3] = {0, 0, 5}, tgt[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    rt_camera(&s, eye, tgt, up, 45.0f);
+    gib_ref_params p = rt_params(GIB_COMP_AO, 8, 6, 4);
+    gib_image img, sd;
+    gib_ref_stats st;
+    rt_render(&s, &p, &img, &sd, &st);
+    int nonzero = 0;
+    for (int i = 0; i < 8 * 6 * 3; i++)
+        nonzero += img.px[i] != 0.0f || sd.px[i] != 0.0f;
+    RT_CHECK(nonzero == 0 && st.mean == 0.0 && st.rays == 48, "empty scene: %d nonzero, rays %lld",
+             nonzero, st.rays);
+    RT_CHECK(img.width == 8 && img.height == 6 && img.channels == 3, "image shape %dx%dx%d",
+             img.width, img.height, img.channels);
+    gib_image_free(&img);
+    gib_image_free(&sd);
+
+    /* attributes */
+    st.seconds = 1.25;
+    st.noise_rmse = 0.0123;
+    st.mean = 0.5;
+    p.seed = 42;
+    p.dmax = 0.0f;
+    gib_kv kv[GIB_REF_ATTR_COUNT + 4];
+    int n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT + 4);
+    RT_CHECK(n == GIB_REF_ATTR_COUNT, "attribute count %d, expected %d", n, GIB_REF_ATTR_COUNT);
+    struct {
+        const char *key, *value;
+    } want[] = {{"component", "ao"},      {"spp", "4"},
+                {"scene_hash", "0123456789abcdef"}, {"renderer_version", GIB_REFERENCE_VERSION},
+                {"width", "8"},           {"height", "6"},
+                {"dmax", "inf"},          {"seed", "42"},
+                {"camera", "0"},          {"seconds", "1.250"},
+                {"noise_rmse", "0.0123"}, {"mean", "0.5"}};
+    for (unsigned i = 0; i < sizeof want / sizeof want[0]; i++) {
+        const char *v = rt_get(kv, n, want[i].key);
+        RT_CHECK(v && strcmp(v, want[i].value) == 0, "attribute %s = '%s', expected '%s'",
+                 want[i].key, v ? v : "(missing)", want[i].value);
+    }
+    p.dmax = INFINITY;
+    n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT);
+    RT_CHECK(strcmp(rt_get(kv, n, "dmax"), "inf") == 0, "dmax inf is written 'inf'");
+    p.dmax = 0.25f;
+    n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT);
+    RT_CHECK(strcmp(rt_get(kv, n, "dmax"), "0.25") == 0, "dmax 0.25 is written '0.25'");
+    RT_CHECK(gib_reference_attrs(&s, &p, &st, kv, 3) == 3, "max_attrs bounds the count");
+
+    /* parameter errors name the parameter */
+    struct {
+        gib_ref_params p;
+        const char *needle;
+    } bad[4];
+    for (int i = 0; i < 4; i++)
+        bad[i].p = rt_params(GIB_COMP_AO, 8, 8, 1);
+    bad[0].p.spp = 0, bad[0].needle = "spp";
+    bad[1].p.camera = 3, bad[1].needle = "camera";
+    bad[2].p.component = 7, bad[2].needle = "component";
+    bad[3].p.width = 0, bad[3].needle = "size";
+    for (int i = 0; i < 4; i++) {
+        gib_error err = {{0}};
+        int rc = gib_reference_render(&s, &bad[i].p, &img, NULL, NULL, &err);
+        RT_CHECK(rc < 0 && strstr(err.msg, bad[i].needle), "bad %s: rc %d, message '%s'",
+                 bad[i].needle, rc, err.msg);
+    }
+
+    /* a triangle indexing a vertex that does not exist is refused, not traced */
+    int m = rt_material(&s, 0.5f, 0.5f, 0.5f);
+    rt_floor(&s, 0.0f, -1, 1, -1, 1, m);
+    s.indices[4] = 99;
+    {
+        gib_error err = {{0}};
+        gib_ref_params q = rt_params(GIB_COMP_AO, 8, 8, 1);
+        int rc = gib_reference_render(&s, &q, &img, NULL, NULL, &err);
+        RT_CHECK(rc < 0 && strstr(err.msg, "vertex 99"), "bad index: rc %d, message '%s'", rc,
+                 err.msg);
+        printf("bad index refused: %s\n", err.msg);
+    }
+    rt_scene_free(&s);
+    printf("names, attributes, parameter errors and the empty scene: %s\n",
+           rt_failures ? "FAILED" : "ok");
+    return rt_failures ? 1 : 0;
+}

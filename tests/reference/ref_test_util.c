@@ -1,0 +1,200 @@
+#include "ref_test_util.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int rt_failures = 0;
+
+static void *rt_grow(void *p, size_t n, size_t size)
+{
+    void *q = realloc(p, n * size);
+    if (!q) {
+        fprintf(stderr, "out of memory\n");
+        abort();
+    }
+    return q;
+}
+
+void rt_scene_init(gib_scene *s, const char *name)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->name, sizeof s->name, "%s", name);
+    s->exposure = 1.0f;
+    s->content_hash = 0x0123456789abcdefull;
+}
+
+void rt_scene_free(gib_scene *s)
+{
+    free(s->positions);
+    free(s->normals);
+    free(s->uvs);
+    free(s->indices);
+    free(s->tri_material);
+    free(s->ranges);
+    free(s->materials);
+    for (uint32_t i = 0; i < s->texture_count; i++)
+        free(s->textures[i].rgba);
+    free(s->textures);
+    free(s->lights);
+    free(s->cameras);
+    memset(s, 0, sizeof *s);
+}
+
+int rt_material(gib_scene *s, float r, float g, float b)
+{
+    s->materials = rt_grow(s->materials, s->material_count + 1, sizeof *s->materials);
+    gib_material *m = &s->materials[s->material_count];
+    memset(m, 0, sizeof *m);
+    snprintf(m->name, sizeof m->name, "m%u", s->material_count);
+    m->albedo[0] = r;
+    m->albedo[1] = g;
+    m->albedo[2] = b;
+    m->albedo_tex = -1;
+    m->alpha_tex = -1;
+    m->spec_type = GIB_SPEC_NONE;
+    return (int)s->material_count++;
+}
+
+int rt_texture(gib_scene *s, int w, int h, const float *rgba)
+{
+    s->textures = rt_grow(s->textures, s->texture_count + 1, sizeof *s->textures);
+    gib_texture *t = &s->textures[s->texture_count];
+    memset(t, 0, sizeof *t);
+    snprintf(t->path, sizeof t->path, "test%u", s->texture_count);
+    t->width = w;
+    t->height = h;
+    t->rgba = rt_grow(NULL, (size_t)w * (size_t)h * 4, sizeof(float));
+    memcpy(t->rgba, rgba, (size_t)w * (size_t)h * 4 * sizeof(float));
+    return (int)s->texture_count++;
+}
+
+void rt_quad(gib_scene *s, const float p0[3], const float p1[3], const float p2[3],
+             const float p3[3], const float normal[3], int material)
+{
+    uint32_t v = s->vertex_count, t = s->triangle_count;
+    s->positions = rt_grow(s->positions, 3 * (size_t)(v + 4), sizeof(float));
+    s->normals = rt_grow(s->normals, 3 * (size_t)(v + 4), sizeof(float));
+    s->uvs = rt_grow(s->uvs, 2 * (size_t)(v + 4), sizeof(float));
+    s->indices = rt_grow(s->indices, 3 * (size_t)(t + 2), sizeof(uint32_t));
+    s->tri_material = rt_grow(s->tri_material, (size_t)(t + 2), sizeof(uint32_t));
+    const float *p[4] = {p0, p1, p2, p3};
+    static const float uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int i = 0; i < 4; i++) {
+        memcpy(s->positions + 3 * (size_t)(v + i), p[i], 3 * sizeof(float));
+        memcpy(s->normals + 3 * (size_t)(v + i), normal, 3 * sizeof(float));
+        s->uvs[2 * (size_t)(v + i)] = uv[i][0];
+        s->uvs[2 * (size_t)(v + i) + 1] = uv[i][1];
+    }
+    const uint32_t ix[6] = {v, v + 1, v + 2, v, v + 2, v + 3};
+    memcpy(s->indices + 3 * (size_t)t, ix, sizeof ix);
+    s->tri_material[t] = s->tri_material[t + 1] = (uint32_t)material;
+    s->vertex_count += 4;
+    s->triangle_count += 2;
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++) {
+            if ((v == 0 && i == 0) || p[i][k] < s->bounds_min[k])
+                s->bounds_min[k] = p[i][k];
+            if ((v == 0 && i == 0) || p[i][k] > s->bounds_max[k])
+                s->bounds_max[k] = p[i][k];
+        }
+}
+
+void rt_floor(gib_scene *s, float h, float x0, float x1, float z0, float z1, int material)
+{
+    /* Counter-clockwise seen from above (+y). */
+    const float a[3] = {x0, h, z1}, b[3] = {x1, h, z1}, c[3] = {x1, h, z0}, d[3] = {x0, h, z0};
+    const float n[3] = {0.0f, 1.0f, 0.0f};
+    rt_quad(s, a, b, c, d, n, material);
+}
+
+static gib_light *rt_light(gib_scene *s)
+{
+    s->lights = rt_grow(s->lights, s->light_count + 1, sizeof *s->lights);
+    gib_light *l = &s->lights[s->light_count];
+    memset(l, 0, sizeof *l);
+    snprintf(l->name, sizeof l->name, "l%u", s->light_count);
+    s->light_count++;
+    return l;
+}
+
+void rt_point_light(gib_scene *s, float x, float y, float z, float r, float g, float b)
+{
+    gib_light *l = rt_light(s);
+    l->type = GIB_LIGHT_POINT;
+    l->position[0] = x;
+    l->position[1] = y;
+    l->position[2] = z;
+    l->direction[1] = -1.0f;
+    l->intensity[0] = r;
+    l->intensity[1] = g;
+    l->intensity[2] = b;
+    s->features |= GIB_FEAT_POINT_LIGHT;
+}
+
+void rt_spot_light(gib_scene *s, const float pos[3], const float dir[3], float intensity,
+                   float exponent, float outer_deg)
+{
+    gib_light *l = rt_light(s);
+    l->type = GIB_LIGHT_SPOT;
+    memcpy(l->position, pos, sizeof l->position);
+    memcpy(l->direction, dir, sizeof l->direction);
+    l->intensity[0] = l->intensity[1] = l->intensity[2] = intensity;
+    l->spot_exponent = exponent;
+    l->spot_outer_deg = outer_deg;
+    s->features |= GIB_FEAT_SPOT_LIGHT;
+}
+
+void rt_camera(gib_scene *s, const float eye[3], const float target[3], const float up[3],
+               float vfov_deg)
+{
+    s->cameras = rt_grow(s->cameras, s->camera_count + 1, sizeof *s->cameras);
+    gib_camera *c = &s->cameras[s->camera_count];
+    memset(c, 0, sizeof *c);
+    snprintf(c->name, sizeof c->name, "c%u", s->camera_count);
+    memcpy(c->eye, eye, sizeof c->eye);
+    memcpy(c->target, target, sizeof c->target);
+    memcpy(c->up, up, sizeof c->up);
+    c->vfov_deg = vfov_deg;
+    s->camera_count++;
+}
+
+gib_ref_params rt_params(int component, int w, int h, int spp)
+{
+    gib_ref_params p;
+    memset(&p, 0, sizeof p);
+    p.component = component;
+    p.width = w;
+    p.height = h;
+    p.spp = spp;
+    p.dmax = 0.0f;
+    p.seed = 1;
+    p.threads = 0;
+    p.camera = 0;
+    p.quiet = 1;
+    return p;
+}
+
+void rt_render(const gib_scene *s, const gib_ref_params *p, gib_image *img, gib_image *sd,
+               gib_ref_stats *st)
+{
+    gib_error err = {{0}};
+    if (gib_reference_render(s, p, img, sd, st, &err) < 0) {
+        fprintf(stderr, "FAIL: render of '%s' failed: %s\n", s->name, err.msg);
+        exit(1);
+    }
+}
+
+int rt_hit_plane_y(const gib_scene *s, int cam, int w, int h, int x, int y, double plane_y,
+                   double P[3])
+{
+    float o[3], d[3];
+    gib_camera_ray(&s->cameras[cam], w, h, (float)x + 0.5f, (float)y + 0.5f, o, d);
+    if (d[1] == 0.0f)
+        return 0;
+    double t = (plane_y - (double)o[1]) / (double)d[1];
+    if (!(t > 0.0))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        P[k] = (double)o[k] + t * (double)d[k];
+    return 1;
+}

@@ -1,0 +1,55 @@
+/* gibench tests: tiny gib_scenes built by hand in C for the reference renderer's tests, so each
+ * test knows its geometry exactly and can state the analytic answer. */
+#ifndef GIB_REF_TEST_UTIL_H
+#define GIB_REF_TEST_UTIL_H
+
+#include <stdio.h>
+
+#include "../../reference/reference.h"
+
+/* Test bookkeeping: a failed check prints and counts; main returns rt_failures != 0. */
+extern int rt_failures;
+#define RT_CHECK(cond, ...)                                                                        \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                   \
+            fprintf(stderr, __VA_ARGS__);                                                          \
+            fprintf(stderr, "\n");                                                                 \
+            rt_failures++;                                                                         \
+        }                                                                                          \
+    } while (0)
+
+void rt_scene_init(gib_scene *s, const char *name);
+void rt_scene_free(gib_scene *s);
+
+/* Returns the material index. Diffuse, one-sided, no textures. */
+int rt_material(gib_scene *s, float r, float g, float b);
+/* Returns the texture index; rgba is copied (w*h*4 floats, row 0 on top). */
+int rt_texture(gib_scene *s, int w, int h, const float *rgba);
+
+/* A planar quad p0 p1 p2 p3 (counter-clockwise seen from the side `normal` points to), uv (0,0)
+ * (1,0) (1,1) (0,1) at its corners, as two triangles. */
+void rt_quad(gib_scene *s, const float p0[3], const float p1[3], const float p2[3],
+             const float p3[3], const float normal[3], int material);
+/* An axis-aligned rectangle in the plane y = h, x in [x0, x1], z in [z0, z1], normal +y. */
+void rt_floor(gib_scene *s, float h, float x0, float x1, float z0, float z1, int material);
+
+void rt_point_light(gib_scene *s, float x, float y, float z, float r, float g, float b);
+void rt_spot_light(gib_scene *s, const float pos[3], const float dir[3], float intensity,
+                   float exponent, float outer_deg);
+void rt_camera(gib_scene *s, const float eye[3], const float target[3], const float up[3],
+               float vfov_deg);
+
+/* Default parameters: quiet, seed 1, all cores. */
+gib_ref_params rt_params(int component, int w, int h, int spp);
+
+/* Renders or aborts the test with the renderer's message. */
+void rt_render(const gib_scene *s, const gib_ref_params *p, gib_image *img, gib_image *sd,
+               gib_ref_stats *st);
+
+/* The camera ray of pixel (x, y) intersected with the plane y = h, in double: the analytic visible
+ * point. Returns 0 when the ray does not reach the plane. */
+int rt_hit_plane_y(const gib_scene *s, int cam, int w, int h, int x, int y, double plane_y,
+                   double P[3]);
+
+#endif
