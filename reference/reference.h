@@ -1,9 +1,41 @@
 /* gibench — the reference renderer: an Embree 3 path tracer with one estimator per
  * light-transport component (DESIGN.md, "Light-transport components").
  *
- * Deterministic: each pixel's sampler is seeded from (pixel index, sample round, seed), so the same
- * build, scene, size, component and spp give the same image bit for bit, whatever the thread count.
- * Each pixel's sample variance gives its standard error; the image's noise RMSE is
+ * Paths in Heckbert notation, vertices counted from the eye: x1 is the visible point, x2 the next
+ * surface toward the light, ...; a vertex is D when light leaves it through the diffuse lobe and S
+ * when through the specular lobe (normalised Phong, or a mirror). Components:
+ *
+ *   ao        (1/pi) integral V(x,w) cos dw; V = 0 if a hit lies within dmax. With `obscurance`,
+ *             V = rho(d) = min(d / dmax, 1), d the distance to the first occluder (Zhukov et al.
+ *             1998, as the LDM paper, Aalund et al. 2015 Sec. 3.3, generalises AO).
+ *   direct    L D E and L S E (Phong), with shadows                  1 vertex
+ *   indirect  L D D E                                                2 vertices
+ *   glossy    L D S E (S at the visible point: Phong or mirror)      2 vertices
+ *   caustic   L S+ D E with at most max_specular S vertices          2 .. max_specular+1 vertices
+ *   full      every path of 1 .. max_depth vertices
+ *   higher    the paths of `full` that none of direct, indirect, glossy, caustic (with the same
+ *             max_specular) counts: full = direct + indirect + glossy + caustic + higher. For
+ *             max_depth 2 it is exactly L S S E.
+ *   albedo, normal, depth   auxiliary images of the visible point (see gib_component_name).
+ *
+ * Paths made only of delta events from a delta light to the eye (a point light seen directly or
+ * in mirrors: L E, L S_mirror+ E) have zero measure at a pixel centre and are counted by no
+ * component. Paths whose light-side vertex is a mirror AND whose eye-side vertex is a mirror
+ * (e.g. a mirror caustic seen in a mirror, L S_mirror D S_mirror E, 3 vertices) can be sampled
+ * by neither camera paths with next-event estimation nor light tracing; `full` and `higher` miss
+ * them, and say so in the EXR header (`missing`). Up to max_depth 2 no nonzero class is missed.
+ *
+ * Pixel footprint: every component but `caustic` estimates the radiance through the pixel
+ * CENTRE (the GL techniques rasterise there). `caustic`, and the mirror-first part of `full` and
+ * `higher`, come from light tracing, which splats into the pixel a point projects to and so
+ * averages over the pixel's area (a delta light seen through a delta lobe cannot be found from
+ * the camera). On smooth images the two agree; at edges they differ by the pixel's variation.
+ *
+ * Determinism: each sample's generator is seeded from (pixel or light pass, sample index, seed,
+ * component), and each pixel's statistics are accumulated in sample order, so the same build,
+ * scene, size, component and parameters give the same pixels bit for bit, whatever the thread
+ * count — and a --target-noise run that stopped at N samples gives the pixels of a plain N-sample
+ * run. Each pixel's sample variance gives its standard error; the image's noise RMSE is
  * sqrt(mean over pixels and channels of variance / spp). */
 #ifndef GIB_REFERENCE_H
 #define GIB_REFERENCE_H
@@ -11,23 +43,50 @@
 #include "../harness/imaging/image.h"
 #include "../scenes/scene.h"
 
-#define GIB_REFERENCE_VERSION "gibench-ref-1"
+/* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). */
+#define GIB_REFERENCE_VERSION "gibench-ref-3"
 
 enum gib_component {
-    GIB_COMP_AO = 0,      /* (1/pi) integral V(x,w) cos dw, V = 0 when a hit lies within dmax */
-    GIB_COMP_DIRECT = 1,  /* L D E and L S E with shadows */
+    GIB_COMP_AO = 0,
+    GIB_COMP_DIRECT = 1,
+    GIB_COMP_INDIRECT = 2,
+    GIB_COMP_GLOSSY = 3,
+    GIB_COMP_CAUSTIC = 4,
+    GIB_COMP_FULL = 5,
+    GIB_COMP_HIGHER = 6,
+    GIB_COMP_ALBEDO = 7,  /* rho_d at the visible point (filtered texture times albedo) */
+    GIB_COMP_NORMAL = 8,  /* viewer-facing shading normal, world space, components in [-1, 1] */
+    GIB_COMP_DEPTH = 9,   /* view-space depth (distance along the camera's forward axis) */
     GIB_COMP_COUNT
 };
 
 const char *gib_component_name(int component);
 /* Returns the enum value, or -1 for an unknown name. */
 int gib_component_parse(const char *name);
+/* 1 when the component's estimator uses no random numbers for this scene (direct with its delta
+ * lights, the auxiliary images, and components that are identically 0 in the scene, e.g. glossy
+ * without specular materials): its standard error is exactly 0 and one sample is the answer. */
+int gib_component_deterministic(const gib_scene *scene, int component);
+
+/* Parameter defaults, used where a field is 0. */
+#define GIB_REF_DEFAULT_MAX_DEPTH 8
+#define GIB_REF_DEFAULT_MIN_DEPTH 3
+#define GIB_REF_DEFAULT_MAX_SPECULAR 1
+#define GIB_REF_DEFAULT_MAX_SPP 65536
 
 typedef struct gib_ref_params {
     int component;        /* enum gib_component */
     int width, height;
-    int spp;              /* samples per pixel */
+    int spp;              /* samples per pixel (caustic: light passes of width*height particles);
+                           * with target_noise, the first round's count. Random estimators need
+                           * at least 2: with one sample the variance is unknown. */
     float dmax;           /* ao: hits farther than this do not occlude; <= 0 or INFINITY = unbounded */
+    int obscurance;       /* ao: 1 = obscurance rho(d) = min(d / dmax, 1); needs a finite dmax */
+    int max_depth;        /* full, higher: most surface vertices on a path; 0 = default 8 */
+    int min_depth;        /* full, higher: Russian roulette from this depth on; 0 = default 3 */
+    int max_specular;     /* caustic (and what higher leaves out): most S vertices; 0 = default 1 */
+    double target_noise;  /* > 0: add rounds until noise_rmse / mean <= this, up to max_spp */
+    int max_spp;          /* cap with target_noise; 0 = default 65536 */
     uint64_t seed;        /* default 1 */
     int threads;          /* 0 = all cores */
     int camera;           /* index into scene->cameras */
@@ -38,7 +97,11 @@ typedef struct gib_ref_stats {
     double seconds;
     double noise_rmse;    /* image standard error, as above */
     double mean;          /* mean of all RGB samples of the image */
-    long long rays;       /* rays traced (primary + shadow + ao) */
+    long long rays;       /* rays traced (primary, shadow, bounce, ao, light paths, camera links) */
+    int spp;              /* samples per pixel actually taken (1 for deterministic estimators) */
+    int rounds;           /* sampling rounds (1 without target_noise) */
+    int target_reached;   /* with target_noise: 1 if noise_rmse / mean <= target_noise */
+    int deterministic;    /* gib_component_deterministic() */
 } gib_ref_stats;
 
 /* Renders into out (3 channels, allocated here). If stderr_img is non-NULL it receives the per-pixel
@@ -46,11 +109,28 @@ typedef struct gib_ref_stats {
 int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_image *out,
                          gib_image *stderr_img, gib_ref_stats *stats, gib_error *err);
 
+/* The parameters as the renderer uses them: defaults filled in, and every field that cannot change
+ * this component's image set to a fixed value (dmax of `direct`, spp of a deterministic
+ * estimator, ...), so that two requests for the same image compare and hash equal. threads and
+ * quiet are zeroed (they never change the image). */
+void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gib_ref_params *out);
+
+/* A hash of everything in p that changes the image (after gib_reference_normalize) and of the
+ * renderer version. */
+uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params *p);
+
+/* The cache key of a reference image: the params hash plus the scene's content hash (scene file,
+ * meshes, textures) and the camera p->camera names (eye, target, up, fov). */
+uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p);
+
 /* Fills the EXR header attributes describing a reference render, all strings: component, spp,
  * seconds, scene_hash (16 hex digits), renderer_version, noise_rmse, mean, width, height, dmax
- * ("inf" when unbounded, since dmax <= 0 and inf give the same image), seed, camera. Returns the
- * count written, at most max_attrs; GIB_REF_ATTR_COUNT is how many there are. */
-#define GIB_REF_ATTR_COUNT 12
+ * ("inf" when unbounded), seed, camera, obscurance, max_depth, min_depth, max_specular,
+ * target_noise, max_spp, rounds, estimator ("deterministic" or "random"), footprint ("centre" or
+ * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key.
+ * Parameters are written normalised. Returns the count written, at most max_attrs;
+ * GIB_REF_ATTR_COUNT is how many there are. */
+#define GIB_REF_ATTR_COUNT 23
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
 
@@ -59,5 +139,22 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
  * 1e-4 x the diagonal of the vertices' bounding box, floored at 2^-17 x the largest coordinate
  * magnitude (float precision far from the origin). Tests use it to state exact expected values. */
 float gib_reference_ray_eps(const gib_scene *scene);
+
+/* ---- throughput benchmark (gibench bench reference) ---- */
+
+typedef struct gib_ref_bench_row {
+    char measure[48];     /* "raw_random", "raw_replay", "path_tracer" */
+    char api[32];         /* "rtcIntersect1", "rtcIntersect1M", "rtcIntersect8", ... */
+    long long rays;
+    double seconds;
+    double mrays_per_s;
+} gib_ref_bench_row;
+
+/* Measures, on one scene with all p->threads threads: raw Embree throughput on random incoherent
+ * rays and on a replay of the path tracer's own rays with each ray API, and the path tracer's
+ * throughput (p->component, p->spp at p->width x p->height, sampling and shading included).
+ * Fills up to max_rows rows; returns the count, or -1 with err. */
+int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, gib_ref_bench_row *rows,
+                        int max_rows, gib_error *err);
 
 #endif

@@ -76,8 +76,7 @@ static size_t f_size(struct aiFile *f)
 static enum aiReturn f_seek(struct aiFile *f, size_t off, enum aiOrigin origin)
 {
     int whence = origin == aiOrigin_SET ? SEEK_SET : origin == aiOrigin_CUR ? SEEK_CUR : SEEK_END;
-    return fseek((FILE *)f->UserData, (long)off, whence) == 0 ? aiReturn_SUCCESS
-                                                              : aiReturn_FAILURE;
+    return fseek((FILE *)f->UserData, (long)off, whence) == 0 ? aiReturn_SUCCESS : aiReturn_FAILURE;
 }
 
 static void f_flush(struct aiFile *f)
@@ -207,13 +206,13 @@ static int texture_path(const struct aiMaterial *am, enum aiTextureType type, co
     if (aiGetMaterialTextureCount(am, type) == 0)
         return 0;
     struct aiString s;
-    if (aiGetMaterialTexture(am, type, 0, &s, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
+    if (aiGetMaterialTexture(am, type, 0, &s, NULL, NULL, NULL, NULL, NULL, NULL) !=
+        aiReturn_SUCCESS)
         return 0;
     if (s.length == 0)
         return 0;
     if (s.data[0] == '*')
-        return gib_fail(err, "'%s': embedded textures are not supported ('%s')", mesh_path,
-                        s.data);
+        return gib_fail(err, "'%s': embedded textures are not supported ('%s')", mesh_path, s.data);
     for (char *c = s.data; *c; c++)
         if (*c == '\\')
             *c = '/';
@@ -250,8 +249,8 @@ static int read_material(const struct aiMaterial *am, const char *dir, const cha
 
     if (texture_path(am, aiTextureType_DIFFUSE, dir, d->albedo_path, sizeof d->albedo_path,
                      mesh_path, err) ||
-        texture_path(am, aiTextureType_OPACITY, dir, d->alpha_path, sizeof d->alpha_path,
-                     mesh_path, err))
+        texture_path(am, aiTextureType_OPACITY, dir, d->alpha_path, sizeof d->alpha_path, mesh_path,
+                     err))
         return -1;
 
     float a[3] = {(float)kd.r, (float)kd.g, (float)kd.b};
@@ -388,8 +387,10 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
         }
         if (!hint[0] || strcasecmp(hint, "obj") == 0) {
             aiReleasePropertyStore(props);
-            return gib_fail(err, "'%s': gzipped meshes must be self-contained (.ply.gz, ...); "
-                                 "decompress OBJ files, whose MTL sits beside them", path);
+            return gib_fail(err,
+                            "'%s': gzipped meshes must be self-contained (.ply.gz, ...); "
+                            "decompress OBJ files, whose MTL sits beside them",
+                            path);
         }
         unsigned char *buf = NULL;
         size_t len = 0;
@@ -397,8 +398,8 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
         if (rc == 0 && len > 0xffffffffu)
             rc = gib_fail(err, "'%s' decompresses to more than 4 GiB", path);
         if (rc == 0)
-            sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags,
-                                                      hint, props);
+            sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags, hint,
+                                                      props);
         free(buf);
     } else {
         io_state st;

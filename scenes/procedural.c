@@ -94,30 +94,32 @@ static void add_quad(gib_geom *g, float q[4][3], const float toward[3], int faci
  * in the published data. Albedos are the RGB values used by common renderers (Mitsuba's and
  * pbrt-v3's cornell-box scenes, converted from the published spectral reflectances): white
  * 0.725 0.71 0.68, red 0.63 0.065 0.05, green 0.14 0.45 0.091. */
+/* clang-format off */
 static const float cornell_quads[][4][3] = {
     /* 0 floor (white) */
-    {{552.8f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 559.2f}, {549.6f, 0.0f, 559.2f}},
+    {{552.8f, 0, 0}, {0, 0, 0}, {0, 0, 559.2f}, {549.6f, 0, 559.2f}},
     /* 1 ceiling (white) */
-    {{556.0f, 548.8f, 0.0f}, {556.0f, 548.8f, 559.2f}, {0.0f, 548.8f, 559.2f}, {0.0f, 548.8f, 0.0f}},
+    {{556, 548.8f, 0}, {556, 548.8f, 559.2f}, {0, 548.8f, 559.2f}, {0, 548.8f, 0}},
     /* 2 back wall (white) */
-    {{549.6f, 0.0f, 559.2f}, {0.0f, 0.0f, 559.2f}, {0.0f, 548.8f, 559.2f}, {556.0f, 548.8f, 559.2f}},
+    {{549.6f, 0, 559.2f}, {0, 0, 559.2f}, {0, 548.8f, 559.2f}, {556, 548.8f, 559.2f}},
     /* 3 right wall (green) */
-    {{0.0f, 0.0f, 559.2f}, {0.0f, 0.0f, 0.0f}, {0.0f, 548.8f, 0.0f}, {0.0f, 548.8f, 559.2f}},
+    {{0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}},
     /* 4 left wall (red) */
-    {{552.8f, 0.0f, 0.0f}, {549.6f, 0.0f, 559.2f}, {556.0f, 548.8f, 559.2f}, {556.0f, 548.8f, 0.0f}},
+    {{552.8f, 0, 0}, {549.6f, 0, 559.2f}, {556, 548.8f, 559.2f}, {556, 548.8f, 0}},
     /* 5-9 short block (white) */
-    {{130.0f, 165.0f, 65.0f}, {82.0f, 165.0f, 225.0f}, {240.0f, 165.0f, 272.0f}, {290.0f, 165.0f, 114.0f}},
-    {{290.0f, 0.0f, 114.0f}, {290.0f, 165.0f, 114.0f}, {240.0f, 165.0f, 272.0f}, {240.0f, 0.0f, 272.0f}},
-    {{130.0f, 0.0f, 65.0f}, {130.0f, 165.0f, 65.0f}, {290.0f, 165.0f, 114.0f}, {290.0f, 0.0f, 114.0f}},
-    {{82.0f, 0.0f, 225.0f}, {82.0f, 165.0f, 225.0f}, {130.0f, 165.0f, 65.0f}, {130.0f, 0.0f, 65.0f}},
-    {{240.0f, 0.0f, 272.0f}, {240.0f, 165.0f, 272.0f}, {82.0f, 165.0f, 225.0f}, {82.0f, 0.0f, 225.0f}},
+    {{130, 165, 65}, {82, 165, 225}, {240, 165, 272}, {290, 165, 114}},
+    {{290, 0, 114}, {290, 165, 114}, {240, 165, 272}, {240, 0, 272}},
+    {{130, 0, 65}, {130, 165, 65}, {290, 165, 114}, {290, 0, 114}},
+    {{82, 0, 225}, {82, 165, 225}, {130, 165, 65}, {130, 0, 65}},
+    {{240, 0, 272}, {240, 165, 272}, {82, 165, 225}, {82, 0, 225}},
     /* 10-14 tall block (white) */
-    {{423.0f, 330.0f, 247.0f}, {265.0f, 330.0f, 296.0f}, {314.0f, 330.0f, 456.0f}, {472.0f, 330.0f, 406.0f}},
-    {{423.0f, 0.0f, 247.0f}, {423.0f, 330.0f, 247.0f}, {472.0f, 330.0f, 406.0f}, {472.0f, 0.0f, 406.0f}},
-    {{472.0f, 0.0f, 406.0f}, {472.0f, 330.0f, 406.0f}, {314.0f, 330.0f, 456.0f}, {314.0f, 0.0f, 456.0f}},
-    {{314.0f, 0.0f, 456.0f}, {314.0f, 330.0f, 456.0f}, {265.0f, 330.0f, 296.0f}, {265.0f, 0.0f, 296.0f}},
-    {{265.0f, 0.0f, 296.0f}, {265.0f, 330.0f, 296.0f}, {423.0f, 330.0f, 247.0f}, {423.0f, 0.0f, 247.0f}},
+    {{423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406}},
+    {{423, 0, 247}, {423, 330, 247}, {472, 330, 406}, {472, 0, 406}},
+    {{472, 0, 406}, {472, 330, 406}, {314, 330, 456}, {314, 0, 456}},
+    {{314, 0, 456}, {314, 330, 456}, {265, 330, 296}, {265, 0, 296}},
+    {{265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247}},
 };
+/* clang-format on */
 
 static int build_cornell(gib_geom *g, gib_error *err)
 {
@@ -149,7 +151,8 @@ static int build_cornell(gib_geom *g, gib_error *err)
 }
 
 /* An axis-aligned box [lo, hi]; faces point outward (inward = 0) or inward (inward = 1). Face
- * order: -x, +x, -y, +y, -z, +z; skip_mask bit i leaves face i out. mats[i] is face i's material. */
+ * order: -x, +x, -y, +y, -z, +z; skip_mask bit i leaves face i out; mats[i] is face i's
+ * material. */
 static void add_box(gib_geom *g, const float lo[3], const float hi[3], int inward,
                     unsigned skip_mask, const uint32_t mats[6])
 {
@@ -204,8 +207,10 @@ static int build_room(gib_geom *g, const gib_proc_params *p, gib_error *err)
         memcpy(size, p->size, sizeof size);
     for (int i = 0; i < 3; i++)
         if (!(size[i] > 0.0f) || !isfinite(size[i]))
-            return gib_fail(err, "room: 'size' must be three positive numbers (width height "
-                                 "depth), got %g %g %g", size[0], size[1], size[2]);
+            return gib_fail(err,
+                            "room: 'size' must be three positive numbers (width height "
+                            "depth), got %g %g %g",
+                            size[0], size[1], size[2]);
     static const char *names[6] = {"room_wall_xneg", "room_wall_xpos", "room_floor",
                                    "room_ceiling",   "room_wall_zneg", "room_wall_zpos"};
     uint32_t mats[6];
@@ -224,8 +229,8 @@ static int build_room(gib_geom *g, const gib_proc_params *p, gib_error *err)
     return 0;
 }
 
-int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *out,
-                         uint64_t *hash, gib_error *err)
+int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *out, uint64_t *hash,
+                         gib_error *err)
 {
     *hash = gib_hash_str(*hash, "procedural");
     *hash = gib_hash_str(*hash, name);

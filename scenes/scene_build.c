@@ -1,9 +1,8 @@
-/* gibench — from a parsed .scene file to the flattened gib_scene both renderers read: meshes loaded
- * and transformed to world space, materials merged with the file's overrides, unused materials
- * dropped, textures loaded, triangles sorted into per-material draw ranges, normals repaired,
- * bounds, features and the content hash. */
+/* gibench — from a parsed .scene file to the flattened gib_scene both renderers read: meshes
+ * loaded and transformed to world space, materials merged with the file's overrides, unused
+ * materials dropped, textures loaded, triangles sorted into per-material draw ranges, normals
+ * repaired, bounds, features and the content hash. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,69 +10,13 @@
 #include "../harness/base/hash.h"
 #include "scene_internal.h"
 
-static int fail_at(const gib_scene_spec *s, int line, gib_error *err, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-
-static int fail_at(const gib_scene_spec *s, int line, gib_error *err, const char *fmt, ...)
-{
-    char msg[1536];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    return gib_fail(err, "%s:%d: %s", s->path, line, msg);
-}
-
-/* ------------------------------------------------------------------ shared data */
-
-static const char *const where_to_get =
-    "Download it from Morgan McGuire's Computer Graphics Archive "
-    "(https://casual-effects.com/data/; Sponza, Sibenik) or, for the bunny and the dragon, the "
-    "Stanford 3D Scanning Repository (https://graphics.stanford.edu/data/3Dscanrep/), unpack it "
-    "so that the folder exists under one data root, and set GIBENCH_SCENES to that root (default: "
-    "../shared/scenes beside the project). The procedural scenes (cornell, plane_box) need no "
-    "data.";
-
-int gib_scene_check_data(const gib_scene_spec *spec, gib_error *err)
-{
-    int needs_files = spec->data[0] != '\0';
-    int first_line = spec->data_line;
-    for (int i = 0; i < spec->mesh_count; i++)
-        if (spec->meshes[i].file[0]) {
-            if (!needs_files)
-                first_line = spec->meshes[i].file_line;
-            needs_files = 1;
-        }
-    if (!needs_files)
-        return 0;
-    const char *root = gib_scene_data_root();
-    if (!root) {
-        fail_at(spec, first_line, err, "scene '%s' needs shared data%s%s%s, and there is no data "
-                "root: GIBENCH_SCENES is not set and ../shared/scenes beside the project does "
-                "not exist. %s", spec->name, spec->data[0] ? " (folder '" : "", spec->data,
-                spec->data[0] ? "')" : "", where_to_get);
-        return GIB_SCENE_UNAVAILABLE;
-    }
-    if (spec->data[0]) {
-        char dir[GIB_PATH_MAX], resolved[GIB_PATH_MAX];
-        if (gib_path_join(root, spec->data, dir, sizeof dir) ||
-            gib_path_resolve_ci(dir, resolved, sizeof resolved) || !gib_path_is_dir(resolved)) {
-            fail_at(spec, spec->data_line, err, "scene '%s' needs the shared data folder '%s', "
-                    "which is not in the data root '%s'. %s", spec->name, spec->data, root,
-                    where_to_get);
-            return GIB_SCENE_UNAVAILABLE;
-        }
-    }
-    return 0;
-}
-
 /* ------------------------------------------------------------------ transforms */
 
 typedef struct xform {
     float m[3][3];  /* R * S, applied to positions */
     float nm[3][3]; /* R * S^-1: the inverse transpose of m, applied to normals */
     float t[3];
-    int flips;      /* det < 0: mirrored, so the winding must be reversed */
+    int flips; /* det < 0: mirrored, so the winding must be reversed */
 } xform;
 
 static void mat_mul(const float a[3][3], const float b[3][3], float out[3][3])
@@ -131,8 +74,7 @@ static void to_local(const gib_mesh_spec *m, const float p[3], float out[3])
 }
 
 /* Moves a mesh's geometry into the scene's, transformed to world space. */
-static int append_mesh(gib_geom *dst, gib_geom *src, const xform *x, int mesh_index,
-                       gib_error *err)
+static int append_mesh(gib_geom *dst, gib_geom *src, const xform *x, int mesh_index, gib_error *err)
 {
     if (gib_geom_reserve(dst, src->vcount, src->tcount, err))
         return -1;
@@ -192,15 +134,17 @@ static int apply_material(const gib_scene_spec *s, const gib_material_spec *ms, 
         if ((ms->set & (1u << k)) && ms->key_line[k] > line)
             line = ms->key_line[k];
     if (m->spec_type == GIB_SPEC_PHONG && !was_phong && !(ms->set & GIB_MS_PHONG_N))
-        return fail_at(s, line, err, "material '%s' has a specular lobe but no 'phong_n' "
-                       "(give the Phong exponent, or 'mirror = 1' for a perfect mirror)",
-                       ms->name);
+        return gib_scene_fail_at(s, line, err,
+                                 "material '%s' has a specular lobe but no 'phong_n' "
+                                 "(give the Phong exponent, or 'mirror = 1' for a perfect mirror)",
+                                 ms->name);
     for (int c = 0; c < 3; c++)
         if (m->albedo[c] + m->specular[c] > 1.0f + 1e-6f)
-            return fail_at(s, line, err, "material '%s': albedo + specular = %g + %g > 1 in the "
-                           "%s channel; rho_d + rho_s <= 1 is required for energy conservation",
-                           ms->name, (double)m->albedo[c], (double)m->specular[c],
-                           channel_names[c]);
+            return gib_scene_fail_at(
+                s, line, err,
+                "material '%s': albedo + specular = %g + %g > 1 in the "
+                "%s channel; rho_d + rho_s <= 1 is required for energy conservation",
+                ms->name, (double)m->albedo[c], (double)m->specular[c], channel_names[c]);
     return 0;
 }
 
@@ -221,12 +165,13 @@ static int load_textures(const gib_scene_spec *s, gib_mat_desc *mats, uint32_t n
                 continue;
             if (gib_path_resolve_ci(want, paths[count], GIB_PATH_MAX) != 0 ||
                 !gib_path_is_file(paths[count])) {
-                const gib_mesh_spec *ms = mats[i].mesh_index >= 0
-                                              ? &s->meshes[mats[i].mesh_index] : NULL;
-                rc = fail_at(s, ms ? ms->file_line : s->scene_line, err, "mesh '%s': material "
-                             "'%s': %s texture '%s' not found (names are matched ignoring case)",
-                             ms ? ms->name : "?", mats[i].m.name,
-                             kind == 0 ? "albedo" : "alpha", want);
+                const gib_mesh_spec *ms =
+                    mats[i].mesh_index >= 0 ? &s->meshes[mats[i].mesh_index] : NULL;
+                rc = gib_scene_fail_at(
+                    s, ms ? ms->file_line : s->scene_line, err,
+                    "mesh '%s': material "
+                    "'%s': %s texture '%s' not found (names are matched ignoring case)",
+                    ms ? ms->name : "?", mats[i].m.name, kind == 0 ? "albedo" : "alpha", want);
                 break;
             }
             pp[count] = paths[count];
@@ -405,18 +350,21 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         tri_mesh_begin[i] = g.tcount;
         if (m->procedural[0]) {
             if (gib_procedural_build(m->procedural, &m->params, &local, &hash, err))
-                rc = gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->procedural_line,
-                                      m->name);
+                rc =
+                    gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->procedural_line, m->name);
         } else {
             char joined[GIB_PATH_MAX], path[GIB_PATH_MAX];
             if (!root)
-                rc = fail_at(s, m->file_line, err, "mesh '%s': file '%s' needs the data root; "
-                             "set GIBENCH_SCENES", m->name, m->file);
+                rc = gib_scene_fail_at(s, m->file_line, err,
+                                       "mesh '%s': file '%s' needs the data root; "
+                                       "set GIBENCH_SCENES",
+                                       m->name, m->file);
             else if (gib_path_join(root, m->file, joined, sizeof joined) ||
                      gib_path_resolve_ci(joined, path, sizeof path) || !gib_path_is_file(path))
-                rc = fail_at(s, m->file_line, err, "mesh '%s': file '%s' not found under the "
-                             "data root '%s' ($GIBENCH_SCENES, default ../shared/scenes)",
-                             m->name, m->file, root);
+                rc = gib_scene_fail_at(s, m->file_line, err,
+                                       "mesh '%s': file '%s' not found under the "
+                                       "data root '%s' ($GIBENCH_SCENES, default ../shared/scenes)",
+                                       m->name, m->file, root);
             else if (gib_mesh_import(path, m->smooth_angle_deg, &local, &hash, err))
                 rc = gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->file_line, m->name);
         }
@@ -446,7 +394,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
                 rc = -1;
         }
     }
-    /* `material = NAME` on a mesh: every triangle of that mesh takes the first material so named. */
+    /* `material = NAME` on a mesh: all its triangles take the first material of that name. */
     for (int i = 0; i < s->mesh_count && rc == 0; i++) {
         const gib_mesh_spec *m = &s->meshes[i];
         if (!m->material[0])
@@ -455,9 +403,10 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         while (k < g.mcount && strcmp(g.mats[k].m.name, m->material) != 0)
             k++;
         if (k == g.mcount) {
-            rc = fail_at(s, m->material_line, err, "mesh '%s': material '%s' is not defined; add "
-                         "a [material.%s] section or use a name the mesh file defines", m->name,
-                         m->material, m->material);
+            rc = gib_scene_fail_at(s, m->material_line, err,
+                                   "mesh '%s': material '%s' is not defined; add "
+                                   "a [material.%s] section or use a name the mesh file defines",
+                                   m->name, m->material, m->material);
             break;
         }
         for (uint32_t t = tri_mesh_begin[i]; t < tri_mesh_begin[i + 1]; t++)
@@ -485,7 +434,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
     }
 
     if (rc == 0 && g.tcount == 0)
-        rc = fail_at(s, s->scene_line, err, "the scene has no triangles");
+        rc = gib_scene_fail_at(s, s->scene_line, err, "the scene has no triangles");
     if (rc == 0) {
         repair_normals(&g);
         rc = sort_ranges(sc, &g, nmat, err);
@@ -547,8 +496,8 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         }
         for (uint32_t i = 0; i < sc->light_count; i++)
             f |= sc->lights[i].type == GIB_LIGHT_POINT  ? GIB_FEAT_POINT_LIGHT
-               : sc->lights[i].type == GIB_LIGHT_SPOT ? GIB_FEAT_SPOT_LIGHT
-                                                      : GIB_FEAT_DIR_LIGHT;
+                 : sc->lights[i].type == GIB_LIGHT_SPOT ? GIB_FEAT_SPOT_LIGHT
+                                                        : GIB_FEAT_DIR_LIGHT;
         if (s->closed)
             f |= GIB_FEAT_CLOSED;
         f |= room_encloses(s);

@@ -23,10 +23,9 @@
 enum section_kind { SEC_NONE, SEC_SCENE, SEC_MESH, SEC_MATERIAL, SEC_LIGHT, SEC_CAMERA };
 
 static const char *const scene_keys[] = {"description", "exposure", "data", "closed", NULL};
-static const char *const mesh_keys[] = {"file",     "procedural", "scale",        "rotate",
-                                        "translate", "material",  "size",         "smooth_angle",
-                                        NULL};
-static const char *const material_keys[] = {"albedo", "specular", "phong_n", "mirror",
+static const char *const mesh_keys[] = {
+    "file", "procedural", "scale", "rotate", "translate", "material", "size", "smooth_angle", NULL};
+static const char *const material_keys[] = {"albedo",    "specular", "phong_n", "mirror",
                                             "two_sided", NULL}; /* order = GIB_MS_* bits */
 static const char *const light_keys[] = {"type",      "position", "direction",   "target",
                                          "intensity", "exponent", "outer_angle", NULL};
@@ -40,9 +39,9 @@ typedef struct parse_ctx {
     gib_error *err;
     int failed;
     enum section_kind sec;
-    int sec_index;          /* into the spec's array for that kind */
-    unsigned seen;          /* keys given in the current section, by index in its key table */
-    char *buf;              /* the current physical line */
+    int sec_index; /* into the spec's array for that kind */
+    unsigned seen; /* keys given in the current section, by index in its key table */
+    char *buf;     /* the current physical line */
     size_t buf_cap;
 } parse_ctx;
 
@@ -91,13 +90,19 @@ static int grow_array(void **arr, int count, size_t elem, gib_error *err)
 static int name_taken(const parse_ctx *c, enum section_kind k, const char *name)
 {
     const gib_scene_spec *s = c->spec;
-    int n = k == SEC_MESH ? s->mesh_count : k == SEC_MATERIAL ? s->material_count
-          : k == SEC_LIGHT ? s->light_count : s->camera_count;
+    int n = k == SEC_MESH       ? s->mesh_count
+            : k == SEC_MATERIAL ? s->material_count
+            : k == SEC_LIGHT    ? s->light_count
+                                : s->camera_count;
     for (int i = 0; i < n; i++) {
-        const char *o = k == SEC_MESH ? s->meshes[i].name : k == SEC_MATERIAL ? s->materials[i].name
-                      : k == SEC_LIGHT ? s->lights[i].l.name : s->cameras[i].c.name;
-        int line = k == SEC_MESH ? s->meshes[i].line : k == SEC_MATERIAL ? s->materials[i].line
-                 : k == SEC_LIGHT ? s->lights[i].line : s->cameras[i].line;
+        const char *o = k == SEC_MESH       ? s->meshes[i].name
+                        : k == SEC_MATERIAL ? s->materials[i].name
+                        : k == SEC_LIGHT    ? s->lights[i].l.name
+                                            : s->cameras[i].c.name;
+        int line = k == SEC_MESH       ? s->meshes[i].line
+                   : k == SEC_MATERIAL ? s->materials[i].line
+                   : k == SEC_LIGHT    ? s->lights[i].line
+                                       : s->cameras[i].line;
         if (strcmp(o, name) == 0)
             return line;
     }
@@ -125,7 +130,11 @@ static int open_section(parse_ctx *c, char *text)
         c->sec = SEC_SCENE;
         return 0;
     }
-    static const struct { const char *prefix; enum section_kind kind; size_t maxlen; } kinds[] = {
+    static const struct {
+        const char *prefix;
+        enum section_kind kind;
+        size_t maxlen;
+    } kinds[] = {
         {"mesh.", SEC_MESH, sizeof(((gib_mesh_spec *)0)->name)},
         {"material.", SEC_MATERIAL, sizeof(((gib_material *)0)->name)},
         {"light.", SEC_LIGHT, sizeof(((gib_light *)0)->name)},
@@ -193,8 +202,10 @@ static int open_section(parse_ctx *c, char *text)
         }
         return 0;
     }
-    return ctx_fail(c, "unknown section [%s] (known: [scene], [mesh.NAME], [material.NAME], "
-                       "[light.NAME], [camera.NAME])", name);
+    return ctx_fail(c,
+                    "unknown section [%s] (known: [scene], [mesh.NAME], [material.NAME], "
+                    "[light.NAME], [camera.NAME])",
+                    name);
 }
 
 /* ------------------------------------------------------------------ the reader */
@@ -234,8 +245,10 @@ static char *reader(char *str, int num, void *stream)
         line++;
     size_t n = strlen(line);
     if (num < 4 || n + 3 > (size_t)num) {
-        ctx_fail(c, "line is %zu characters long; at most %d fit (split the value or shorten "
-                    "it)", n, num - 3);
+        ctx_fail(c,
+                 "line is %zu characters long; at most %d fit (split the value or shorten "
+                 "it)",
+                 n, num - 3);
         return NULL;
     }
     if (line[0] == '[') {
@@ -318,15 +331,14 @@ static void key_list(const char *const *keys, char *out, size_t n)
 }
 
 /* Copies a string value into a fixed field, failing when it does not fit. */
-#define COPY_STR(field, value)                                                                   \
-    (strlen(value) >= sizeof(field)                                                              \
-         ? ctx_fail(c, "%s: '%s' is too long (at most %zu characters)", label, name,             \
-                    sizeof(field) - 1)                                                           \
-         : (snprintf(field, sizeof(field), "%s", value), 0))
+#define COPY_STR(field, value)                                                                     \
+    (strlen(value) >= sizeof(field) ? ctx_fail(c, "%s: '%s' is too long (at most %zu characters)", \
+                                               label, name, sizeof(field) - 1)                     \
+                                    : (snprintf(field, sizeof(field), "%s", value), 0))
 
-#define FLOATS(dst, lo, hi, got)                                                                 \
-    (parse_floats(value, dst, lo, hi, got, msg, sizeof msg)                                      \
-         ? ctx_fail(c, "%s: '%s' %s", label, name, msg)                                          \
+#define FLOATS(dst, lo, hi, got)                                                                   \
+    (parse_floats(value, dst, lo, hi, got, msg, sizeof msg)                                        \
+         ? ctx_fail(c, "%s: '%s' %s", label, name, msg)                                            \
          : 0)
 
 static int handler(void *user, const char *section, const char *name, const char *value)
@@ -337,12 +349,15 @@ static int handler(void *user, const char *section, const char *name, const char
         return 0;
     char label[192], msg[768], known[256];
     section_label(c, label, sizeof label);
-    const char *const *keys = c->sec == SEC_SCENE ? scene_keys : c->sec == SEC_MESH ? mesh_keys
-                            : c->sec == SEC_MATERIAL ? material_keys : c->sec == SEC_LIGHT ? light_keys
-                            : c->sec == SEC_CAMERA ? camera_keys : NULL;
+    const char *const *keys = c->sec == SEC_SCENE      ? scene_keys
+                              : c->sec == SEC_MESH     ? mesh_keys
+                              : c->sec == SEC_MATERIAL ? material_keys
+                              : c->sec == SEC_LIGHT    ? light_keys
+                              : c->sec == SEC_CAMERA   ? camera_keys
+                                                       : NULL;
     if (!keys)
-        return ctx_fail(c, "'%s = %s' comes before any section; start with [scene]", name,
-                        value), 0;
+        return ctx_fail(c, "'%s = %s' comes before any section; start with [scene]", name, value),
+               0;
     int k = key_index(keys, name);
     if (k < 0) {
         key_list(keys, known, sizeof known);
@@ -371,8 +386,14 @@ static int handler(void *user, const char *section, const char *name, const char
     case SEC_MESH: {
         gib_mesh_spec *m = &s->meshes[c->sec_index];
         switch (k) {
-        case 0: rc = COPY_STR(m->file, value); m->file_line = c->lineno; break;
-        case 1: rc = COPY_STR(m->procedural, value); m->procedural_line = c->lineno; break;
+        case 0:
+            rc = COPY_STR(m->file, value);
+            m->file_line = c->lineno;
+            break;
+        case 1:
+            rc = COPY_STR(m->procedural, value);
+            m->procedural_line = c->lineno;
+            break;
         case 2:
             rc = FLOATS(m->scale, 1, 3, &got);
             if (!rc && got == 1)
@@ -382,7 +403,10 @@ static int handler(void *user, const char *section, const char *name, const char
             break;
         case 3: rc = FLOATS(m->rotate_deg, 3, 3, NULL); break;
         case 4: rc = FLOATS(m->translate, 3, 3, NULL); break;
-        case 5: rc = COPY_STR(m->material, value); m->material_line = c->lineno; break;
+        case 5:
+            rc = COPY_STR(m->material, value);
+            m->material_line = c->lineno;
+            break;
         case 6:
             rc = FLOATS(m->params.size, 3, 3, NULL);
             m->params.has_size = 1;
@@ -407,10 +431,10 @@ static int handler(void *user, const char *section, const char *name, const char
         if (k == 0 || k == 1) {
             float *dst = k == 0 ? m->albedo : m->specular;
             rc = FLOATS(dst, 3, 3, NULL);
-            if (!rc && (dst[0] < 0 || dst[1] < 0 || dst[2] < 0 || dst[0] > 1 || dst[1] > 1 ||
-                        dst[2] > 1))
-                rc = ctx_fail(c, "%s: '%s' must be between 0 and 1 per channel, got '%s'",
-                              label, name, value);
+            if (!rc &&
+                (dst[0] < 0 || dst[1] < 0 || dst[2] < 0 || dst[0] > 1 || dst[1] > 1 || dst[2] > 1))
+                rc = ctx_fail(c, "%s: '%s' must be between 0 and 1 per channel, got '%s'", label,
+                              name, value);
         } else if (k == 2) {
             rc = FLOATS(&m->phong_n, 1, 1, NULL);
             if (!rc && !(m->phong_n > 0.0f))
@@ -435,7 +459,10 @@ static int handler(void *user, const char *section, const char *name, const char
                 rc = ctx_fail(c, "%s: unknown light type '%s' (known: point, spot, directional)",
                               label, value);
             break;
-        case 1: rc = FLOATS(l->l.position, 3, 3, NULL); l->position_set = 1; break;
+        case 1:
+            rc = FLOATS(l->l.position, 3, 3, NULL);
+            l->position_set = 1;
+            break;
         case 2:
             rc = FLOATS(l->l.direction, 3, 3, NULL);
             l->direction_set = 1;
@@ -460,8 +487,10 @@ static int handler(void *user, const char *section, const char *name, const char
         default:
             rc = FLOATS(&l->l.spot_outer_deg, 1, 1, NULL);
             if (!rc && !(l->l.spot_outer_deg > 0.0f && l->l.spot_outer_deg <= 180.0f))
-                rc = ctx_fail(c, "%s: 'outer_angle' must be in (0, 180] degrees (a half-angle), "
-                                 "got '%s'", label, value);
+                rc = ctx_fail(c,
+                              "%s: 'outer_angle' must be in (0, 180] degrees (a half-angle), "
+                              "got '%s'",
+                              label, value);
             break;
         }
         break;
@@ -487,109 +516,6 @@ static int handler(void *user, const char *section, const char *name, const char
     default: break;
     }
     return rc == 0;
-}
-
-/* ------------------------------------------------------------------ checks after parsing */
-
-static int fail_at(const gib_scene_spec *s, int line, gib_error *err, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-
-static int fail_at(const gib_scene_spec *s, int line, gib_error *err, const char *fmt, ...)
-{
-    char msg[1536];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    return gib_fail(err, "%s:%d: %s", s->path, line, msg);
-}
-
-static float len3(const float v[3])
-{
-    return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
-static int validate(gib_scene_spec *s, gib_error *err)
-{
-    if (!s->scene_line)
-        return fail_at(s, 1, err, "no [scene] section (every scene file starts with one)");
-    for (int i = 0; i < s->mesh_count; i++) {
-        gib_mesh_spec *m = &s->meshes[i];
-        if (!m->file[0] && !m->procedural[0])
-            return fail_at(s, m->line, err, "mesh '%s' needs 'file' or 'procedural'", m->name);
-        if (m->file[0] && m->procedural[0])
-            return fail_at(s, m->procedural_line, err, "mesh '%s' has both 'file' and "
-                           "'procedural'; use one [mesh.NAME] section for each", m->name);
-        if (m->procedural[0] && !gib_procedural_known(m->procedural))
-            return fail_at(s, m->procedural_line, err, "mesh '%s': unknown procedural generator "
-                           "'%s' (known: %s)", m->name, m->procedural, gib_procedural_names());
-        if (m->params.has_size && !(m->procedural[0] && gib_procedural_takes_size(m->procedural)))
-            return fail_at(s, m->size_line, err, "mesh '%s': 'size' applies only to "
-                           "'procedural = room'", m->name);
-    }
-    if (s->mesh_count == 0)
-        return fail_at(s, s->scene_line, err, "the scene has no [mesh.NAME] section");
-    for (int i = 0; i < s->material_count; i++) {
-        gib_material_spec *m = &s->materials[i];
-        if (m->mirror && !(m->set & GIB_MS_SPECULAR))
-            return fail_at(s, m->key_line[3], err, "material '%s': 'mirror = 1' needs "
-                           "'specular = r g b' (the mirror's reflectance)", m->name);
-        /* rho_d + rho_s <= 1 is checked in scene_build, once overrides are merged with what the
-         * mesh file said. */
-    }
-    for (int i = 0; i < s->light_count; i++) {
-        gib_light_spec *l = &s->lights[i];
-        gib_light *L = &l->l;
-        if (!l->type_set)
-            return fail_at(s, l->line, err, "light '%s' needs 'type = point | spot | "
-                           "directional'", L->name);
-        if (!l->intensity_set)
-            return fail_at(s, l->line, err, "light '%s' needs 'intensity = r g b' (W/sr for "
-                           "point and spot lights, W/m^2 for directional)", L->name);
-        if (L->type != GIB_LIGHT_DIRECTIONAL && !l->position_set)
-            return fail_at(s, l->line, err, "light '%s' needs 'position = x y z'", L->name);
-        if (L->type == GIB_LIGHT_POINT)
-            continue;
-        if (l->direction_set && l->target_set)
-            return fail_at(s, l->target_line, err, "light '%s': give 'direction' or 'target', "
-                           "not both", L->name);
-        if (l->target_set) {
-            if (L->type == GIB_LIGHT_DIRECTIONAL)
-                return fail_at(s, l->target_line, err, "light '%s': a directional light takes "
-                               "'direction', not 'target'", L->name);
-            for (int k = 0; k < 3; k++)
-                L->direction[k] = l->target[k] - L->position[k];
-        } else if (!l->direction_set) {
-            return fail_at(s, l->line, err, "light '%s' needs 'direction = x y z'%s", L->name,
-                           L->type == GIB_LIGHT_SPOT ? " or 'target = x y z'" : "");
-        }
-        float n = len3(L->direction);
-        if (!(n > 0.0f))
-            return fail_at(s, l->target_set ? l->target_line : l->direction_line, err,
-                           "light '%s': the direction has zero length", L->name);
-        for (int k = 0; k < 3; k++)
-            L->direction[k] /= n;
-    }
-    for (int i = 0; i < s->camera_count; i++) {
-        gib_camera_spec *cs = &s->cameras[i];
-        gib_camera *C = &cs->c;
-        if (!cs->eye_set || !cs->target_set)
-            return fail_at(s, cs->line, err, "camera '%s' needs 'eye = x y z' and "
-                           "'target = x y z'", C->name);
-        const float f[3] = {C->target[0] - C->eye[0], C->target[1] - C->eye[1],
-                            C->target[2] - C->eye[2]};
-        const float x[3] = {f[1] * C->up[2] - f[2] * C->up[1], f[2] * C->up[0] - f[0] * C->up[2],
-                            f[0] * C->up[1] - f[1] * C->up[0]};
-        if (!(len3(f) > 0.0f))
-            return fail_at(s, cs->line, err, "camera '%s': eye and target coincide", C->name);
-        if (!(len3(x) > 1e-6f * len3(f) * len3(C->up)))
-            return fail_at(s, cs->line, err, "camera '%s': 'up' is parallel to the view "
-                           "direction (or zero)", C->name);
-    }
-    if (s->camera_count == 0)
-        return fail_at(s, s->scene_line, err, "the scene has no [camera.NAME] section (the first "
-                       "one is the default view)");
-    return 0;
 }
 
 /* ------------------------------------------------------------------ entry points */
@@ -618,15 +544,17 @@ int gib_scene_parse(const char *path, gib_scene_spec *spec, gib_error *err)
     if (c.failed || rc != 0) {
         if (!c.failed) {
             if (rc > 0)
-                gib_fail(err, "%s:%d: cannot read this line: expected '[section]', 'key = "
-                              "value' or a comment starting with ';' or '#'", spec->path, rc);
+                gib_fail(err,
+                         "%s:%d: cannot read this line: expected '[section]', 'key = "
+                         "value' or a comment starting with ';' or '#'",
+                         spec->path, rc);
             else
                 gib_fail(err, "%s: libinih failed (%d)", spec->path, rc);
         }
         gib_scene_spec_free(spec);
         return -1;
     }
-    if (validate(spec, err)) {
+    if (gib_scene_validate(spec, err)) {
         gib_scene_spec_free(spec);
         return -1;
     }

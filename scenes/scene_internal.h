@@ -3,12 +3,15 @@
  * include this.
  *
  * Loading runs in stages, each in its own file:
- *   scene_file.c   the .scene text (INI via libinih) -> gib_scene_spec, with file:line for every key
+ *   scene_file.c   the .scene text (INI via libinih) -> gib_scene_spec, file:line for every key
+ *   scene_check.c  whole-file checks of the spec; is the shared data there?
  *   procedural.c   generators built in C (cornell_box, plane_box, room) -> gib_geom
  *   mesh_import.c  mesh files through assimp (OBJ+MTL, PLY, gzipped PLY) -> gib_geom
  *   scene_build.c  spec + geometry -> the flattened gib_scene (materials, ranges, hash, features)
  *   textures.c     texture files -> linear float RGBA, cached per file
- *   paths.c        data root, case-insensitive path resolution */
+ *   paths.c        data root, case-insensitive path resolution
+ *   scene_load.c   the public entry points: load, list, free
+ *   camera_light.c the camera and light definitions both renderers share */
 #ifndef GIB_SCENE_INTERNAL_H
 #define GIB_SCENE_INTERNAL_H
 
@@ -189,6 +192,12 @@ typedef struct gib_scene_spec {
  * Errors are "path:line: ...". */
 int gib_scene_parse(const char *path, gib_scene_spec *spec, gib_error *err);
 void gib_scene_spec_free(gib_scene_spec *spec);
+
+/* Whole-file checks after parsing: required keys, directions normalised, cameras valid. */
+int gib_scene_validate(gib_scene_spec *spec, gib_error *err);
+/* Formats "path:line: message" into err; returns -1. */
+int gib_scene_fail_at(const gib_scene_spec *spec, int line, gib_error *err, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
 
 /* Checks that the shared data a parsed scene needs is present. Returns 0, or
  * GIB_SCENE_UNAVAILABLE with a message saying where to get it. */

@@ -28,8 +28,10 @@ static int scene_path(const char *name_or_path, char *out, size_t out_len, gib_e
     if (!gib_path_is_file(out)) {
         if (strchr(name_or_path, '/') || ends_with(name_or_path, ".scene"))
             return gib_fail(err, "scene file '%s' not found", out);
-        return gib_fail(err, "no scene named '%s': '%s' does not exist (`gibench list` shows the "
-                        "scenes)", name_or_path, out);
+        return gib_fail(err,
+                        "no scene named '%s': '%s' does not exist (`gibench list` shows the "
+                        "scenes)",
+                        name_or_path, out);
     }
     return 0;
 }

@@ -8,9 +8,13 @@
 #include "technique.h"
 
 extern const gib_technique gib_technique_direct;
+extern const gib_technique gib_technique_hbao;
+extern const gib_technique gib_technique_ldm_ao;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
+    &gib_technique_hbao,
+    &gib_technique_ldm_ao,
 };
 
 const gib_technique *const *gib_techniques(int *count)

@@ -154,7 +154,9 @@ void gib_gpu_scene_bind(const gib_gpu_scene *gpu)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu->lights);
 }
 
-void gib_gpu_scene_draw(const gib_gpu_scene *gpu)
+void gib_gpu_scene_draw(const gib_gpu_scene *gpu) { gib_gpu_scene_draw_instanced(gpu, 1); }
+
+void gib_gpu_scene_draw_instanced(const gib_gpu_scene *gpu, int instances)
 {
     const gib_scene *s = gpu->scene;
     glBindVertexArray(gpu->vao);
@@ -165,8 +167,8 @@ void gib_gpu_scene_draw(const gib_gpu_scene *gpu)
         glUniform1i(0, (int)dr->material);
         glBindTextureUnit(0, m->albedo_tex >= 0 ? gpu->textures[m->albedo_tex] : gpu->white);
         glBindTextureUnit(1, m->alpha_tex >= 0 ? gpu->textures[m->alpha_tex] : gpu->white);
-        glDrawElements(GL_TRIANGLES, (GLsizei)dr->index_count, GL_UNSIGNED_INT,
-                       (const void *)((size_t)dr->first_index * 4));
+        glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)dr->index_count, GL_UNSIGNED_INT,
+                                (const void *)((size_t)dr->first_index * 4), instances);
     }
     glBindVertexArray(0);
 }

@@ -27,5 +27,7 @@ void gib_gpu_scene_bind(const gib_gpu_scene *gpu);
 /* Draws every triangle range with the current program: sets `layout(location = 0) uniform int
  * u_material` and binds the albedo texture to unit 0 and the alpha mask to unit 1. */
 void gib_gpu_scene_draw(const gib_gpu_scene *gpu);
+/* The same, each range drawn `instances` times (gl_InstanceID tells the copies apart). */
+void gib_gpu_scene_draw_instanced(const gib_gpu_scene *gpu, int instances);
 
 #endif

@@ -27,8 +27,14 @@ static int expand(const char *path, const char *src, char **buf, size_t *len, si
             const char *isrc = gib_shader_source(inc);
             if (!isrc)
                 return gib_fail(err, "shader '%s': included file '%s' is not embedded", path, inc);
-            if (expand(inc, isrc, buf, len, cap, depth + 1, err) < 0)
-                return -1;
+            /* Each file is included once per program: a marker line records it. */
+            char marker[300];
+            snprintf(marker, sizeof marker, "// included: %s\n", inc);
+            if (!strstr(*buf, marker)) {
+                if (expand(inc, marker, buf, len, cap, depth + 1, err) < 0 ||
+                    expand(inc, isrc, buf, len, cap, depth + 1, err) < 0)
+                    return -1;
+            }
         } else {
             if (*len + n + 2 > *cap) {
                 *cap = (*len + n + 2) * 2;

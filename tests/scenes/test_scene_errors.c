@@ -12,14 +12,14 @@
 static int failures;
 static char tmpdir[256];
 
-#define CHECK(cond, ...)                                                                          \
-    do {                                                                                         \
-        if (!(cond)) {                                                                           \
-            failures++;                                                                          \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                          \
-            printf(__VA_ARGS__);                                                                 \
-            printf("\n");                                                                        \
-        }                                                                                        \
+#define CHECK(cond, ...)                                                                           \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            failures++;                                                                            \
+            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
+            printf(__VA_ARGS__);                                                                   \
+            printf("\n");                                                                          \
+        }                                                                                          \
     } while (0)
 
 static void write_file(const char *name, const char *text, char *path_out, size_t n)
@@ -131,11 +131,9 @@ int main(void)
     expect("unknown empty section",
            "[scene]\n"
            "[mesh.box]\n"
-           "procedural = cornell_box\n"
-           CAMERA
-           "; a comment\n"
-           "[lamp.key]\n", /* line 9 */
-           -1, 9, "unknown section [lamp.key]", NULL);
+           "procedural = cornell_box\n" CAMERA "; a comment\n"
+           "[lamp.key]\n", /* line 8: CAMERA is lines 4-6 */
+           -1, 8, "unknown section [lamp.key]", NULL);
     expect("unknown section with keys",
            "[scene]\n"
            "[lamp.key]\n" /* line 2 */
@@ -145,8 +143,7 @@ int main(void)
            -1, 2, "unknown section [lamp.key]", NULL);
 
     /* further errors the format promises */
-    expect("unknown generator",
-           "[scene]\n[mesh.pot]\nprocedural = teapot\n" CAMERA, -1, 3,
+    expect("unknown generator", "[scene]\n[mesh.pot]\nprocedural = teapot\n" CAMERA, -1, 3,
            "unknown procedural generator 'teapot'", "cornell_box");
     expect("unknown light type",
            "[scene]\n[mesh.box]\nprocedural = cornell_box\n[light.sky]\ntype = area\n"
@@ -162,16 +159,18 @@ int main(void)
            "albedo = 0.5 0.2 0.2\n" CAMERA,
            -1, 8, "red channel", NULL);
     expect("key given twice",
-           "[scene]\nexposure = 1\nexposure = 2\n[mesh.box]\nprocedural = cornell_box\n" CAMERA,
-           -1, 3, "given twice", NULL);
+           "[scene]\nexposure = 1\nexposure = 2\n[mesh.box]\nprocedural = cornell_box\n" CAMERA, -1,
+           3, "given twice", NULL);
     expect("syntax error",
            "[scene]\n[mesh.box]\nprocedural = cornell_box\nthis line is no key\n" CAMERA, -1, 4,
            "cannot read this line", NULL);
-    expect("unclosed section",
-           "[scene]\n[mesh.box\nprocedural = cornell_box\n" CAMERA, -1, 2, "closing ']'", NULL);
+    expect("unclosed section", "[scene]\n[mesh.box\nprocedural = cornell_box\n" CAMERA, -1, 2,
+           "closing ']'", NULL);
     char longline[400];
-    snprintf(longline, sizeof longline, "[scene]\ndescription = %0250d\n[mesh.box]\n"
-             "procedural = cornell_box\n" CAMERA, 7);
+    snprintf(longline, sizeof longline,
+             "[scene]\ndescription = %0250d\n[mesh.box]\n"
+             "procedural = cornell_box\n" CAMERA,
+             7);
     expect("line too long", longline, -1, 2, "characters long", NULL);
     expect("undefined material",
            "[scene]\n[mesh.box]\nprocedural = cornell_box\nmaterial = gold\n" CAMERA, -1, 4,
@@ -188,20 +187,19 @@ int main(void)
            "needs 'eye = x y z' and 'target", NULL);
     expect("no camera", "[scene]\n[mesh.box]\nprocedural = cornell_box\n", -1, 1,
            "no [camera.NAME]", NULL);
-    expect("section twice",
-           "[scene]\n[mesh.box]\nprocedural = cornell_box\n[mesh.box]\n" CAMERA, -1, 4,
-           "appears twice (first at line 2)", NULL);
-    expect("key before any section", "exposure = 1\n[scene]\n", -1, 1, "before any section",
-           NULL);
+    expect("section twice", "[scene]\n[mesh.box]\nprocedural = cornell_box\n[mesh.box]\n" CAMERA,
+           -1, 4, "appears twice (first at line 2)", NULL);
+    expect("key before any section", "exposure = 1\n[scene]\n", -1, 1, "before any section", NULL);
 
     /* A mesh whose MTL names a texture that is not there: the error points at the mesh's `file`
      * line and names the texture. */
     char p[512];
-    write_file("tri.obj", "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
-               "usemtl painted\nf 1/1 2/2 3/3\n", p, sizeof p);
+    write_file("tri.obj",
+               "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+               "usemtl painted\nf 1/1 2/2 3/3\n",
+               p, sizeof p);
     write_file("tri.mtl", "newmtl painted\nKd 1 1 1\nmap_Kd no_such_texture.png\n", p, sizeof p);
-    expect("missing texture",
-           "[scene]\n[mesh.tri]\nfile = tri.obj\n" /* line 3 */ CAMERA, -1, 3,
+    expect("missing texture", "[scene]\n[mesh.tri]\nfile = tri.obj\n" /* line 3 */ CAMERA, -1, 3,
            "no_such_texture.png", "material 'painted'");
 
     /* Data that is not there makes the scene unavailable, not broken: its own return code, and a

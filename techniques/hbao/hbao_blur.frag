@@ -1,0 +1,45 @@
+// One axis of the separable cross-bilateral blur that follows HBAO in Bavoil et al. 2008: it
+// averages away the noise of the per-pixel direction rotation and step jitter without blurring
+// across depth edges. Weights: a spatial Gaussian times a range term on the distance of the
+// neighbour's surface point from the centre pixel's tangent plane, relative to the centre's depth
+// (scale-free, so the same setting serves scenes in metres and in centimetres).
+layout(binding = 0) uniform sampler2D g_position;
+layout(binding = 1) uniform sampler2D g_normal;
+layout(binding = 4) uniform sampler2D u_ao;
+layout(location = 0) uniform vec3 u_eye;
+layout(location = 1) uniform vec3 u_forward;
+layout(location = 2) uniform ivec2 u_axis;
+layout(location = 3) uniform int u_radius;
+layout(location = 4) uniform float u_tolerance; // plane distance scale, as a fraction of depth
+layout(location = 5) uniform int u_final;
+layout(location = 0) out vec4 o_ao;
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(g_position, 0);
+    vec4 pos = texelFetch(g_position, px, 0);
+    if (pos.w < 0.5) {
+        o_ao = u_final != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(0.0);
+        return;
+    }
+    vec3 N = normalize(texelFetch(g_normal, px, 0).xyz);
+    float inv_tol = 1.0 / (u_tolerance * dot(pos.xyz - u_eye, u_forward));
+    float sigma = 0.5 * float(u_radius) + 0.5;
+    float inv_2s2 = 1.0 / (2.0 * sigma * sigma);
+    float sum = 0.0, wsum = 0.0;
+    for (int k = -u_radius; k <= u_radius; k++) {
+        ivec2 q = px + k * u_axis;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
+            continue;
+        vec4 qp = texelFetch(g_position, q, 0);
+        if (qp.w < 0.5)
+            continue;
+        float dz = dot(N, qp.xyz - pos.xyz) * inv_tol;
+        float w = exp(-float(k * k) * inv_2s2 - dz * dz);
+        sum += w * texelFetch(u_ao, q, 0).r;
+        wsum += w;
+    }
+    float ao = sum / wsum; // wsum >= 1: the centre pixel always counts with weight 1
+    o_ao = u_final != 0 ? vec4(ao, ao, ao, 1.0) : vec4(ao, 0.0, 0.0, 0.0);
+}

@@ -1,0 +1,238 @@
+#include "ldm.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../harness/gl/context.h"
+#include "../../harness/gl/ledger.h"
+#include "../../harness/gl/shader.h"
+#include "eqsp.h"
+
+/* std430 struct LdmInfo in ldm_common.glsl. */
+typedef struct ldm_info_gpu {
+    float dir_extent[4];
+    float origin_res[4];
+    uint32_t offsets[4];
+} ldm_info_gpu;
+
+static void bounding_sphere(const gib_scene *s, float c[3], float *r)
+{
+    float d2 = 0;
+    for (int i = 0; i < 3; i++) {
+        c[i] = 0.5f * (s->bounds_min[i] + s->bounds_max[i]);
+        float e = s->bounds_max[i] - s->bounds_min[i];
+        d2 += e * e;
+    }
+    /* A little margin so that geometry on the sphere still rasterises inside the map. */
+    *r = 0.5f * sqrtf(d2) * 1.01f + 1e-6f;
+}
+
+static void draw_all(const gib_gpu_scene *scene, unsigned program, int first, int count)
+{
+    glUseProgram(program);
+    glUniform1i(5, first);
+    gib_gpu_scene_draw_instanced(scene, count);
+}
+
+static int upload_info(ldm_set *l, gib_ledger *ledger, const uint64_t *counts, gib_error *err)
+{
+    ldm_info_gpu *info = calloc(l->count, sizeof *info);
+    if (!info)
+        return gib_fail(err, "out of memory");
+    for (int i = 0; i < l->count; i++) {
+        for (int k = 0; k < 3; k++) {
+            info[i].dir_extent[k] = l->dirs[3 * i + k];
+            info[i].origin_res[k] = l->center[k] - l->dirs[3 * i + k] * l->radius;
+        }
+        info[i].dir_extent[3] = l->radius;
+        info[i].origin_res[3] = (float)l->res;
+    }
+    /* Offsets within each page (filled when the pages are laid out). */
+    for (int p = 0; p < l->page_count; p++) {
+        uint64_t node_base = 0;
+        for (int j = 0; j < l->pages[p].count; j++) {
+            int i = l->pages[p].first + j;
+            info[i].offsets[0] = (uint32_t)((uint64_t)j * l->res * l->res);
+            info[i].offsets[1] = (uint32_t)node_base;
+            info[i].offsets[2] = counts ? (uint32_t)counts[i] : 0;
+            info[i].offsets[3] = (uint32_t)p;
+            node_base += counts ? counts[i] : 0;
+        }
+    }
+    if (l->info)
+        glNamedBufferSubData(l->info, 0, sizeof *info * l->count, info);
+    else
+        l->info = gib_gpu_buffer(ledger, "ldm.info", sizeof *info * l->count, info,
+                                 GL_DYNAMIC_STORAGE_BIT, err);
+    free(info);
+    return l->info ? 0 : -1;
+}
+
+static void begin_pass(ldm_set *l)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, l->fbo);
+    glViewport(0, 0, l->res, l->res);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE); /* front and back faces both go into the lists */
+    glDisable(GL_BLEND);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, l->info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, l->status);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, l->counters);
+}
+
+int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, gib_ledger *ledger,
+               gib_error *err)
+{
+    memset(l, 0, sizeof *l);
+    snprintf(l->status_word, sizeof l->status_word, "ok");
+    l->res = res;
+    int max = directions * 2 + 8;
+    l->dirs = calloc((size_t)max * 3, sizeof(float));
+    if (!l->dirs)
+        return gib_fail(err, "out of memory");
+    l->count = ldm_directions(directions, l->dirs, max);
+    if (l->count <= 0)
+        return gib_fail(err, "ldm: no direction set for %d directions", directions);
+    bounding_sphere(scene->scene, l->center, &l->radius);
+
+    const char *build[] = {"ldm/ldm_build.vert", "ldm/ldm_build.frag"};
+    const char *count[] = {"ldm/ldm_build.vert", "ldm/ldm_count.frag"};
+    if (!(l->build_program = gib_program(build, 2, NULL, err)) ||
+        !(l->count_program = gib_program(count, 2, NULL, err)))
+        return -1;
+    glCreateFramebuffers(1, &l->fbo);
+    glNamedFramebufferParameteri(l->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, res);
+    glNamedFramebufferParameteri(l->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, res);
+    if (!(l->counters = gib_gpu_buffer(ledger, "ldm.counters", 4 * (uint64_t)l->count, NULL,
+                                       GL_DYNAMIC_STORAGE_BIT, err)) ||
+        !(l->status = gib_gpu_buffer(ledger, "ldm.status", 16, NULL, GL_DYNAMIC_STORAGE_BIT, err)))
+        return -1;
+    const uint32_t zeros[4] = {0, 0, 0, 0};
+    glNamedBufferSubData(l->status, 0, 16, zeros);
+    /* One page holds everything for the counting pass's info upload. */
+    l->page_count = 1;
+    l->pages[0].first = 0;
+    l->pages[0].count = l->count;
+    if (upload_info(l, ledger, NULL, err) < 0)
+        return -1;
+
+    /* Counting pass: fragments per LDM. */
+    const uint32_t zero = 0;
+    glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    begin_pass(l);
+    draw_all(scene, l->count_program, 0, l->count);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    uint32_t *counts32 = calloc(l->count, sizeof *counts32);
+    uint64_t *counts = calloc(l->count, sizeof *counts);
+    if (!counts32 || !counts) {
+        free(counts32);
+        free(counts);
+        return gib_fail(err, "out of memory");
+    }
+    glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts32);
+    for (int i = 0; i < l->count; i++) {
+        counts[i] = counts32[i];
+        l->fragments += counts[i];
+    }
+    free(counts32);
+    l->mean_depth_complexity = (double)l->fragments / ((double)l->count * res * res);
+
+    /* Pages: consecutive LDMs while heads and nodes both fit one SSBO. */
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    uint64_t limit = (uint64_t)max_block;
+    uint64_t heads_per_ldm = 4ull * res * res;
+    l->page_count = 0;
+    for (int i = 0; i < l->count;) {
+        if (l->page_count == LDM_MAX_PAGES) {
+            free(counts);
+            return gib_fail(err, "ldm: %d LDMs of %dx%d need more than %d buffers of %llu bytes",
+                            l->count, res, res, LDM_MAX_PAGES, (unsigned long long)limit);
+        }
+        ldm_page *pg = &l->pages[l->page_count++];
+        memset(pg, 0, sizeof *pg); /* page 0 was borrowed by the counting pass */
+        pg->first = i;
+        uint64_t nodes = 0;
+        while (i < l->count && (pg->count + 1) * heads_per_ldm <= limit &&
+               (nodes + counts[i]) * 8 <= limit) {
+            nodes += counts[i];
+            pg->count++;
+            i++;
+        }
+        if (!pg->count) {
+            unsigned long long need = counts[i];
+            free(counts);
+            return gib_fail(err, "ldm: one %dx%d LDM needs %llu nodes, more than one buffer of %llu "
+                            "bytes holds", res, res, need, (unsigned long long)limit);
+        }
+        pg->node_capacity = nodes;
+        if (!(pg->heads = gib_gpu_buffer(ledger, "ldm.heads", heads_per_ldm * pg->count, NULL,
+                                         GL_DYNAMIC_STORAGE_BIT, err)) ||
+            !(pg->nodes = gib_gpu_buffer(ledger, "ldm.nodes", 8 * (nodes ? nodes : 1), NULL, 0,
+                                         err))) {
+            free(counts);
+            return -1;
+        }
+    }
+    int rc = upload_info(l, ledger, counts, err);
+    free(counts);
+    return rc < 0 ? rc : gib_gl_check("ldm create", err);
+}
+
+void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
+{
+    gib_timer_begin(timers, "ldm_build");
+    const uint32_t zero = 0, end = 0xffffffffu;
+    glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    begin_pass(l);
+    for (int p = 0; p < l->page_count; p++) {
+        glClearNamedBufferData(l->pages[p].heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &end);
+        ldm_bind_page(l, p);
+        draw_all(scene, l->build_program, l->pages[p].first, l->pages[p].count);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gib_timer_end(timers);
+}
+
+void ldm_bind_page(const ldm_set *l, int page)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, l->info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, l->pages[page].heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, l->pages[page].nodes);
+}
+
+const char *ldm_status(ldm_set *l)
+{
+    uint32_t st[2] = {0, 0};
+    glGetNamedBufferSubData(l->status, 0, 8, st);
+    if (st[0])
+        snprintf(l->status_word, sizeof l->status_word, "overflow");
+    else if (st[1])
+        snprintf(l->status_word, sizeof l->status_word, "contention");
+    return l->status_word;
+}
+
+void ldm_destroy(ldm_set *l, gib_ledger *ledger)
+{
+    for (int p = 0; p < l->page_count; p++) {
+        if (l->pages[p].heads)
+            gib_gpu_free(ledger, l->pages[p].heads, 0);
+        if (l->pages[p].nodes)
+            gib_gpu_free(ledger, l->pages[p].nodes, 0);
+    }
+    const unsigned bufs[3] = {l->info, l->status, l->counters};
+    for (int i = 0; i < 3; i++)
+        if (bufs[i])
+            gib_gpu_free(ledger, bufs[i], 0);
+    if (l->fbo)
+        glDeleteFramebuffers(1, &l->fbo);
+    if (l->build_program)
+        glDeleteProgram(l->build_program);
+    if (l->count_program)
+        glDeleteProgram(l->count_program);
+    free(l->dirs);
+    memset(l, 0, sizeof *l);
+}

@@ -1,0 +1,56 @@
+/* gibench — layered depth maps (LDMs) as pre-sorted per-pixel singly linked lists, one orthographic
+ * LDM per deterministic direction (Aalund, Frisvad, Bærentzen 2015, Sec. 3 and 3.2; construction as
+ * in [LHL14]: insertion into depth order during a single pass over the geometry, with the atomics of
+ * core GL 4.5 — atomicAdd for node allocation, atomicCompSwap to link). Shared by ldm_ao and
+ * ldm_indirect; the trace of Sec. 3.1 is techniques/ldm/ldm_trace.glsl.
+ *
+ * Memory: per LDM, res^2 heads (uint) and one node (depth, next: 8 bytes) per fragment. The node
+ * counts are measured once at create by a counting pass over the same geometry (the scenes are
+ * static); each frame's construction checks every allocation against that capacity, and an
+ * overflow is reported through ldm_status() — the row's status — never rendered silently wrong.
+ * Nodes are split over "pages" (SSBOs) no larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB on
+ * llvmpipe); a pass that traces LDMs runs once per page. */
+#ifndef LDM_H
+#define LDM_H
+
+#include "../../harness/gl/gpu_scene.h"
+#include "../../harness/gl/timers.h"
+#include "../technique.h"
+
+#define LDM_MAX_PAGES 64
+
+typedef struct ldm_page {
+    int first, count;        /* LDMs [first, first+count) live in this page */
+    unsigned heads, nodes;   /* SSBOs, bound to 4 and 5 while this page is used */
+    uint64_t node_capacity;
+} ldm_page;
+
+typedef struct ldm_set {
+    int count;               /* number of LDMs (directions) */
+    int res;                 /* each LDM is res x res */
+    float *dirs;             /* 3 per LDM: the view direction v (depth grows along v) */
+    float center[3], radius; /* bounding sphere the maps cover */
+    unsigned info;           /* SSBO binding 3: per-LDM basis, origin, offsets, capacity */
+    unsigned status;         /* SSBO binding 6: [0] overflowing fragments, [1] contended inserts */
+    unsigned counters;       /* SSBO binding 7: per-LDM node allocation counters */
+    unsigned fbo, build_program, count_program;
+    int page_count;
+    ldm_page pages[LDM_MAX_PAGES];
+    uint64_t fragments;      /* total nodes (measured at create) */
+    double mean_depth_complexity;
+    char status_word[32];
+} ldm_set;
+
+/* Builds the direction set, measures node counts, allocates heads and nodes through the ledger
+ * (labels "ldm.heads", "ldm.nodes"). */
+int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, gib_ledger *ledger,
+               gib_error *err);
+/* Constructs every LDM for this frame (pass "ldm_build"). */
+void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers);
+/* Binds page p's heads and nodes (bindings 4, 5) and the info SSBO (3). */
+void ldm_bind_page(const ldm_set *l, int page);
+/* "ok", "overflow" or "contention", read back from the GPU (call after rendering). */
+const char *ldm_status(ldm_set *l);
+void ldm_destroy(ldm_set *l, gib_ledger *ledger);
+
+#endif

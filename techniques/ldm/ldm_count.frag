@@ -1,0 +1,16 @@
+// Counting pass (once, at create): fragments per LDM, to size the node buffers exactly.
+#include "common/scene.glsl"
+#include "ldm/ldm_common.glsl"
+layout(std430, binding = 7) buffer Counters { uint counters[]; };
+layout(location = 0) uniform int u_material;
+layout(binding = 1) uniform sampler2D u_alpha_tex;
+in vec3 v_position;
+in vec2 v_uv;
+flat in int v_ldm;
+void main()
+{
+    Material m = materials[u_material];
+    if (m.flags.z != 0 && texture(u_alpha_tex, vec2(v_uv.x, 1.0 - v_uv.y)).r < 0.5)
+        discard;
+    atomicAdd(counters[v_ldm], 1u);
+}

@@ -1,0 +1,130 @@
+/* gibench technique `ldm_ao` — ambient occlusion and obscurance traced through layered depth maps
+ * (Aalund, Frisvad, Bærentzen 2015: Sec. 3.1 trace, 3.2 deterministic directions, 3.3 Eq. 1-3,
+ * 4.1 implementation). Output component `ao`, scored against the reference `ao` with the same dmax
+ * (and obscurance). Deterministic: no random numbers anywhere, so two frames are bit-identical. */
+#include <glad/gl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../harness/gl/context.h"
+#include "../../harness/gl/ledger.h"
+#include "../../harness/gl/shader.h"
+#include "../common/gbuffer.h"
+#include "../ldm/ldm.h"
+
+extern const gib_technique gib_technique_ldm_ao;
+
+typedef struct ldm_ao {
+    const gib_gpu_scene *scene;
+    gib_ledger *ledger;
+    gib_gbuffer gbuffer;
+    ldm_set ldms;
+    unsigned program, vao;
+    float dmax, offset;
+    int obscurance;
+} ldm_ao;
+
+static const gib_param_spec ldm_ao_params[] = {
+    {"directions", GIB_PARAM_INT, 128, 1, 4096, "number of LDM directions N (Sec. 3.2)"},
+    {"ldm_res", GIB_PARAM_INT, 128, 8, 2048, "LDM resolution (pixels per side)"},
+    {"dmax", GIB_PARAM_FLOAT, INFINITY, 0, INFINITY,
+     "maximum occluder distance, world units (inf: unattenuated AO)"},
+    {"obscurance", GIB_PARAM_INT, 0, 0, 1, "1: obscurance rho(d) = min(d/dmax, 1) (needs finite dmax)"},
+    {"normal_offset", GIB_PARAM_FLOAT, 1.0, 0, 16, "ray origin offset along the normal, LDM texels"},
+    {0},
+};
+
+static void ldm_ao_destroy(void *self)
+{
+    ldm_ao *a = self;
+    if (!a)
+        return;
+    gib_gbuffer_destroy(&a->gbuffer, a->ledger);
+    ldm_destroy(&a->ldms, a->ledger);
+    if (a->program)
+        glDeleteProgram(a->program);
+    if (a->vao)
+        glDeleteVertexArrays(1, &a->vao);
+    free(a);
+}
+
+static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int w, int h,
+                           gib_ledger *ledger, gib_error *err)
+{
+    const gib_technique *t = &gib_technique_ldm_ao;
+    ldm_ao *a = calloc(1, sizeof *a);
+    if (!a) {
+        gib_fail(err, "out of memory");
+        return NULL;
+    }
+    a->scene = scene;
+    a->ledger = ledger;
+    a->dmax = (float)gib_param_float(t, p, "dmax");
+    a->obscurance = gib_param_int(t, p, "obscurance");
+    a->offset = (float)gib_param_float(t, p, "normal_offset");
+    if (a->obscurance && !(isfinite(a->dmax) && a->dmax > 0)) {
+        gib_fail(err, "ldm_ao: obscurance=1 needs a finite dmax > 0 (rho(d) = min(d/dmax, 1))");
+        free(a);
+        return NULL;
+    }
+    const char *files[] = {"common/fullscreen.vert", "ldm_ao/ldm_ao.frag"};
+    if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
+        ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
+                   ledger, err) < 0 ||
+        !(a->program = gib_program(files, 2, NULL, err))) {
+        ldm_ao_destroy(a);
+        return NULL;
+    }
+    glCreateVertexArrays(1, &a->vao);
+    return a;
+}
+
+static int ldm_ao_render(void *self, const gib_view *view, gib_timers *timers,
+                         const gib_image_target *targets, int target_count, gib_error *err)
+{
+    ldm_ao *a = self;
+    if (target_count != 1)
+        return gib_fail(err, "ldm_ao renders one component, was given %d targets", target_count);
+    ldm_build(&a->ldms, a->scene, timers);
+    gib_gbuffer_render(&a->gbuffer, a->scene, view, timers);
+
+    gib_timer_begin(timers, "ldm_trace");
+    glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);
+    glViewport(0, 0, view->width, view->height);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE); /* pages add their LDMs' share of Eq. 2 */
+    glUseProgram(a->program);
+    gib_gbuffer_bind(&a->gbuffer);
+    glUniform1f(7, 2.0f / (float)a->ldms.count);
+    glUniform1f(8, a->dmax);
+    glUniform1i(9, a->obscurance);
+    glUniform1f(10, a->offset);
+    glBindVertexArray(a->vao);
+    for (int p = 0; p < a->ldms.page_count; p++) {
+        ldm_bind_page(&a->ldms, p);
+        glUniform1i(5, a->ldms.pages[p].first);
+        glUniform1i(6, a->ldms.pages[p].count);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    gib_timer_end(timers);
+    return gib_gl_check("ldm_ao", err);
+}
+
+static const char *ldm_ao_status(void *self) { return ldm_status(&((ldm_ao *)self)->ldms); }
+
+const gib_technique gib_technique_ldm_ao = {
+    .name = "ldm_ao",
+    .source = "Aalund, Frisvad, Baerentzen 2015, Sec. 3.1-3.3, 4.1 (layered depth maps)",
+    .components = GIB_OUT_AO,
+    .params = ldm_ao_params,
+    .create = ldm_ao_create,
+    .render = ldm_ao_render,
+    .status = ldm_ao_status,
+    .destroy = ldm_ao_destroy,
+};
