@@ -55,6 +55,7 @@ reproduce: build
 
 plots:
 	python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
+	python3 harness/paper_tables.py $(RESULTS)
 
 # Accepts the current quality numbers as the new baselines: a deliberate step, never automatic.
 baselines: build

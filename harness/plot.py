@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""gibench plots: speed against error, one plot per (matrix, scene, component), drawn with gnuplot
-from the result CSVs (DESIGN.md, "Matrices, CSV and reproduction").
+"""gibench plots, drawn with gnuplot from the result CSVs (DESIGN.md, "Matrices, CSV and reproduction"):
 
-Each point is one run (technique + parameters) at its median GPU frame time and relative RMSE
-against the reference; the line joins the Pareto front (runs no other run beats in both). Writes
-PNG and SVG. Uses only the standard library and gnuplot (Debian's gnuplot-nox).
+- speed against error, one plot per (matrix, scene, component): each point is one run (technique +
+  parameters) at its median GPU frame time and relative RMSE against the reference; the line joins
+  the Pareto front (runs no other run beats in both);
+- sweeps: for every parameter a matrix varies over three or more values, GPU time and relative RMSE
+  against that parameter, one line per technique and setting of the other parameters (scaling curves:
+  time against LDM count, resolution, dmax...). An unbounded value (inf) is drawn at the right end.
+Writes PNG and SVG. Uses only the standard library and gnuplot (Debian's gnuplot-nox).
 
 usage: plot.py RESULTS_DIR [--out PLOTS_DIR]
 """
@@ -51,6 +54,9 @@ def plot_group(key, rows, out_dir, renderer):
             f.write(f"{p[0]:.6g} {p[1]:.6g}\n")
     plots = [f"{gp_quote(data_path)} index {i} using 1:2 with points pt 7 ps 1.2 title {gp_quote(t)}"
              for i, t in enumerate(blocks)]
+    # Each point labelled with its parameters, small, so the plot can be read without the CSV.
+    plots += [f"{gp_quote(data_path)} index {i} using 1:2:3 with labels font ',6' offset char 0.6,0.6 "
+              "left noenhanced notitle" for i in range(len(blocks))]
     plots.append(f"{gp_quote(data_path)} index {len(blocks)} using 1:2 with lines lw 1.5 dt 2 lc rgb 'gray40' "
                  "title 'Pareto front'")
     title = f"{matrix}: {scene}, component {component} ({renderer})"
@@ -65,6 +71,69 @@ def plot_group(key, rows, out_dir, renderer):
     subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
     os.remove(data_path)
     return base + ".png"
+
+
+def parse_params(text):
+    out = {}
+    for kv in text.split(";"):
+        if "=" in kv:
+            k, v = kv.split("=", 1)
+            out[k] = float(v)
+    return out
+
+
+def sweep_plots(key, rows, out_dir, renderer):
+    """One sweep plot per parameter with >= 3 distinct values within a technique."""
+    matrix, scene, component = key
+    written = []
+    params = {}
+    for r in rows:
+        for k, v in parse_params(r["params"]).items():
+            params.setdefault((r["technique"], k), set()).add(v)
+    names = sorted({k for (t, k), vals in params.items() if len(vals) >= 3})
+    for name in names:
+        series = {}
+        for r in rows:
+            p = parse_params(r["params"])
+            if name not in p:
+                continue
+            others = ", ".join(f"{k}={v:g}" for k, v in sorted(p.items()) if k != name
+                               and len(params[(r["technique"], k)]) > 1)
+            label = r["technique"] + (f" ({others})" if others else "") + f" {r['width']}x{r['height']}"
+            series.setdefault(label, []).append((p[name], float(r["gpu_ms_median"]), float(r["rel_rmse"])))
+        finite = [x for pts in series.values() for x, _, _ in pts if x != float("inf")]
+        if not finite:
+            continue
+        inf_at = max(finite) * 4 if max(finite) > 0 else 1
+        base = os.path.join(out_dir, f"{matrix}_{scene}_{component}_sweep_{name}")
+        data_path = base + ".dat"
+        labels = []
+        with open(data_path, "w") as f:
+            for label, pts in sorted(series.items()):
+                for x, ms, err in sorted(pts):
+                    f.write(f"{inf_at if x == float('inf') else x:.6g} {ms:.6g} {err:.6g}\n")
+                f.write("\n\n")
+                labels.append(label)
+        logx = min(finite) > 0 and max(finite) / max(min(finite), 1e-30) >= 10
+        has_inf = any(x == float("inf") for pts in series.values() for x, _, _ in pts)
+        script = []
+        for term, ext in (("pngcairo size 900,800 font 'sans,10'", "png"), ("svg size 900,800", "svg")):
+            script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
+                       "set multiplot layout 2,1 title " + gp_quote(f"{matrix}: {scene}, {component}, sweep of {name} ({renderer})") + " noenhanced",
+                       "set grid", "set key outside right top noenhanced",
+                       "set logscale x" if logx else "unset logscale x",
+                       (f"set xtics add ('inf' {inf_at:.6g})" if has_inf else "set xtics autofreq"),
+                       f"set xlabel {gp_quote(name)} noenhanced", "set ylabel 'GPU ms per frame (median)'", "set logscale y",
+                       "plot " + ", ".join(f"{gp_quote(data_path)} index {i} using 1:2 with linespoints pt 7 title {gp_quote(l)}"
+                                           for i, l in enumerate(labels)),
+                       "unset logscale y", "set ylabel 'relative RMSE'",
+                       "plot " + ", ".join(f"{gp_quote(data_path)} index {i} using 1:3 with linespoints pt 7 title {gp_quote(l)}"
+                                           for i, l in enumerate(labels)),
+                       "unset multiplot", "unset output", "unset xtics", "set xtics autofreq"]
+        subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
+        os.remove(data_path)
+        written.append(base + ".png")
+    return written
 
 
 def main():
@@ -92,6 +161,8 @@ def main():
         return
     for key, rows in sorted(groups.items()):
         print("plot.py: wrote", plot_group(key, rows, out, renderers[key]))
+        for path in sweep_plots(key, rows, out, renderers[key]):
+            print("plot.py: wrote", path)
 
 
 if __name__ == "__main__":

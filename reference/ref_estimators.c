@@ -1,27 +1,15 @@
-/* gibench — the reference renderer's estimators, one per light-transport component (DESIGN.md,
- * "Light-transport components"). Each evaluates one sample at a visible surface point that the
- * render loop found through a pixel centre. */
+/* gibench — the reference renderer's per-pixel estimators of the short path classes (DESIGN.md,
+ * "Light-transport components"): direct, ao / obscurance, indirect, glossy, and the auxiliary
+ * images. Each evaluates one sample at the visible point the render loop found through a pixel
+ * centre; ref_path.c has full/higher and the camera part of caustic, ref_light.c the light-traced
+ * parts.
+ *
+ * Every sampled reflection that would leave through the geometric surface (d . n_g <= 0, possible
+ * with interpolated normals) contributes 0: a reflected ray cannot enter the surface it leaves.
+ * The same rule holds in ref_path.c and ref_light.c, so the components add up. */
 #include <math.h>
 
 #include "ref_internal.h"
-
-#define REF_PI 3.14159265358979323846f
-
-/* rho_d: the material's albedo times its texture (already linear, scene.h). */
-static void ref_albedo(const gib_scene *gs, const ref_hit *h, float a[3])
-{
-    const gib_material *m = h->mat;
-    a[0] = m->albedo[0];
-    a[1] = m->albedo[1];
-    a[2] = m->albedo[2];
-    if (m->albedo_tex >= 0) {
-        float t[4];
-        ref_tex_sample(&gs->textures[m->albedo_tex], h->uv[0], h->uv[1], t);
-        a[0] *= t[0];
-        a[1] *= t[1];
-        a[2] *= t[2];
-    }
-}
 
 /* Direct light, L D E and L S E with shadows: for every light, f(wo, wi) E max(0, n.wi), with
  * f = rho_d / pi + rho_s (n + 2) / (2 pi) max(0, r.wi)^n (normalised Phong, r the mirror direction
@@ -32,86 +20,164 @@ static void ref_albedo(const gib_scene *gs, const ref_hit *h, float a[3])
 void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], float out[3],
                     long long *rays)
 {
-    const gib_scene *gs = w->gs;
     out[0] = out[1] = out[2] = 0.0f;
     if (h->back)
         return;
-    float albedo[3];
-    ref_albedo(gs, h, albedo);
-    const gib_material *m = h->mat;
-    int phong = m->spec_type == GIB_SPEC_PHONG;
-    float r[3] = {0.0f, 0.0f, 0.0f};
-    if (phong) {
-        float nw = 2.0f * ref_dot(h->n, wo);
-        for (int k = 0; k < 3; k++)
-            r[k] = nw * h->n[k] - wo[k];
-    }
-    for (uint32_t i = 0; i < gs->light_count; i++) {
-        float wi[3], dist, E[3];
-        if (!gib_light_eval(&gs->lights[i], h->p, wi, &dist, E))
-            continue;
-        float cosn = ref_dot(h->n, wi);
-        if (!(cosn > 0.0f) || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f))
-            continue;
-        float f[3];
-        for (int k = 0; k < 3; k++)
-            f[k] = albedo[k] * (1.0f / REF_PI);
-        if (phong) {
-            float rw = ref_dot(r, wi);
-            if (rw > 0.0f) {
-                float lobe = (m->phong_n + 2.0f) * (0.5f / REF_PI) * powf(rw, m->phong_n);
-                for (int k = 0; k < 3; k++)
-                    f[k] += m->specular[k] * lobe;
-            }
-        }
-        /* The shadow ray stops eps short of the light: a light resting on a surface is not
-         * shadowed by that surface (DESIGN.md, "Hard cases": a light touching a surface). */
-        float o[3];
-        ref_offset_origin(w, h, wi, o);
-        float tfar = isinf(dist) ? INFINITY : dist - w->eps;
-        if (tfar > 0.0f) {
-            ++*rays;
-            if (ref_occluded(w, o, wi, tfar))
-                continue;
-        }
-        for (int k = 0; k < 3; k++)
-            out[k] += f[k] * E[k] * cosn;
-    }
-}
-
-/* Orthonormal basis around a unit vector (Duff et al. 2017, "Building an Orthonormal Basis,
- * Revisited"): branch-free and continuous except across n.z = 0's sign. */
-static void ref_basis(const float n[3], float t[3], float b[3])
-{
-    float sign = copysignf(1.0f, n[2]);
-    float a = -1.0f / (sign + n[2]);
-    float c = n[0] * n[1] * a;
-    t[0] = 1.0f + sign * n[0] * n[0] * a;
-    t[1] = sign * c;
-    t[2] = -sign * n[0];
-    b[0] = c;
-    b[1] = sign + n[1] * n[1] * a;
-    b[2] = -n[1];
+    ref_mat m;
+    ref_material(w, h, &m);
+    float dif[3], spec[3];
+    ref_nee(w, h, &m, wo, dif, spec, rays);
+    for (int k = 0; k < 3; k++)
+        out[k] = dif[k] + spec[k];
 }
 
 /* Ambient occlusion, (1/pi) integral V cos dw about the viewer-facing shading normal. Directions
  * are cosine-distributed (pdf cos/pi), so the integrand over the pdf is V itself: each sample is
  * 0 or 1 and the pixel's mean is the unoccluded fraction, unbiased. Exactly two random numbers
- * per sample, drawn in a fixed order. */
-float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, ref_pcg32 *rng, long long *rays)
+ * per sample, drawn in a fixed order.
+ *
+ * Obscurance (Zhukov, Iones and Kronin 1998, "An ambient light illumination model"; the LDM paper,
+ * Aalund et al. 2015 Sec. 3.3, generalises V to V(x, w, d), d the distance to the first occluder,
+ * but gives no falloff): we use Zhukov's linear rho(d) = min(d / dmax, 1), so an occluder at the
+ * surface blocks fully, one at dmax or beyond not at all; the sample's value is rho(d), 1 on a
+ * miss. d is measured from the ray origin (the point moved off the surface by the ray offset). */
+float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_pcg32 *rng,
+                 long long *rays)
 {
     if (h->back)
         return 0.0f;
     float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
-    float phi = 2.0f * REF_PI * u1, r = sqrtf(u2);
-    float lx = r * cosf(phi), ly = r * sinf(phi), lz = sqrtf(fmaxf(0.0f, 1.0f - u2));
-    float t[3], b[3], d[3];
-    ref_basis(h->n, t, b);
-    for (int k = 0; k < 3; k++)
-        d[k] = lx * t[k] + ly * b[k] + lz * h->n[k];
+    float d[3], o[3];
+    ref_sample_cosine(h->n, u1, u2, d);
+    ref_offset_origin(w, h, d, o);
+    int bounded = dmax > 0.0f && isfinite(dmax);
+    ++*rays;
+    if (obscurance && bounded) {
+        float t = ref_hit_distance(w, o, d, dmax);
+        return t >= dmax ? 1.0f : t / dmax;
+    }
+    return ref_occluded(w, o, d, bounded ? dmax : INFINITY) ? 0.0f : 1.0f;
+}
+
+/* The diffuse-only direct light leaving y toward -d (the D vertex next to the light in L D D E
+ * and L D S E). */
+static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float d[3], float L[3],
+                              long long *rays)
+{
+    L[0] = L[1] = L[2] = 0.0f;
+    if (!(ref_dot(d, h->ng) > 0.0f))
+        return 0;
     float o[3];
     ref_offset_origin(w, h, d, o);
-    float tfar = (dmax > 0.0f && isfinite(dmax)) ? dmax : INFINITY;
+    ref_hit y;
     ++*rays;
-    return ref_occluded(w, o, d, tfar) ? 0.0f : 1.0f;
+    if (!ref_trace(w, o, d, &y) || y.back)
+        return 0;
+    ref_mat m;
+    ref_material(w, &y, &m);
+    const float wo[3] = {-d[0], -d[1], -d[2]};
+    ref_nee(w, &y, &m, wo, L, NULL, rays);
+    return 1;
+}
+
+/* Indirect, L D D E: a cosine-weighted bounce from the visible point's diffuse lobe
+ * (f cos / pdf = rho_d), then the diffuse lobe of the bounce point lit by next-event estimation.
+ * Specular lobes at either vertex belong to glossy (x1) and caustic (x2). */
+void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_pcg32 *rng, float out[3],
+                      long long *rays)
+{
+    out[0] = out[1] = out[2] = 0.0f;
+    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    if (h->back)
+        return;
+    float kd[3];
+    ref_albedo(w, h, kd);
+    if (kd[0] <= 0.0f && kd[1] <= 0.0f && kd[2] <= 0.0f)
+        return;
+    float d[3], L[3];
+    ref_sample_cosine(h->n, u1, u2, d);
+    if (ref_bounce_diffuse(w, h, d, L, rays))
+        for (int k = 0; k < 3; k++)
+            out[k] = kd[k] * L[k];
+}
+
+/* Glossy, L D S E: the visible point's specular lobe (Phong, importance-sampled; or the mirror
+ * direction) sees a diffuse surface lit by next-event estimation. */
+void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                    float out[3], long long *rays)
+{
+    out[0] = out[1] = out[2] = 0.0f;
+    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    if (h->back)
+        return;
+    ref_mat m;
+    ref_material(w, h, &m);
+    if (m.spec == GIB_SPEC_NONE)
+        return;
+    float r[3], d[3], wgt = 1.0f, L[3];
+    ref_reflect(wo, h->n, r);
+    if (m.spec == GIB_SPEC_PHONG)
+        wgt = ref_sample_phong(r, m.phong_n, h->n, u1, u2, d);
+    else
+        d[0] = r[0], d[1] = r[1], d[2] = r[2];
+    if (!(wgt > 0.0f))
+        return;
+    if (ref_bounce_diffuse(w, h, d, L, rays))
+        for (int k = 0; k < 3; k++)
+            out[k] = m.ks[k] * wgt * L[k];
+}
+
+/* Auxiliary images of the visible point. albedo: rho_d, filtered like the GL G-buffer's (0 on the
+ * back of a one-sided surface, which shades to 0); normal: the shading normal as shaded, i.e.
+ * facing the viewer (on a one-sided back, the surface's own normal, pointing away); depth: the
+ * view-space depth, (p - eye) . forward, in scene units. Misses are 0 in all three. */
+void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3])
+{
+    switch (c->p.component) {
+    case GIB_COMP_ALBEDO:
+        if (h->back)
+            out[0] = out[1] = out[2] = 0.0f;
+        else
+            ref_albedo(c->w, h, out);
+        break;
+    case GIB_COMP_NORMAL:
+        out[0] = h->n[0], out[1] = h->n[1], out[2] = h->n[2];
+        break;
+    default: {
+        float v[3] = {h->p[0] - c->cam->eye[0], h->p[1] - c->cam->eye[1],
+                      h->p[2] - c->cam->eye[2]};
+        out[0] = out[1] = out[2] = ref_dot(v, c->fwd);
+    }
+    }
+}
+
+void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                       float out[3], long long *rays)
+{
+    switch (c->p.component) {
+    case GIB_COMP_AO:
+        out[0] = out[1] = out[2] =
+            ref_est_ao(c->w, h, c->p.dmax, c->p.obscurance, rng, rays);
+        break;
+    case GIB_COMP_DIRECT:
+        ref_est_direct(c->w, h, wo, out, rays);
+        break;
+    case GIB_COMP_INDIRECT:
+        ref_est_indirect(c->w, h, rng, out, rays);
+        break;
+    case GIB_COMP_GLOSSY:
+        ref_est_glossy(c->w, h, wo, rng, out, rays);
+        break;
+    case GIB_COMP_FULL:
+    case GIB_COMP_HIGHER:
+        ref_est_path(c, h, wo, c->p.component == GIB_COMP_HIGHER, rng, out, rays);
+        break;
+    case GIB_COMP_ALBEDO:
+    case GIB_COMP_NORMAL:
+    case GIB_COMP_DEPTH:
+        ref_est_aux(c, h, out);
+        break;
+    default:
+        ref_est_caustic(c, h, rng, out, rays);
+    }
 }

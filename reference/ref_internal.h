@@ -1,32 +1,85 @@
 /* gibench — internals of the reference renderer shared by its source files (not a public API).
  *
  *   ref_world.c      the Embree scene built from a gib_scene, the alpha-mask filter, ray casting,
- *                    surface points and robust ray offsets
- *   ref_estimators.c one estimator per light-transport component (DESIGN.md, "Light-transport
- *                    components"): direct and ao
- *   reference.c      the render loop (threads, per-pixel statistics, progress), EXR attributes */
+ *                    surface points, robust ray offsets, ray differentials at primary hits
+ *   ref_texture.c    texture lookups: level-0 bilinear, mip pyramids and trilinear filtering
+ *   ref_bsdf.c       the material model: albedo, next-event estimation, lobe sampling
+ *   ref_estimators.c direct, ao/obscurance, indirect, glossy and the auxiliary images
+ *   ref_path.c       full and higher: camera paths with next-event estimation and Russian roulette
+ *   ref_light.c      light tracing: the mirror-first paths of caustic, full and higher
+ *   reference.c      the render loop: rounds, per-pixel statistics, target noise, threads
+ *   ref_progress.c   the progress bar / log lines, and the thread pool
+ *   ref_params.c     component names, parameter normalisation, hashing and EXR attributes
+ *   ref_bench.c      the throughput benchmark */
 #ifndef GIB_REF_INTERNAL_H
 #define GIB_REF_INTERNAL_H
 
 #include <embree3/rtcore.h>
+#include <stdatomic.h>
 
 #include "reference.h"
 #include "rng.h"
+
+#define REF_PI 3.14159265358979323846f
+#define REF_MAX_MIPS 24
+
+/* A texture's mip pyramid (box filter, built once per render): level 0 is the scene's own
+ * texels, levels 1.. are owned here. levels == 0: not an albedo texture, no pyramid. */
+typedef struct ref_mip {
+    int levels;
+    int w[REF_MAX_MIPS], h[REF_MAX_MIPS];
+    const float *lv[REF_MAX_MIPS];
+    float *owned;
+} ref_mip;
+
+/* A triangle's shading data in one aligned 128-byte record (ref_world.c). */
+#define REF_TRI_NG_OK 1u   /* ng is a unit normal (the triangle is not degenerate) */
+#define REF_TRI_HAS_N 2u   /* n[] holds vertex normals */
+typedef struct ref_tri {
+    _Alignas(64) float p0[3];
+    float e1[3], e2[3];      /* p1 - p0, p2 - p0 */
+    float ng[3];             /* unit geometric normal, e1 x e2 */
+    float n[3][3];           /* vertex normals */
+    float uv[3][2];
+    uint32_t mat, flags;
+} ref_tri;
+
+#define REF_GEOM_OPAQUE 0
+#define REF_GEOM_MASKED 1  /* triangles with a cut-out mask: the only ones with a filter */
+
+/* Bench only: records the rays a single-threaded render casts, for replay. */
+typedef struct ref_raylog {
+    struct RTCRay *rays;
+    unsigned char *occl;   /* 1: shadow ray (rtcOccluded1), 0: closest hit */
+    size_t n, cap;
+} ref_raylog;
 
 typedef struct ref_world {
     RTCDevice device;
     RTCScene scene;          /* NULL when the scene has no triangles: every ray misses */
     const gib_scene *gs;
     float eps;               /* ray offset, gib_reference_ray_eps() */
+    ref_mip *mips;           /* one per scene texture */
+    int has_specular;        /* some material has a specular lobe (Phong or mirror) */
+    int has_mirror;          /* some material is a mirror */
+    float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
+    ref_raylog *log;         /* bench: non-NULL records every ray (single thread only) */
+    uint32_t *geo_tri[2];    /* Embree geometry g's primitive -> scene triangle */
+    ref_tri *tris;           /* one per scene triangle */
     char embree_msg[512];    /* last message from Embree's error callback */
 } ref_world;
 
-/* A visible surface point, oriented for shading. */
+/* A surface point, oriented for shading toward the side the ray came from. */
 typedef struct ref_hit {
     float p[3];              /* position, interpolated from the triangle's vertices */
     float n[3];              /* shading normal: interpolated vertex normal, unit length */
     float ng[3];             /* geometric normal, unit length, on the same side as n */
     float uv[2];
+    float duv[4];            /* du/dx, dv/dx, du/dy, dv/dy per pixel: primary hits only */
+    int has_duv;             /* 1 at primary hits: albedo is filtered at the pixel's footprint */
+    int has_kd;              /* kd holds ref_albedo() (primary hits: filtered once per pixel) */
+    float kd[3];
+    float t;                 /* ray distance */
     uint32_t prim;
     const gib_material *mat;
     int back;                /* seen from behind a one-sided material: shades to 0 */
@@ -38,22 +91,170 @@ void ref_world_free(ref_world *w);
 /* Casts the ray (o, d) from tnear = 0 and fills hit, oriented toward the viewer at -d.
  * Returns 1 on a hit, 0 on a miss. */
 int ref_trace(const ref_world *w, const float o[3], const float d[3], ref_hit *hit);
-
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */
 int ref_occluded(const ref_world *w, const float o[3], const float d[3], float tfar);
+/* The distance to the first surface on (o, d) within (0, tfar], or INFINITY. */
+float ref_hit_distance(const ref_world *w, const float o[3], const float d[3], float tfar);
 
 /* Origin for a ray leaving h in direction d: offset along the geometric normal, toward the side d
  * points to, by w->eps. */
 void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3], float o[3]);
 
-/* Bilinear texture lookup with repeat wrap; texel rows run top-down, t = 1 - v. */
+/* Ray differentials at a primary hit (Igehy 1999): fills h->duv from the camera rays through the
+ * centres of the pixels one to the right and one down, intersected with the hit triangle's
+ * plane. */
+void ref_hit_differentials(const ref_world *w, const gib_camera *cam, int width, int height,
+                           int px, int py, ref_hit *h);
+
+/* ---- textures (ref_texture.c) ---- */
+
+/* Bilinear lookup of level 0 with repeat wrap; texel rows run top-down, t = 1 - v. */
 void ref_tex_sample(const gib_texture *t, float u, float v, float out[4]);
+/* Builds the box-filtered pyramid of t; returns -1 with err when out of memory. */
+int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err);
+void ref_mip_free(ref_mip *m);
+/* GL's trilinear (LINEAR_MIPMAP_LINEAR) lookup with the isotropic LOD of the derivatives
+ * duv = du/dx, dv/dx, du/dy, dv/dy; level 0 bilinear (GL's LINEAR magnification) when the LOD
+ * is <= 0 or duv is NULL. */
+void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float out[4]);
+/* The LOD GL would use: log2(max(|duv_x * size|, |duv_y * size|)). */
+float ref_mip_lod(const ref_mip *m, const float duv[4]);
+
+/* ---- materials (ref_bsdf.c) ---- */
+
+/* The material at a hit, textures applied: rho_d, rho_s and the lobe type. */
+typedef struct ref_mat {
+    float kd[3];
+    float ks[3];
+    int spec;                /* enum gib_spec_type; GIB_SPEC_NONE when rho_s is 0 */
+    float phong_n;
+} ref_mat;
+
+void ref_material(const ref_world *w, const ref_hit *h, ref_mat *m);
+/* rho_d at the hit: albedo times its texture, trilinear at primary hits, level 0 elsewhere. */
+void ref_albedo(const ref_world *w, const ref_hit *h, float a[3]);
+
+/* Next-event estimation toward every light: the reflected radiance toward wo of the light
+ * arriving unoccluded, split into the diffuse lobe (to dif) and the Phong lobe (to spec; NULL:
+ * not wanted). Mirrors add nothing (a delta lobe never meets a delta light). */
+void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+             float dif[3], float spec[3], long long *rays);
+
+/* Orthonormal basis around unit n. */
+void ref_basis(const float n[3], float t[3], float b[3]);
+/* Cosine-weighted direction about n (pdf cos / pi). */
+void ref_sample_cosine(const float n[3], float u1, float u2, float d[3]);
+/* Mirror direction of wo about n. */
+void ref_reflect(const float wo[3], const float n[3], float r[3]);
+/* A direction from the normalised Phong lobe about r (pdf (n+1)/(2 pi) cos^n alpha). The
+ * returned weight f cos / pdf for rho_s = 1 is (n + 2) / (n + 1) max(0, n_s . d); 0 means the
+ * sample went below the surface. */
+float ref_sample_phong(const float r[3], float n_exp, const float ns[3], float u1, float u2,
+                       float d[3]);
+/* Luminance weight used to choose lobes. */
+static inline float ref_lum(const float c[3])
+{
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+/* ---- one render's shared state ---- */
+
+typedef struct ref_ctx {
+    const ref_world *w;
+    const gib_camera *cam;
+    gib_ref_params p;        /* normalised */
+    float right[3], up[3], fwd[3], tan_half, aspect;
+    int light_part;          /* light tracing runs (caustic, full, higher: scenes with mirrors) */
+    int camera_part;         /* per-pixel camera samples run */
+} ref_ctx;
+
+/* A contribution of light tracing to one pixel. */
+typedef struct ref_splat {
+    uint32_t pix;
+    float v[3];
+} ref_splat;
+
+typedef struct ref_splats {
+    ref_splat *s;
+    size_t n, cap;
+    int oom;
+} ref_splats;
+
+/* One camera sample of the component at the visible point h (wo toward the eye). */
+void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                       float out[3], long long *rays);
 
 /* Estimators. Each adds the rays it casts to *rays. */
 void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], float out[3],
                     long long *rays);
-/* One cosine-weighted visibility sample: 1 when unoccluded within dmax (<= 0 or inf: unbounded). */
-float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, ref_pcg32 *rng, long long *rays);
+/* One cosine-weighted visibility sample: 1 when unoccluded within dmax (<= 0 or inf: unbounded);
+ * with obscurance, min(d / dmax, 1). */
+float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_pcg32 *rng,
+                 long long *rays);
+void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_pcg32 *rng, float out[3],
+                      long long *rays);
+void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                    float out[3], long long *rays);
+/* caustic, camera part: L S+ D E whose light-side vertex is Phong. */
+void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float out[3],
+                     long long *rays);
+void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3]);
+/* full (higher_only = 0) or higher (1): one camera path. */
+void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
+                  ref_pcg32 *rng, float out[3], long long *rays);
+
+/* Path classes (reference.h): 1 when a path of `verts` surface vertices whose visible point x1
+ * leaves through lobe s1 (1 = S) and whose other vertices are all S (all_s_rest) belongs to
+ * direct, indirect, glossy or caustic (with max_specular), i.e. NOT to higher. */
+int ref_basic_class(int verts, int s1, int all_s_rest, int max_specular);
+
+/* Light tracing: traces `count` particles of light pass `pass`, chunk `chunk`, and appends
+ * their camera splats (already divided by the pass's particle count). */
+void ref_light_chunk(const ref_ctx *c, uint64_t pass, uint32_t chunk, int count,
+                     ref_splats *out, long long *rays);
+/* Particles per light-tracing chunk (the unit of work; particle i of a pass is particle
+ * i % REF_LIGHT_CHUNK of chunk i / REF_LIGHT_CHUNK). */
+#define REF_LIGHT_CHUNK 4096
+/* Particles per light pass: one per pixel. */
+static inline long long ref_light_particles(const ref_ctx *c)
+{
+    return (long long)c->p.width * c->p.height;
+}
+
+/* gib_component_deterministic for a given max_depth (full and higher with one vertex are). */
+int ref_deterministic(const gib_scene *s, int component, int max_depth);
+
+/* gib_reference_render on an already built world (the bench times rendering alone); no
+ * parameter checks beyond the caller's. */
+int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_params *p,
+                     gib_image *out, gib_image *stderr_img, gib_ref_stats *stats, gib_error *err);
+/* The checks gib_reference_render makes. */
+int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error *err);
+
+/* ---- thread pool and progress (ref_progress.c) ---- */
+
+typedef struct ref_progress {
+    int enabled, tty;
+    const char *what;
+    double t0, last_print;
+    long long units_per_spp;    /* work units (pixel samples + particles) per sample per pixel */
+    atomic_llong units;         /* done so far */
+    atomic_llong rays;
+    long long units_target;     /* for the estimate of time left */
+    int round, spp_goal;
+    double noise_rel;           /* last round's noise / mean, or < 0 */
+    double target;
+    int printed;
+} ref_progress;
+
+typedef void (*ref_task_fn)(void *ctx, int task);
+/* Runs fn(ctx, task) for task = 0 .. ntasks-1 on nthreads threads; the calling thread updates the
+ * progress display meanwhile. Tasks may run in any order and on any thread. */
+void ref_parallel(int nthreads, int ntasks, ref_task_fn fn, void *ctx, ref_progress *prog);
+void ref_progress_tick(ref_progress *prog, int force);
+void ref_progress_round(ref_progress *prog, int spp_done, double noise_rel);
+void ref_progress_end(ref_progress *prog);
+double ref_now(void);
 
 /* Small vector helpers. */
 static inline float ref_dot(const float a[3], const float b[3])

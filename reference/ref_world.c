@@ -1,70 +1,46 @@
 /* gibench — the reference renderer's Embree scene: one triangle geometry over the flattened
  * gib_scene (DESIGN.md, "One scene model for both sides": the path tracer sees exactly the
  * triangles, normals, uvs and cut-out masks the GL techniques rasterise), plus ray casting,
- * surface points and robust ray offsets. */
+ * surface points, robust ray offsets and ray differentials.
+ *
+ * Ray API: single rays (rtcIntersect1 / rtcOccluded1). `gibench bench reference` measures the
+ * alternatives on the path tracer's own recorded rays; on the development machine (2 cores of an
+ * AMD EPYC, AVX2, Embree 3.13.5, Crytek Sponza) the stream API rtcIntersect1M and 8-wide packets
+ * were not faster than single rays for these incoherent rays (see ref_bench.c for the figures),
+ * so the estimators stay one ray at a time, which also keeps every sample's ray order fixed. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ref_internal.h"
 
-/* ---- textures ---- */
-
-static int ref_wrap(int i, int n)
-{
-    int r = i % n;
-    return r < 0 ? r + n : r;
-}
-
-/* Texel centres sit at (i + 0.5) / size, as in GL, so a lookup at a texel centre returns that
- * texel exactly; repeat wrap in both directions; row 0 is the top of the image (scene.h). */
-void ref_tex_sample(const gib_texture *t, float u, float v, float out[4])
-{
-    if (!t || !t->rgba || t->width <= 0 || t->height <= 0) {
-        out[0] = out[1] = out[2] = out[3] = 1.0f;
-        return;
-    }
-    if (!isfinite(u))
-        u = 0.0f;
-    if (!isfinite(v))
-        v = 0.0f;
-    float s = u - floorf(u);
-    float tt = 1.0f - v;
-    tt -= floorf(tt);
-    float x = s * (float)t->width - 0.5f, y = tt * (float)t->height - 0.5f;
-    float xf = floorf(x), yf = floorf(y);
-    float ax = x - xf, ay = y - yf;
-    int x0 = ref_wrap((int)xf, t->width), x1 = ref_wrap((int)xf + 1, t->width);
-    int y0 = ref_wrap((int)yf, t->height), y1 = ref_wrap((int)yf + 1, t->height);
-    const float *p00 = t->rgba + ((size_t)y0 * (size_t)t->width + (size_t)x0) * 4;
-    const float *p10 = t->rgba + ((size_t)y0 * (size_t)t->width + (size_t)x1) * 4;
-    const float *p01 = t->rgba + ((size_t)y1 * (size_t)t->width + (size_t)x0) * 4;
-    const float *p11 = t->rgba + ((size_t)y1 * (size_t)t->width + (size_t)x1) * 4;
-    for (int c = 0; c < 4; c++) {
-        float top = p00[c] + (p10[c] - p00[c]) * ax;
-        float bot = p01[c] + (p11[c] - p01[c]) * ax;
-        out[c] = top + (bot - top) * ay;
-    }
-}
-
 /* ---- the scene ---- */
 
-static void ref_interp_uv(const gib_scene *gs, uint32_t prim, float b1, float b2, float uv[2])
+static int ref_normalize(float v[3])
 {
-    uv[0] = uv[1] = 0.0f;
-    if (!gs->uvs)
-        return;
-    const uint32_t *ix = gs->indices + 3 * (size_t)prim;
-    const float *t0 = gs->uvs + 2 * (size_t)ix[0], *t1 = gs->uvs + 2 * (size_t)ix[1],
-                *t2 = gs->uvs + 2 * (size_t)ix[2];
-    float b0 = 1.0f - b1 - b2;
-    for (int k = 0; k < 2; k++)
-        uv[k] = b0 * t0[k] + b1 * t1[k] + b2 * t2[k];
+    float l2 = ref_dot(v, v);
+    if (!(l2 > 0.0f) || !isfinite(l2))
+        return 0;
+    float inv = 1.0f / sqrtf(l2);
+    v[0] *= inv;
+    v[1] *= inv;
+    v[2] *= inv;
+    return 1;
 }
 
-/* Cut-out masks: Embree calls this for every candidate hit, for closest-hit and shadow rays alike,
- * so a hole never hides what lies behind it nor casts a shadow. RTCHitN is opaque in C; its SOA
- * layout (rtcore_ray.h: Ng_x, Ng_y, Ng_z, u, v, primID, each N wide) is read directly. */
+static void ref_interp_uv(const ref_world *w, uint32_t prim, float b1, float b2, float uv[2])
+{
+    const ref_tri *t = &w->tris[prim];
+    float b0 = 1.0f - b1 - b2;
+    for (int k = 0; k < 2; k++)
+        uv[k] = b0 * t->uv[0][k] + b1 * t->uv[1][k] + b2 * t->uv[2][k];
+}
+
+/* Cut-out masks: Embree calls this for every candidate hit on the masked geometry, for closest-hit
+ * and shadow rays alike, so a hole never hides what lies behind it nor casts a shadow. RTCHitN is
+ * opaque in C; its SOA layout (rtcore_ray.h: Ng_x, Ng_y, Ng_z, u, v, primID, each N wide) is read
+ * directly. */
 static void ref_alpha_filter(const struct RTCFilterFunctionNArguments *args)
 {
     const ref_world *w = args->geometryUserPtr;
@@ -75,12 +51,12 @@ static void ref_alpha_filter(const struct RTCFilterFunctionNArguments *args)
     for (unsigned i = 0; i < n; i++) {
         if (args->valid[i] != -1)
             continue;
-        unsigned prim = hu[5 * n + i];
+        unsigned prim = w->geo_tri[REF_GEOM_MASKED][hu[5 * n + i]];
         const gib_material *m = &gs->materials[gs->tri_material[prim]];
         if (m->alpha_tex < 0)
             continue;
         float uv[2], a[4];
-        ref_interp_uv(gs, prim, hf[3 * n + i], hf[4 * n + i], uv);
+        ref_interp_uv(w, prim, hf[3 * n + i], hf[4 * n + i], uv);
         ref_tex_sample(&gs->textures[m->alpha_tex], uv[0], uv[1], a);
         if (a[0] < 0.5f)
             args->valid[i] = 0;
@@ -119,10 +95,9 @@ float gib_reference_ray_eps(const gib_scene *gs)
     return (float)(eps > floor_eps ? eps : floor_eps);
 }
 
-static int ref_validate(const gib_scene *gs, int *has_alpha, gib_error *err)
+static int ref_validate(const gib_scene *gs, gib_error *err)
 {
     const char *nm = gs->name[0] ? gs->name : "(unnamed)";
-    *has_alpha = 0;
     if (gs->triangle_count == 0)
         return 0;
     if (!gs->positions || !gs->indices || !gs->tri_material)
@@ -150,9 +125,124 @@ static int ref_validate(const gib_scene *gs, int *has_alpha, gib_error *err)
                                 "scene '%s': material '%s' uses texture %d, which is not loaded",
                                 nm, mt->name, tex[k]);
         }
-        if (mt->alpha_tex >= 0)
-            *has_alpha = 1;
     }
+    return 0;
+}
+
+/* Everything shading needs of a triangle, in one 128-byte record: a hit costs one or two cache
+ * lines instead of the ~11 that indices, three positions, normals and uvs and the material index
+ * cost when read from the scene's arrays. Shading data is read from here only. */
+static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
+{
+    if (gs->triangle_count == 0)
+        return 0;
+    w->tris = aligned_alloc(64, (size_t)gs->triangle_count * sizeof *w->tris);
+    if (!w->tris)
+        return gib_fail(err, "scene '%s': out of memory for %u triangle records", gs->name,
+                        gs->triangle_count);
+    for (uint32_t i = 0; i < gs->triangle_count; i++) {
+        ref_tri *t = &w->tris[i];
+        memset(t, 0, sizeof *t);
+        const uint32_t *ix = gs->indices + 3 * (size_t)i;
+        const float *p0 = gs->positions + 3 * (size_t)ix[0],
+                    *p1 = gs->positions + 3 * (size_t)ix[1],
+                    *p2 = gs->positions + 3 * (size_t)ix[2];
+        for (int k = 0; k < 3; k++) {
+            t->p0[k] = p0[k];
+            t->e1[k] = p1[k] - p0[k];
+            t->e2[k] = p2[k] - p0[k];
+        }
+        t->ng[0] = t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1];
+        t->ng[1] = t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2];
+        t->ng[2] = t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0];
+        t->flags = ref_normalize(t->ng) ? REF_TRI_NG_OK : 0;
+        for (int j = 0; j < 3; j++) {
+            if (gs->normals)
+                memcpy(t->n[j], gs->normals + 3 * (size_t)ix[j], sizeof t->n[j]);
+            if (gs->uvs)
+                memcpy(t->uv[j], gs->uvs + 2 * (size_t)ix[j], sizeof t->uv[j]);
+        }
+        if (gs->normals)
+            t->flags |= REF_TRI_HAS_N;
+        t->mat = gs->tri_material[i];
+    }
+    return 0;
+}
+
+/* Triangle records, mip pyramids of the albedo textures, the specular flags and the bounding
+ * sphere. */
+static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
+{
+    if (ref_build_tris(w, gs, err) < 0)
+        return -1;
+    for (uint32_t m = 0; m < gs->material_count; m++) {
+        const gib_material *mt = &gs->materials[m];
+        int spec = mt->spec_type != GIB_SPEC_NONE &&
+                   (mt->specular[0] > 0.0f || mt->specular[1] > 0.0f || mt->specular[2] > 0.0f);
+        w->has_specular |= spec;
+        w->has_mirror |= spec && mt->spec_type == GIB_SPEC_MIRROR;
+    }
+    if (gs->texture_count > 0) {
+        w->mips = gib_calloc(gs->texture_count, sizeof *w->mips, err);
+        if (!w->mips)
+            return -1;
+        for (uint32_t m = 0; m < gs->material_count; m++) {
+            int t = gs->materials[m].albedo_tex;
+            if (t >= 0 && w->mips[t].levels == 0 &&
+                ref_mip_build(&w->mips[t], &gs->textures[t], err) < 0)
+                return -1;
+        }
+    }
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < gs->vertex_count; i++)
+        for (int k = 0; k < 3; k++) {
+            double c = gs->positions[3 * (size_t)i + k];
+            lo[k] = (i == 0 || c < lo[k]) ? c : lo[k];
+            hi[k] = (i == 0 || c > hi[k]) ? c : hi[k];
+        }
+    double r2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        w->bcentre[k] = (float)(0.5 * (lo[k] + hi[k]));
+        r2 += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    w->bradius = (float)sqrt(r2) * 1.001f + w->eps;
+    return 0;
+}
+
+/* One triangle geometry holding the scene's opaque (g = 0) or masked (g = 1) triangles, with
+ * geomID g; w->geo_tri[g] maps its primitives to scene triangles. */
+static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
+{
+    const gib_scene *gs = w->gs;
+    RTCGeometry geo = rtcNewGeometry(w->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    /* Copied into Embree-owned buffers, which Embree pads for its 16-byte vector loads (a shared
+     * buffer would have to be padded by the scene loader). */
+    float *vb = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        3 * sizeof(float), gs->vertex_count);
+    unsigned *ib = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                           3 * sizeof(unsigned), count);
+    if (!vb || !ib) {
+        rtcReleaseGeometry(geo);
+        return gib_fail(err, "scene '%s': %s", gs->name,
+                        w->embree_msg[0] ? w->embree_msg
+                                         : "Embree could not allocate geometry buffers");
+    }
+    memcpy(vb, gs->positions, 3 * sizeof(float) * gs->vertex_count);
+    uint32_t k = 0;
+    for (uint32_t t = 0; t < gs->triangle_count; t++) {
+        if ((gs->materials[gs->tri_material[t]].alpha_tex >= 0) != g)
+            continue;
+        memcpy(ib + 3 * (size_t)k, gs->indices + 3 * (size_t)t, 3 * sizeof(unsigned));
+        w->geo_tri[g][k++] = t;
+    }
+    rtcSetGeometryUserData(geo, w);
+    if (g == REF_GEOM_MASKED) {
+        rtcSetGeometryIntersectFilterFunction(geo, ref_alpha_filter);
+        rtcSetGeometryOccludedFilterFunction(geo, ref_alpha_filter);
+    }
+    rtcCommitGeometry(geo);
+    rtcAttachGeometryByID(w->scene, geo, (unsigned)g);
+    rtcReleaseGeometry(geo);
     return 0;
 }
 
@@ -160,10 +250,13 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
 {
     memset(w, 0, sizeof *w);
     w->gs = gs;
-    int has_alpha;
-    if (ref_validate(gs, &has_alpha, err) < 0)
+    if (ref_validate(gs, err) < 0)
         return -1;
     w->eps = gib_reference_ray_eps(gs);
+    if (ref_world_extras(w, gs, err) < 0) {
+        ref_world_free(w);
+        return -1;
+    }
     if (gs->triangle_count == 0)
         return 0; /* an empty view: every ray misses (DESIGN.md, "Hard cases") */
 
@@ -180,30 +273,21 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
     rtcSetSceneFlags(w->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(w->scene, RTC_BUILD_QUALITY_HIGH);
 
-    RTCGeometry g = rtcNewGeometry(w->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    /* Copied into Embree-owned buffers, which Embree pads for its 16-byte vector loads (a shared
-     * buffer would have to be padded by the scene loader). */
-    float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                        3 * sizeof(float), gs->vertex_count);
-    unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                           3 * sizeof(unsigned), gs->triangle_count);
-    if (!vb || !ib) {
-        rtcReleaseGeometry(g);
-        gib_fail(err, "scene '%s': %s", gs->name,
-                 w->embree_msg[0] ? w->embree_msg : "Embree could not allocate geometry buffers");
-        ref_world_free(w);
-        return -1;
+    /* Two geometries: opaque triangles, and those whose material has a cut-out mask, so that only
+     * the latter pay for the filter callback. Sponza's plants hold 3% of its triangles; with the
+     * filter on every triangle, Embree ran at a third of its speed. */
+    uint32_t count[2] = {0, 0};
+    for (uint32_t t = 0; t < gs->triangle_count; t++)
+        count[gs->materials[gs->tri_material[t]].alpha_tex >= 0]++;
+    for (int g = 0; g < 2; g++) {
+        if (count[g] == 0)
+            continue;
+        w->geo_tri[g] = gib_calloc(count[g], sizeof *w->geo_tri[g], err);
+        if (!w->geo_tri[g] || ref_add_geometry(w, g, count[g], err) < 0) {
+            ref_world_free(w);
+            return -1;
+        }
     }
-    memcpy(vb, gs->positions, 3 * sizeof(float) * gs->vertex_count);
-    memcpy(ib, gs->indices, 3 * sizeof(unsigned) * gs->triangle_count);
-    rtcSetGeometryUserData(g, w);
-    if (has_alpha) {
-        rtcSetGeometryIntersectFilterFunction(g, ref_alpha_filter);
-        rtcSetGeometryOccludedFilterFunction(g, ref_alpha_filter);
-    }
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(w->scene, g);
-    rtcReleaseGeometry(g);
     rtcCommitScene(w->scene);
     if (rtcGetDeviceError(w->device) != RTC_ERROR_NONE) {
         gib_fail(err, "scene '%s': building the Embree BVH failed: %s", gs->name,
@@ -216,6 +300,17 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
 
 void ref_world_free(ref_world *w)
 {
+    if (w->mips && w->gs)
+        for (uint32_t i = 0; i < w->gs->texture_count; i++)
+            ref_mip_free(&w->mips[i]);
+    free(w->mips);
+    w->mips = NULL;
+    free(w->tris);
+    w->tris = NULL;
+    for (int g = 0; g < 2; g++) {
+        free(w->geo_tri[g]);
+        w->geo_tri[g] = NULL;
+    }
     if (w->scene)
         rtcReleaseScene(w->scene);
     if (w->device)
@@ -226,17 +321,6 @@ void ref_world_free(ref_world *w)
 
 /* ---- rays ---- */
 
-static int ref_normalize(float v[3])
-{
-    float l2 = ref_dot(v, v);
-    if (!(l2 > 0.0f) || !isfinite(l2))
-        return 0;
-    float inv = 1.0f / sqrtf(l2);
-    v[0] *= inv;
-    v[1] *= inv;
-    v[2] *= inv;
-    return 1;
-}
 
 /* The front of a surface is the side its vertex normals point to (the geometric normal is turned
  * to agree with them), so a mesh's winding order does not matter; the GL side must use the same
@@ -244,30 +328,15 @@ static int ref_normalize(float v[3])
 static void ref_fill_hit(const ref_world *w, uint32_t prim, float b1, float b2, const float d[3],
                          ref_hit *h)
 {
-    const gib_scene *gs = w->gs;
-    const uint32_t *ix = gs->indices + 3 * (size_t)prim;
-    const float *p0 = gs->positions + 3 * (size_t)ix[0], *p1 = gs->positions + 3 * (size_t)ix[1],
-                *p2 = gs->positions + 3 * (size_t)ix[2];
+    const ref_tri *t = &w->tris[prim];
     float b0 = 1.0f - b1 - b2;
-    float e1[3], e2[3];
     for (int k = 0; k < 3; k++) {
-        h->p[k] = b0 * p0[k] + b1 * p1[k] + b2 * p2[k];
-        e1[k] = p1[k] - p0[k];
-        e2[k] = p2[k] - p0[k];
+        h->p[k] = t->p0[k] + b1 * t->e1[k] + b2 * t->e2[k];
+        h->n[k] = b0 * t->n[0][k] + b1 * t->n[1][k] + b2 * t->n[2][k];
+        h->ng[k] = t->ng[k];
     }
-    h->ng[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    h->ng[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    h->ng[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    int ng_ok = ref_normalize(h->ng);
-
-    int n_ok = 0;
-    if (gs->normals) {
-        const float *n0 = gs->normals + 3 * (size_t)ix[0], *n1 = gs->normals + 3 * (size_t)ix[1],
-                    *n2 = gs->normals + 3 * (size_t)ix[2];
-        for (int k = 0; k < 3; k++)
-            h->n[k] = b0 * n0[k] + b1 * n1[k] + b2 * n2[k];
-        n_ok = ref_normalize(h->n);
-    }
+    int ng_ok = t->flags & REF_TRI_NG_OK;
+    int n_ok = (t->flags & REF_TRI_HAS_N) && ref_normalize(h->n);
     if (!ng_ok && !n_ok) { /* a degenerate sliver without normals: face the viewer */
         for (int k = 0; k < 3; k++)
             h->ng[k] = h->n[k] = -d[k];
@@ -281,8 +350,9 @@ static void ref_fill_hit(const ref_world *w, uint32_t prim, float b1, float b2, 
     }
 
     h->prim = prim;
-    h->mat = &gs->materials[gs->tri_material[prim]];
-    ref_interp_uv(gs, prim, b1, b2, h->uv);
+    h->mat = &w->gs->materials[t->mat];
+    for (int k = 0; k < 2; k++)
+        h->uv[k] = b0 * t->uv[0][k] + b1 * t->uv[1][k] + b2 * t->uv[2][k];
     /* Facing is decided by the geometric normal (as gl_FrontFacing is), the viewer being at -d. */
     int from_back = ref_dot(h->ng, d) > 0.0f;
     h->back = 0;
@@ -296,33 +366,78 @@ static void ref_fill_hit(const ref_world *w, uint32_t prim, float b1, float b2, 
     }
 }
 
+static void ref_log_ray(const ref_world *w, const struct RTCRay *r, int occl)
+{
+    ref_raylog *log = w->log;
+    if (log->n == log->cap) {
+        size_t cap = log->cap ? 2 * log->cap : 1 << 16;
+        struct RTCRay *nr = realloc(log->rays, cap * sizeof *nr);
+        unsigned char *no = nr ? realloc(log->occl, cap) : NULL;
+        if (!nr || !no) { /* the bench reports the rays it kept */
+            if (nr)
+                log->rays = nr;
+            return;
+        }
+        log->rays = nr;
+        log->occl = no;
+        log->cap = cap;
+    }
+    log->rays[log->n] = *r;
+    log->occl[log->n++] = (unsigned char)occl;
+}
+
+static void ref_ray_init(struct RTCRay *r, const float o[3], const float d[3], float tfar)
+{
+    r->org_x = o[0];
+    r->org_y = o[1];
+    r->org_z = o[2];
+    r->tnear = 0.0f;
+    r->dir_x = d[0];
+    r->dir_y = d[1];
+    r->dir_z = d[2];
+    r->time = 0.0f;
+    r->tfar = tfar;
+    r->mask = 0xffffffffu;
+    r->id = 0;
+    r->flags = 0;
+}
+
+/* Closest hit within tfar: fills rh, returns 1 on a hit. */
+static int ref_intersect(const ref_world *w, const float o[3], const float d[3], float tfar,
+                         struct RTCRayHit *rh)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ref_ray_init(&rh->ray, o, d, tfar);
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    if (w->log)
+        ref_log_ray(w, &rh->ray, 0);
+    rtcIntersect1(w->scene, &ctx, rh);
+    return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
 int ref_trace(const ref_world *w, const float o[3], const float d[3], ref_hit *hit)
 {
     if (!w->scene)
         return 0;
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     struct RTCRayHit rh;
-    rh.ray.org_x = o[0];
-    rh.ray.org_y = o[1];
-    rh.ray.org_z = o[2];
-    rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = d[0];
-    rh.ray.dir_y = d[1];
-    rh.ray.dir_z = d[2];
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = INFINITY;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(w->scene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+    if (!ref_intersect(w, o, d, INFINITY, &rh))
         return 0;
-    ref_fill_hit(w, rh.hit.primID, rh.hit.u, rh.hit.v, d, hit);
+    ref_fill_hit(w, w->geo_tri[rh.hit.geomID][rh.hit.primID], rh.hit.u, rh.hit.v, d, hit);
+    hit->t = rh.ray.tfar;
+    hit->has_duv = 0;
+    hit->has_kd = 0;
     return 1;
+}
+
+float ref_hit_distance(const ref_world *w, const float o[3], const float d[3], float tfar)
+{
+    if (!w->scene || !(tfar > 0.0f))
+        return INFINITY;
+    struct RTCRayHit rh;
+    return ref_intersect(w, o, d, tfar, &rh) ? rh.ray.tfar : INFINITY;
 }
 
 int ref_occluded(const ref_world *w, const float o[3], const float d[3], float tfar)
@@ -332,20 +447,71 @@ int ref_occluded(const ref_world *w, const float o[3], const float d[3], float t
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     struct RTCRay r;
-    r.org_x = o[0];
-    r.org_y = o[1];
-    r.org_z = o[2];
-    r.tnear = 0.0f;
-    r.dir_x = d[0];
-    r.dir_y = d[1];
-    r.dir_z = d[2];
-    r.time = 0.0f;
-    r.tfar = tfar;
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
+    ref_ray_init(&r, o, d, tfar);
+    if (w->log)
+        ref_log_ray(w, &r, 1);
     rtcOccluded1(w->scene, &ctx, &r);
     return r.tfar == -INFINITY; /* Embree's mark of an occluded ray */
+}
+
+/* Igehy 1999, "Tracing Ray Differentials": the footprint of a pixel on the surface is spanned by
+ * the offsets to where the neighbouring pixels' rays meet the tangent plane at the hit. For a
+ * pinhole camera those rays are exactly the camera rays through the pixel centres one to the right
+ * and one down, and the hit triangle's plane is the tangent plane, so the differentials are finite
+ * differences of the triangle's (perspective-correct) uv along that plane — what GL's dFdx/dFdy
+ * give for the triangle's interpolated uv. */
+void ref_hit_differentials(const ref_world *w, const gib_camera *cam, int width, int height,
+                           int px, int py, ref_hit *h)
+{
+    h->has_duv = 0;
+    if (!w->gs->uvs)
+        return;
+    const ref_tri *tr = &w->tris[h->prim];
+    const float *p0 = tr->p0, *t0 = tr->uv[0], *t1 = tr->uv[1], *t2 = tr->uv[2];
+    double e1[3], e2[3], nn[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = tr->e1[k];
+        e2[k] = tr->e2[k];
+    }
+    nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double nn2 = nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2];
+    if (!(nn2 > 0.0))
+        return;
+    float uvn[2][2];
+    for (int k = 0; k < 2; k++) {
+        float o[3], d[3];
+        gib_camera_ray(cam, width, height, (float)px + 0.5f + (k == 0), (float)py + 0.5f + (k == 1),
+                       o, d);
+        double dn = d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2];
+        double on = (p0[0] - o[0]) * nn[0] + (p0[1] - o[1]) * nn[1] + (p0[2] - o[2]) * nn[2];
+        if (dn == 0.0)
+            return;
+        double t = on / dn, q[3], c1[3], c2[3];
+        if (!(t > 0.0) || !isfinite(t))
+            return; /* the neighbour's ray leaves the plane behind the eye: no footprint */
+        for (int j = 0; j < 3; j++)
+            q[j] = (double)o[j] + t * d[j] - p0[j];
+        /* barycentrics of q: b1 = ((q x e2) . n) / |n|^2, b2 = ((e1 x q) . n) / |n|^2 */
+        c1[0] = q[1] * e2[2] - q[2] * e2[1];
+        c1[1] = q[2] * e2[0] - q[0] * e2[2];
+        c1[2] = q[0] * e2[1] - q[1] * e2[0];
+        c2[0] = e1[1] * q[2] - e1[2] * q[1];
+        c2[1] = e1[2] * q[0] - e1[0] * q[2];
+        c2[2] = e1[0] * q[1] - e1[1] * q[0];
+        double b1 = (c1[0] * nn[0] + c1[1] * nn[1] + c1[2] * nn[2]) / nn2;
+        double b2 = (c2[0] * nn[0] + c2[1] * nn[1] + c2[2] * nn[2]) / nn2;
+        double b0 = 1.0 - b1 - b2;
+        for (int j = 0; j < 2; j++)
+            uvn[k][j] = (float)(b0 * t0[j] + b1 * t1[j] + b2 * t2[j]);
+    }
+    h->duv[0] = uvn[0][0] - h->uv[0];
+    h->duv[1] = uvn[0][1] - h->uv[1];
+    h->duv[2] = uvn[1][0] - h->uv[0];
+    h->duv[3] = uvn[1][1] - h->uv[1];
+    h->has_duv = isfinite(h->duv[0]) && isfinite(h->duv[1]) && isfinite(h->duv[2]) &&
+                 isfinite(h->duv[3]);
 }
 
 void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3], float o[3])

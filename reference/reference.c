@@ -1,170 +1,173 @@
 /* gibench — the reference renderer's render loop: primary rays through pixel centres, per-pixel
- * sampling and statistics, threads, progress, and the EXR attributes (DESIGN.md, "Reference
- * renderer").
+ * sampling and statistics, light-tracing passes, sampling rounds toward a target noise, and the
+ * threads (DESIGN.md, "Reference renderer").
  *
- * Determinism: a pixel's samples come from its own PCG32 (rng.h) and are accumulated in sample
- * order by one thread; image-wide sums are formed per row and added in row order at the end. So
- * the image, its standard error and the statistics are bit-identical whatever the thread count
- * and whichever thread took which row. */
+ * Two parts, each with its own per-pixel statistics, added at the end:
+ *  - camera part: at each pixel, the primary hit is found once per round and every sample of the
+ *    round is drawn there; sample s uses its own generator (rng.h) and is accumulated in sample
+ *    order (Welford) by the one thread that owns the row;
+ *  - light part (caustic, full, higher in scenes with mirrors): pass s traces width*height
+ *    particles, in fixed chunks; the chunks' splats are added into the pass image in chunk order,
+ *    and each pixel's pass values are accumulated in pass order.
+ * So every bit of the image, its standard error and the statistics is independent of the thread
+ * count, and a round structure (--target-noise) gives the pixels of one plain run of the same
+ * total spp. The two parts are independent, so their variances of the mean add. */
 #include <math.h>
-#include <pthread.h>
-#include <stdarg.h>
-#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
-#if defined(__x86_64__) || defined(__i386__)
-#include <xmmintrin.h>
-#endif
 
-#include "../harness/base/hash.h"
 #include "ref_internal.h"
 
 #define REF_MAX_THREADS 256
 #define REF_MAX_SIZE 32768
+#define REF_GROUP_PIXELS (1 << 20) /* pass images held at once, in pixels (24 MiB) */
 
-static const char *const ref_component_names[GIB_COMP_COUNT] = {"ao", "direct"};
+typedef struct ref_run {
+    ref_ctx c;
+    ref_progress *prog;
+    double *cm, *cm2;         /* camera part: per pixel and channel, mean and Welford's M2 */
+    double *lm, *lm2;         /* light part */
+    int s0, s1;               /* this round's samples */
+    /* light passes in flight: passes g0 .. g0+gn-1, chunks per pass, their splats and images */
+    int g0, gn, chunks, group;
+    ref_splats *splats;       /* gn * chunks */
+    double *pass_img;         /* gn * W*H*3 */
+    int oom;
+} ref_run;
 
-const char *gib_component_name(int component)
+static inline void ref_welford(double *mean, double *m2, int n, const float v[3])
 {
-    if (component < 0 || component >= GIB_COMP_COUNT)
-        return "unknown";
-    return ref_component_names[component];
+    for (int c = 0; c < 3; c++) {
+        double delta = (double)v[c] - mean[c];
+        mean[c] += delta / n;
+        m2[c] += delta * ((double)v[c] - mean[c]);
+    }
 }
 
-int gib_component_parse(const char *name)
+static void ref_row_task(void *ctx, int y)
 {
-    for (int i = 0; name && i < GIB_COMP_COUNT; i++)
-        if (strcmp(name, ref_component_names[i]) == 0)
-            return i;
-    return -1;
-}
-
-static double ref_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-typedef struct ref_job {
-    const ref_world *w;
-    const gib_camera *cam;
-    const gib_ref_params *p;
-    float *out, *sd;        /* sd may be NULL */
-    double *row_sum;        /* per row: sum over pixels and channels of the pixel mean */
-    double *row_var;        /* per row: sum over pixels and channels of variance / spp */
-    long long *row_rays;
-    atomic_int next_row;
-    atomic_int rows_done;
-    atomic_llong rays_done; /* for progress only */
-} ref_job;
-
-static void ref_render_row(ref_job *j, int y)
-{
-    const gib_ref_params *p = j->p;
-    const int W = p->width, H = p->height;
+    ref_run *r = ctx;
+    const ref_ctx *c = &r->c;
+    const int W = c->p.width, H = c->p.height;
+    const int aux = c->p.component >= GIB_COMP_ALBEDO;
     long long rays = 0;
-    double sum = 0.0, var_sum = 0.0;
     for (int x = 0; x < W; x++) {
         size_t pix = (size_t)y * (size_t)W + (size_t)x;
         float o[3], d[3];
         /* Pixel centres only, no jitter: the GL techniques rasterise there without anti-aliasing,
          * so both sides see the same surface point and the error measures light transport, not
          * aliasing. */
-        gib_camera_ray(j->cam, W, H, (float)x + 0.5f, (float)y + 0.5f, o, d);
+        gib_camera_ray(c->cam, W, H, (float)x + 0.5f, (float)y + 0.5f, o, d);
         ++rays;
-        double mean[3] = {0.0, 0.0, 0.0}, m2[3] = {0.0, 0.0, 0.0};
         ref_hit h;
-        if (ref_trace(j->w, o, d, &h) && !h.back) {
-            float wo[3] = {-d[0], -d[1], -d[2]};
+        if (!ref_trace(c->w, o, d, &h) || (h.back && !aux))
+            continue; /* a miss, or the back of a one-sided surface: 0, exactly */
+        ref_hit_differentials(c->w, c->cam, W, H, x, y, &h);
+        ref_albedo(c->w, &h, h.kd); /* trilinear once per pixel, not once per sample */
+        h.has_kd = 1;
+        const float wo[3] = {-d[0], -d[1], -d[2]};
+        for (int s = r->s0; s < r->s1; s++) {
             ref_pcg32 rng;
-            ref_pcg32_seed_pixel(&rng, pix, p->seed, p->component);
-            for (int s = 1; s <= p->spp; s++) {
-                float v[3];
-                if (p->component == GIB_COMP_DIRECT) {
-                    ref_est_direct(j->w, &h, wo, v, &rays);
-                } else {
-                    v[0] = v[1] = v[2] = ref_est_ao(j->w, &h, p->dmax, &rng, &rays);
-                }
-                for (int c = 0; c < 3; c++) { /* Welford: stable for any spp */
-                    double delta = (double)v[c] - mean[c];
-                    mean[c] += delta / s;
-                    m2[c] += delta * ((double)v[c] - mean[c]);
-                }
-            }
-        } /* a miss, or the back of a one-sided surface: 0 in every component, exactly */
-        for (int c = 0; c < 3; c++) {
-            /* Sample variance (n - 1); with one sample it is unknown and reported as 0. */
-            double var = p->spp > 1 ? m2[c] / (p->spp - 1) : 0.0;
-            j->out[pix * 3 + c] = (float)mean[c];
-            if (j->sd)
-                j->sd[pix * 3 + c] = (float)sqrt(var / p->spp);
-            sum += mean[c];
-            var_sum += var / p->spp;
+            ref_pcg32_seed_sample(&rng, pix, (uint64_t)s, c->p.seed, c->p.component);
+            float v[3];
+            ref_sample_camera(c, &h, wo, &rng, v, &rays);
+            ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s + 1, v);
         }
     }
-    j->row_sum[y] = sum;
-    j->row_var[y] = var_sum;
-    j->row_rays[y] = rays;
+    atomic_fetch_add(&r->prog->rays, rays);
+    atomic_fetch_add(&r->prog->units, (long long)W * (r->s1 - r->s0));
 }
 
-static void *ref_worker(void *arg)
+static void ref_chunk_task(void *ctx, int task)
 {
-    ref_job *j = arg;
-#if defined(__x86_64__) || defined(__i386__)
-    /* Flush denormals to zero, as Embree recommends for speed; every worker sets the same mode,
-     * so results stay independent of the thread count. */
-    unsigned csr = _mm_getcsr();
-    _mm_setcsr(csr | 0x8040);
-#endif
-    for (;;) {
-        int y = atomic_fetch_add(&j->next_row, 1);
-        if (y >= j->p->height)
-            break;
-        ref_render_row(j, y);
-        atomic_fetch_add(&j->rays_done, j->row_rays[y]);
-        atomic_fetch_add(&j->rows_done, 1);
+    ref_run *r = ctx;
+    const ref_ctx *c = &r->c;
+    int pass = r->g0 + task / r->chunks, chunk = task % r->chunks;
+    long long n = ref_light_particles(c), first = (long long)chunk * REF_LIGHT_CHUNK;
+    int count = (int)(n - first < REF_LIGHT_CHUNK ? n - first : REF_LIGHT_CHUNK);
+    long long rays = 0;
+    ref_splats *out = &r->splats[task];
+    out->n = 0;
+    ref_light_chunk(c, (uint64_t)pass, (uint32_t)chunk, count, out, &rays);
+    atomic_fetch_add(&r->prog->rays, rays);
+    atomic_fetch_add(&r->prog->units, (long long)count);
+}
+
+/* Each pixel takes its pass values in pass order; pass images are cleared for the next group. */
+static void ref_pass_rows_task(void *ctx, int y)
+{
+    ref_run *r = ctx;
+    const int W = r->c.p.width;
+    const size_t npx = (size_t)W * (size_t)r->c.p.height;
+    for (int x = 0; x < W; x++) {
+        size_t pix = (size_t)y * (size_t)W + (size_t)x;
+        for (int g = 0; g < r->gn; g++) {
+            double *img = r->pass_img + ((size_t)g * npx + pix) * 3;
+            float v[3] = {(float)img[0], (float)img[1], (float)img[2]};
+            if (v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f || r->lm[pix * 3] != 0.0 ||
+                r->lm[pix * 3 + 1] != 0.0 || r->lm[pix * 3 + 2] != 0.0)
+                ref_welford(&r->lm[pix * 3], &r->lm2[pix * 3], r->g0 + g + 1, v);
+            img[0] = img[1] = img[2] = 0.0;
+        }
     }
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_setcsr(csr); /* the caller's thread may run this too: give its FP mode back */
-#endif
-    return NULL;
 }
 
-static void ref_progress(ref_job *j, double t0)
+static int ref_light_round(ref_run *r, int nthreads)
 {
-    int rows = atomic_load(&j->rows_done);
-    long long rays = atomic_load(&j->rays_done);
-    double el = ref_now() - t0;
-    double rate = el > 0.0 ? (double)rays / el : 0.0;
-    char left[32] = "?";
-    if (rows > 0)
-        snprintf(left, sizeof left, "%.0f", el * (double)(j->p->height - rows) / rows);
-    fprintf(stderr, "\rreference %s: %d/%d rows, %.2f Mrays/s, %s s left   ",
-            gib_component_name(j->p->component), rows, j->p->height, rate * 1e-6, left);
-    fflush(stderr);
+    const ref_ctx *c = &r->c;
+    const size_t npx = (size_t)c->p.width * (size_t)c->p.height;
+    for (int g0 = r->s0; g0 < r->s1; g0 += r->group) {
+        r->g0 = g0;
+        r->gn = r->s1 - g0 < r->group ? r->s1 - g0 : r->group;
+        ref_parallel(nthreads, r->gn * r->chunks, ref_chunk_task, r, r->prog);
+        for (int t = 0; t < r->gn * r->chunks; t++) { /* chunk order: deterministic sums */
+            const ref_splats *sp = &r->splats[t];
+            if (sp->oom)
+                return -1;
+            double *img = r->pass_img + (size_t)(t / r->chunks) * npx * 3;
+            for (size_t i = 0; i < sp->n; i++)
+                for (int k = 0; k < 3; k++)
+                    img[(size_t)sp->s[i].pix * 3 + k] += sp->s[i].v[k];
+        }
+        ref_parallel(nthreads, c->p.height, ref_pass_rows_task, r, r->prog);
+    }
+    return 0;
 }
 
-static int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error *err)
+int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error *err)
 {
     if (!scene || !p)
         return gib_fail(err, "reference: no scene or no parameters");
     if (p->component < 0 || p->component >= GIB_COMP_COUNT)
-        return gib_fail(err, "reference: unknown component %d (expected ao or direct)",
-                        p->component);
+        return gib_fail(err, "reference: unknown component %d", p->component);
     if (p->width < 1 || p->height < 1 || p->width > REF_MAX_SIZE || p->height > REF_MAX_SIZE)
         return gib_fail(err, "reference: image size %dx%d out of range (1 to %d)", p->width,
                         p->height, REF_MAX_SIZE);
     if (p->spp < 1)
         return gib_fail(err, "reference: spp must be at least 1, got %d", p->spp);
+    gib_ref_params q;
+    gib_reference_normalize(scene, p, &q);
+    if (p->spp < 2 && !ref_deterministic(scene, q.component, q.max_depth))
+        return gib_fail(err,
+                        "reference: component %s samples at random: spp must be at least 2 (with "
+                        "one sample the variance, hence the standard error, is unknown)",
+                        gib_component_name(p->component));
     if (p->threads < 0)
         return gib_fail(err, "reference: threads must be >= 0 (0 = all cores), got %d",
                         p->threads);
     if (isnan(p->dmax))
         return gib_fail(err, "reference: dmax is NaN");
+    if (p->obscurance && p->component == GIB_COMP_AO && !(p->dmax > 0.0f && isfinite(p->dmax)))
+        return gib_fail(err, "reference: obscurance needs a finite dmax > 0 (rho(d) = d / dmax)");
+    if (p->max_depth < 0 || p->min_depth < 0 || p->max_specular < 0 || p->max_spp < 0)
+        return gib_fail(err, "reference: max_depth, min_depth, max_specular and max_spp must be "
+                             ">= 0 (0 = default)");
+    if (!(p->target_noise >= 0.0) || !isfinite(p->target_noise))
+        return gib_fail(err, "reference: target_noise must be >= 0, got %g", p->target_noise);
+    if (p->target_noise > 0.0 && p->max_spp > 0 && p->max_spp < p->spp)
+        return gib_fail(err, "reference: max_spp %d is below spp %d", p->max_spp, p->spp);
     if (p->camera < 0 || (uint32_t)p->camera >= scene->camera_count || !scene->cameras)
         return gib_fail(err, "reference: scene '%s' has %u camera(s), camera %d asked for",
                         scene->name, scene->camera_count, p->camera);
@@ -174,95 +177,162 @@ static int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib
 static int ref_thread_count(const gib_ref_params *p)
 {
     long n = p->threads > 0 ? p->threads : sysconf(_SC_NPROCESSORS_ONLN);
-    if (n < 1)
-        n = 1;
-    if (n > REF_MAX_THREADS)
-        n = REF_MAX_THREADS;
-    if (n > p->height)
-        n = p->height;
-    return (int)n;
+    return n < 1 ? 1 : n > REF_MAX_THREADS ? REF_MAX_THREADS : (int)n;
 }
 
-int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_image *out,
-                         gib_image *stderr_img, gib_ref_stats *stats, gib_error *err)
+/* Image mean and noise RMSE over pixels and channels, in pixel order. */
+static void ref_summary(const ref_run *r, int n, double *mean, double *noise)
 {
-    if (ref_check_params(scene, p, err) < 0)
+    const size_t m = (size_t)r->c.p.width * (size_t)r->c.p.height * 3;
+    double sum = 0.0, var = 0.0;
+    for (size_t i = 0; i < m; i++) {
+        sum += r->cm[i] + (r->lm ? r->lm[i] : 0.0);
+        if (n > 1)
+            var += (r->cm2[i] + (r->lm2 ? r->lm2[i] : 0.0)) / (n - 1) / n;
+    }
+    *mean = sum / (double)m;
+    *noise = sqrt(var / (double)m);
+}
+
+/* The next round's total spp: the noise falls as 1/sqrt(spp), aim 10% past the target, grow at
+ * most 4x per round (a noisy early estimate cannot overshoot far), never past max_spp. */
+static int ref_next_goal(int n, double rel, double target, int max_spp)
+{
+    double need = ceil((double)n * (rel / target) * (rel / target) * 1.1);
+    if (!(need <= 4.0 * n))
+        need = 4.0 * n;
+    if (need > max_spp)
+        need = max_spp;
+    return need > n ? (int)need : n + 1;
+}
+
+static int ref_run_alloc(ref_run *r, gib_error *err)
+{
+    const size_t m = (size_t)r->c.p.width * (size_t)r->c.p.height * 3;
+    r->cm = gib_calloc(m, sizeof *r->cm, err);
+    r->cm2 = r->cm ? gib_calloc(m, sizeof *r->cm2, err) : NULL;
+    if (!r->cm2)
         return -1;
+    if (!r->c.light_part)
+        return 0;
+    long long n = ref_light_particles(&r->c);
+    r->chunks = (int)((n + REF_LIGHT_CHUNK - 1) / REF_LIGHT_CHUNK);
+    int group = (int)(REF_GROUP_PIXELS / (m / 3));
+    group = group < 1 ? 1 : group;
+    int passes = r->c.p.target_noise > 0.0 ? r->c.p.max_spp : r->c.p.spp;
+    group = group < passes ? group : passes;
+    r->group = group;
+    r->lm = gib_calloc(m, sizeof *r->lm, err);
+    r->lm2 = r->lm ? gib_calloc(m, sizeof *r->lm2, err) : NULL;
+    r->pass_img = r->lm2 ? gib_calloc((size_t)group * m, sizeof *r->pass_img, err) : NULL;
+    r->splats = r->pass_img ? gib_calloc((size_t)group * r->chunks, sizeof *r->splats, err) : NULL;
+    return r->splats ? 0 : -1;
+}
+
+static void ref_run_free(ref_run *r)
+{
+    if (r->splats)
+        for (size_t i = 0; i < (size_t)r->group * r->chunks; i++)
+            free(r->splats[i].s);
+    free(r->splats);
+    free(r->pass_img);
+    free(r->lm2);
+    free(r->lm);
+    free(r->cm2);
+    free(r->cm);
+}
+
+static void ref_ctx_init(ref_ctx *c, const ref_world *w, const gib_scene *scene,
+                         const gib_ref_params *p)
+{
+    memset(c, 0, sizeof *c);
+    c->w = w;
+    c->cam = &scene->cameras[p->camera];
+    gib_reference_normalize(scene, p, &c->p);
+    gib_camera_basis(c->cam, c->right, c->up, c->fwd);
+    c->tan_half = tanf(0.5f * c->cam->vfov_deg * (REF_PI / 180.0f));
+    c->aspect = (float)p->width / (float)p->height;
+    int comp = c->p.component;
+    c->light_part = w->has_mirror && (comp == GIB_COMP_CAUSTIC ||
+                                      ((comp == GIB_COMP_FULL || comp == GIB_COMP_HIGHER) &&
+                                       c->p.max_depth >= 2));
+    c->camera_part = comp != GIB_COMP_CAUSTIC || w->has_specular;
+}
+
+int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_params *p,
+                     gib_image *out, gib_image *stderr_img, gib_ref_stats *stats, gib_error *err)
+{
     double t0 = ref_now();
     memset(out, 0, sizeof *out);
     if (stderr_img)
         memset(stderr_img, 0, sizeof *stderr_img);
-
-    ref_world w;
-    if (ref_world_build(&w, scene, err) < 0)
-        return gib_error_prefix(err, "reference");
-
-    ref_job *j = gib_calloc(1, sizeof *j, err);
-    double *rows = gib_calloc(2 * (size_t)p->height, sizeof *rows, err);
-    long long *row_rays = gib_calloc((size_t)p->height, sizeof *row_rays, err);
-    pthread_t *tid = NULL;
-    int nthreads = ref_thread_count(p), started = 0, rc = -1;
-    if (!j || !rows || !row_rays)
+    ref_run r;
+    memset(&r, 0, sizeof r);
+    ref_ctx_init(&r.c, w, scene, p);
+    const gib_ref_params *np = &r.c.p;
+    const int W = np->width, H = np->height, nthreads = ref_thread_count(p);
+    ref_progress prog;
+    memset(&prog, 0, sizeof prog);
+    prog.enabled = !p->quiet;
+    prog.tty = isatty(STDERR_FILENO);
+    prog.what = gib_component_name(np->component);
+    prog.t0 = t0;
+    prog.units_per_spp = (r.c.camera_part ? (long long)W * H : 0) +
+                         (r.c.light_part ? ref_light_particles(&r.c) : 0);
+    prog.target = np->target_noise;
+    prog.noise_rel = -1.0;
+    atomic_init(&prog.units, 0);
+    atomic_init(&prog.rays, 0);
+    r.prog = &prog;
+    int rc = -1, n = 0, goal = np->spp, rounds = 0, reached = 0;
+    double mean = 0.0, noise = 0.0;
+    if (ref_run_alloc(&r, err) < 0)
         goto done;
-    tid = gib_calloc((size_t)nthreads, sizeof *tid, err);
-    if (!tid)
-        goto done;
-    if (gib_image_alloc(out, p->width, p->height, 3, err) < 0)
-        goto done;
-    if (stderr_img && gib_image_alloc(stderr_img, p->width, p->height, 3, err) < 0)
+    if (gib_image_alloc(out, W, H, 3, err) < 0 ||
+        (stderr_img && gib_image_alloc(stderr_img, W, H, 3, err) < 0))
         goto done;
 
-    j->w = &w;
-    j->cam = &scene->cameras[p->camera];
-    j->p = p;
-    j->out = out->px;
-    j->sd = stderr_img ? stderr_img->px : NULL;
-    j->row_sum = rows;
-    j->row_var = rows + p->height;
-    j->row_rays = row_rays;
-    atomic_init(&j->next_row, 0);
-    atomic_init(&j->rows_done, 0);
-    atomic_init(&j->rays_done, 0);
-
-    for (int i = 0; i < nthreads; i++) {
-        if (pthread_create(&tid[i], NULL, ref_worker, j) != 0)
-            break; /* fewer threads is slower, not wrong */
-        started++;
-    }
-    if (started == 0)
-        ref_worker(j);
-
-    int progress = !p->quiet && isatty(STDERR_FILENO), printed = 0;
-    if (progress && started > 0) {
-        double last = ref_now(); /* first line after 0.25 s: short renders stay silent */
-        while (atomic_load(&j->rows_done) < p->height) {
-            struct timespec nap = {0, 20 * 1000 * 1000};
-            nanosleep(&nap, NULL);
-            double now = ref_now();
-            if (now - last >= 0.25) {
-                ref_progress(j, t0);
-                printed = 1;
-                last = now;
-            }
+    for (;;) {
+        r.s0 = n;
+        r.s1 = goal;
+        prog.round = ++rounds;
+        prog.spp_goal = goal;
+        prog.units_target = (long long)goal * prog.units_per_spp;
+        if (r.c.camera_part)
+            ref_parallel(nthreads, H, ref_row_task, &r, &prog);
+        if (r.c.light_part && ref_light_round(&r, nthreads) < 0) {
+            gib_fail(err, "reference: out of memory for light-tracing splats");
+            goto done;
         }
+        n = goal;
+        ref_summary(&r, n, &mean, &noise);
+        double rel = mean > 0.0 ? noise / mean : (noise > 0.0 ? INFINITY : 0.0);
+        ref_progress_round(&prog, n, rel);
+        if (!(np->target_noise > 0.0))
+            break;
+        reached = rel <= np->target_noise;
+        if (reached || n >= np->max_spp)
+            break;
+        goal = ref_next_goal(n, rel, np->target_noise, np->max_spp);
     }
-    for (int i = 0; i < started; i++)
-        pthread_join(tid[i], NULL);
-    if (printed) /* leave the line clean for the caller's own log line */
-        fprintf(stderr, "\r%78s\r", "");
+    ref_progress_end(&prog);
 
-    double sum = 0.0, var = 0.0;
-    long long rays = 0;
-    for (int y = 0; y < p->height; y++) { /* row order: the same sums for any thread count */
-        sum += j->row_sum[y];
-        var += j->row_var[y];
-        rays += j->row_rays[y];
+    for (size_t i = 0; i < (size_t)W * H * 3; i++) {
+        double v = r.cm[i] + (r.lm ? r.lm[i] : 0.0);
+        double var = n > 1 ? (r.cm2[i] + (r.lm2 ? r.lm2[i] : 0.0)) / (n - 1) : 0.0;
+        out->px[i] = (float)v;
+        if (stderr_img)
+            stderr_img->px[i] = (float)sqrt(var / n);
     }
-    double n = 3.0 * (double)p->width * (double)p->height;
     if (stats) {
-        stats->mean = sum / n;
-        stats->noise_rmse = sqrt(var / n);
-        stats->rays = rays;
+        memset(stats, 0, sizeof *stats);
+        stats->mean = mean;
+        stats->noise_rmse = noise;
+        stats->rays = atomic_load(&prog.rays);
+        stats->spp = n;
+        stats->rounds = rounds;
+        stats->target_reached = np->target_noise > 0.0 ? reached : 0;
+        stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
         stats->seconds = ref_now() - t0;
     }
     rc = 0;
@@ -273,55 +343,22 @@ done:
         if (stderr_img)
             gib_image_free(stderr_img);
     }
-    free(tid);
-    free(row_rays);
-    free(rows);
-    free(j);
-    ref_world_free(&w);
+    ref_run_free(&r);
     return rc;
 }
 
-/* ---- EXR header attributes ---- */
-
-static int ref_attr(gib_kv *attrs, int max, int *n, const char *key, const char *fmt, ...)
-    __attribute__((format(printf, 5, 6)));
-
-static int ref_attr(gib_kv *attrs, int max, int *n, const char *key, const char *fmt, ...)
+int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_image *out,
+                         gib_image *stderr_img, gib_ref_stats *stats, gib_error *err)
 {
-    if (*n >= max)
+    if (ref_check_params(scene, p, err) < 0)
         return -1;
-    gib_kv *kv = &attrs[*n];
-    snprintf(kv->key, sizeof kv->key, "%s", key);
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(kv->value, sizeof kv->value, fmt, ap);
-    va_end(ap);
-    ++*n;
-    return 0;
-}
-
-int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
-                        gib_kv *attrs, int max_attrs)
-{
-    int n = 0;
-    char hex[17];
-    gib_hash_hex(scene ? scene->content_hash : 0, hex);
-    /* dmax <= 0 and dmax = inf give the same image, so they are written alike. */
-    int unbounded = !(p->dmax > 0.0f) || isinf(p->dmax);
-    ref_attr(attrs, max_attrs, &n, "component", "%s", gib_component_name(p->component));
-    ref_attr(attrs, max_attrs, &n, "spp", "%d", p->spp);
-    ref_attr(attrs, max_attrs, &n, "seconds", "%.3f", s ? s->seconds : 0.0);
-    ref_attr(attrs, max_attrs, &n, "scene_hash", "%s", hex);
-    ref_attr(attrs, max_attrs, &n, "renderer_version", "%s", GIB_REFERENCE_VERSION);
-    ref_attr(attrs, max_attrs, &n, "noise_rmse", "%.9g", s ? s->noise_rmse : 0.0);
-    ref_attr(attrs, max_attrs, &n, "mean", "%.9g", s ? s->mean : 0.0);
-    ref_attr(attrs, max_attrs, &n, "width", "%d", p->width);
-    ref_attr(attrs, max_attrs, &n, "height", "%d", p->height);
-    if (unbounded)
-        ref_attr(attrs, max_attrs, &n, "dmax", "%s", "inf");
-    else
-        ref_attr(attrs, max_attrs, &n, "dmax", "%.9g", (double)p->dmax);
-    ref_attr(attrs, max_attrs, &n, "seed", "%llu", (unsigned long long)p->seed);
-    ref_attr(attrs, max_attrs, &n, "camera", "%d", p->camera);
-    return n;
+    double t0 = ref_now();
+    ref_world w;
+    if (ref_world_build(&w, scene, err) < 0)
+        return gib_error_prefix(err, "reference");
+    int rc = ref_render_world(&w, scene, p, out, stderr_img, stats, err);
+    ref_world_free(&w);
+    if (rc == 0 && stats)
+        stats->seconds = ref_now() - t0; /* the BVH build included */
+    return rc;
 }

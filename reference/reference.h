@@ -25,11 +25,14 @@
  * by neither camera paths with next-event estimation nor light tracing; `full` and `higher` miss
  * them, and say so in the EXR header (`missing`). Up to max_depth 2 no nonzero class is missed.
  *
- * Pixel footprint: every component but `caustic` estimates the radiance through the pixel
- * CENTRE (the GL techniques rasterise there). `caustic`, and the mirror-first part of `full` and
- * `higher`, come from light tracing, which splats into the pixel a point projects to and so
- * averages over the pixel's area (a delta light seen through a delta lobe cannot be found from
- * the camera). On smooth images the two agree; at edges they differ by the pixel's variation.
+ * Strategies and pixel footprint: every path class is estimated by camera paths with next-event
+ * estimation at the pixel CENTRE (the GL techniques rasterise there), except the classes whose
+ * vertex next to the light is a MIRROR: a delta light seen through a delta lobe cannot be found
+ * from the camera, so those come from light tracing (particles from the light, splatted into the
+ * pixel a point projects to), which averages over the pixel's AREA. That split is the same in
+ * every component (caustic: Phong-first paths from the camera, mirror-first paths by light
+ * tracing; full and higher alike), so the components add up exactly, footprints included. On
+ * smooth images the two footprints agree; at edges they differ by the pixel's variation.
  *
  * Determinism: each sample's generator is seeded from (pixel or light pass, sample index, seed,
  * component), and each pixel's statistics are accumulated in sample order, so the same build,
@@ -77,7 +80,7 @@ int gib_component_deterministic(const gib_scene *scene, int component);
 typedef struct gib_ref_params {
     int component;        /* enum gib_component */
     int width, height;
-    int spp;              /* samples per pixel (caustic: light passes of width*height particles);
+    int spp;              /* samples per pixel (and light-tracing passes of width*height particles);
                            * with target_noise, the first round's count. Random estimators need
                            * at least 2: with one sample the variance is unknown. */
     float dmax;           /* ao: hits farther than this do not occlude; <= 0 or INFINITY = unbounded */

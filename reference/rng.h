@@ -1,9 +1,11 @@
 /* gibench — the reference renderer's random numbers: PCG32 (O'Neill 2014, pcg32_random_r) seeded
- * per pixel from a hash of (pixel index, seed, component).
+ * per SAMPLE from a hash of (stream, sample index, seed, component); a stream is a pixel, or a
+ * chunk of a light-tracing pass.
  *
- * Why per pixel: DESIGN.md, "Reference renderer" asks for a rerun to give the same image bit for
- * bit. Each pixel owns its generator and draws its samples in a fixed order, so which thread
- * renders which row cannot change a single bit. */
+ * Why per sample: DESIGN.md, "Reference renderer" asks for a rerun to give the same image bit for
+ * bit. Each sample owns its generator, so which thread renders which row cannot change a single
+ * bit, and sample N is the same number whether it is drawn in one go or in a later round of a
+ * --target-noise run. */
 #ifndef GIB_REF_RNG_H
 #define GIB_REF_RNG_H
 
@@ -42,11 +44,15 @@ static inline void ref_pcg32_seed(ref_pcg32 *r, uint64_t initstate, uint64_t ini
     (void)ref_pcg32_next(r);
 }
 
-/* The generator of one pixel: state and stream both come from the hash, so two pixels (or two
- * seeds, or two components) share neither a sequence nor a shifted copy of one. */
-static inline void ref_pcg32_seed_pixel(ref_pcg32 *r, uint64_t pixel, uint64_t seed, int component)
+/* The generator of one sample: state and stream both come from the hash, so two samples (or
+ * pixels, seeds, components) share neither a sequence nor a shifted copy of one. Camera samples
+ * use stream = pixel index; light passes use stream = REF_LIGHT_STREAM | chunk, sample = pass. */
+#define REF_LIGHT_STREAM (1ull << 63)
+static inline void ref_pcg32_seed_sample(ref_pcg32 *r, uint64_t stream, uint64_t sample,
+                                         uint64_t seed, int component)
 {
-    uint64_t h = ref_mix64(ref_mix64(ref_mix64(seed) ^ pixel) ^ (uint64_t)(uint32_t)component);
+    uint64_t h = ref_mix64(ref_mix64(ref_mix64(seed) ^ stream) ^ (uint64_t)(uint32_t)component);
+    h = ref_mix64(h ^ (sample * 0x9e3779b97f4a7c15ull));
     ref_pcg32_seed(r, h, ref_mix64(h ^ 0x2545f4914f6cdd1dull));
 }
 

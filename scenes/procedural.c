@@ -1,81 +1,225 @@
-/* gibench — scenes built in C: the Cornell box from its published measurements, a plane with a box
- * on it, and a closed room to put scanned models in.
+/* gibench — scenes built in C: the generators' keys and their checks, and three generators: the
+ * Cornell box from its published measurements, a plane with a box on it, and a closed room to put
+ * scanned models in. The others live in proc_shapes.c (quad, box, slivers, sphere_interior) and
+ * proc_hairball.c.
  *
  * Every flat face gets its own vertices carrying the face's geometric normal, so the shading normal
  * equals the geometric normal and the GL side and the path tracer cannot disagree about it. All
  * materials are Lambertian and two-sided: the faces are single-sided quads (walls without
  * thickness), and a technique that culls or flips by winding must not change what they reflect. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "../harness/base/hash.h"
 #include "scene_internal.h"
 
-static const char *const generator_names[] = {"cornell_box", "plane_box", "room"};
+/* ------------------------------------------------------------------ keys and generators */
 
-int gib_procedural_known(const char *name)
+#define K(k) (1u << (k))
+
+/* Each key's own rules, checked by the parser (scene_file.c) with the key's line. */
+static const gib_proc_key_info key_info[GIB_PK_COUNT] = {
+    [GIB_PK_SIZE] = {"size", 2, 3, 0, 0.0, 1e30},
+    [GIB_PK_RADIUS] = {"radius", 1, 1, 0, 0.0, 1e30},
+    [GIB_PK_THICKNESS] = {"thickness", 1, 1, 0, 0.0, 1e30},
+    [GIB_PK_TUBES] = {"tubes", 1, 1, 1, 1.0, 1e6},
+    [GIB_PK_SEGMENTS] = {"segments", 1, 1, 1, 1.0, 1e6},
+    [GIB_PK_SIDES] = {"sides", 1, 1, 1, 3.0, 64.0},
+    [GIB_PK_SEED] = {"seed", 1, 1, 1, 0.0, 4294967295.0},
+    [GIB_PK_SUBDIVISIONS] = {"subdivisions", 1, 1, 1, 0.0, 7.0},
+};
+
+/* The generators, the keys each takes, and how many numbers its `size` has. */
+static const struct generator {
+    const char *name;
+    unsigned keys;
+    int size_n;
+} generators[] = {
+    {"cornell_box", 0, 0},
+    {"plane_box", 0, 0},
+    {"room", K(GIB_PK_SIZE), 3},
+    {"box", K(GIB_PK_SIZE), 3},
+    {"quad", K(GIB_PK_SIZE), 2},
+    {"slivers", K(GIB_PK_SIZE) | K(GIB_PK_SEGMENTS), 2},
+    {"sphere_interior", K(GIB_PK_RADIUS) | K(GIB_PK_SUBDIVISIONS), 0},
+    {"hairball", K(GIB_PK_RADIUS) | K(GIB_PK_THICKNESS) | K(GIB_PK_TUBES) | K(GIB_PK_SEGMENTS) |
+                     K(GIB_PK_SIDES) | K(GIB_PK_SEED),
+     0},
+};
+#define NGEN (sizeof generators / sizeof generators[0])
+
+/* Hairball and slivers sizes are capped so that a typo cannot ask for gigabytes. */
+#define MAX_GENERATED_TRIANGLES (1u << 24)
+
+int gib_proc_key_find(const char *name)
 {
-    for (size_t i = 0; i < sizeof generator_names / sizeof generator_names[0]; i++)
-        if (strcmp(name, generator_names[i]) == 0)
-            return 1;
+    for (int k = 0; k < GIB_PK_COUNT; k++)
+        if (strcmp(name, key_info[k].name) == 0)
+            return k;
+    return -1;
+}
+
+const gib_proc_key_info *gib_proc_key_get(int key)
+{
+    return key >= 0 && key < GIB_PK_COUNT ? &key_info[key] : NULL;
+}
+
+int gib_proc_key_parse(gib_proc_params *p, const char *name, const char *value, int line,
+                       char *msg, size_t msg_len)
+{
+    const int k = gib_proc_key_find(name);
+    if (k < 0) {
+        snprintf(msg, msg_len, "'%s' is not a generator key", name);
+        return -1;
+    }
+    const gib_proc_key_info *ki = &key_info[k];
+    double v[3];
+    int n = 0, ok = 1;
+    const char *s = value;
+    for (;;) {
+        while (*s == ' ' || *s == '\t' || *s == ',')
+            s++;
+        if (!*s)
+            break;
+        char *end;
+        double d = strtod(s, &end);
+        if (end == s || !isfinite(d) || (*end && *end != ' ' && *end != '\t' && *end != ',')) {
+            ok = 0;
+            break;
+        }
+        if (n < 3)
+            v[n] = d;
+        n++;
+        s = end;
+    }
+    if (!ok || n < ki->min_n || n > ki->max_n) {
+        if (ki->min_n == ki->max_n)
+            snprintf(msg, msg_len, "'%s' expects %d number%s, got '%s'", name, ki->min_n,
+                     ki->min_n == 1 ? "" : "s", value);
+        else
+            snprintf(msg, msg_len, "'%s' expects %d or %d numbers, got '%s'", name, ki->min_n,
+                     ki->max_n, value);
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        if (ki->whole ? !(v[i] == floor(v[i]) && v[i] >= ki->lo && v[i] <= ki->hi)
+                      : !(v[i] > ki->lo && v[i] <= ki->hi)) {
+            if (ki->whole)
+                snprintf(msg, msg_len, "'%s' must be a whole number from %.0f to %.0f, got '%s'",
+                         name, ki->lo, ki->hi, value);
+            else
+                snprintf(msg, msg_len, "'%s' must be %s, got '%s'", name,
+                         n > 1 ? "positive numbers" : "a positive number", value);
+            return -1;
+        }
+        p->v[k][i] = v[i];
+    }
+    p->set |= K(k);
+    p->count[k] = n;
+    p->line[k] = line;
     return 0;
 }
 
-int gib_procedural_takes_size(const char *name)
+double gib_proc_get(const gib_proc_params *p, int key, int i, double dflt)
 {
-    return strcmp(name, "room") == 0;
+    return p && (p->set & K(key)) && i < p->count[key] ? p->v[key][i] : dflt;
+}
+
+static const struct generator *find_generator(const char *name)
+{
+    for (size_t i = 0; i < NGEN; i++)
+        if (strcmp(name, generators[i].name) == 0)
+            return &generators[i];
+    return NULL;
+}
+
+int gib_procedural_known(const char *name)
+{
+    return find_generator(name) != NULL;
 }
 
 const char *gib_procedural_names(void)
 {
-    return "cornell_box, plane_box, room";
+    return "cornell_box, plane_box, room, box, quad, slivers, sphere_interior, hairball";
 }
 
-/* Geometric normal of triangle (a, b, c), right-handed (counter-clockwise seen from the front). */
-static void tri_normal(const float a[3], const float b[3], const float c[3], float n[3])
+/* "room, box" : the generators that take key k. */
+static void takers(int k, char *out, size_t n)
 {
-    const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    const float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    n[0] /= len;
-    n[1] /= len;
-    n[2] /= len;
+    size_t used = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < NGEN; i++)
+        if (generators[i].keys & K(k)) {
+            int w = snprintf(out + used, n - used, "%s%s", used ? ", " : "", generators[i].name);
+            if (w < 0 || (size_t)w >= n - used)
+                break;
+            used += (size_t)w;
+        }
 }
 
-/* Adds quad q (4 corners in order around the face, any winding) as two triangles (0,1,2) and
- * (0,2,3), each with its own three vertices and face normal. The winding is chosen so the normal
- * points toward `toward` when facing = +1, away from it when facing = -1. Quad texture
- * coordinates are the unit square, for techniques that want some. */
-static void add_quad(gib_geom *g, float q[4][3], const float toward[3], int facing,
-                     uint32_t material)
+int gib_procedural_check(const char *name, const gib_proc_params *p, int *key, char *msg,
+                         size_t msg_len)
 {
-    float n[3];
-    tri_normal(q[0], q[1], q[2], n);
-    const float centre[3] = {(q[0][0] + q[1][0] + q[2][0] + q[3][0]) * 0.25f,
-                             (q[0][1] + q[1][1] + q[2][1] + q[3][1]) * 0.25f,
-                             (q[0][2] + q[1][2] + q[2][2] + q[3][2]) * 0.25f};
-    const float d = n[0] * (toward[0] - centre[0]) + n[1] * (toward[1] - centre[1]) +
-                    n[2] * (toward[2] - centre[2]);
-    if ((d > 0.0f) != (facing > 0)) { /* reverse the winding: swap corners 1 and 3 */
-        for (int k = 0; k < 3; k++) {
-            float t = q[1][k];
-            q[1][k] = q[3][k];
-            q[3][k] = t;
+    const struct generator *gen = find_generator(name);
+    *key = -1;
+    if (!gen) {
+        snprintf(msg, msg_len, "unknown procedural generator '%s' (known: %s)", name,
+                 gib_procedural_names());
+        return -1;
+    }
+    for (int k = 0; k < GIB_PK_COUNT; k++) {
+        if (!(p->set & K(k)) || (gen->keys & K(k)))
+            continue;
+        char who[160];
+        takers(k, who, sizeof who);
+        *key = k;
+        snprintf(msg, msg_len, "'%s' applies only to 'procedural = %s', not to '%s'",
+                 key_info[k].name, who, name);
+        return -1;
+    }
+    if ((p->set & K(GIB_PK_SIZE)) && p->count[GIB_PK_SIZE] != gen->size_n) {
+        *key = GIB_PK_SIZE;
+        snprintf(msg, msg_len, "'size' of a %s takes %d numbers (%s), got %d", name, gen->size_n,
+                 gen->size_n == 3 ? "width height depth" : "width depth", p->count[GIB_PK_SIZE]);
+        return -1;
+    }
+    if (strcmp(name, "hairball") == 0) {
+        const double r = gib_proc_get(p, GIB_PK_RADIUS, 0, GIB_HAIRBALL_RADIUS);
+        const double t = gib_proc_get(p, GIB_PK_THICKNESS, 0, GIB_HAIRBALL_THICKNESS * r);
+        const double tris = gib_proc_get(p, GIB_PK_TUBES, 0, GIB_HAIRBALL_TUBES) *
+                            gib_proc_get(p, GIB_PK_SEGMENTS, 0, GIB_HAIRBALL_SEGMENTS) *
+                            gib_proc_get(p, GIB_PK_SIDES, 0, GIB_HAIRBALL_SIDES) * 2.0;
+        if (!(t < 0.25 * r)) {
+            *key = (p->set & K(GIB_PK_THICKNESS)) ? GIB_PK_THICKNESS : GIB_PK_RADIUS;
+            snprintf(msg, msg_len,
+                     "hairball: 'thickness' (a tube's radius, %g) must be less than a quarter "
+                     "of 'radius' (the ball's, %g)",
+                     t, r);
+            return -1;
+        }
+        if (tris > MAX_GENERATED_TRIANGLES) {
+            *key = (p->set & K(GIB_PK_TUBES))      ? GIB_PK_TUBES
+                   : (p->set & K(GIB_PK_SEGMENTS)) ? GIB_PK_SEGMENTS
+                                                   : GIB_PK_SIDES;
+            snprintf(msg, msg_len,
+                     "hairball: tubes x segments x sides x 2 = %.0f triangles, more than the "
+                     "%u allowed",
+                     tris, MAX_GENERATED_TRIANGLES);
+            return -1;
         }
     }
-    static const float quv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    static const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-    for (int t = 0; t < 2; t++) {
-        const float *a = q[tri[t][0]], *b = q[tri[t][1]], *c = q[tri[t][2]];
-        tri_normal(a, b, c, n);
-        uint32_t i0 = gib_geom_vertex(g, a, n, quv[tri[t][0]]);
-        uint32_t i1 = gib_geom_vertex(g, b, n, quv[tri[t][1]]);
-        uint32_t i2 = gib_geom_vertex(g, c, n, quv[tri[t][2]]);
-        gib_geom_triangle(g, i0, i1, i2, material);
+    if (strcmp(name, "slivers") == 0 && (p->set & K(GIB_PK_SEGMENTS))) {
+        const double n = p->v[GIB_PK_SEGMENTS][0];
+        if (n < 2 || 2 * n > MAX_GENERATED_TRIANGLES) {
+            *key = GIB_PK_SEGMENTS;
+            snprintf(msg, msg_len, "slivers: 'segments' must be from 2 to %u, got %.0f",
+                     MAX_GENERATED_TRIANGLES / 2, n);
+            return -1;
+        }
     }
+    return 0;
 }
 
 /* The Cornell box, from "Cornell Box data", Cornell University Program of Computer Graphics
@@ -143,37 +287,11 @@ static int build_cornell(gib_geom *g, gib_error *err)
                 q[k][c] = cornell_quads[i][k][c] * 0.001f; /* mm -> m */
         uint32_t m = (uint32_t)(i == 3 ? mg : i == 4 ? mr : mw);
         if (i < 5)
-            add_quad(g, q, room_centre, +1, m);
+            gib_geom_add_quad(g, q, room_centre, +1, m);
         else
-            add_quad(g, q, i < 10 ? short_centre : tall_centre, -1, m);
+            gib_geom_add_quad(g, q, i < 10 ? short_centre : tall_centre, -1, m);
     }
     return 0;
-}
-
-/* An axis-aligned box [lo, hi]; faces point outward (inward = 0) or inward (inward = 1). Face
- * order: -x, +x, -y, +y, -z, +z; skip_mask bit i leaves face i out; mats[i] is face i's
- * material. */
-static void add_box(gib_geom *g, const float lo[3], const float hi[3], int inward,
-                    unsigned skip_mask, const uint32_t mats[6])
-{
-    const float centre[3] = {(lo[0] + hi[0]) * 0.5f, (lo[1] + hi[1]) * 0.5f,
-                             (lo[2] + hi[2]) * 0.5f};
-    for (int f = 0; f < 6; f++) {
-        if (skip_mask & (1u << f))
-            continue;
-        const int axis = f / 2;
-        const float v = (f & 1) ? hi[axis] : lo[axis];
-        const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-        float q[4][3];
-        const float su[4] = {lo[u], hi[u], hi[u], lo[u]};
-        const float sw[4] = {lo[w], lo[w], hi[w], hi[w]};
-        for (int k = 0; k < 4; k++) {
-            q[k][axis] = v;
-            q[k][u] = su[k];
-            q[k][w] = sw[k];
-        }
-        add_quad(g, q, centre, inward ? +1 : -1, mats[f]);
-    }
 }
 
 /* An 8 m x 8 m ground plane at y = 0 centred on the origin, and a 1 m cube standing on it at the
@@ -189,11 +307,11 @@ static int build_plane_box(gib_geom *g, gib_error *err)
         return -1;
     float q[4][3] = {{-4, 0, -4}, {4, 0, -4}, {4, 0, 4}, {-4, 0, 4}};
     const float above[3] = {0, 1, 0};
-    add_quad(g, q, above, +1, (uint32_t)mg);
+    gib_geom_add_quad(g, q, above, +1, (uint32_t)mg);
     const float lo[3] = {-0.5f, 0.0f, -0.5f}, hi[3] = {0.5f, 1.0f, 0.5f};
     const uint32_t mats[6] = {(uint32_t)mb, (uint32_t)mb, (uint32_t)mb,
                               (uint32_t)mb, (uint32_t)mb, (uint32_t)mb};
-    add_box(g, lo, hi, 0, 1u << 2 /* no -y face */, mats);
+    gib_geom_add_box(g, lo, hi, 0, 1u << 2 /* no -y face */, mats);
     return 0;
 }
 
@@ -202,15 +320,9 @@ static int build_plane_box(gib_geom *g, gib_error *err)
  * grey) so that a scene file can colour single walls. */
 static int build_room(gib_geom *g, const gib_proc_params *p, gib_error *err)
 {
-    float size[3] = {4.0f, 3.0f, 4.0f};
-    if (p && p->has_size)
-        memcpy(size, p->size, sizeof size);
+    float size[3];
     for (int i = 0; i < 3; i++)
-        if (!(size[i] > 0.0f) || !isfinite(size[i]))
-            return gib_fail(err,
-                            "room: 'size' must be three positive numbers (width height "
-                            "depth), got %g %g %g",
-                            size[0], size[1], size[2]);
+        size[i] = (float)gib_proc_get(p, GIB_PK_SIZE, i, i == 1 ? 3.0 : 4.0);
     static const char *names[6] = {"room_wall_xneg", "room_wall_xpos", "room_floor",
                                    "room_ceiling",   "room_wall_zneg", "room_wall_zpos"};
     uint32_t mats[6];
@@ -225,7 +337,7 @@ static int build_room(gib_geom *g, const gib_proc_params *p, gib_error *err)
         return -1;
     const float lo[3] = {-0.5f * size[0], 0.0f, -0.5f * size[2]};
     const float hi[3] = {0.5f * size[0], size[1], 0.5f * size[2]};
-    add_box(g, lo, hi, 1, 0, mats);
+    gib_geom_add_box(g, lo, hi, 1, 0, mats);
     return 0;
 }
 
@@ -234,15 +346,32 @@ int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *o
 {
     *hash = gib_hash_str(*hash, "procedural");
     *hash = gib_hash_str(*hash, name);
-    if (p && p->has_size)
-        for (int i = 0; i < 3; i++)
-            *hash = gib_hash_f32(*hash, p->size[i]);
+    /* `size` hashes as it always did (three floats), so the room scenes keep their hashes. */
+    for (int k = 0; k < GIB_PK_COUNT && p; k++) {
+        if (!(p->set & K(k)))
+            continue;
+        if (k != GIB_PK_SIZE)
+            *hash = gib_hash_str(*hash, key_info[k].name);
+        for (int i = 0; i < p->count[k]; i++)
+            *hash = k == GIB_PK_SIZE ? gib_hash_f32(*hash, (float)p->v[k][i])
+                                     : gib_hash_bytes(*hash, &p->v[k][i], sizeof(double));
+    }
     if (strcmp(name, "cornell_box") == 0)
         return build_cornell(out, err);
     if (strcmp(name, "plane_box") == 0)
         return build_plane_box(out, err);
     if (strcmp(name, "room") == 0)
         return build_room(out, p, err);
+    if (strcmp(name, "box") == 0)
+        return gib_gen_box(out, p, err);
+    if (strcmp(name, "quad") == 0)
+        return gib_gen_quad(out, p, err);
+    if (strcmp(name, "slivers") == 0)
+        return gib_gen_slivers(out, p, err);
+    if (strcmp(name, "sphere_interior") == 0)
+        return gib_gen_sphere_interior(out, p, err);
+    if (strcmp(name, "hairball") == 0)
+        return gib_gen_hairball(out, p, err);
     return gib_fail(err, "unknown procedural generator '%s' (known: %s)", name,
                     gib_procedural_names());
 }

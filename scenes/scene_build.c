@@ -299,9 +299,9 @@ static unsigned room_encloses(const gib_scene_spec *s)
         const gib_mesh_spec *m = &s->meshes[i];
         if (strcmp(m->procedural, "room") != 0)
             continue;
-        const float w = m->params.has_size ? m->params.size[0] : 4.0f;
-        const float h = m->params.has_size ? m->params.size[1] : 3.0f;
-        const float d = m->params.has_size ? m->params.size[2] : 4.0f;
+        const float w = (float)gib_proc_get(&m->params, GIB_PK_SIZE, 0, 4.0);
+        const float h = (float)gib_proc_get(&m->params, GIB_PK_SIZE, 1, 3.0);
+        const float d = (float)gib_proc_get(&m->params, GIB_PK_SIZE, 2, 4.0);
         int inside = 1;
         for (int k = 0; k < s->camera_count + s->light_count && inside; k++) {
             const float *p;

@@ -42,11 +42,21 @@ int gib_scene_validate(gib_scene_spec *s, gib_error *err)
                                      "mesh '%s': unknown procedural generator "
                                      "'%s' (known: %s)",
                                      m->name, m->procedural, gib_procedural_names());
-        if (m->params.has_size && !(m->procedural[0] && gib_procedural_takes_size(m->procedural)))
-            return gib_scene_fail_at(s, m->size_line, err,
-                                     "mesh '%s': 'size' applies only to "
-                                     "'procedural = room'",
-                                     m->name);
+        if (m->params.set) {
+            char msg[768];
+            int key = -1;
+            if (!m->procedural[0]) {
+                for (key = 0; !(m->params.set & (1u << key)); key++)
+                    ;
+                snprintf(msg, sizeof msg, "'%s' applies only to procedural meshes, not to 'file'",
+                         gib_proc_key_get(key)->name);
+                return gib_scene_fail_at(s, m->params.line[key], err, "mesh '%s': %s", m->name,
+                                         msg);
+            }
+            if (gib_procedural_check(m->procedural, &m->params, &key, msg, sizeof msg))
+                return gib_scene_fail_at(s, key >= 0 ? m->params.line[key] : m->procedural_line,
+                                         err, "mesh '%s': %s", m->name, msg);
+        }
     }
     if (s->mesh_count == 0)
         return gib_scene_fail_at(s, s->scene_line, err, "the scene has no [mesh.NAME] section");

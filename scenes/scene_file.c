@@ -23,8 +23,11 @@
 enum section_kind { SEC_NONE, SEC_SCENE, SEC_MESH, SEC_MATERIAL, SEC_LIGHT, SEC_CAMERA };
 
 static const char *const scene_keys[] = {"description", "exposure", "data", "closed", NULL};
+/* The first 7 are the mesh's own; the rest are generator keys (gib_proc_key_parse). */
 static const char *const mesh_keys[] = {
-    "file", "procedural", "scale", "rotate", "translate", "material", "size", "smooth_angle", NULL};
+    "file",     "procedural", "scale", "rotate", "translate", "material", "smooth_angle",
+    "size",     "radius",     "thickness", "tubes", "segments",  "sides",    "seed",
+    "subdivisions", NULL};
 static const char *const material_keys[] = {"albedo",    "specular", "phong_n", "mirror",
                                             "two_sided", NULL}; /* order = GIB_MS_* bits */
 static const char *const light_keys[] = {"type",      "position", "direction",   "target",
@@ -408,18 +411,14 @@ static int handler(void *user, const char *section, const char *name, const char
             m->material_line = c->lineno;
             break;
         case 6:
-            rc = FLOATS(m->params.size, 3, 3, NULL);
-            m->params.has_size = 1;
-            m->size_line = c->lineno;
-            if (!rc && !(m->params.size[0] > 0 && m->params.size[1] > 0 && m->params.size[2] > 0))
-                rc = ctx_fail(c, "%s: 'size' must be three positive numbers, got '%s'", label,
-                              value);
-            break;
-        default:
             rc = FLOATS(&m->smooth_angle_deg, 1, 1, NULL);
             if (!rc && !(m->smooth_angle_deg >= 0.0f && m->smooth_angle_deg <= 180.0f))
                 rc = ctx_fail(c, "%s: 'smooth_angle' must be 0..180 degrees, got '%s'", label,
                               value);
+            break;
+        default:
+            if (gib_proc_key_parse(&m->params, name, value, c->lineno, msg, sizeof msg))
+                rc = ctx_fail(c, "%s: %s", label, msg);
             break;
         }
         break;

@@ -5,7 +5,8 @@
  * Loading runs in stages, each in its own file:
  *   scene_file.c   the .scene text (INI via libinih) -> gib_scene_spec, file:line for every key
  *   scene_check.c  whole-file checks of the spec; is the shared data there?
- *   procedural.c   generators built in C (cornell_box, plane_box, room) -> gib_geom
+ *   procedural.c   generators built in C: their keys and checks, cornell_box, plane_box, room
+ *   proc_shapes.c  quad, box, slivers, sphere_interior; proc_hairball.c: hairball
  *   mesh_import.c  mesh files through assimp (OBJ+MTL, PLY, gzipped PLY) -> gib_geom
  *   scene_build.c  spec + geometry -> the flattened gib_scene (materials, ranges, hash, features)
  *   textures.c     texture files -> linear float RGBA, cached per file
@@ -62,21 +63,83 @@ gib_mat_desc gib_mat_desc_diffuse(const char *name, float r, float g, float b);
 
 /* ---------------------------------------------------------------- procedural generators */
 
+/* Keys a [mesh.NAME] section gives to a procedural generator (FORMAT.md says which generator takes
+ * which). The parser checks each key's own rules (how many numbers, whole or not, range); the
+ * generator's rules (which keys it takes, limits on combinations) are gib_procedural_check's. */
+enum gib_proc_key {
+    GIB_PK_SIZE,         /* room, box: w h d; quad, slivers: w d */
+    GIB_PK_RADIUS,       /* hairball: radius of the ball; sphere_interior: of the sphere */
+    GIB_PK_THICKNESS,    /* hairball: radius of one tube */
+    GIB_PK_TUBES,        /* hairball: number of tubes */
+    GIB_PK_SEGMENTS,     /* hairball: segments per tube; slivers: fan triangles */
+    GIB_PK_SIDES,        /* hairball: sides of a tube's cross-section */
+    GIB_PK_SEED,         /* hairball: random seed */
+    GIB_PK_SUBDIVISIONS, /* sphere_interior: icosahedron subdivision levels */
+    GIB_PK_COUNT
+};
+
 typedef struct gib_proc_params {
-    int has_size;
-    float size[3];                 /* room: width (x), height (y), depth (z) */
+    unsigned set;                  /* bit k: key k was given */
+    int line[GIB_PK_COUNT];        /* the line that gave it */
+    int count[GIB_PK_COUNT];       /* how many numbers it gave */
+    double v[GIB_PK_COUNT][3];
 } gib_proc_params;
+
+typedef struct gib_proc_key_info {
+    const char *name;
+    int min_n, max_n;              /* how many numbers */
+    int whole;                     /* 1: whole numbers in [lo, hi]; 0: numbers in (lo, hi] */
+    double lo, hi;
+} gib_proc_key_info;
+
+/* Parses generator key `name` = `value` (given on `line`) into p, checking the key's own rules.
+ * 0, or -1 with a message ("'sides' must be a whole number from 3 to 64, got '2'"). */
+int gib_proc_key_parse(gib_proc_params *p, const char *name, const char *value, int line,
+                       char *msg, size_t msg_len);
+/* The key called `name` (enum gib_proc_key), or -1. */
+int gib_proc_key_find(const char *name);
+const gib_proc_key_info *gib_proc_key_get(int key);
+/* Component i of key k when given, else dflt. */
+double gib_proc_get(const gib_proc_params *p, int key, int i, double dflt);
+
+/* The hairball's defaults (FORMAT.md); thickness is a fraction of the radius. */
+#define GIB_HAIRBALL_RADIUS 1.0
+#define GIB_HAIRBALL_THICKNESS 0.01
+#define GIB_HAIRBALL_TUBES 1200
+#define GIB_HAIRBALL_SEGMENTS 20
+#define GIB_HAIRBALL_SIDES 6
+#define GIB_HAIRBALL_SEED 1
 
 /* 1 if `name` is a known generator. */
 int gib_procedural_known(const char *name);
-/* 1 if the generator takes `size`. */
-int gib_procedural_takes_size(const char *name);
 /* The comma-separated list of generator names, for error messages. */
 const char *gib_procedural_names(void);
+/* The generator's own rules on its keys. Returns 0, or -1 with a message in msg and in *key the
+ * key whose line the message is about (-1: the `procedural` line). */
+int gib_procedural_check(const char *name, const gib_proc_params *p, int *key, char *msg,
+                         size_t msg_len);
 /* Builds the generator's triangles and materials into out (appending), and hashes its name and
- * parameters into *hash. */
+ * parameters into *hash. Parameters must have passed gib_procedural_check. */
 int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *out,
                          uint64_t *hash, gib_error *err);
+
+/* The generators, one file each beside procedural.c (they append to g; p as checked). */
+int gib_gen_quad(gib_geom *g, const gib_proc_params *p, gib_error *err);
+int gib_gen_box(gib_geom *g, const gib_proc_params *p, gib_error *err);
+int gib_gen_slivers(gib_geom *g, const gib_proc_params *p, gib_error *err);
+int gib_gen_sphere_interior(gib_geom *g, const gib_proc_params *p, gib_error *err);
+int gib_gen_hairball(gib_geom *g, const gib_proc_params *p, gib_error *err);
+
+/* Building blocks for flat faces (geom.c): each triangle gets its own vertices carrying its
+ * geometric normal. add_quad: corners in order around the face, any winding; the normal is made
+ * to point toward `toward` (facing = +1) or away from it (-1); uvs are the unit square.
+ * add_box: axis-aligned [lo, hi], faces outward (inward = 0) or inward; face order -x, +x, -y,
+ * +y, -z, +z; skip_mask bit f leaves face f out; mats[f] is face f's material. Room for the
+ * vertices and triangles must have been reserved (6 and 2 per face). */
+void gib_geom_add_quad(gib_geom *g, float q[4][3], const float toward[3], int facing,
+                       uint32_t material);
+void gib_geom_add_box(gib_geom *g, const float lo[3], const float hi[3], int inward,
+                      unsigned skip_mask, const uint32_t mats[6]);
 
 /* ---------------------------------------------------------------- mesh files */
 
@@ -140,8 +203,7 @@ typedef struct gib_mesh_spec {
     float scale[3], rotate_deg[3], translate[3];
     char material[128];            /* "" when the mesh keeps its own materials */
     int material_line;
-    gib_proc_params params;
-    int size_line;
+    gib_proc_params params;        /* generator keys (size, radius, tubes, ...) with lines */
     float smooth_angle_deg;
 } gib_mesh_spec;
 

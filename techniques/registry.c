@@ -10,11 +10,13 @@
 extern const gib_technique gib_technique_direct;
 extern const gib_technique gib_technique_hbao;
 extern const gib_technique gib_technique_ldm_ao;
+extern const gib_technique gib_technique_ldm_indirect;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
     &gib_technique_hbao,
     &gib_technique_ldm_ao,
+    &gib_technique_ldm_indirect,
 };
 
 const gib_technique *const *gib_techniques(int *count)

@@ -52,7 +52,11 @@ typedef struct gib_view {
     const gib_camera *camera;
     int width, height;
     float time;           /* seconds, for animated scenes */
-    float view[16], proj[16], view_proj[16]; /* column-major, GL conventions */
+    /* Column-major, GL conventions, RELATIVE to `origin` (the camera's eye): shaders transform
+     * p - origin, a subtraction that is exact near the camera, so a scene far from the world origin
+     * keeps its precision (hard case `hard_far`: 1e5 m away, where view_proj * p loses the depth). */
+    float view[16], proj[16], view_proj[16];
+    float origin[3];
 } gib_view;
 
 /* One RGBA32F colour texture per output component (in the order of the component bits), bound to

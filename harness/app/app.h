@@ -13,6 +13,7 @@ int gib_cmd_render(int argc, char **argv);
 int gib_cmd_reference(int argc, char **argv);
 int gib_cmd_compare(int argc, char **argv);
 int gib_cmd_run(int argc, char **argv);
+int gib_cmd_bench(int argc, char **argv);
 
 /* "256x256" → w, h; errors name the option. */
 int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *err);
@@ -33,19 +34,34 @@ typedef struct gib_ref_request {
     int component;       /* enum gib_component */
     int spp;
     float dmax;          /* ao */
+    /* The component's other parameters (reference.h, gib_ref_params); 0 = the renderer's
+     * default, so a request that does not name them keeps working. */
+    int obscurance;      /* ao: Zhukov's obscurance with the technique's dmax */
+    int max_depth;       /* full, higher */
+    int min_depth;       /* full, higher: Russian roulette from this depth */
+    int max_specular;    /* caustic, higher */
+    double target_noise; /* > 0: sample until noise_rmse / mean <= this ... */
+    int max_spp;         /* ... or this many samples per pixel */
     const char *cache_dir;
     int force;           /* render even when a valid entry exists */
+    int quiet;           /* no progress output */
 } gib_ref_request;
 
 typedef struct gib_ref_result {
     gib_image image;
-    int spp;
+    int spp;             /* samples per pixel actually taken */
     double noise_rmse, seconds;
     int from_cache;
     char path[1024];
 } gib_ref_result;
 
 int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err);
+
+/* Sets the reference parameters that a technique's own parameters decide, so the reference models
+ * what the technique estimates: `dmax` (unbounded when the technique has none) and `obscurance`. */
+void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p);
+/* The renderer parameters of a request (seed 1, all cores). */
+gib_ref_params gib_ref_request_params(const gib_ref_request *rq);
 
 /* Scores a technique image against a reference and writes the images: DIR/NAME.exr, NAME.png
  * (preview at the scene's exposure) and NAME_error.png. */

@@ -196,13 +196,12 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         const gib_image *img = &res->images[i++];
         const char *comp = gib_output_name(bit);
         int component = gib_component_parse(comp);
-        int dmax_i = gib_param_index(t, "dmax");
         gib_ref_request rq = {.scene = scene, .camera = ctx->m->camera, .width = mr->width,
                               .height = mr->height, .component = component,
                               .spp = component >= 0 && ctx->m->ref_spp[component]
                                          ? ctx->m->ref_spp[component] : 64,
-                              .dmax = dmax_i >= 0 ? (float)mr->params.values[dmax_i] : INFINITY,
                               .cache_dir = ctx->cache};
+        gib_ref_request_match(&rq, t, &mr->params);
         gib_ref_result ref;
         if (component < 0 || gib_reference_get(&rq, &ref, &err) < 0) {
             row_set(&r, C_STATUS, "reference_failed");

@@ -11,9 +11,10 @@ static const char usage[] =
     "\n"
     "  list                         techniques with parameters and defaults, scenes with features\n"
     "  render    --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
-    "  reference --scene S --component C --spp N --size WxH --out F.exr\n"
+    "  reference --scene S --component C --spp N --size WxH (--out F.exr | --cache DIR)\n"
     "  compare   REF.exr TEST.exr [--exposure E] [--json] [--map F.png] [--fail ...]\n"
     "  run       MATRIX [--profile quick|paper] [--out DIR]\n"
+    "  bench     reference [--scene S] [--size WxH] [--out F.csv]   ray throughput\n"
     "\n"
     "Scene data (Crytek Sponza, Sibenik, ...) is found through $GIBENCH_SCENES\n"
     "(default ../shared/scenes beside the project); the procedural scenes need none.\n";
@@ -36,6 +37,8 @@ int main(int argc, char **argv)
         return gib_cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "run"))
         return gib_cmd_run(argc - 1, argv + 1);
+    if (!strcmp(cmd, "bench"))
+        return gib_cmd_bench(argc - 1, argv + 1);
     fprintf(stderr, "gibench: unknown command '%s'\n\n%s", cmd, usage);
     return 2;
 }

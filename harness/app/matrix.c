@@ -107,14 +107,20 @@ static const raw_value *lookup(const parse_state *s, const char *profile_section
 }
 
 static const char *const matrix_keys[] = {"description", "scenes", "techniques", "sizes", "camera",
-                                          "frames", "warmup", "ref_spp_ao", "ref_spp_direct", NULL};
+                                          "frames", "warmup", NULL};
+
+/* ref_spp_<component>: samples per pixel of that component's reference. */
+static int ref_spp_component(const char *k)
+{
+    return strncmp(k, "ref_spp_", 8) ? -1 : gib_component_parse(k + 8);
+}
 
 static int known_matrix_key(const char *k)
 {
     for (int i = 0; matrix_keys[i]; i++)
         if (!strcmp(matrix_keys[i], k))
             return 1;
-    return 0;
+    return ref_spp_component(k) >= 0;
 }
 
 int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_error *err)
@@ -177,11 +183,16 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
     const raw_value *v;
     m->frames = 5;
     m->warmup = 2;
-    struct { const char *key; int *dst; long min, max; } ints[] = {
-        {"camera", &m->camera, 0, 64}, {"frames", &m->frames, 1, 256}, {"warmup", &m->warmup, 0, 100},
-        {"ref_spp_ao", &m->ref_spp[GIB_COMP_AO], 1, 1 << 24},
-        {"ref_spp_direct", &m->ref_spp[GIB_COMP_DIRECT], 1, 1 << 24}};
-    for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++) {
+    struct { char key[48]; int *dst; long min, max; } ints[4 + GIB_MATRIX_MAX_COMPONENTS] = {
+        {"camera", &m->camera, 0, 64}, {"frames", &m->frames, 1, 256}, {"warmup", &m->warmup, 0, 100}};
+    size_t nints = 3;
+    for (int c = 0; c < GIB_COMP_COUNT && c < GIB_MATRIX_MAX_COMPONENTS; c++, nints++) {
+        snprintf(ints[nints].key, sizeof ints[nints].key, "ref_spp_%s", gib_component_name(c));
+        ints[nints].dst = &m->ref_spp[c];
+        ints[nints].min = 1;
+        ints[nints].max = 1 << 24;
+    }
+    for (size_t i = 0; i < nints; i++) {
         if (!(v = lookup(&s, psec, ints[i].key)))
             continue;
         long x;

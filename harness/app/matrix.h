@@ -8,7 +8,7 @@
  *   camera = 0
  *   frames = 10            ; timed frames per run
  *   warmup = 3
- *   ref_spp_direct = 4     ; reference samples per pixel, per component
+ *   ref_spp_direct = 4     ; reference samples per pixel, per component (ref_spp_<component>)
  *   ref_spp_ao = 256
  *   [params.direct]        ; comma-separated lists; the cross product is run
  *   shadow_res = 512, 1024
@@ -24,6 +24,7 @@
 #include "../../techniques/technique.h"
 
 #define GIB_MATRIX_MAX_LIST 32
+#define GIB_MATRIX_MAX_COMPONENTS 16
 
 typedef struct gib_matrix_run {
     char scene[64];
@@ -39,7 +40,7 @@ typedef struct gib_matrix {
     char profile[32];
     char description[512];
     int camera, frames, warmup;
-    int ref_spp[8];         /* by enum gib_component; 0 = not set */
+    int ref_spp[GIB_MATRIX_MAX_COMPONENTS]; /* by enum gib_component; 0 = not set */
     gib_matrix_run *runs;
     int run_count;
 } gib_matrix;

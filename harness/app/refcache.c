@@ -1,9 +1,11 @@
 /* gibench — the reference cache (DESIGN.md, "Reference renderer").
  *
- * An entry is an EXR named by a hash of everything that changes the image: the scene's content hash
- * (scene file, meshes, textures), the camera, size, component, its parameters, spp and the renderer
- * version. Its header repeats those facts; an entry whose header does not match its key, or that
- * cannot be read, is rendered again and overwritten, never used. */
+ * An entry is an EXR named by gib_reference_cache_key(): a hash of everything that changes the
+ * image — the scene's content hash (scene file, meshes, textures), the camera, size, component and
+ * all its parameters (normalised, so that equal images share a key), spp or the target noise, seed
+ * and the renderer version. Its header repeats those facts; an entry that cannot be read, whose
+ * header's key, renderer version, scene hash, component or size do not match the request, or that
+ * holds NaN or Inf, is rendered again and overwritten, never used. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,25 +15,25 @@
 #include "../base/hash.h"
 #include "app.h"
 
-static uint64_t request_key(const gib_ref_request *rq)
+gib_ref_params gib_ref_request_params(const gib_ref_request *rq)
 {
-    const gib_camera *c = &rq->scene->cameras[rq->camera];
-    uint64_t h = gib_hash_str(GIB_HASH_INIT, GIB_REFERENCE_VERSION);
-    h = gib_hash_u64(h, rq->scene->content_hash);
-    h = gib_hash_bytes(h, c->eye, sizeof c->eye);
-    h = gib_hash_bytes(h, c->target, sizeof c->target);
-    h = gib_hash_bytes(h, c->up, sizeof c->up);
-    h = gib_hash_f32(h, c->vfov_deg);
-    h = gib_hash_u64(h, (uint64_t)rq->width << 32 | (uint64_t)rq->height);
-    h = gib_hash_u64(h, (uint64_t)rq->component);
-    h = gib_hash_u64(h, (uint64_t)rq->spp);
-    /* dmax <= 0 and infinity both mean unbounded: one key for the one image. */
-    if (rq->component == GIB_COMP_AO)
-        h = gib_hash_f32(h, rq->dmax > 0 && isfinite(rq->dmax) ? rq->dmax : INFINITY);
-    return h;
+    gib_ref_params p = {.component = rq->component, .width = rq->width, .height = rq->height,
+                        .spp = rq->spp, .dmax = rq->dmax, .obscurance = rq->obscurance,
+                        .max_depth = rq->max_depth, .min_depth = rq->min_depth,
+                        .max_specular = rq->max_specular, .target_noise = rq->target_noise,
+                        .max_spp = rq->max_spp, .seed = 1, .threads = 0, .camera = rq->camera,
+                        .quiet = rq->quiet};
+    return p;
 }
 
-static int entry_valid(const char *path, const char *key_hex, gib_image *img, gib_ref_result *out)
+static int attr_is(const gib_kv *attrs, int n, const char *key, const char *want)
+{
+    const char *v = gib_kv_get(attrs, n, key);
+    return v && !strcmp(v, want);
+}
+
+static int entry_valid(const char *path, const gib_ref_request *rq, const char *key_hex,
+                       gib_image *img, gib_ref_result *out)
 {
     if (access(path, R_OK) != 0)
         return 0;
@@ -43,65 +45,81 @@ static int entry_valid(const char *path, const char *key_hex, gib_image *img, gi
                 path, e.msg);
         return 0;
     }
-    const char *key = gib_kv_get(attrs, n, "cache_key");
-    const char *ver = gib_kv_get(attrs, n, "renderer_version");
+    char scene_hex[17], num[32];
+    gib_hash_hex(rq->scene->content_hash, scene_hex);
     const char *noise = gib_kv_get(attrs, n, "noise_rmse");
     const char *spp = gib_kv_get(attrs, n, "spp");
     const char *secs = gib_kv_get(attrs, n, "seconds");
-    int ok = key && ver && noise && spp && !strcmp(key, key_hex) &&
-             !strcmp(ver, GIB_REFERENCE_VERSION) && gib_image_count_nonfinite(img) == 0;
-    if (ok) {
+    const char *why = NULL;
+    if (!attr_is(attrs, n, "cache_key", key_hex))
+        why = "its key";
+    else if (!attr_is(attrs, n, "renderer_version", GIB_REFERENCE_VERSION))
+        why = "the renderer version";
+    else if (!attr_is(attrs, n, "scene_hash", scene_hex))
+        why = "the scene";
+    else if (!attr_is(attrs, n, "component", gib_component_name(rq->component)))
+        why = "the component";
+    else if (snprintf(num, sizeof num, "%d", rq->width), !attr_is(attrs, n, "width", num) ||
+             img->width != rq->width || img->height != rq->height)
+        why = "the image size";
+    else if (!noise || !spp)
+        why = "its header (no noise_rmse or spp)";
+    else if (gib_image_count_nonfinite(img) != 0)
+        why = "finite pixels (it holds NaN or Inf)";
+    if (!why) {
         out->noise_rmse = strtod(noise, NULL);
         out->spp = (int)strtol(spp, NULL, 10);
         out->seconds = secs ? strtod(secs, NULL) : 0;
     } else {
-        fprintf(stderr, "gibench: reference cache entry %s does not match its key; rendering again\n",
-                path);
+        fprintf(stderr, "gibench: reference cache entry %s does not match %s; rendering again\n",
+                path, why);
         gib_image_free(img);
     }
     free(attrs);
-    return ok;
+    return !why;
 }
 
 int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err)
 {
     memset(out, 0, sizeof *out);
+    if (rq->camera < 0 || (uint32_t)rq->camera >= rq->scene->camera_count)
+        return gib_fail(err, "reference %s: camera %d of %u", rq->scene->name, rq->camera,
+                        rq->scene->camera_count);
+    gib_ref_params p = gib_ref_request_params(rq);
     char key_hex[17];
-    gib_hash_hex(request_key(rq), key_hex);
+    gib_hash_hex(gib_reference_cache_key(rq->scene, &p), key_hex);
     if (gib_mkdirs(rq->cache_dir, err) < 0)
         return -1;
     snprintf(out->path, sizeof out->path, "%s/%s_%s_%dx%d_%s.exr", rq->cache_dir, rq->scene->name,
              gib_component_name(rq->component), rq->width, rq->height, key_hex);
-    if (!rq->force && entry_valid(out->path, key_hex, &out->image, out)) {
+    if (!rq->force && entry_valid(out->path, rq, key_hex, &out->image, out)) {
         out->from_cache = 1;
         return 0;
     }
-    gib_ref_params p = {.component = rq->component, .width = rq->width, .height = rq->height,
-                        .spp = rq->spp, .dmax = rq->dmax, .seed = 1, .threads = 0,
-                        .camera = rq->camera, .quiet = 0};
     gib_ref_stats st;
-    fprintf(stderr, "gibench: rendering reference %s/%s %dx%d at %d spp\n", rq->scene->name,
-            gib_component_name(rq->component), rq->width, rq->height, rq->spp);
+    if (!rq->quiet)
+        fprintf(stderr, "gibench: rendering reference %s/%s %dx%d at %d spp%s\n", rq->scene->name,
+                gib_component_name(rq->component), rq->width, rq->height, rq->spp,
+                rq->target_noise > 0 ? " per round, toward the target noise" : "");
     if (gib_reference_render(rq->scene, &p, &out->image, NULL, &st, err) < 0)
         return gib_error_prefix(err, "reference %s/%s", rq->scene->name,
                                 gib_component_name(rq->component));
-    gib_kv attrs[32];
-    int n = gib_reference_attrs(rq->scene, &p, &st, attrs, 31);
-    snprintf(attrs[n].key, sizeof attrs[n].key, "cache_key");
-    snprintf(attrs[n].value, sizeof attrs[n].value, "%s", key_hex);
-    n++;
+    gib_kv attrs[GIB_REF_ATTR_COUNT];
+    int n = gib_reference_attrs(rq->scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
     /* Write to a temporary name and rename, so an interrupted write never leaves a valid-looking
      * entry behind. */
     char tmp[1100];
     snprintf(tmp, sizeof tmp, "%s.tmp%d", out->path, (int)getpid());
     if (gib_exr_write(tmp, &out->image, attrs, n, err) < 0 || rename(tmp, out->path) != 0) {
         unlink(tmp);
+        gib_image_free(&out->image);
         return gib_error_prefix(err, "writing reference cache entry %s", out->path);
     }
-    out->spp = rq->spp;
+    out->spp = st.spp;
     out->noise_rmse = st.noise_rmse;
     out->seconds = st.seconds;
-    fprintf(stderr, "gibench: reference done in %.1f s, noise RMSE %.3g\n", st.seconds,
-            st.noise_rmse);
+    if (!rq->quiet)
+        fprintf(stderr, "gibench: reference done in %.1f s, %d spp, noise RMSE %.3g\n", st.seconds,
+                st.spp, st.noise_rmse);
     return 0;
 }

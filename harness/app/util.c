@@ -1,5 +1,6 @@
 /* gibench — small helpers shared by the subcommands: option parsing, directories, revision. */
 #include <errno.h>
+#include <math.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -111,4 +112,12 @@ int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposur
         return -1;
     snprintf(path, sizeof path, "%s/%s_error.png", dir, name);
     return gib_png_write_error_map(path, ref, img, 0.0f, err);
+}
+
+void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p)
+{
+    int i = gib_param_index(t, "dmax");
+    rq->dmax = i >= 0 ? (float)p->values[i] : INFINITY;
+    i = gib_param_index(t, "obscurance");
+    rq->obscurance = i >= 0 ? (int)p->values[i] : 0;
 }

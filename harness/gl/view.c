@@ -66,7 +66,9 @@ void gib_view_make(const gib_scene *s, const gib_camera *cam, int w, int h, floa
     v->time = time;
     float right[3], up[3], fwd[3];
     gib_camera_basis(cam, right, up, fwd);
-    gib_mat4_view(right, up, fwd, cam->eye, v->view);
+    const float zero[3] = {0, 0, 0};
+    gib_mat4_view(right, up, fwd, zero, v->view);
+    memcpy(v->origin, cam->eye, sizeof v->origin);
     /* Far plane beyond the farthest bounding-box corner; near plane a small fraction of it (a 24-bit
      * depth buffer keeps ~1e-4 relative precision at the far plane with this ratio). */
     float far = 0;

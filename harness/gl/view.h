@@ -14,7 +14,8 @@ void gib_mat4_view(const float right[3], const float up[3], const float forward[
 void gib_mat4_perspective(float vfov_rad, float aspect, float znear, float zfar, float out[16]);
 void gib_mat4_ortho(float l, float r, float b, float t, float n, float f, float out[16]);
 
-/* Fills view->view, proj, view_proj for a scene camera; near and far planes from the scene bounds. */
+/* Fills view->view, proj, view_proj (relative to view->origin = the eye) for a scene camera; near
+ * and far planes from the scene bounds. */
 void gib_view_make(const gib_scene *scene, const gib_camera *cam, int width, int height, float time,
                    gib_view *view);
 

@@ -38,9 +38,9 @@ int gib_gbuffer_create(gib_gbuffer *g, int w, int h, gib_ledger *ledger, gib_err
 }
 
 void gib_gbuffer_render(gib_gbuffer *g, const gib_gpu_scene *scene, const gib_view *view,
-                        gib_timers *timers)
+                        gib_timers *timers, const char *pass)
 {
-    gib_timer_begin(timers, "gbuffer");
+    gib_timer_begin(timers, pass);
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     glViewport(0, 0, g->width, g->height);
     const float zero[4] = {0, 0, 0, 0};
@@ -53,6 +53,7 @@ void gib_gbuffer_render(gib_gbuffer *g, const gib_gpu_scene *scene, const gib_vi
     glDisable(GL_BLEND);
     glUseProgram(g->program);
     glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(6, 1, view->origin);
     glUniform3fv(2, 1, view->camera->eye);
     gib_gpu_scene_draw(scene);
     gib_timer_end(timers);

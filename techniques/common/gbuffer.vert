@@ -1,7 +1,8 @@
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
-layout(location = 1) uniform mat4 u_view_proj;
+layout(location = 1) uniform mat4 u_view_proj; // maps p - u_origin (camera-relative: precision)
+layout(location = 6) uniform vec3 u_origin;
 out vec3 v_position;
 out vec3 v_normal;
 out vec2 v_uv;
@@ -10,5 +11,5 @@ void main()
     v_position = a_position;
     v_normal = a_normal;
     v_uv = a_uv;
-    gl_Position = u_view_proj * vec4(a_position, 1.0);
+    gl_Position = u_view_proj * vec4(a_position - u_origin, 1.0);
 }

@@ -105,7 +105,7 @@ static const float face_dir[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0
 static const float face_up[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
 
 static void draw_face(gib_shadow_maps *sm, const gib_gpu_scene *gpu, unsigned tex, int layer,
-                      const float view_proj[16])
+                      const float view_proj[16], const float origin[3])
 {
     glNamedFramebufferTextureLayer(sm->fbo, GL_COLOR_ATTACHMENT0, tex, 0, layer);
     glBindFramebuffer(GL_FRAMEBUFFER, sm->fbo);
@@ -113,6 +113,7 @@ static void draw_face(gib_shadow_maps *sm, const gib_gpu_scene *gpu, unsigned te
     glClearBufferfv(GL_COLOR, 0, far);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     glUniformMatrix4fv(1, 1, GL_FALSE, view_proj);
+    glUniform3fv(6, 1, origin); /* view_proj is relative to origin, as in gbuffer.vert */
     gib_gpu_scene_draw(gpu);
 }
 
@@ -139,14 +140,15 @@ void gib_shadow_maps_render(gib_shadow_maps *sm, const gib_gpu_scene *gpu, gib_t
                 slot += s->lights[k].type == GIB_LIGHT_DIRECTIONAL;
             float t[3], b[3];
             ortho_basis(l->direction, t, b);
-            gib_mat4_view(t, b, l->direction, sm->ortho_origin[i], view);
+            const float zero[3] = {0, 0, 0};
+            gib_mat4_view(t, b, l->direction, zero, view);
             float e = sm->ortho_extent[i];
             gib_mat4_ortho(-e, e, -e, e, 0, 2 * e, proj);
             gib_mat4_mul(proj, view, vp);
             glUniform3fv(2, 1, sm->ortho_origin[i]);
             glUniform3fv(3, 1, l->direction);
             glUniform1i(4, 1);
-            draw_face(sm, gpu, sm->ortho_array, slot, vp);
+            draw_face(sm, gpu, sm->ortho_array, slot, vp, sm->ortho_origin[i]);
             continue;
         }
         int slot = 0;
@@ -168,9 +170,10 @@ void gib_shadow_maps_render(gib_shadow_maps *sm, const gib_gpu_scene *gpu, gib_t
             up[0] = right[1] * d[2] - right[2] * d[1];
             up[1] = right[2] * d[0] - right[0] * d[2];
             up[2] = right[0] * d[1] - right[1] * d[0];
-            gib_mat4_view(right, up, d, l->position, view);
+            const float zero[3] = {0, 0, 0};
+            gib_mat4_view(right, up, d, zero, view);
             gib_mat4_mul(proj, view, vp);
-            draw_face(sm, gpu, sm->cube_array, slot * 6 + f, vp);
+            draw_face(sm, gpu, sm->cube_array, slot * 6 + f, vp, l->position);
         }
     }
     gib_timer_end(timers);

@@ -64,7 +64,7 @@ static int direct_render(void *self, const gib_view *view, gib_timers *timers,
     if (target_count != 1)
         return gib_fail(err, "direct renders one component, was given %d targets", target_count);
     gib_shadow_maps_render(&d->shadows, d->scene, timers);
-    gib_gbuffer_render(&d->gbuffer, d->scene, view, timers);
+    gib_gbuffer_render(&d->gbuffer, d->scene, view, timers, "gbuffer");
 
     gib_timer_begin(timers, "shade");
     glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);

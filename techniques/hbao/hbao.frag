@@ -10,9 +10,13 @@
 // which with W = 1 telescopes to 1 - (1/N_d) sum (sin h - sin t).
 //
 // Angles are elevations above the plane perpendicular to the pixel's view ray V (not the image
-// plane, as in the original): every slice contains V exactly, so samples on a flat receiver lie on
-// the slice's tangent line and get h = t at any field of view. Everything is done in world space
-// (the G-buffer holds world positions): the view matrix is only needed for the slice's plane.
+// plane, as in the original): for a symmetric perspective with square pixels every screen line
+// through the pixel lies in a plane through the eye that contains V, so the slices are exact at any
+// field of view. Samples are texel-snapped and so fall slightly off their slice; each sample's
+// elevation is therefore measured from the tangent of its own slice and carried over (see below),
+// which keeps flat receivers free of self-occlusion without relying on the angle bias. All vectors
+// are in world space (the G-buffer holds world positions); the camera axes give the screen
+// directions. The uniform solid-angle weighting (no cosine) is Bavoil et al.'s definition.
 layout(binding = 0) uniform sampler2D g_position;
 layout(binding = 1) uniform sampler2D g_normal;
 layout(location = 0) uniform vec3 u_eye;
@@ -39,6 +43,13 @@ uint pcg_hash(uint v)
     uint state = v * 747796405u + 2891336453u;
     uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return (word >> 22u) ^ word;
+}
+
+// Elevation (from the plane perpendicular to V) of the surface's tangent in the slice spanned by V
+// and the unit direction u perpendicular to V. N.V > 0 (viewer-facing normal), so |t| < pi/2.
+float tangent_angle(vec3 N, vec3 V, vec3 u)
+{
+    return atan(-dot(N, u), max(dot(N, V), 1e-6));
 }
 
 void emit(float ao)
@@ -79,21 +90,12 @@ void main()
         float phi = TWO_PI * (float(i) + rotation) / float(u_dirs);
         vec2 d = vec2(cos(phi), sin(phi));
         vec3 dw = d.x * u_right + d.y * u_up; // the screen direction as a world direction
-        // Slice plane: through the eye, containing Pe and dw. Its in-slice direction u is
-        // perpendicular to V and moves the projection along +d.
-        vec3 M = cross(Pe, dw);
+        // The slice through the eye, P and the screen line contains V; u is its direction
+        // perpendicular to V that moves the projection along +d. The surface's tangent in the
+        // slice, T = cos(t) u + sin(t) V with N.T = 0, gives tan t = -(N.u) / (N.V).
         vec3 u = normalize(dw - dot(dw, V) * V);
-        vec3 T = cross(M, N); // the surface's tangent line in the slice
-        float tl = length(T);
-        if (!(tl > 1e-6 * length(M))) // surface contains the slice (seen edge-on): no hemisphere
-            continue;
-        T /= tl;
-        if (dot(T, u) < 0.0)
-            T = -T;
-        float t = asin(clamp(dot(T, V), -1.0, 1.0)) + u_bias;
-        if (t >= HALF_PI)
-            continue;
-        float sin_h = sin(t);
+        float t = tangent_angle(N, V, u);
+        float sin_h = sin(min(t + u_bias, HALF_PI));
         for (int j = 0; j < u_steps; j++) {
             // Steps in [1, r_px) pixels, snapped to texel centres: interpolating positions across
             // a depth edge would invent surfaces that are not there.
@@ -108,7 +110,18 @@ void main()
             float r2 = dot(D, D);
             if (r2 >= R2 || r2 <= 0.0)
                 continue;
-            float sin_a = dot(D, V) * inversesqrt(r2);
+            float inv_r = inversesqrt(r2);
+            float sin_a = dot(D, V) * inv_r;
+            // Snapping moves the sample off the slice (by up to half a texel, i.e. tens of
+            // degrees of azimuth for the first steps), and on an oblique receiver the tangent
+            // angle changes fast with azimuth: a sample lying on the receiver itself would rise
+            // above t. So the elevation is measured from the tangent of the sample's own slice
+            // and carried over to this slice: a = t + (a_s - t_s).
+            vec3 a_dir = D * inv_r - sin_a * V;
+            float la = length(a_dir);
+            if (la > 1e-6)
+                sin_a = sin(min(t + asin(clamp(sin_a, -1.0, 1.0)) -
+                                tangent_angle(N, V, a_dir / la), HALF_PI));
             if (sin_a > sin_h) {
                 float w = u_falloff != 0 ? 1.0 - r2 / R2 : 1.0;
                 occlusion += w * (sin_a - sin_h);

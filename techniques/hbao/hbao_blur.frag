@@ -35,7 +35,11 @@ void main()
         vec4 qp = texelFetch(g_position, q, 0);
         if (qp.w < 0.5)
             continue;
-        float dz = dot(N, qp.xyz - pos.xyz) * inv_tol;
+        // Symmetric: a receiver seen at a grazing angle has a tangent plane that nearly contains
+        // the view rays next to it, so the surface behind it would pass a one-sided test.
+        vec3 qn = texelFetch(g_normal, q, 0).xyz;
+        vec3 e = qp.xyz - pos.xyz;
+        float dz = max(abs(dot(N, e)), abs(dot(qn, e))) * inv_tol;
         float w = exp(-float(k * k) * inv_2s2 - dz * dz);
         sum += w * texelFetch(u_ao, q, 0).r;
         wsum += w;

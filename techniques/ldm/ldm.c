@@ -236,3 +236,77 @@ void ldm_destroy(ldm_set *l, gib_ledger *ledger)
     free(l->dirs);
     memset(l, 0, sizeof *l);
 }
+
+/* Same basis as ldm_basis() in ldm_common.glsl. */
+static void basis(const float *v, float t[3], float b[3])
+{
+    float up[3] = {0, 1, 0};
+    if (fabsf(v[1]) >= 0.99f) {
+        up[0] = 1;
+        up[1] = 0;
+    }
+    t[0] = up[1] * v[2] - up[2] * v[1];
+    t[1] = up[2] * v[0] - up[0] * v[2];
+    t[2] = up[0] * v[1] - up[1] * v[0];
+    float n = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    for (int k = 0; k < 3; k++)
+        t[k] /= n;
+    b[0] = v[1] * t[2] - v[2] * t[1];
+    b[1] = v[2] * t[0] - v[0] * t[2];
+    b[2] = v[0] * t[1] - v[1] * t[0];
+}
+
+int ldm_snap(const ldm_set *l, int i, const float p[3], float out[3])
+{
+    const float *v = l->dirs + 3 * i;
+    float t[3], b[3], o[3], q[3];
+    basis(v, t, b);
+    for (int k = 0; k < 3; k++) {
+        o[k] = l->center[k] - v[k] * l->radius;
+        q[k] = p[k] - o[k];
+    }
+    float x = q[0] * t[0] + q[1] * t[1] + q[2] * t[2];
+    float y = q[0] * b[0] + q[1] * b[1] + q[2] * b[2];
+    float z = q[0] * v[0] + q[1] * v[1] + q[2] * v[2];
+    float fx = (x / l->radius * 0.5f + 0.5f) * l->res, fy = (y / l->radius * 0.5f + 0.5f) * l->res;
+    if (fx < 0 || fy < 0 || fx >= l->res || fy >= l->res)
+        return 0;
+    float cx = ((floorf(fx) + 0.5f) / l->res - 0.5f) * 2.0f * l->radius;
+    float cy = ((floorf(fy) + 0.5f) / l->res - 0.5f) * 2.0f * l->radius;
+    for (int k = 0; k < 3; k++)
+        out[k] = o[k] + cx * t[k] + cy * b[k] + z * v[k];
+    return 1;
+}
+
+int ldm_probe(ldm_set *l, const float *rays, int n, float eps, float *dist, gib_ledger *ledger,
+              gib_error *err)
+{
+    const char *files[] = {"ldm/ldm_probe.comp"};
+    unsigned prog = gib_program(files, 1, NULL, err);
+    if (!prog)
+        return -1;
+    unsigned rb = gib_gpu_buffer(ledger, "ldm.probe_rays", 16ull * n, rays, 0, err);
+    unsigned hb = rb ? gib_gpu_buffer(ledger, "ldm.probe_hits", 4ull * n, NULL,
+                                      GL_DYNAMIC_STORAGE_BIT, err) : 0;
+    if (!hb) {
+        glDeleteProgram(prog);
+        return -1;
+    }
+    glUseProgram(prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, rb);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, hb);
+    glUniform1i(0, n);
+    glUniform1f(3, eps);
+    for (int p = 0; p < l->page_count; p++) {
+        ldm_bind_page(l, p);
+        glUniform1i(1, l->pages[p].first);
+        glUniform1i(2, l->pages[p].count);
+        glDispatchCompute((n + 63) / 64, 1, 1);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(hb, 0, 4 * (GLsizeiptr)n, dist);
+    gib_gpu_free(ledger, rb, 0);
+    gib_gpu_free(ledger, hb, 0);
+    glDeleteProgram(prog);
+    return gib_gl_check("ldm probe", err);
+}

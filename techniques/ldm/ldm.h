@@ -53,4 +53,11 @@ void ldm_bind_page(const ldm_set *l, int page);
 const char *ldm_status(ldm_set *l);
 void ldm_destroy(ldm_set *l, gib_ledger *ledger);
 
+/* Validation: traces n rays (4 floats each: origin xyz, w = +-(LDM index + 1) for direction +-v)
+ * through the built LDMs; dist[k] = distance to the first surface beyond eps, or -1. */
+int ldm_probe(ldm_set *l, const float *rays, int n, float eps, float *dist, gib_ledger *ledger,
+              gib_error *err);
+/* The LDM's pixel-centre snap of a point: the origin a ray from p along LDM i really starts from
+ * (same depth, lateral position moved to the centre of p's LDM pixel). Returns 0 outside the map. */
+int ldm_snap(const ldm_set *l, int i, const float p[3], float out[3]);
 #endif

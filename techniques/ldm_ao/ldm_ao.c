@@ -87,7 +87,7 @@ static int ldm_ao_render(void *self, const gib_view *view, gib_timers *timers,
     if (target_count != 1)
         return gib_fail(err, "ldm_ao renders one component, was given %d targets", target_count);
     ldm_build(&a->ldms, a->scene, timers);
-    gib_gbuffer_render(&a->gbuffer, a->scene, view, timers);
+    gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
 
     gib_timer_begin(timers, "ldm_trace");
     glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);

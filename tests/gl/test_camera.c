@@ -45,7 +45,7 @@ int main(void)
     gib_view view;
     gib_view_make(&scene, &scene.cameras[0], W, H, 0, &view);
     gib_timers_frame_begin(&timers, 0);
-    gib_gbuffer_render(&g, &gpu, &view, &timers);
+    gib_gbuffer_render(&g, &gpu, &view, &timers, "gbuffer");
     gib_timers_frame_end(&timers);
     float *pos = malloc(sizeof(float) * 4 * W * H);
     glGetTextureImage(g.position, 0, GL_RGBA, GL_FLOAT, W * H * 16, pos);

@@ -23,7 +23,18 @@
  * and 0 when c >= 1: AO = 1 - (acos(c) - c sqrt(1 - c^2)) / pi. (c = 0 gives 0.5, as above.)
  * Pixels with a >= D must be exactly 1 with zero standard error.
  *
- * Tolerances: each sample is 0 or 1, so a pixel mean is binomial. The image-wide sum of
+ * Obscurance, dmax = D = 1.5 (Zhukov's rho(d) = min(d / D, 1), d the distance to the occluder):
+ * direction d meets the wall at distance a / d.x, so with c = a / D and x = d.x uniform-on-disk as
+ * above, rho = 1 for x <= c and c / x for x > c. Integrating over the disk (chord 2 sqrt(1 - x^2)):
+ *     O = 1 - (1/pi) [ (acos c - c s) - 2 c (ln((1 + s) / c) - s) ],   s = sqrt(1 - c^2),
+ * using  integral_c^1 2 sqrt(1 - x^2) / x dx = 2 (ln((1 + s) / c) - s); and for the variance
+ *     E[rho^2] = 1 - (1/pi) [ (acos c - c s) - 2 c^2 (s / c + asin c - pi / 2) ],
+ * using  integral_c^1 2 sqrt(1 - x^2) / x^2 dx = 2 (s / c + asin c - pi / 2). c -> 0 gives 0.5 for
+ * both (every hit at the wall's foot blocks fully); c >= 1 gives exactly 1. The distance is
+ * measured from the ray origin, which the offset moves up, not toward the wall: a is exact.
+ *
+ * Tolerances: each AO sample is 0 or 1, so a pixel mean is binomial (obscurance: the analytic
+ * variance above instead). The image-wide sum of
  * (measured - expected) must lie within 3 of the renderer's own standard errors (root sum of
  * squares), each pixel within 5 of its analytic binomial standard error, and the renderer's
  * variance must match the analytic binomial variance sum to 5% (it is an average over 1024
@@ -72,10 +83,13 @@ int main(void)
     const double eps = gib_reference_ray_eps(&s);
 
     const int W = 32, H = 32, spp = 256;
-    const float dmaxes[2] = {INFINITY, 1.5f};
-    for (int k = 0; k < 2; k++) {
+    const float dmaxes[3] = {INFINITY, 1.5f, 1.5f};
+    static const char *const names[3] = {"ao dmax inf", "ao dmax 1.5", "obscurance dmax 1.5"};
+    for (int k = 0; k < 3; k++) {
         gib_ref_params p = rt_params(GIB_COMP_AO, W, H, spp);
         p.dmax = dmaxes[k];
+        p.obscurance = k == 2;
+        double var1 = 0.0; /* one sample's variance */
         gib_image img, sd;
         gib_ref_stats st;
         rt_render(&s, &p, &img, &sd, &st);
@@ -92,16 +106,28 @@ int main(void)
                     double R[4][3] = {{a, 0, z0}, {a, 0, z1}, {a, top, z1}, {a, top, z0}};
                     expect = 1.0 - rt_form_factor(R, 4);
                 } else {
-                    double c = a / dmaxes[k];
-                    expect = c >= 1.0 ? 1.0 : 1.0 - (acos(c) - c * sqrt(1.0 - c * c)) / M_PI;
+                    double c = a / dmaxes[k], sc = sqrt(fmax(0.0, 1.0 - c * c));
+                    double cap = acos(fmin(c, 1.0)) - c * sc;
+                    if (c >= 1.0) {
+                        expect = 1.0;
+                    } else if (k == 1) {
+                        expect = 1.0 - cap / M_PI;
+                    } else {
+                        expect = 1.0 - (cap - 2.0 * c * (log((1.0 + sc) / c) - sc)) / M_PI;
+                        double e2 =
+                            1.0 - (cap - 2.0 * c * c * (sc / c + asin(c) - M_PI / 2.0)) / M_PI;
+                        var1 = e2 - expect * expect;
+                    }
                 }
+                if (k != 2)
+                    var1 = expect * (1.0 - expect);
                 double got = img.px[(y * W + x) * 3], se = sd.px[(y * W + x) * 3];
                 if (expect == 1.0) {
                     exact_ones++;
                     exact_bad += got != 1.0 || se != 0.0;
                     continue;
                 }
-                double se_a = sqrt(expect * (1.0 - expect) / spp);
+                double se_a = sqrt(var1 / spp);
                 double z = fabs(got - expect) / se_a;
                 worst_z = z > worst_z ? z : worst_z;
                 dsum += got - expect;
@@ -111,26 +137,26 @@ int main(void)
                 msum += got;
                 n++;
                 if (x == W / 2 && y == H / 2)
-                    printf("dmax %-4s centre pixel: a = %.4f m, expected %.5f measured %.5f "
+                    printf("%s, centre pixel: a = %.4f m, expected %.5f measured %.5f "
                            "stderr %.5f\n",
-                           k ? "1.5" : "inf", a, expect, got, se);
+                           names[k], a, expect, got, se);
             }
         double zsum = dsum / sqrt(var_r);
         RT_CHECK(n > 100, "too few pixels with a non-trivial expected value: %d", n);
-        RT_CHECK(fabs(zsum) <= 3.0, "dmax %g: image-wide deviation %.2f standard errors (max 3)",
-                 dmaxes[k], zsum);
-        RT_CHECK(worst_z <= 5.0, "dmax %g: a pixel deviates %.2f binomial standard errors (max 5)",
-                 dmaxes[k], worst_z);
+        RT_CHECK(fabs(zsum) <= 3.0, "%s: image-wide deviation %.2f standard errors (max 3)",
+                 names[k], zsum);
+        RT_CHECK(worst_z <= 5.0, "%s: a pixel deviates %.2f analytic standard errors (max 5)",
+                 names[k], worst_z);
         RT_CHECK(fabs(var_r / var_a - 1.0) <= 0.05,
-                 "dmax %g: renderer variance %.4g vs binomial %.4g (ratio must be within 5%%)",
-                 dmaxes[k], var_r, var_a);
-        RT_CHECK(exact_bad == 0, "dmax %g: %d of %d pixels beyond dmax are not exactly 1/0",
-                 dmaxes[k], exact_bad, exact_ones);
+                 "%s: renderer variance %.4g vs analytic %.4g (ratio must be within 5%%)",
+                 names[k], var_r, var_a);
+        RT_CHECK(exact_bad == 0, "%s: %d of %d pixels beyond dmax are not exactly 1/0",
+                 names[k], exact_bad, exact_ones);
         RT_CHECK(!k || exact_ones > 50, "test geometry: only %d pixels beyond dmax", exact_ones);
-        printf("dmax %-4s %d pixels: mean expected %.6f measured %.6f, stderr of the mean %.6f "
+        printf("%s, %d pixels: mean expected %.6f measured %.6f, stderr of the mean %.6f "
                "(deviation %.2f sigma, max 3); worst pixel %.2f sigma; variance ratio %.4f; "
                "%d pixels beyond dmax exactly 1; noise_rmse %.5f\n",
-               k ? "1.5" : "inf", n, esum / n, msum / n, sqrt(var_r) / n, zsum, worst_z,
+               names[k], n, esum / n, msum / n, sqrt(var_r) / n, zsum, worst_z,
                var_r / var_a, exact_ones, st.noise_rmse);
         gib_image_free(&img);
         gib_image_free(&sd);

@@ -1,11 +1,18 @@
 /* Reference renderer, determinism (DESIGN.md, "Reference renderer": a rerun gives the same image
- * bit for bit).
+ * bit for bit) and sampling toward a target noise.
  *
- * Expected: renders with 1, 2, 3 and 7 threads give bit-identical images, standard-error images
- * and statistics (mean, noise_rmse, rays): each pixel has its own seeded generator and
- * image-wide sums are taken in row order. A different seed must change the image (else the seed
- * is ignored). The scene has an occluder with an alpha mask, so the Embree filter callbacks run
- * concurrently too. No tolerance: equality of bytes. */
+ * Expected:
+ *  - every component (the light-traced ones too) rendered with 1, 2, 3 and 7 threads gives
+ *    bit-identical images, standard-error images and statistics (mean, noise_rmse, rays): each
+ *    sample has its own seeded generator, pixels accumulate their samples in order, light-tracing
+ *    chunks are merged in chunk order, image-wide sums are taken in pixel order;
+ *  - a different seed changes a random component's image (else the seed is ignored);
+ *  - --target-noise: the rounds stop once noise_rmse / mean <= target (or at max_spp, then
+ *    target_reached = 0), and the image of a run that stopped at N samples is bit-identical to a
+ *    plain N-sample render (sample N is the same number whether drawn in round 1 or round 3).
+ * The scene has an alpha-masked occluder (Embree filter callbacks run concurrently), a Phong
+ * object and a mirror (so glossy, caustic and the light-traced part of full/higher run). No
+ * tolerance: equality of bytes, and the target inequality itself. */
 #include <string.h>
 
 #include "ref_test_util.h"
@@ -24,62 +31,123 @@ static void rt_build(gib_scene *s)
     int mc = rt_material(s, 0.3f, 0.6f, 0.9f);
     s->materials[mc].alpha_tex = rt_texture(s, 8, 8, rgba);
     s->materials[mc].two_sided = 1;
-    s->features |= GIB_FEAT_ALPHA_MASK;
+    s->materials[mc].spec_type = GIB_SPEC_PHONG;
+    s->materials[mc].specular[0] = s->materials[mc].specular[1] =
+        s->materials[mc].specular[2] = 0.3f;
+    s->materials[mc].phong_n = 8.0f;
+    s->features |= GIB_FEAT_ALPHA_MASK | GIB_FEAT_SPECULAR | GIB_FEAT_MIRROR;
     rt_floor(s, 0.4f, -1.0f, 1.0f, -1.0f, 1.0f, mc);
+    int mirror = rt_material(s, 0.1f, 0.1f, 0.1f);
+    s->materials[mirror].spec_type = GIB_SPEC_MIRROR;
+    s->materials[mirror].specular[0] = s->materials[mirror].specular[1] =
+        s->materials[mirror].specular[2] = 0.8f;
     const float a[3] = {1.5f, 0, 1.5f}, b[3] = {1.5f, 0, -1.5f}, c[3] = {1.5f, 1.5f, -1.5f},
                 d[3] = {1.5f, 1.5f, 1.5f}, n[3] = {-1, 0, 0};
-    rt_quad(s, a, b, c, d, n, m);
+    rt_quad(s, a, b, c, d, n, mirror);
     rt_point_light(s, -0.5f, 2.0f, 0.5f, 5.0f, 5.0f, 5.0f);
     const float eye[3] = {-2.5f, 2.5f, 2.5f}, tgt[3] = {0.5f, 0.0f, 0.0f}, up[3] = {0, 1, 0};
     rt_camera(s, eye, tgt, up, 55.0f);
 }
 
-int main(void)
+static int same(const gib_image *a, const gib_image *b)
 {
-    gib_scene s;
-    rt_build(&s);
+    return a->width == b->width && a->height == b->height &&
+           memcmp(a->px, b->px, (size_t)a->width * a->height * 3 * sizeof(float)) == 0;
+}
+
+static void test_threads(const gib_scene *s)
+{
     const int W = 40, H = 37; /* odd height: rows do not split evenly over the threads */
     const int threads[4] = {1, 2, 3, 7};
     for (int comp = 0; comp < GIB_COMP_COUNT; comp++) {
         gib_image base = {0}, base_sd = {0};
         gib_ref_stats base_st = {0};
-        gib_ref_params p = rt_params(comp, W, H, comp == GIB_COMP_AO ? 32 : 2);
+        gib_ref_params p = rt_params(comp, W, H, comp == GIB_COMP_AO ? 32 : 4);
         p.dmax = 1.0f;
-        size_t bytes = (size_t)W * H * 3 * sizeof(float);
+        p.max_depth = 4;
+        p.min_depth = 2; /* Russian roulette on */
+        p.max_specular = 2;
         for (int i = 0; i < 4; i++) {
             gib_image img, sd;
             gib_ref_stats st;
             p.threads = threads[i];
-            rt_render(&s, &p, &img, &sd, &st);
+            rt_render(s, &p, &img, &sd, &st);
             if (i == 0) {
                 base = img;
                 base_sd = sd;
                 base_st = st;
                 continue;
             }
-            RT_CHECK(memcmp(img.px, base.px, bytes) == 0, "%s: %d threads: image differs from 1",
+            RT_CHECK(same(&img, &base), "%s: %d threads: image differs from 1",
                      gib_component_name(comp), threads[i]);
-            RT_CHECK(memcmp(sd.px, base_sd.px, bytes) == 0,
-                     "%s: %d threads: stderr differs from 1", gib_component_name(comp), threads[i]);
+            RT_CHECK(same(&sd, &base_sd), "%s: %d threads: stderr differs from 1",
+                     gib_component_name(comp), threads[i]);
             RT_CHECK(st.mean == base_st.mean && st.noise_rmse == base_st.noise_rmse &&
                          st.rays == base_st.rays,
                      "%s: %d threads: statistics differ", gib_component_name(comp), threads[i]);
             gib_image_free(&img);
             gib_image_free(&sd);
         }
-        if (comp == GIB_COMP_AO) {
+        if (!gib_component_deterministic(s, comp)) {
             gib_image img;
             p.seed = 2;
-            rt_render(&s, &p, &img, NULL, NULL);
-            RT_CHECK(memcmp(img.px, base.px, bytes) != 0, "ao: seed 2 gives the seed-1 image");
+            rt_render(s, &p, &img, NULL, NULL);
+            RT_CHECK(!same(&img, &base), "%s: seed 2 gives the seed-1 image",
+                     gib_component_name(comp));
             gib_image_free(&img);
         }
-        printf("%s: threads 1, 2, 3, 7 bit-identical (image, stderr, stats); mean %.6f "
+        printf("%-8s threads 1, 2, 3, 7 bit-identical (image, stderr, stats); mean %.6f "
                "noise_rmse %.6f rays %lld\n",
                gib_component_name(comp), base_st.mean, base_st.noise_rmse, base_st.rays);
         gib_image_free(&base);
         gib_image_free(&base_sd);
     }
+}
+
+static void test_target(const gib_scene *s, int comp, double target, int max_spp, int reach)
+{
+    const int W = 24, H = 20;
+    gib_ref_params p = rt_params(comp, W, H, 4);
+    p.target_noise = target;
+    p.max_spp = max_spp;
+    p.max_depth = 3;
+    gib_image img, sd, img2, sd2;
+    gib_ref_stats st, st2;
+    rt_render(s, &p, &img, &sd, &st);
+    double rel = st.noise_rmse / st.mean;
+    if (reach) {
+        RT_CHECK(st.target_reached && rel <= target && st.rounds > 1 && st.spp <= max_spp,
+                 "%s: target %.3g: reached %d, noise/mean %.4g, %d rounds, %d spp",
+                 gib_component_name(comp), target, st.target_reached, rel, st.rounds, st.spp);
+    } else {
+        RT_CHECK(!st.target_reached && st.spp == max_spp && rel > target,
+                 "%s: unreachable target %.3g: reached %d, %d spp (max %d)",
+                 gib_component_name(comp), target, st.target_reached, st.spp, max_spp);
+    }
+    gib_ref_params q = rt_params(comp, W, H, st.spp);
+    q.max_depth = 3;
+    rt_render(s, &q, &img2, &sd2, &st2);
+    RT_CHECK(same(&img, &img2) && same(&sd, &sd2) && st.noise_rmse == st2.noise_rmse,
+             "%s: the %d-round run (%d spp) differs from a plain %d spp render",
+             gib_component_name(comp), st.rounds, st.spp, st.spp);
+    printf("%-8s target %.3g%s: %d rounds, %d spp, noise/mean %.4f, %s; bit-identical to a "
+           "plain %d spp render\n",
+           gib_component_name(comp), target, reach ? "" : " (max_spp too low)", st.rounds,
+           st.spp, rel, st.target_reached ? "reached" : "not reached", st.spp);
+    gib_image_free(&img);
+    gib_image_free(&sd);
+    gib_image_free(&img2);
+    gib_image_free(&sd2);
+}
+
+int main(void)
+{
+    gib_scene s;
+    rt_build(&s);
+    test_threads(&s);
+    test_target(&s, GIB_COMP_INDIRECT, 0.25, 4096, 1);
+    test_target(&s, GIB_COMP_FULL, 0.05, 4096, 1); /* camera and light-traced parts */
+    test_target(&s, GIB_COMP_AO, 1e-4, 16, 0);
     rt_scene_free(&s);
     return rt_failures ? 1 : 0;
 }

@@ -1,0 +1,163 @@
+/* gibench bench reference — the reference renderer's ray throughput against raw Embree
+ * (reference/ref_bench.c), printed and written to CSV with the machine it ran on. Performance is
+ * measured and reported here, never asserted by a test. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <embree3/rtcore_config.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include "app.h"
+
+static const char help[] =
+    "usage: gibench bench reference [--scene S] [--size WxH] [--component C] [--spp N]\n"
+    "                               [--threads N] [--out F.csv]\n"
+    "\n"
+    "Measures, on one scene and BVH: raw Embree throughput on random incoherent rays\n"
+    "(rtcIntersect1), the path tracer's own rays replayed with each ray API (single rays,\n"
+    "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
+    "second including sampling and shading). Defaults: scene sponza (cornell when its data is\n"
+    "absent), 256x256, component full, 16 spp, all cores.\n";
+
+static void machine_name(char *out, size_t len)
+{
+    snprintf(out, len, "unknown");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[512];
+    while (f && fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "model name", 10)) {
+            char *c = strchr(line, ':');
+            if (c) {
+                c++;
+                while (*c == ' ' || *c == '\t')
+                    c++;
+                c[strcspn(c, "\n")] = 0;
+                snprintf(out, len, "%s", c);
+            }
+            break;
+        }
+    }
+    if (f)
+        fclose(f);
+    struct utsname u;
+    if (uname(&u) == 0)
+        snprintf(out + strlen(out), len - strlen(out), " / %s %s", u.sysname, u.machine);
+    for (char *p = out; *p; p++) /* CSV-safe */
+        if (*p == ',' || *p == '"')
+            *p = ' ';
+}
+
+int gib_cmd_bench(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "reference") != 0) {
+        if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+            fputs(help, stdout);
+            return 0;
+        }
+        fprintf(stderr, "gibench bench: what to measure? ('reference')\n%s", help);
+        return 2;
+    }
+    const char *scene_name = NULL, *size = "256x256", *out = NULL, *comp = "full";
+    long spp = 16, threads = 0;
+    gib_error err = {{0}};
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            return 0;
+        }
+        if (!v) {
+            fprintf(stderr, "gibench bench: option %s needs a value\n%s", a, help);
+            return 2;
+        }
+        i++;
+        int rc = 0;
+        if (!strcmp(a, "--scene")) scene_name = v;
+        else if (!strcmp(a, "--size")) size = v;
+        else if (!strcmp(a, "--out")) out = v;
+        else if (!strcmp(a, "--component")) comp = v;
+        else if (!strcmp(a, "--spp")) rc = gib_parse_int(a, v, 2, 1 << 20, &spp, &err);
+        else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &threads, &err);
+        else {
+            fprintf(stderr, "gibench bench: unknown option '%s'\n%s", a, help);
+            return 2;
+        }
+        if (rc < 0) {
+            fprintf(stderr, "gibench bench: %s\n", err.msg);
+            return 2;
+        }
+    }
+    int w, h, component = gib_component_parse(comp);
+    if (component < 0) {
+        fprintf(stderr, "gibench bench: unknown component '%s'\n", comp);
+        return 2;
+    }
+    if (gib_parse_size("--size", size, &w, &h, &err) < 0) {
+        fprintf(stderr, "gibench bench: %s\n", err.msg);
+        return 2;
+    }
+    gib_scene scene;
+    int rc = gib_scene_load(scene_name ? scene_name : "sponza", &scene, &err);
+    if (rc == GIB_SCENE_UNAVAILABLE && !scene_name) {
+        fprintf(stderr, "gibench bench: sponza unavailable (%s); using cornell\n", err.msg);
+        rc = gib_scene_load("cornell", &scene, &err);
+    }
+    if (rc < 0) {
+        fprintf(stderr, "gibench bench: %s\n", err.msg);
+        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
+    }
+    gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
+                        .seed = 1, .threads = (int)threads, .quiet = 1};
+    gib_ref_bench_row rows[16];
+    int n = gib_reference_bench(&scene, &p, rows, 16, &err);
+    if (n < 0) {
+        fprintf(stderr, "gibench bench: %s\n", err.msg);
+        gib_scene_free(&scene);
+        return 1;
+    }
+    char machine[256];
+    machine_name(machine, sizeof machine);
+    long cores = threads > 0 ? threads : sysconf(_SC_NPROCESSORS_ONLN);
+    double raw_random = 0.0, raw_best = 0.0;
+    const char *best_api = "";
+    for (int i = 0; i < n; i++) {
+        if (!strcmp(rows[i].measure, "raw_random"))
+            raw_random = rows[i].mrays_per_s;
+        if (!strcmp(rows[i].measure, "raw_replay") && rows[i].mrays_per_s > raw_best) {
+            raw_best = rows[i].mrays_per_s;
+            best_api = rows[i].api;
+        }
+    }
+    FILE *f = out ? fopen(out, "w") : NULL;
+    if (out && !f) {
+        fprintf(stderr, "gibench bench: cannot write %s\n", out);
+        gib_scene_free(&scene);
+        return 1;
+    }
+    if (f)
+        fprintf(f, "scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,"
+                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_replay_best\n");
+    printf("scene %s (%u triangles), %s %dx%d at %ld spp, %ld cores, %s\n", scene.name,
+           scene.triangle_count, comp, w, h, spp, cores, machine);
+    for (int i = 0; i < n; i++) {
+        const gib_ref_bench_row *r = &rows[i];
+        double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
+        double b = raw_best > 0 ? r->mrays_per_s / raw_best : 0.0;
+        printf("  %-12s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
+               "replay\n",
+               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b);
+        if (f)
+            fprintf(f, "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f\n",
+                    scene.name, scene.triangle_count, comp, w, h, spp, cores, machine,
+                    RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure, r->api,
+                    r->rays, r->seconds, r->mrays_per_s, a, b);
+    }
+    printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
+    if (f) {
+        fclose(f);
+        printf("-> %s\n", out);
+    }
+    gib_scene_free(&scene);
+    return 0;
+}

@@ -1,0 +1,270 @@
+/* gibench — the reference renderer's throughput benchmark (gibench bench reference).
+ *
+ * Three figures on one scene and one BVH, all threads:
+ *  - raw_random: rtcIntersect1 on random incoherent rays (origins uniform in the scene's bounding
+ *    box, directions uniform on the sphere): Embree's own speed, nothing else;
+ *  - raw_replay: the path tracer's own rays — recorded from a single-threaded render of the same
+ *    component at a lower resolution, closest-hit and shadow rays as cast — replayed with each
+ *    ray API: single rays (rtcIntersect1 / rtcOccluded1), streams (rtcIntersect1M /
+ *    rtcOccluded1M, 256 rays per call) and packets of 4, 8 and 16 (consecutive rays of one kind);
+ *  - path_tracer: the renderer itself (sampling, shading, textures, statistics, BVH prebuilt),
+ *    rays per second over all the rays it casts.
+ * Nothing here is asserted: performance is measured, reported and written to CSV, never a test's
+ * pass/fail condition. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "ref_internal.h"
+
+#define REF_BENCH_CHUNK 4096
+#define REF_BENCH_RANDOM_RAYS (4 << 20)
+
+typedef struct ref_replay {
+    const ref_world *w;
+    const ref_raylog *log;
+    int api;                 /* 1: single, 0: stream, 4/8/16: packets */
+    atomic_llong hits;       /* keeps the work observable */
+} ref_replay;
+
+static void ref_replay_single(const ref_replay *rp, size_t a, size_t b, long long *hits)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    for (size_t i = a; i < b; i++) {
+        if (rp->log->occl[i]) {
+            struct RTCRay r = rp->log->rays[i];
+            rtcOccluded1(rp->w->scene, &ctx, &r);
+            *hits += r.tfar < 0.0f;
+        } else {
+            struct RTCRayHit rh;
+            rh.ray = rp->log->rays[i];
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(rp->w->scene, &ctx, &rh);
+            *hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+    }
+}
+
+static void ref_replay_stream(const ref_replay *rp, size_t a, size_t b, long long *hits)
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    struct RTCRayHit rh[256];
+    struct RTCRay ro[256];
+    size_t i = a;
+    while (i < b) {
+        unsigned nh = 0, no = 0;
+        for (; i < b && nh < 256 && no < 256; i++) {
+            if (rp->log->occl[i]) {
+                ro[no++] = rp->log->rays[i];
+            } else {
+                rh[nh].ray = rp->log->rays[i];
+                rh[nh].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh[nh++].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            }
+        }
+        if (nh)
+            rtcIntersect1M(rp->w->scene, &ctx, rh, nh, sizeof rh[0]);
+        if (no)
+            rtcOccluded1M(rp->w->scene, &ctx, ro, no, sizeof ro[0]);
+        for (unsigned k = 0; k < nh; k++)
+            *hits += rh[k].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        for (unsigned k = 0; k < no; k++)
+            *hits += ro[k].tfar < 0.0f;
+    }
+}
+
+/* Packets of width K from consecutive rays of one kind (SOA structs of rtcore_ray.h). */
+#define REF_PACKET_FN(K)                                                                           \
+    static void ref_replay_p##K(const ref_replay *rp, size_t a, size_t b, long long *hits)         \
+    {                                                                                              \
+        struct RTCIntersectContext ctx;                                                            \
+        rtcInitIntersectContext(&ctx);                                                             \
+        struct RTCRayHit##K rh;                                                                    \
+        struct RTCRay##K ro;                                                                       \
+        _Alignas(64) int valid[K]; /* Embree reads it as one aligned vector */                     \
+        memset(&rh, 0, sizeof rh); /* inactive lanes hold a valid (empty) ray too */               \
+        memset(&ro, 0, sizeof ro);                                                                 \
+        size_t i = a;                                                                              \
+        while (i < b) {                                                                            \
+            int occl = rp->log->occl[i], n = 0;                                                    \
+            for (; i < b && n < K && rp->log->occl[i] == occl; i++, n++) {                         \
+                const struct RTCRay *r = &rp->log->rays[i];                                        \
+                struct RTCRay##K *d = occl ? &ro : &rh.ray;                                        \
+                d->org_x[n] = r->org_x, d->org_y[n] = r->org_y, d->org_z[n] = r->org_z;            \
+                d->dir_x[n] = r->dir_x, d->dir_y[n] = r->dir_y, d->dir_z[n] = r->dir_z;            \
+                d->tnear[n] = r->tnear, d->tfar[n] = r->tfar, d->time[n] = 0.0f;                   \
+                d->mask[n] = r->mask, d->id[n] = 0, d->flags[n] = 0;                               \
+                rh.hit.geomID[n] = RTC_INVALID_GEOMETRY_ID;                                        \
+                rh.hit.instID[0][n] = RTC_INVALID_GEOMETRY_ID;                                     \
+                valid[n] = -1;                                                                     \
+            }                                                                                      \
+            for (int k = n; k < K; k++)                                                            \
+                valid[k] = 0;                                                                      \
+            if (occl) {                                                                            \
+                rtcOccluded##K(valid, rp->w->scene, &ctx, &ro);                                    \
+                for (int k = 0; k < n; k++)                                                        \
+                    *hits += ro.tfar[k] < 0.0f;                                                    \
+            } else {                                                                               \
+                rtcIntersect##K(valid, rp->w->scene, &ctx, &rh);                                   \
+                for (int k = 0; k < n; k++)                                                        \
+                    *hits += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;                          \
+            }                                                                                      \
+        }                                                                                          \
+    }
+REF_PACKET_FN(4)
+REF_PACKET_FN(8)
+REF_PACKET_FN(16)
+
+static void ref_replay_task(void *ctx, int task)
+{
+    ref_replay *rp = ctx;
+    size_t a = (size_t)task * REF_BENCH_CHUNK, b = a + REF_BENCH_CHUNK;
+    if (b > rp->log->n)
+        b = rp->log->n;
+    long long hits = 0;
+    switch (rp->api) {
+    case 0: ref_replay_stream(rp, a, b, &hits); break;
+    case 4: ref_replay_p4(rp, a, b, &hits); break;
+    case 8: ref_replay_p8(rp, a, b, &hits); break;
+    case 16: ref_replay_p16(rp, a, b, &hits); break;
+    default: ref_replay_single(rp, a, b, &hits);
+    }
+    atomic_fetch_add(&rp->hits, hits);
+}
+
+static void ref_row(gib_ref_bench_row *row, const char *measure, const char *api, long long rays,
+                    double seconds)
+{
+    memset(row, 0, sizeof *row);
+    snprintf(row->measure, sizeof row->measure, "%s", measure);
+    snprintf(row->api, sizeof row->api, "%s", api);
+    row->rays = rays;
+    row->seconds = seconds;
+    row->mrays_per_s = seconds > 0.0 ? (double)rays / seconds * 1e-6 : 0.0;
+}
+
+/* Random rays: origins uniform in the bounding box, directions uniform on the sphere. */
+static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
+{
+    const gib_scene *gs = w->gs;
+    log->n = log->cap = REF_BENCH_RANDOM_RAYS;
+    log->rays = malloc(log->n * sizeof *log->rays);
+    log->occl = calloc(log->n, 1);
+    if (!log->rays || !log->occl)
+        return gib_fail(err, "bench: out of memory for %zu random rays", log->n);
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < gs->vertex_count; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], gs->positions[3 * (size_t)i + k]);
+            hi[k] = fmaxf(hi[k], gs->positions[3 * (size_t)i + k]);
+        }
+    ref_pcg32 rng;
+    ref_pcg32_seed(&rng, 12345u, 678u);
+    for (size_t i = 0; i < log->n; i++) {
+        float o[3], z = 1.0f - 2.0f * ref_pcg32_float(&rng), phi = 2.0f * REF_PI * ref_pcg32_float(&rng);
+        float s = sqrtf(fmaxf(0.0f, 1.0f - z * z)), d[3] = {s * cosf(phi), s * sinf(phi), z};
+        for (int k = 0; k < 3; k++)
+            o[k] = lo[k] + (hi[k] - lo[k]) * ref_pcg32_float(&rng);
+        struct RTCRay *r = &log->rays[i];
+        r->org_x = o[0], r->org_y = o[1], r->org_z = o[2], r->tnear = 0.0f;
+        r->dir_x = d[0], r->dir_y = d[1], r->dir_z = d[2], r->time = 0.0f;
+        r->tfar = INFINITY, r->mask = 0xffffffffu, r->id = 0, r->flags = 0;
+    }
+    return 0;
+}
+
+static double ref_replay_run(const ref_world *w, const ref_raylog *log, int api, int threads)
+{
+    ref_replay rp = {.w = w, .log = log, .api = api};
+    atomic_init(&rp.hits, 0);
+    int tasks = (int)((log->n + REF_BENCH_CHUNK - 1) / REF_BENCH_CHUNK);
+    double t0 = ref_now();
+    ref_parallel(threads, tasks, ref_replay_task, &rp, NULL);
+    return ref_now() - t0;
+}
+
+int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, gib_ref_bench_row *rows,
+                        int max_rows, gib_error *err)
+{
+    if (ref_check_params(scene, p, err) < 0)
+        return -1;
+    if (scene->triangle_count == 0)
+        return gib_fail(err, "bench: scene '%s' has no triangles", scene->name);
+    int threads = p->threads > 0 ? p->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    threads = threads < 1 ? 1 : threads;
+    ref_world w;
+    double t0 = ref_now();
+    if (ref_world_build(&w, scene, err) < 0)
+        return gib_error_prefix(err, "bench");
+    double build = ref_now() - t0;
+    int n = 0, rc = -1;
+    ref_raylog rnd = {0}, rec = {0};
+    gib_image img = {0};
+    gib_ref_stats st;
+    if (max_rows < 1)
+        goto done;
+    if (n < max_rows)
+        ref_row(&rows[n++], "bvh_build", "rtcCommitScene", 0, build);
+
+    /* The path tracer's rays, recorded single-threaded at a resolution that gives ~3M rays. */
+    gib_ref_params q = *p;
+    q.quiet = 1;
+    q.threads = 1;
+    if (ref_render_world(&w, scene, &q, &img, NULL, &st, err) < 0) /* also warms caches */
+        goto done;
+    gib_image_free(&img);
+    double scale = sqrt(3e6 / fmax((double)st.rays, 1.0));
+    q.width = scale < 1.0 ? (int)fmax(8.0, p->width * scale) : p->width;
+    q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;
+    w.log = &rec;
+    int ok = ref_render_world(&w, scene, &q, &img, NULL, NULL, err);
+    w.log = NULL;
+    gib_image_free(&img);
+    if (ok < 0 || ref_random_log(&w, &rnd, err) < 0)
+        goto done;
+
+    /* Best of three of each, interleaved: the machine may be shared, and the fastest run is the
+     * one least disturbed. */
+    static const struct {
+        int api;
+        const char *name;
+    } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
+                {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
+    enum { NAPI = sizeof apis / sizeof apis[0] };
+    double t_pt = INFINITY, t_rnd = INFINITY, t_api[NAPI];
+    long long pt_rays = 0;
+    for (int i = 0; i < NAPI; i++)
+        t_api[i] = INFINITY;
+    q = *p;
+    q.quiet = 1;
+    for (int rep = 0; rep < 3; rep++) {
+        if (ref_render_world(&w, scene, &q, &img, NULL, &st, err) < 0)
+            goto done;
+        gib_image_free(&img);
+        t_pt = fmin(t_pt, st.seconds);
+        pt_rays = st.rays;
+        t_rnd = fmin(t_rnd, ref_replay_run(&w, &rnd, 1, threads));
+        for (int i = 0; i < NAPI; i++)
+            t_api[i] = fmin(t_api[i], ref_replay_run(&w, &rec, apis[i].api, threads));
+    }
+    if (n < max_rows)
+        ref_row(&rows[n++], "path_tracer", "rtcIntersect1", pt_rays, t_pt);
+    if (n < max_rows)
+        ref_row(&rows[n++], "raw_random", "rtcIntersect1", (long long)rnd.n, t_rnd);
+    for (int i = 0; i < NAPI && n < max_rows; i++)
+        ref_row(&rows[n++], "raw_replay", apis[i].name, (long long)rec.n, t_api[i]);
+    rc = n;
+done:
+    free(rnd.rays);
+    free(rnd.occl);
+    free(rec.rays);
+    free(rec.occl);
+    ref_world_free(&w);
+    return rc;
+}

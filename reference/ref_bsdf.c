@@ -1,0 +1,139 @@
+/* gibench — the reference renderer's material model (scene.h): Lambertian rho_d / pi plus an
+ * optional specular lobe, normalised Phong rho_s (n + 2) / (2 pi) max(0, r . wi)^n or a mirror
+ * (a delta lobe of reflectance rho_s). Next-event estimation toward the scene's delta lights, and
+ * importance sampling of each lobe. */
+#include <math.h>
+
+#include "ref_internal.h"
+
+void ref_albedo(const ref_world *w, const ref_hit *h, float a[3])
+{
+    if (h->has_kd) {
+        a[0] = h->kd[0], a[1] = h->kd[1], a[2] = h->kd[2];
+        return;
+    }
+    const gib_material *m = h->mat;
+    a[0] = m->albedo[0];
+    a[1] = m->albedo[1];
+    a[2] = m->albedo[2];
+    if (m->albedo_tex >= 0) {
+        float t[4];
+        const ref_mip *mip = w->mips ? &w->mips[m->albedo_tex] : NULL;
+        if (mip && mip->levels > 0)
+            ref_mip_sample(mip, h->uv[0], h->uv[1], h->has_duv ? h->duv : NULL, t);
+        else
+            ref_tex_sample(&w->gs->textures[m->albedo_tex], h->uv[0], h->uv[1], t);
+        a[0] *= t[0];
+        a[1] *= t[1];
+        a[2] *= t[2];
+    }
+}
+
+void ref_material(const ref_world *w, const ref_hit *h, ref_mat *m)
+{
+    const gib_material *g = h->mat;
+    ref_albedo(w, h, m->kd);
+    m->spec = g->spec_type;
+    m->phong_n = g->phong_n;
+    for (int k = 0; k < 3; k++)
+        m->ks[k] = g->spec_type == GIB_SPEC_NONE ? 0.0f : g->specular[k];
+    if (m->ks[0] <= 0.0f && m->ks[1] <= 0.0f && m->ks[2] <= 0.0f)
+        m->spec = GIB_SPEC_NONE;
+}
+
+/* The shadow ray stops eps short of the light: a light resting on a surface is not shadowed by
+ * that surface (DESIGN.md, "Hard cases": a light touching a surface). */
+void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+             float dif[3], float spec[3], long long *rays)
+{
+    const gib_scene *gs = w->gs;
+    dif[0] = dif[1] = dif[2] = 0.0f;
+    if (spec)
+        spec[0] = spec[1] = spec[2] = 0.0f;
+    int want_d = m->kd[0] > 0.0f || m->kd[1] > 0.0f || m->kd[2] > 0.0f;
+    int want_s = spec && m->spec == GIB_SPEC_PHONG;
+    if (h->back || (!want_d && !want_s))
+        return;
+    float r[3] = {0.0f, 0.0f, 0.0f};
+    if (want_s)
+        ref_reflect(wo, h->n, r);
+    for (uint32_t i = 0; i < gs->light_count; i++) {
+        float wi[3], dist, E[3];
+        if (!gib_light_eval(&gs->lights[i], h->p, wi, &dist, E))
+            continue;
+        float cosn = ref_dot(h->n, wi);
+        if (!(cosn > 0.0f) || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f))
+            continue;
+        float lobe = 0.0f;
+        if (want_s) {
+            float rw = ref_dot(r, wi);
+            if (rw > 0.0f)
+                lobe = (m->phong_n + 2.0f) * (0.5f / REF_PI) * powf(rw, m->phong_n);
+        }
+        if (!want_d && !(lobe > 0.0f))
+            continue;
+        float o[3];
+        ref_offset_origin(w, h, wi, o);
+        float tfar = isinf(dist) ? INFINITY : dist - w->eps;
+        if (tfar > 0.0f) {
+            ++*rays;
+            if (ref_occluded(w, o, wi, tfar))
+                continue;
+        }
+        for (int k = 0; k < 3; k++) {
+            dif[k] += m->kd[k] * (1.0f / REF_PI) * E[k] * cosn;
+            if (want_s)
+                spec[k] += m->ks[k] * lobe * E[k] * cosn;
+        }
+    }
+}
+
+/* Duff et al. 2017, "Building an Orthonormal Basis, Revisited": branch-free and continuous except
+ * across n.z = 0's sign. */
+void ref_basis(const float n[3], float t[3], float b[3])
+{
+    float sign = copysignf(1.0f, n[2]);
+    float a = -1.0f / (sign + n[2]);
+    float c = n[0] * n[1] * a;
+    t[0] = 1.0f + sign * n[0] * n[0] * a;
+    t[1] = sign * c;
+    t[2] = -sign * n[0];
+    b[0] = c;
+    b[1] = sign + n[1] * n[1] * a;
+    b[2] = -n[1];
+}
+
+/* Malley's method: a uniform point on the unit disk lifted to the hemisphere. */
+void ref_sample_cosine(const float n[3], float u1, float u2, float d[3])
+{
+    float phi = 2.0f * REF_PI * u1, r = sqrtf(u2);
+    float lx = r * cosf(phi), ly = r * sinf(phi), lz = sqrtf(fmaxf(0.0f, 1.0f - u2));
+    float t[3], b[3];
+    ref_basis(n, t, b);
+    for (int k = 0; k < 3; k++)
+        d[k] = lx * t[k] + ly * b[k] + lz * n[k];
+}
+
+void ref_reflect(const float wo[3], const float n[3], float r[3])
+{
+    float nw = 2.0f * ref_dot(n, wo);
+    for (int k = 0; k < 3; k++)
+        r[k] = nw * n[k] - wo[k];
+}
+
+/* cos alpha = u1^(1 / (n + 1)) gives the pdf (n + 1) / (2 pi) cos^n alpha about r; with the BRDF
+ * (n + 2) / (2 pi) cos^n alpha the weight f cos / pdf is (n + 2) / (n + 1) cos theta. */
+float ref_sample_phong(const float r[3], float n_exp, const float ns[3], float u1, float u2,
+                       float d[3])
+{
+    float ca = powf(u1, 1.0f / (n_exp + 1.0f));
+    float sa = sqrtf(fmaxf(0.0f, 1.0f - ca * ca));
+    float phi = 2.0f * REF_PI * u2;
+    float t[3], b[3];
+    ref_basis(r, t, b);
+    float lx = sa * cosf(phi), ly = sa * sinf(phi);
+    for (int k = 0; k < 3; k++)
+        d[k] = lx * t[k] + ly * b[k] + ca * r[k];
+    float c = ref_dot(ns, d);
+    return c > 0.0f ? (n_exp + 2.0f) / (n_exp + 1.0f) * c : 0.0f;
+}

@@ -1,0 +1,209 @@
+/* gibench — the reference renderer's parameters: component names, normalisation, the hash the
+ * cache keys on, and the EXR header attributes (DESIGN.md, "Reference renderer": cached under a key
+ * that hashes everything that changes the image). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "../harness/base/hash.h"
+#include "ref_internal.h"
+
+static const char *const ref_component_names[GIB_COMP_COUNT] = {
+    "ao", "direct", "indirect", "glossy", "caustic", "full", "higher", "albedo", "normal", "depth"};
+
+const char *gib_component_name(int component)
+{
+    if (component < 0 || component >= GIB_COMP_COUNT)
+        return "unknown";
+    return ref_component_names[component];
+}
+
+int gib_component_parse(const char *name)
+{
+    for (int i = 0; name && i < GIB_COMP_COUNT; i++)
+        if (strcmp(name, ref_component_names[i]) == 0)
+            return i;
+    return -1;
+}
+
+static int ref_scene_has_specular(const gib_scene *s)
+{
+    for (uint32_t m = 0; s && m < s->material_count; m++) {
+        const gib_material *mt = &s->materials[m];
+        if (mt->spec_type != GIB_SPEC_NONE &&
+            (mt->specular[0] > 0.0f || mt->specular[1] > 0.0f || mt->specular[2] > 0.0f))
+            return 1;
+    }
+    return 0;
+}
+
+static int ref_scene_has_mirror(const gib_scene *s)
+{
+    for (uint32_t m = 0; s && m < s->material_count; m++) {
+        const gib_material *mt = &s->materials[m];
+        if (mt->spec_type == GIB_SPEC_MIRROR &&
+            (mt->specular[0] > 0.0f || mt->specular[1] > 0.0f || mt->specular[2] > 0.0f))
+            return 1;
+    }
+    return 0;
+}
+
+int ref_deterministic(const gib_scene *s, int comp, int max_depth)
+{
+    switch (comp) {
+    case GIB_COMP_DIRECT: /* every light is a delta: next-event estimation is exact */
+    case GIB_COMP_ALBEDO:
+    case GIB_COMP_NORMAL:
+    case GIB_COMP_DEPTH:
+        return 1;
+    case GIB_COMP_GLOSSY: /* identically 0 without a specular lobe */
+    case GIB_COMP_CAUSTIC:
+        return !ref_scene_has_specular(s);
+    case GIB_COMP_FULL: /* one vertex: direct; higher is then 0 */
+    case GIB_COMP_HIGHER:
+        return max_depth == 1;
+    default:
+        return 0;
+    }
+}
+
+int gib_component_deterministic(const gib_scene *scene, int component)
+{
+    return ref_deterministic(scene, component, GIB_REF_DEFAULT_MAX_DEPTH);
+}
+
+void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gib_ref_params *o)
+{
+    *o = *p;
+    const int c = p->component;
+    o->threads = 0;
+    o->quiet = 0;
+    int bounded = p->dmax > 0.0f && isfinite(p->dmax);
+    if (c == GIB_COMP_AO) {
+        o->dmax = bounded ? p->dmax : INFINITY; /* <= 0 and inf: the same unbounded image */
+        o->obscurance = bounded && p->obscurance ? 1 : 0;
+    } else {
+        o->dmax = INFINITY;
+        o->obscurance = 0;
+    }
+    int paths = c == GIB_COMP_FULL || c == GIB_COMP_HIGHER;
+    o->max_depth = paths ? (p->max_depth > 0 ? p->max_depth : GIB_REF_DEFAULT_MAX_DEPTH) : 0;
+    o->min_depth = paths ? (p->min_depth > 0 ? p->min_depth : GIB_REF_DEFAULT_MIN_DEPTH) : 0;
+    o->max_specular = (c == GIB_COMP_CAUSTIC || c == GIB_COMP_HIGHER)
+                          ? (p->max_specular > 0 ? p->max_specular : GIB_REF_DEFAULT_MAX_SPECULAR)
+                          : 0;
+    if (paths && o->min_depth > o->max_depth)
+        o->min_depth = o->max_depth; /* no roulette: the same image */
+    if (ref_deterministic(scene, c, o->max_depth)) {
+        o->spp = 1;
+        o->target_noise = 0.0;
+        o->max_spp = 0;
+        o->seed = 0;
+    } else if (p->target_noise > 0.0) {
+        o->max_spp = p->max_spp > 0 ? p->max_spp : GIB_REF_DEFAULT_MAX_SPP;
+    } else {
+        o->target_noise = 0.0;
+        o->max_spp = 0;
+    }
+}
+
+uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params *p)
+{
+    gib_ref_params n;
+    gib_reference_normalize(scene, p, &n);
+    uint64_t h = gib_hash_str(GIB_HASH_INIT, GIB_REFERENCE_VERSION);
+    h = gib_hash_u64(h, (uint64_t)n.component);
+    h = gib_hash_u64(h, (uint64_t)n.width << 32 | (uint64_t)(uint32_t)n.height);
+    h = gib_hash_u64(h, (uint64_t)n.spp);
+    h = gib_hash_f32(h, n.dmax);
+    h = gib_hash_u64(h, (uint64_t)n.obscurance);
+    h = gib_hash_u64(h, (uint64_t)n.max_depth);
+    h = gib_hash_u64(h, (uint64_t)n.min_depth);
+    h = gib_hash_u64(h, (uint64_t)n.max_specular);
+    h = gib_hash_bytes(h, &n.target_noise, sizeof n.target_noise);
+    h = gib_hash_u64(h, (uint64_t)n.max_spp);
+    h = gib_hash_u64(h, n.seed);
+    if (scene && scene->cameras && n.camera >= 0 && (uint32_t)n.camera < scene->camera_count) {
+        const gib_camera *cam = &scene->cameras[n.camera];
+        h = gib_hash_bytes(h, cam->eye, sizeof cam->eye);
+        h = gib_hash_bytes(h, cam->target, sizeof cam->target);
+        h = gib_hash_bytes(h, cam->up, sizeof cam->up);
+        h = gib_hash_f32(h, cam->vfov_deg);
+    }
+    return h;
+}
+
+uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p)
+{
+    uint64_t h = gib_reference_params_hash(scene, p);
+    return gib_hash_u64(h, scene ? scene->content_hash : 0);
+}
+
+/* ---- EXR header attributes ---- */
+
+static int ref_attr(gib_kv *attrs, int max, int *n, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+static int ref_attr(gib_kv *attrs, int max, int *n, const char *key, const char *fmt, ...)
+{
+    if (*n >= max)
+        return -1;
+    gib_kv *kv = &attrs[*n];
+    snprintf(kv->key, sizeof kv->key, "%s", key);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(kv->value, sizeof kv->value, fmt, ap);
+    va_end(ap);
+    ++*n;
+    return 0;
+}
+
+int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
+                        gib_kv *attrs, int max_attrs)
+{
+    int n = 0;
+    char hex[17], key[17];
+    gib_ref_params q;
+    gib_reference_normalize(scene, p, &q);
+    gib_hash_hex(scene ? scene->content_hash : 0, hex);
+    gib_hash_hex(gib_reference_cache_key(scene, p), key);
+    const int c = q.component;
+    const int mirror = ref_scene_has_mirror(scene);
+    const int lt_full = (c == GIB_COMP_FULL || c == GIB_COMP_HIGHER) && mirror && q.max_depth >= 2;
+    const int lt = lt_full || (c == GIB_COMP_CAUSTIC && mirror);
+    const char *footprint = lt ? "centre+area (area: mirror-first paths)" : "centre";
+    const char *missing = (c == GIB_COMP_FULL || c == GIB_COMP_HIGHER) && mirror &&
+                                  q.max_depth >= 3
+                              ? "L S_mirror (.*) S_mirror E: mirror next to the light and at the "
+                                "visible point"
+                              : "none";
+    ref_attr(attrs, max_attrs, &n, "component", "%s", gib_component_name(c));
+    ref_attr(attrs, max_attrs, &n, "spp", "%d", s && s->spp > 0 ? s->spp : q.spp);
+    ref_attr(attrs, max_attrs, &n, "seconds", "%.3f", s ? s->seconds : 0.0);
+    ref_attr(attrs, max_attrs, &n, "scene_hash", "%s", hex);
+    ref_attr(attrs, max_attrs, &n, "renderer_version", "%s", GIB_REFERENCE_VERSION);
+    ref_attr(attrs, max_attrs, &n, "noise_rmse", "%.9g", s ? s->noise_rmse : 0.0);
+    ref_attr(attrs, max_attrs, &n, "mean", "%.9g", s ? s->mean : 0.0);
+    ref_attr(attrs, max_attrs, &n, "width", "%d", q.width);
+    ref_attr(attrs, max_attrs, &n, "height", "%d", q.height);
+    if (isinf(q.dmax))
+        ref_attr(attrs, max_attrs, &n, "dmax", "%s", "inf");
+    else
+        ref_attr(attrs, max_attrs, &n, "dmax", "%.9g", (double)q.dmax);
+    ref_attr(attrs, max_attrs, &n, "seed", "%llu", (unsigned long long)p->seed);
+    ref_attr(attrs, max_attrs, &n, "camera", "%d", q.camera);
+    ref_attr(attrs, max_attrs, &n, "obscurance", "%d", q.obscurance);
+    ref_attr(attrs, max_attrs, &n, "max_depth", "%d", q.max_depth);
+    ref_attr(attrs, max_attrs, &n, "min_depth", "%d", q.min_depth);
+    ref_attr(attrs, max_attrs, &n, "max_specular", "%d", q.max_specular);
+    ref_attr(attrs, max_attrs, &n, "target_noise", "%.9g", q.target_noise);
+    ref_attr(attrs, max_attrs, &n, "max_spp", "%d", q.max_spp);
+    ref_attr(attrs, max_attrs, &n, "rounds", "%d", s ? s->rounds : 0);
+    ref_attr(attrs, max_attrs, &n, "estimator", "%s",
+             ref_deterministic(scene, c, q.max_depth) ? "deterministic" : "random");
+    ref_attr(attrs, max_attrs, &n, "footprint", "%s", footprint);
+    ref_attr(attrs, max_attrs, &n, "missing", "%s", missing);
+    ref_attr(attrs, max_attrs, &n, "cache_key", "%s", key);
+    return n;
+}

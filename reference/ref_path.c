@@ -1,0 +1,172 @@
+/* gibench — `full` and `higher`: camera paths with next-event estimation (DESIGN.md,
+ * "Light-transport components": full is everything up to a maximum depth).
+ *
+ * A path of k surface vertices x1 (visible) .. xk (next to the light). At every vertex the light
+ * is connected by next-event estimation through the non-delta lobes (diffuse and Phong); the path
+ * is continued by sampling one lobe (diffuse, Phong or mirror, chosen in proportion to the
+ * lobes' reflectances). Point, spot and directional lights are deltas that a sampled direction
+ * never hits, so every path class is found by exactly one strategy and no MIS is needed — except
+ * the classes whose light-side vertex is a mirror: next-event estimation cannot go through a delta
+ * lobe, so those come from light tracing (ref_light.c, run by the render loop for scenes with
+ * mirrors). Camera paths through mirrors are followed (a mirror seen from the camera shows the
+ * diffuse surfaces behind it, lit by next-event estimation there).
+ *
+ * Russian roulette from min_depth on: a path that has reached vertex d >= min_depth continues
+ * with probability q = min(1, max channel of the throughput), and the survivors' throughput is
+ * divided by q, which keeps the estimator unbiased (Arvo and Kirk 1990). max_depth cuts paths
+ * off: `full` is exactly the sum of all classes of at most max_depth vertices.
+ *
+ * `higher` runs the same paths and keeps only the contributions whose class none of direct,
+ * indirect, glossy and caustic counts (ref_basic_class).
+ *
+ * The camera part of `caustic` is here too: L S+ D E whose vertex next to the light is Phong,
+ * found like full's paths (diffuse bounce from the visible point, specular continuations,
+ * next-event estimation through the Phong lobe). Its mirror-first paths come from light tracing
+ * (ref_light.c), as full's do. */
+#include <math.h>
+#include <string.h>
+
+#include "ref_internal.h"
+
+int ref_basic_class(int verts, int s1, int all_s_rest, int max_specular)
+{
+    if (verts <= 1)
+        return 1;                  /* L D E, L S E: direct */
+    if (verts == 2)
+        return !(s1 && all_s_rest); /* L D D E, L D S E, L S D E; L S S E is higher */
+    return !s1 && all_s_rest && verts - 1 <= max_specular; /* L S+ D E: caustic */
+}
+
+void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
+                  ref_pcg32 *rng, float out[3], long long *rays)
+{
+    const ref_world *w = c->w;
+    const int maxd = c->p.max_depth, mind = c->p.min_depth, maxs = c->p.max_specular;
+    out[0] = out[1] = out[2] = 0.0f;
+    if (h->back)
+        return;
+    ref_hit cur = *h;
+    float wcur[3] = {wo[0], wo[1], wo[2]};
+    float beta[3] = {1.0f, 1.0f, 1.0f};
+    int s1 = 0, all_s_rest = 1; /* lobes of the vertices before the current one */
+    for (int depth = 1;; depth++) {
+        ref_mat m;
+        ref_material(w, &cur, &m);
+        /* Next-event estimation at vertex `depth`, its diffuse (D) and Phong (S) parts being
+         * different classes. `higher` skips the parts whose class is basic. */
+        int keep[2];
+        for (int lobe = 0; lobe < 2; lobe++) {
+            int c1 = depth == 1 ? lobe : s1, rest = depth == 1 ? 1 : (all_s_rest && lobe);
+            keep[lobe] = !higher_only || !ref_basic_class(depth, c1, rest, maxs);
+        }
+        if (keep[0] || keep[1]) {
+            ref_mat mn = m;
+            if (!keep[0])
+                mn.kd[0] = mn.kd[1] = mn.kd[2] = 0.0f;
+            float dif[3], spec[3];
+            ref_nee(w, &cur, &mn, wcur, dif, keep[1] ? spec : NULL, rays);
+            for (int k = 0; k < 3; k++)
+                out[k] += beta[k] * (dif[k] + (keep[1] ? spec[k] : 0.0f));
+        }
+        if (depth >= maxd)
+            break;
+
+        /* Continue: one lobe, chosen in proportion to its reflectance. */
+        float u0 = ref_pcg32_float(rng), u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+        float pd = ref_lum(m.kd), ps = m.spec != GIB_SPEC_NONE ? ref_lum(m.ks) : 0.0f;
+        if (!(pd + ps > 0.0f))
+            break;
+        int lobe_s = u0 * (pd + ps) >= pd;
+        float d[3], wgt[3];
+        if (!lobe_s) {
+            ref_sample_cosine(cur.n, u1, u2, d);
+            for (int k = 0; k < 3; k++)
+                wgt[k] = m.kd[k] * (pd + ps) / pd;
+        } else {
+            float r[3], f = 1.0f;
+            ref_reflect(wcur, cur.n, r);
+            if (m.spec == GIB_SPEC_PHONG)
+                f = ref_sample_phong(r, m.phong_n, cur.n, u1, u2, d);
+            else
+                memcpy(d, r, sizeof d);
+            if (!(f > 0.0f))
+                break;
+            for (int k = 0; k < 3; k++)
+                wgt[k] = m.ks[k] * f * (pd + ps) / ps;
+        }
+        if (!(ref_dot(d, cur.ng) > 0.0f))
+            break;
+        for (int k = 0; k < 3; k++)
+            beta[k] *= wgt[k];
+        if (depth == 1)
+            s1 = lobe_s;
+        else
+            all_s_rest = all_s_rest && lobe_s;
+        if (depth >= mind) {
+            float q = fminf(1.0f, fmaxf(beta[0], fmaxf(beta[1], beta[2])));
+            if (!(ref_pcg32_float(rng) < q))
+                break;
+            for (int k = 0; k < 3; k++)
+                beta[k] /= q;
+        }
+        float o[3];
+        ref_offset_origin(w, &cur, d, o);
+        ref_hit next;
+        ++*rays;
+        if (!ref_trace(w, o, d, &next) || next.back)
+            break;
+        cur = next;
+        wcur[0] = -d[0], wcur[1] = -d[1], wcur[2] = -d[2];
+    }
+}
+
+void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float out[3],
+                     long long *rays)
+{
+    const ref_world *w = c->w;
+    out[0] = out[1] = out[2] = 0.0f;
+    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    if (h->back || !w->has_specular)
+        return;
+    float beta[3], d[3];
+    ref_albedo(w, h, beta);
+    if (beta[0] <= 0.0f && beta[1] <= 0.0f && beta[2] <= 0.0f)
+        return;
+    ref_sample_cosine(h->n, u1, u2, d); /* f cos / pdf = rho_d */
+    ref_hit cur = *h;
+    for (int verts = 2; verts <= c->p.max_specular + 1; verts++) {
+        if (!(ref_dot(d, cur.ng) > 0.0f))
+            return;
+        float o[3];
+        ref_offset_origin(w, &cur, d, o);
+        ++*rays;
+        if (!ref_trace(w, o, d, &cur) || cur.back)
+            return;
+        ref_mat m;
+        ref_material(w, &cur, &m);
+        if (m.spec == GIB_SPEC_NONE)
+            return;
+        const float wo[3] = {-d[0], -d[1], -d[2]};
+        if (m.spec == GIB_SPEC_PHONG) { /* x_verts next to the light, through its Phong lobe */
+            ref_mat ms = m;
+            ms.kd[0] = ms.kd[1] = ms.kd[2] = 0.0f;
+            float dif[3], spec[3];
+            ref_nee(w, &cur, &ms, wo, dif, spec, rays);
+            for (int k = 0; k < 3; k++)
+                out[k] += beta[k] * spec[k];
+        }
+        if (verts == c->p.max_specular + 1)
+            return;
+        float r[3], f = 1.0f;
+        ref_reflect(wo, cur.n, r);
+        if (m.spec == GIB_SPEC_PHONG)
+            f = ref_sample_phong(r, m.phong_n, cur.n, ref_pcg32_float(rng), ref_pcg32_float(rng),
+                                 d);
+        else
+            d[0] = r[0], d[1] = r[1], d[2] = r[2];
+        if (!(f > 0.0f))
+            return;
+        for (int k = 0; k < 3; k++)
+            beta[k] *= m.ks[k] * f;
+    }
+}

@@ -1,0 +1,154 @@
+/* Reference renderer, filtered textures at primary hits (ref_texture.c): the mip pyramid, GL's
+ * trilinear lookup, the ray differentials (Igehy 1999) and the LOD they give, and the end result
+ * in the `albedo` component.
+ *
+ * Expected values are exact (box averages, linear blends, and the closed-form pixel footprint of a
+ * camera looking straight down at a plane), so tolerances are float rounding: 1e-6 absolute on
+ * texel values, 1e-4 relative on derivatives. */
+#include <math.h>
+#include <string.h>
+
+#include "../../reference/ref_internal.h"
+#include "ref_test_util.h"
+
+static int close_to(float a, float b, float tol)
+{
+    return fabsf(a - b) <= tol;
+}
+
+/* 1. Pyramid levels are 2x2 box averages (3 wide at an odd edge), down to 1x1. */
+static void test_pyramid(void)
+{
+    float rgba[4 * 4 * 4];
+    for (int i = 0; i < 16; i++)
+        for (int c = 0; c < 4; c++)
+            rgba[4 * i + c] = (float)(i + 1) * (c + 1);
+    gib_texture t;
+    memset(&t, 0, sizeof t);
+    t.width = t.height = 4;
+    t.rgba = rgba;
+    ref_mip m;
+    gib_error err;
+    RT_CHECK(ref_mip_build(&m, &t, &err) == 0, "pyramid build");
+    RT_CHECK(m.levels == 3 && m.w[1] == 2 && m.h[2] == 1, "4x4 gives 3 levels: %d", m.levels);
+    /* level 1 texel (0,0) averages texels 1, 2, 5, 6 (values i + 1): 3.5; level 2 the mean 8.5 */
+    RT_CHECK(close_to(m.lv[1][0], 3.5f, 1e-6f) && close_to(m.lv[1][4 * 3 + 3], 4.0f * 13.5f, 1e-5f),
+             "level 1: %g %g", m.lv[1][0], m.lv[1][15]);
+    RT_CHECK(close_to(m.lv[2][0], 8.5f, 1e-6f), "level 2: %g, expected 8.5", m.lv[2][0]);
+
+    /* 2. Trilinear at LOD 0.5 on the centre of texel 0 (u = 1/8, v = 7/8 since t = 1 - v):
+     * half level 0 there (exactly texel 0: 1) and half level 1 bilinear at that point (a quarter
+     * texel from level-1 texel (0,0) toward both wrapped neighbours: 0.75^2 * 3.5 + 0.75 * 0.25 *
+     * (5.5 + 11.5) + 0.25^2 * 13.5 = 6.0). duv gives rho = sqrt(2): du/dx = sqrt(2)/4. */
+    float duv[4] = {sqrtf(2.0f) / 4.0f, 0.0f, 0.0f, 0.0f}, out[4];
+    RT_CHECK(close_to(ref_mip_lod(&m, duv), 0.5f, 1e-6f), "lod %g, expected 0.5",
+             ref_mip_lod(&m, duv));
+    ref_mip_sample(&m, 0.125f, 0.875f, duv, out);
+    float l1 = 0.5625f * 3.5f + 0.1875f * (5.5f + 11.5f) + 0.0625f * 13.5f;
+    RT_CHECK(close_to(out[0], 0.5f * 1.0f + 0.5f * l1, 1e-5f), "trilinear %g, expected %g", out[0],
+             0.5f * 1.0f + 0.5f * l1);
+    /* magnification (LOD < 0) and no derivatives: level 0 bilinear, the texel itself */
+    duv[0] = 0.01f;
+    ref_mip_sample(&m, 0.125f, 0.875f, duv, out);
+    RT_CHECK(close_to(out[0], 1.0f, 1e-6f), "magnified: %g, expected 1", out[0]);
+    ref_mip_sample(&m, 0.125f, 0.875f, NULL, out);
+    RT_CHECK(close_to(out[0], 1.0f, 1e-6f), "no derivatives: %g, expected 1", out[0]);
+    /* beyond the last level: the 1x1 level */
+    duv[0] = 100.0f;
+    ref_mip_sample(&m, 0.3f, 0.6f, duv, out);
+    RT_CHECK(close_to(out[0], 8.5f, 1e-5f), "LOD past the top: %g, expected 8.5", out[0]);
+    ref_mip_free(&m);
+
+    /* odd size: 3x3 -> one 1x1 level, the mean of all 9 */
+    float odd[9 * 4];
+    for (int i = 0; i < 9; i++)
+        for (int c = 0; c < 4; c++)
+            odd[4 * i + c] = (float)i;
+    t.width = t.height = 3;
+    t.rgba = odd;
+    RT_CHECK(ref_mip_build(&m, &t, &err) == 0 && m.levels == 2, "3x3 pyramid");
+    RT_CHECK(close_to(m.lv[1][0], 4.0f, 1e-6f), "3x3 top level %g, expected the mean 4",
+             m.lv[1][0]);
+    ref_mip_free(&m);
+    printf("pyramid, trilinear blend, magnification and odd sizes: exact\n");
+}
+
+/* 3. Differentials of a floor seen straight down: the floor is parallel to the image plane, so a
+ * pixel covers fp = 2 h tan(fov/2) / H metres everywhere; with u = (x - x0) / S and
+ * v = (z1 - z) / S, du/dx = fp / S, dv/dy = -fp / S (image down is +z), the cross terms 0.
+ * 4. The albedo image of a 1-texel checkerboard (0 and 1) minified past LOD 1: every level from 1
+ * up holds exactly 0.5, so every pixel is 0.5 x albedo — where level 0 at the pixel centre would
+ * alias between 0 and albedo. */
+static void test_floor(void)
+{
+    const float h = 4.0f, fov = 60.0f, S = 10.0f;
+    const int W = 32, H = 32, T = 256;
+    gib_scene s;
+    rt_scene_init(&s, "texture_floor");
+    int m = rt_material(&s, 0.8f, 0.8f, 0.8f);
+    static float checker[256 * 256 * 4];
+    for (int y = 0; y < T; y++)
+        for (int x = 0; x < T; x++)
+            for (int c = 0; c < 4; c++)
+                checker[(y * T + x) * 4 + c] = (float)((x + y) & 1);
+    s.materials[m].albedo_tex = rt_texture(&s, T, T, checker);
+    s.features |= GIB_FEAT_TEXTURES;
+    rt_floor(&s, 0.0f, -S / 2, S / 2, -S / 2, S / 2, m);
+    const float eye[3] = {0.3f, h, -0.2f}, tgt[3] = {0.3f, 0.0f, -0.2f}, up[3] = {0, 0, -1};
+    rt_camera(&s, eye, tgt, up, fov);
+    const double fp = 2.0 * h * tan(0.5 * fov * M_PI / 180.0) / H;
+
+    ref_world w;
+    gib_error err;
+    if (ref_world_build(&w, &s, &err) < 0) {
+        fprintf(stderr, "FAIL: %s\n", err.msg);
+        rt_failures++;
+        return;
+    }
+    double worst = 0.0, lod_min = INFINITY, lod_max = -INFINITY;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float o[3], d[3];
+            gib_camera_ray(&s.cameras[0], W, H, x + 0.5f, y + 0.5f, o, d);
+            ref_hit hit;
+            if (!ref_trace(&w, o, d, &hit)) {
+                rt_failures++;
+                continue;
+            }
+            ref_hit_differentials(&w, &s.cameras[0], W, H, x, y, &hit);
+            const double want[4] = {fp / S, 0.0, 0.0, -fp / S};
+            for (int k = 0; k < 4; k++)
+                worst = fmax(worst, fabs(hit.duv[k] - want[k]) / (fp / S));
+            double lod = ref_mip_lod(&w.mips[0], hit.duv);
+            lod_min = fmin(lod_min, lod);
+            lod_max = fmax(lod_max, lod);
+        }
+    double lod_want = log2(T * fp / S);
+    RT_CHECK(worst <= 1e-4, "differentials: max error %.3g of du/dx", worst);
+    RT_CHECK(fabs(lod_min - lod_want) <= 1e-3 && fabs(lod_max - lod_want) <= 1e-3,
+             "LOD in [%.5f, %.5f], expected %.5f", lod_min, lod_max, lod_want);
+    printf("differentials: du/dx = %.6f expected, max error %.2g of it (tol 1e-4); LOD %.4f "
+           "expected, measured %.4f .. %.4f\n",
+           fp / S, worst, lod_want, lod_min, lod_max);
+    ref_world_free(&w);
+
+    gib_ref_params p = rt_params(GIB_COMP_ALBEDO, W, H, 1);
+    gib_image img;
+    rt_render(&s, &p, &img, NULL, NULL);
+    int bad = 0;
+    for (int i = 0; i < W * H * 3; i++)
+        bad += !close_to(img.px[i], 0.4f, 1e-6f);
+    RT_CHECK(bad == 0, "albedo: %d values differ from 0.5 x 0.8 = 0.4", bad);
+    printf("albedo of a minified 1-texel checkerboard (LOD %.2f): all %d values 0.4 = 0.5 x "
+           "albedo (tol 1e-6)\n",
+           lod_want, W * H * 3);
+    gib_image_free(&img);
+    rt_scene_free(&s);
+}
+
+int main(void)
+{
+    test_pyramid();
+    test_floor();
+    return rt_failures ? 1 : 0;
+}
