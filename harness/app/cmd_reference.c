@@ -185,14 +185,17 @@ int gib_cmd_reference(int argc, char **argv)
     if (out) {
         gib_kv attrs[GIB_REF_ATTR_COUNT];
         int n = gib_reference_attrs(&scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
-        if (cache) { /* the header of the entry, with the render's own time and rounds */
+        if (cache) { /* the entry's own values (time, rounds, mean, ...) for our keys */
             gib_kv *ca = NULL;
             int cn = 0;
             gib_image tmp;
             if (gib_exr_read(where, &tmp, &ca, &cn, &err) == 0) {
                 gib_image_free(&tmp);
-                n = cn < GIB_REF_ATTR_COUNT ? cn : GIB_REF_ATTR_COUNT;
-                memcpy(attrs, ca, (size_t)n * sizeof *attrs);
+                for (int i = 0; i < n; i++) {
+                    const char *v = gib_kv_get(ca, cn, attrs[i].key);
+                    if (v)
+                        snprintf(attrs[i].value, sizeof attrs[i].value, "%s", v);
+                }
             }
             free(ca);
         }

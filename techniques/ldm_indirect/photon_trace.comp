@@ -55,6 +55,19 @@ vec3 transfer(vec3 dx, vec3 dd, vec3 d, float t, vec3 n)
     return a - (dot(a, n) / dot(d, n)) * d;
 }
 
+// Deviation from Sec. 3.4, for numerical stability: the rotated directional differential can point
+// against the positional one, and then the footprint focuses to a line at t2 = t1 and its irradiance
+// (Eq. 4) diverges: a point light at height h over a floor focuses every photon that bounces
+// straight up onto a ceiling at height 2h (measured on the Cornell box: single-pixel splats 40x
+// the reference). A diffuse bounce spreads light and never focuses it, so each rotated differential
+// takes the sign that makes it add to the transferred positional differential.
+vec3 diverging(vec3 dx, vec3 dd, vec3 d, float t, vec3 n)
+{
+    vec3 p = transfer(dx, vec3(0.0), d, t, n);
+    vec3 s = transfer(vec3(0.0), dd, d, t, n);
+    return dot(p, s) < 0.0 ? -dd : dd;
+}
+
 void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -123,8 +136,8 @@ void main()
             continue; // lands on the side the camera does not see
         x2 -= h * n2; // onto the receiving surface, where the splat's kernel is centred
         vec4 q = rotation_between(d1, d2);
-        vec3 du2 = transfer(dxu, rotate(q, ddu), d2, t2, n2);
-        vec3 dv2 = transfer(dxv, rotate(q, ddv), d2, t2, n2);
+        vec3 du2 = transfer(dxu, diverging(dxu, rotate(q, ddu), d2, t2, n2), d2, t2, n2);
+        vec3 dv2 = transfer(dxv, diverging(dxv, rotate(q, ddv), d2, t2, n2), d2, t2, n2);
         // Split flux: Phi1 * (rho1/pi) * cos * (2 pi / N).
         vec3 flux2 = flux1 * rho1 * (abs(c) * u_split_weight);
         uint k = atomicAdd(command.count, 1u);
