@@ -16,17 +16,14 @@ import os
 import shutil
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot import parse_params  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
-def params(text):
-    out = {}
-    for kv in text.split(";"):
-        if "=" in kv:
-            k, v = kv.split("=", 1)
-            out[k] = float(v)
-    return out
+params = parse_params
 
 
 def load(results, matrix):

@@ -147,6 +147,7 @@ int gib_cmd_reference(int argc, char **argv)
     gib_image img = {0}, se = {0};
     gib_ref_stats st = {0};
     int status = 0;
+    gib_ref_result res = {0};
     const char *where = out;
     if (cache) {
         if (seed != 1 || threads != 0) {
@@ -161,7 +162,6 @@ int gib_cmd_reference(int argc, char **argv)
                               .min_depth = (int)min_depth, .max_specular = (int)max_spec,
                               .target_noise = target, .max_spp = (int)max_spp,
                               .cache_dir = cache, .force = force, .quiet = quiet};
-        gib_ref_result res;
         if (gib_reference_get(&rq, &res, &err) < 0) {
             fprintf(stderr, "gibench reference: %s\n", err.msg);
             gib_scene_free(&scene);

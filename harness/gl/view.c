@@ -33,6 +33,24 @@ void gib_mat4_view(const float right[3], const float up[3], const float forward[
     memcpy(out, m, sizeof m);
 }
 
+void gib_ortho_basis(const float d[3], float t[3], float b[3])
+{
+    float up[3] = {0, 1, 0};
+    if (fabsf(d[1]) >= 0.99f) {
+        up[0] = 1;
+        up[1] = 0;
+    }
+    t[0] = up[1] * d[2] - up[2] * d[1];
+    t[1] = up[2] * d[0] - up[0] * d[2];
+    t[2] = up[0] * d[1] - up[1] * d[0];
+    float n = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    for (int i = 0; i < 3; i++)
+        t[i] /= n;
+    b[0] = d[1] * t[2] - d[2] * t[1];
+    b[1] = d[2] * t[0] - d[0] * t[2];
+    b[2] = d[0] * t[1] - d[1] * t[0];
+}
+
 void gib_mat4_perspective(float vfov, float aspect, float n, float f, float out[16])
 {
     float t = 1.0f / tanf(vfov * 0.5f);

@@ -11,6 +11,9 @@ void gib_mat4_mul(const float a[16], const float b[16], float out[16]);
 /* Camera-style view matrix from an orthonormal basis (right, up, forward) and an origin. */
 void gib_mat4_view(const float right[3], const float up[3], const float forward[3],
                    const float eye[3], float out[16]);
+/* Orthonormal t, b completing the unit direction d (t x b = d), the same as ortho_basis() in
+ * techniques/common/basis.glsl: shadow maps and LDMs build their orthographic views with it. */
+void gib_ortho_basis(const float d[3], float t[3], float b[3]);
 void gib_mat4_perspective(float vfov_rad, float aspect, float znear, float zfar, float out[16]);
 void gib_mat4_ortho(float l, float r, float b, float t, float n, float f, float out[16]);
 

@@ -2,6 +2,7 @@
 // visibility of the scene's lights (techniques/common/shadow_map.c builds the maps).
 // Point and spot lights: one cube map per light in a cube-map array (layer = light's slot).
 // Directional lights: one orthographic map per light in a 2D array.
+#include "common/basis.glsl"
 layout(binding = 4) uniform samplerCubeArray u_shadow_cube;
 layout(binding = 5) uniform sampler2DArray u_shadow_ortho;
 layout(location = 20) uniform int u_shadow_res;
@@ -11,13 +12,6 @@ layout(std430, binding = 2) readonly buffer ShadowSlots { vec4 shadow_slots[]; }
 // shadow_slots[2i]: x = slot in its array, y = ortho half-width (world units);
 // shadow_slots[2i+1]: xyz = origin of the ortho map's plane (directional lights). The ortho view basis
 // is rebuilt from the light direction by ortho_basis(), as on the C side.
-
-void ortho_basis(vec3 d, out vec3 t, out vec3 b)
-{
-    vec3 up = abs(d.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    t = normalize(cross(up, d));
-    b = cross(d, t);
-}
 
 // Depth tolerance for a map of texel size `texel` seen at incidence cosine `cosi`: one texel, plus
 // the depth a surface tilted by theta spans across a texel (texel * tan theta, capped at 8 texels

@@ -9,25 +9,6 @@
 #include "../../harness/gl/shader.h"
 #include "../../harness/gl/view.h"
 
-/* Same basis as ortho_basis() in shadow_lookup.glsl. */
-static void ortho_basis(const float d[3], float t[3], float b[3])
-{
-    float up[3] = {0, 1, 0};
-    if (fabsf(d[1]) >= 0.99f) {
-        up[0] = 1;
-        up[1] = 0;
-    }
-    t[0] = up[1] * d[2] - up[2] * d[1];
-    t[1] = up[2] * d[0] - up[0] * d[2];
-    t[2] = up[0] * d[1] - up[1] * d[0];
-    float n = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    for (int i = 0; i < 3; i++)
-        t[i] /= n;
-    b[0] = d[1] * t[2] - d[2] * t[1];
-    b[1] = d[2] * t[0] - d[0] * t[2];
-    b[2] = d[0] * t[1] - d[1] * t[0];
-}
-
 static void bounding_sphere(const gib_scene *s, float c[3], float *r)
 {
     float d2 = 0;
@@ -139,7 +120,7 @@ void gib_shadow_maps_render(gib_shadow_maps *sm, const gib_gpu_scene *gpu, gib_t
             for (uint32_t k = 0; k < i; k++)
                 slot += s->lights[k].type == GIB_LIGHT_DIRECTIONAL;
             float t[3], b[3];
-            ortho_basis(l->direction, t, b);
+            gib_ortho_basis(l->direction, t, b);
             const float zero[3] = {0, 0, 0};
             gib_mat4_view(t, b, l->direction, zero, view);
             float e = sm->ortho_extent[i];

@@ -9,6 +9,7 @@
 #include "../../harness/gl/context.h"
 #include "../../harness/gl/ledger.h"
 #include "../../harness/gl/shader.h"
+#include "../../harness/gl/view.h"
 #include "eqsp.h"
 
 /* std430 struct LdmInfo in ldm_common.glsl. */
@@ -237,30 +238,11 @@ void ldm_destroy(ldm_set *l, gib_ledger *ledger)
     memset(l, 0, sizeof *l);
 }
 
-/* Same basis as ldm_basis() in ldm_common.glsl. */
-static void basis(const float *v, float t[3], float b[3])
-{
-    float up[3] = {0, 1, 0};
-    if (fabsf(v[1]) >= 0.99f) {
-        up[0] = 1;
-        up[1] = 0;
-    }
-    t[0] = up[1] * v[2] - up[2] * v[1];
-    t[1] = up[2] * v[0] - up[0] * v[2];
-    t[2] = up[0] * v[1] - up[1] * v[0];
-    float n = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    for (int k = 0; k < 3; k++)
-        t[k] /= n;
-    b[0] = v[1] * t[2] - v[2] * t[1];
-    b[1] = v[2] * t[0] - v[0] * t[2];
-    b[2] = v[0] * t[1] - v[1] * t[0];
-}
-
 int ldm_snap(const ldm_set *l, int i, const float p[3], float out[3])
 {
     const float *v = l->dirs + 3 * i;
     float t[3], b[3], o[3], q[3];
-    basis(v, t, b);
+    gib_ortho_basis(v, t, b);
     for (int k = 0; k < 3; k++) {
         o[k] = l->center[k] - v[k] * l->radius;
         q[k] = p[k] - o[k];

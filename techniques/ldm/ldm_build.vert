@@ -14,7 +14,7 @@ void main()
     vec3 q = a_position - L.origin_res.xyz;
     float e = L.dir_extent.w;
     vec3 t, b;
-    ldm_basis(L.dir_extent.xyz, t, b);
+    ortho_basis(L.dir_extent.xyz, t, b);
     // Orthographic: x, y over [-e, e] to clip space; depth along v over [0, 2e].
     gl_Position = vec4(dot(q, t) / e, dot(q, b) / e, dot(q, L.dir_extent.xyz) / e - 1.0, 1.0);
     v_position = a_position;

@@ -1,4 +1,5 @@
-// Shared by every LDM shader: the per-LDM description and the basis of an orthographic LDM.
+// Shared by every LDM shader: the per-LDM description; the map's basis is ortho_basis(v).
+#include "common/basis.glsl"
 struct LdmInfo {
     vec4 dir_extent;  // xyz view direction v (depth grows along v), w half-width of the map
     vec4 origin_res;  // xyz origin of the map's plane (centre - v * radius), w resolution
@@ -6,11 +7,3 @@ struct LdmInfo {
 };
 layout(std430, binding = 3) readonly buffer LdmInfos { LdmInfo ldm_info[]; };
 const uint LDM_END = 0xffffffffu;
-
-// The same basis as ldm.c's ldm_basis(): independent of anything but v.
-void ldm_basis(vec3 v, out vec3 t, out vec3 b)
-{
-    vec3 up = abs(v.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    t = normalize(cross(up, v));
-    b = cross(v, t);
-}

@@ -16,7 +16,7 @@ float ldm_trace(int i, vec3 x, float sgn, float eps)
     float e = L.dir_extent.w;
     int res = int(L.origin_res.w);
     vec3 t, b;
-    ldm_basis(v, t, b);
+    ortho_basis(v, t, b);
     vec3 q = x - L.origin_res.xyz;
     ivec2 px = ivec2(floor((vec2(dot(q, t), dot(q, b)) / e * 0.5 + 0.5) * float(res)));
     if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, ivec2(res))))

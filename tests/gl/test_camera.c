@@ -16,6 +16,7 @@
 #include <stdlib.h>
 
 #include "harness/gl/context.h"
+#include "tests/common/gl_fixture.h"
 #include "harness/gl/gpu_scene.h"
 #include "harness/gl/view.h"
 #include "techniques/common/gbuffer.h"
@@ -24,15 +25,13 @@ int main(void)
 {
     const int W = 96, H = 64; /* not square: checks the aspect ratio too */
     gib_error err;
-    gib_gl_info info;
-    gib_scene scene;
-    gib_gpu_scene gpu;
-    if (gib_scene_load("cornell", &scene, &err) < 0 || gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0 ||
-        gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
-        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, "cornell") < 0)
         return 1;
-    }
-    printf("renderer: %s (%s)\n", info.renderer, info.backend);
+    gib_scene *scene_p = &fx.scene;
+    gib_gpu_scene *gpu_p = &fx.gpu;
+    const gib_gl_info *info_p = &fx.info;
+    printf("renderer: %s (%s)\n", info_p->renderer, info_p->backend);
     gib_ledger ledger;
     gib_ledger_init(&ledger);
     gib_gbuffer g;
@@ -43,46 +42,26 @@ int main(void)
         return 1;
     }
     gib_view view;
-    gib_view_make(&scene, &scene.cameras[0], W, H, 0, &view);
+    gib_view_make(scene_p, &scene_p->cameras[0], W, H, 0, &view);
     gib_timers_frame_begin(&timers, 0);
-    gib_gbuffer_render(&g, &gpu, &view, &timers, "gbuffer");
+    gib_gbuffer_render(&g, gpu_p, &view, &timers, "gbuffer");
     gib_timers_frame_end(&timers);
     float *pos = malloc(sizeof(float) * 4 * W * H);
     glGetTextureImage(g.position, 0, GL_RGBA, GL_FLOAT, W * H * 16, pos);
 
-    RTCDevice dev = rtcNewDevice(NULL);
-    RTCScene rs = rtcNewScene(dev);
-    RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(geo, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, scene.positions, 0,
-                               12, scene.vertex_count);
-    rtcSetSharedGeometryBuffer(geo, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, scene.indices, 0, 12,
-                               scene.triangle_count);
-    rtcCommitGeometry(geo);
-    rtcAttachGeometry(rs, geo);
-    rtcReleaseGeometry(geo);
-    rtcCommitScene(rs);
+    RTCDevice dev;
+    RTCScene rs = gib_fixture_embree(scene_p, &dev);
 
-    float diag = 0;
-    for (int k = 0; k < 3; k++)
-        diag += (scene.bounds_max[k] - scene.bounds_min[k]) * (scene.bounds_max[k] - scene.bounds_min[k]);
-    diag = sqrtf(diag);
+    float diag = gib_fixture_diagonal(scene_p);
     int hitmiss_disagree = 0, far_off = 0, both = 0;
     double max_close = 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             float o[3], d[3];
-            gib_camera_ray(&scene.cameras[0], W, H, x + 0.5f, y + 0.5f, o, d);
-            struct RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            struct RTCRayHit rh = {0};
-            rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
-            rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
-            rh.ray.tfar = INFINITY;
-            rh.ray.mask = ~0u;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(rs, &ctx, &rh);
+            gib_camera_ray(&scene_p->cameras[0], W, H, x + 0.5f, y + 0.5f, o, d);
+            float t = gib_fixture_trace(rs, o, d);
             const float *p = pos + ((size_t)(H - 1 - y) * W + x) * 4; /* GL rows are bottom up */
-            int rt_hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID, gl_hit = p[3] > 0.5f;
+            int rt_hit = t >= 0, gl_hit = p[3] > 0.5f;
             if (rt_hit != gl_hit) {
                 hitmiss_disagree++;
                 continue;
@@ -92,7 +71,7 @@ int main(void)
             both++;
             double e = 0;
             for (int k = 0; k < 3; k++) {
-                double q = o[k] + rh.ray.tfar * d[k] - p[k];
+                double q = o[k] + t * d[k] - p[k];
                 e += q * q;
             }
             e = sqrt(e) / diag;
@@ -112,8 +91,6 @@ int main(void)
     free(pos);
     gib_gbuffer_destroy(&g, &ledger);
     gib_timers_destroy(&timers);
-    gib_gpu_scene_free(&gpu);
-    gib_gl_shutdown();
-    gib_scene_free(&scene);
+    gib_fixture_close(&fx);
     return ok ? 0 : 1;
 }

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 
 #include "harness/gl/context.h"
+#include "tests/common/gl_fixture.h"
 #include "harness/gl/runner.h"
 #include "harness/imaging/metrics.h"
 #include "reference/reference.h"
@@ -31,19 +32,17 @@ int main(void)
 {
     const int W = 128, H = 128;
     gib_error err;
-    gib_gl_info info;
-    gib_scene scene;
-    gib_gpu_scene gpu;
-    if (gib_scene_load("cornell", &scene, &err) < 0 || gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0 ||
-        gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
-        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, "cornell") < 0)
         return 1;
-    }
+    gib_scene *scene_p = &fx.scene;
+    gib_gpu_scene *gpu_p = &fx.gpu;
+    const gib_gl_info *info_p = &fx.info;
     const gib_technique *t = gib_technique_find("direct");
     gib_params p;
     gib_params_default(t, &p);
     gib_run_result r;
-    gib_run_technique(&gpu, t, &p, 0, W, H, 0, 1, &r);
+    gib_run_technique(gpu_p, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
         fprintf(stderr, "FAIL: direct: %s: %s\n", r.status, r.err.msg);
         return 1;
@@ -52,12 +51,12 @@ int main(void)
                          .quiet = 1};
     gib_image ref;
     gib_ref_stats st;
-    if (gib_reference_render(&scene, &rp, &ref, NULL, &st, &err) < 0) {
+    if (gib_reference_render(scene_p, &rp, &ref, NULL, &st, &err) < 0) {
         fprintf(stderr, "FAIL: reference: %s\n", err.msg);
         return 1;
     }
     gib_metrics m;
-    gib_metrics_compute(&ref, &r.images[0], scene.exposure, &m, &err);
+    gib_metrics_compute(&ref, &r.images[0], scene_p->exposure, &m, &err);
     /* Per-pixel relative error over pixels the reference sees lit. */
     int n = 0;
     float *rel = malloc(sizeof(float) * W * H);
@@ -73,7 +72,7 @@ int main(void)
     qsort(rel, n, sizeof(float), cmp_float);
     double median = n ? rel[n / 2] : 1;
     printf("renderer %s: direct on cornell %dx%d: rmse %.5g rel_rmse %.5g ssim %.5f psnr %.2f; "
-           "median per-pixel rel error %.3g over %d lit pixels; gpu %.2f ms\n", info.renderer, W, H,
+           "median per-pixel rel error %.3g over %d lit pixels; gpu %.2f ms\n", info_p->renderer, W, H,
            m.rmse, m.rel_rmse, m.ssim, m.psnr, median, n, r.gpu_total.median_ms);
     int ok = 1;
     if (!(median < 1e-3)) {
@@ -88,9 +87,9 @@ int main(void)
     if (getenv("GIB_TEST_OUT")) {
         char path[1024];
         snprintf(path, sizeof path, "%s/direct_cornell.png", getenv("GIB_TEST_OUT"));
-        gib_png_write_preview(path, &r.images[0], scene.exposure, &err);
+        gib_png_write_preview(path, &r.images[0], scene_p->exposure, &err);
         snprintf(path, sizeof path, "%s/direct_cornell_ref.png", getenv("GIB_TEST_OUT"));
-        gib_png_write_preview(path, &ref, scene.exposure, &err);
+        gib_png_write_preview(path, &ref, scene_p->exposure, &err);
         snprintf(path, sizeof path, "%s/direct_cornell_error.png", getenv("GIB_TEST_OUT"));
         gib_png_write_error_map(path, &ref, &r.images[0], 0, &err);
     }
@@ -98,8 +97,6 @@ int main(void)
     free(rel);
     gib_image_free(&ref);
     gib_run_result_free(&r);
-    gib_gpu_scene_free(&gpu);
-    gib_gl_shutdown();
-    gib_scene_free(&scene);
+    gib_fixture_close(&fx);
     return ok ? 0 : 1;
 }

@@ -15,6 +15,7 @@
 #include <stdio.h>
 
 #include "harness/gl/context.h"
+#include "tests/common/gl_fixture.h"
 #include "harness/gl/runner.h"
 
 int main(void)
@@ -22,14 +23,11 @@ int main(void)
     const int W = 128, H = 128;
     const double expected = 0.079601;
     gib_error err;
-    gib_gl_info info;
-    gib_scene scene;
-    gib_gpu_scene gpu;
-    if (gib_scene_load("furnace", &scene, &err) < 0 || gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0 ||
-        gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
-        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, "furnace") < 0)
         return 1;
-    }
+    gib_gpu_scene *gpu_p = &fx.gpu;
+    const gib_gl_info *info_p = &fx.info;
     const gib_technique *t = gib_technique_find("ldm_indirect");
     gib_params p;
     gib_params_default(t, &p);
@@ -37,7 +35,7 @@ int main(void)
     gib_param_set(t, &p, "ldm_res", "128", &err);
     gib_param_set(t, &p, "photon_res", "64", &err);
     gib_run_result r;
-    gib_run_technique(&gpu, t, &p, 0, W, H, 0, 1, &r);
+    gib_run_technique(gpu_p, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
         printf("FAIL: ldm_indirect: %s: %s\n", r.status, r.err.msg);
         return 1;
@@ -60,15 +58,13 @@ int main(void)
     all /= (double)W * H;
     centre /= (double)nc;
     printf("renderer %s: furnace indirect, expected %.6f: centre mean %.6f (%+.2f%%), image mean "
-           "%.6f (%+.2f%%), %ld non-finite; gpu %.1f ms, %.1f MB\n", info.renderer, expected, centre,
+           "%.6f (%+.2f%%), %ld non-finite; gpu %.1f ms, %.1f MB\n", info_p->renderer, expected, centre,
            100 * (centre / expected - 1), all, 100 * (all / expected - 1), nonfinite,
            r.gpu_total.median_ms, r.technique_bytes / 1e6);
     int ok = nonfinite == 0 && fabs(centre / expected - 1) < 0.02 && fabs(all / expected - 1) < 0.05;
     printf("%s: one-bounce indirect in the furnace (centre within 2%%, image within 5%%)\n",
            ok ? "PASS" : "FAIL");
     gib_run_result_free(&r);
-    gib_gpu_scene_free(&gpu);
-    gib_gl_shutdown();
-    gib_scene_free(&scene);
+    gib_fixture_close(&fx);
     return ok ? 0 : 1;
 }

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "harness/gl/context.h"
+#include "tests/common/gl_fixture.h"
 #include "harness/gl/gpu_scene.h"
 #include "techniques/ldm/ldm.h"
 
@@ -25,74 +26,46 @@ static float rnd(void)
     return (rng_state >> 8) * (1.0f / 16777216.0f);
 }
 
-static float embree_trace(RTCScene s, const float o[3], const float d[3])
-{
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    struct RTCRayHit rh = {0};
-    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
-    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
-    rh.ray.tfar = INFINITY;
-    rh.ray.mask = ~0u;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(s, &ctx, &rh);
-    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1.0f : rh.ray.tfar;
-}
-
 int main(void)
 {
     gib_error err;
-    gib_gl_info info;
-    gib_scene scene;
-    gib_gpu_scene gpu;
-    if (gib_scene_load("cornell", &scene, &err) < 0 || gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0 ||
-        gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
-        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, "cornell") < 0)
         return 1;
-    }
+    gib_scene *scene_p = &fx.scene;
+    gib_gpu_scene *gpu_p = &fx.gpu;
+    const gib_gl_info *info_p = &fx.info;
     gib_ledger ledger;
     gib_ledger_init(&ledger);
     gib_timers timers;
     gib_timers_init(&timers);
     ldm_set l;
     const int N = 32, RES = 256, PER = 200;
-    if (ldm_create(&l, &gpu, N, RES, &ledger, &err) < 0) {
+    if (ldm_create(&l, gpu_p, N, RES, &ledger, &err) < 0) {
         fprintf(stderr, "FAIL: ldm_create: %s\n", err.msg);
         return 1;
     }
     gib_timers_frame_begin(&timers, 0);
-    ldm_build(&l, &gpu, &timers);
+    ldm_build(&l, gpu_p, &timers);
     gib_timers_frame_end(&timers);
     printf("renderer %s: %d LDMs of %dx%d, %llu nodes (mean depth complexity %.2f), status %s\n",
-           info.renderer, l.count, RES, RES, (unsigned long long)l.fragments,
+           info_p->renderer, l.count, RES, RES, (unsigned long long)l.fragments,
            l.mean_depth_complexity, ldm_status(&l));
 
-    RTCDevice dev = rtcNewDevice(NULL);
-    RTCScene rs = rtcNewScene(dev);
-    RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(geo, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, scene.positions, 0,
-                               12, scene.vertex_count);
-    rtcSetSharedGeometryBuffer(geo, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, scene.indices, 0, 12,
-                               scene.triangle_count);
-    rtcCommitGeometry(geo);
-    rtcAttachGeometry(rs, geo);
-    rtcReleaseGeometry(geo);
-    rtcCommitScene(rs);
+    RTCDevice dev;
+    RTCScene rs = gib_fixture_embree(scene_p, &dev);
 
     int n = l.count * PER * 2;
     float *rays = malloc(sizeof(float) * 4 * n), *dist = malloc(sizeof(float) * n);
     float *snapped = malloc(sizeof(float) * 3 * n);
-    float diag = 0;
-    for (int k = 0; k < 3; k++)
-        diag += (scene.bounds_max[k] - scene.bounds_min[k]) * (scene.bounds_max[k] - scene.bounds_min[k]);
-    diag = sqrtf(diag);
+    float diag = gib_fixture_diagonal(scene_p);
     int m = 0;
     for (int i = 0; i < l.count; i++)
         for (int j = 0; j < PER; j++)
             for (int s = -1; s <= 1; s += 2) {
                 float p[3];
                 for (int k = 0; k < 3; k++)
-                    p[k] = scene.bounds_min[k] + (0.02f + 0.96f * rnd()) * (scene.bounds_max[k] - scene.bounds_min[k]);
+                    p[k] = scene_p->bounds_min[k] + (0.02f + 0.96f * rnd()) * (scene_p->bounds_max[k] - scene_p->bounds_min[k]);
                 if (!ldm_snap(&l, i, p, snapped + 3 * m))
                     continue;
                 rays[4 * m] = p[0], rays[4 * m + 1] = p[1], rays[4 * m + 2] = p[2];
@@ -109,8 +82,8 @@ int main(void)
         int i = (int)fabsf(rays[4 * k + 3]) - 1;
         float sgn = rays[4 * k + 3] > 0 ? 1.0f : -1.0f;
         float d[3] = {sgn * l.dirs[3 * i], sgn * l.dirs[3 * i + 1], sgn * l.dirs[3 * i + 2]};
-        float te = embree_trace(rs, snapped + 3 * k, d);
-        float tu = embree_trace(rs, rays + 4 * k, d);
+        float te = gib_fixture_trace(rs, snapped + 3 * k, d);
+        float tu = gib_fixture_trace(rs, rays + 4 * k, d);
         int ok = (te < 0 && dist[k] < 0) || (te >= 0 && dist[k] >= 0 && fabsf(te - dist[k]) <= 1e-4f * diag);
         agree += ok;
         hits += te >= 0;
@@ -133,8 +106,6 @@ int main(void)
     rtcReleaseDevice(dev);
     ldm_destroy(&l, &ledger);
     gib_timers_destroy(&timers);
-    gib_gpu_scene_free(&gpu);
-    gib_gl_shutdown();
-    gib_scene_free(&scene);
+    gib_fixture_close(&fx);
     return pass ? 0 : 1;
 }

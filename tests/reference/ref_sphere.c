@@ -90,8 +90,17 @@ static double rt_icosphere(gib_scene *s, double R, int levels, int mat)
         n *= 4;
     }
     double hmin = INFINITY;
+    /* one allocation for all faces (rt_quad grows the arrays a quad at a time, which is quadratic
+     * for 20k faces under AddressSanitizer's realloc) */
+    uint32_t v0 = s->vertex_count, t0 = s->triangle_count;
+    s->positions = realloc(s->positions, sizeof(float) * 3 * (v0 + 3 * (size_t)n));
+    s->normals = realloc(s->normals, sizeof(float) * 3 * (v0 + 3 * (size_t)n));
+    s->uvs = realloc(s->uvs, sizeof(float) * 2 * (v0 + 3 * (size_t)n));
+    s->indices = realloc(s->indices, sizeof(uint32_t) * 3 * (t0 + (size_t)n));
+    s->tri_material = realloc(s->tri_material, sizeof(uint32_t) * (t0 + (size_t)n));
+    if (!s->positions || !s->normals || !s->uvs || !s->indices || !s->tri_material)
+        abort();
     for (int t = 0; t < n; t++) {
-        float p[3][3], nrm[3];
         double *a = tris + 9 * t, e1[3], e2[3], c[3];
         for (int k = 0; k < 3; k++) {
             e1[k] = a[3 + k] - a[k];
@@ -102,16 +111,20 @@ static double rt_icosphere(gib_scene *s, double R, int levels, int mat)
         c[2] = e1[0] * e2[1] - e1[1] * e2[0];
         double lc = vlen(c), h = fabs(c[0] * a[0] + c[1] * a[1] + c[2] * a[2]) / lc;
         double sgn = (c[0] * a[0] + c[1] * a[1] + c[2] * a[2]) > 0 ? -1.0 : 1.0; /* inward */
-        for (int k = 0; k < 3; k++)
-            nrm[k] = (float)(sgn * c[k] / lc);
-        for (int j = 0; j < 3; j++)
-            for (int k = 0; k < 3; k++)
-                p[j][k] = (float)(R * a[3 * j + k]);
-        /* rt_quad needs 4 corners: a degenerate quad (p2 twice) gives the triangle and a zero-area
-         * sliver that no ray can hit */
-        rt_quad(s, p[0], p[1], p[2], p[2], nrm, mat);
+        uint32_t v = v0 + 3 * (uint32_t)t;
+        for (int j = 0; j < 3; j++) {
+            for (int k = 0; k < 3; k++) {
+                s->positions[3 * (size_t)(v + j) + k] = (float)(R * a[3 * j + k]);
+                s->normals[3 * (size_t)(v + j) + k] = (float)(sgn * c[k] / lc);
+            }
+            s->uvs[2 * (size_t)(v + j)] = s->uvs[2 * (size_t)(v + j) + 1] = 0.0f;
+            s->indices[3 * (size_t)(t0 + t) + j] = v + (uint32_t)j;
+        }
+        s->tri_material[t0 + t] = (uint32_t)mat;
         hmin = fmin(hmin, h * R);
     }
+    s->vertex_count += 3 * (uint32_t)n;
+    s->triangle_count += (uint32_t)n;
     free(tris);
     /* positions are rounded to float: bound the face distances of the rounded mesh too */
     return hmin * (1.0 - 1e-6);
@@ -165,7 +178,7 @@ int main(void)
     const double lo = hmin / R, hi = (R / hmin) * (R / hmin);
     const double direct = a / M_PI * I / (R * R);
     printf("icosphere: %u faces, h_min/R = %.6f: tessellation interval [%.6f, %.6f]\n",
-           s.triangle_count / 2, hmin / R, lo, hi);
+           s.triangle_count, hmin / R, lo, hi);
 
     const int W = 24, H = 24;
     gib_image img, sd;

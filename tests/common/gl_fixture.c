@@ -1,0 +1,72 @@
+#include "gl_fixture.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+int gib_fixture_open(gib_gl_fixture *f, const char *scene_name)
+{
+    memset(f, 0, sizeof *f);
+    gib_error err;
+    if (gib_scene_load(scene_name, &f->scene, &err) < 0) {
+        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+        return -1;
+    }
+    if (gib_gl_init(GIB_BACKEND_AUTO, &f->info, &err) < 0 ||
+        gib_gpu_scene_upload(&f->scene, &f->gpu, &err) < 0) {
+        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+        gib_scene_free(&f->scene);
+        return -1;
+    }
+    f->gl_up = 1;
+    return 0;
+}
+
+void gib_fixture_close(gib_gl_fixture *f)
+{
+    if (f->gl_up) {
+        gib_gpu_scene_free(&f->gpu);
+        gib_gl_shutdown();
+        gib_scene_free(&f->scene);
+    }
+    f->gl_up = 0;
+}
+
+RTCScene gib_fixture_embree(const gib_scene *scene, RTCDevice *device)
+{
+    *device = rtcNewDevice(NULL);
+    RTCScene rs = rtcNewScene(*device);
+    RTCGeometry geo = rtcNewGeometry(*device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(geo, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, scene->positions, 0,
+                               12, scene->vertex_count);
+    rtcSetSharedGeometryBuffer(geo, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, scene->indices, 0, 12,
+                               scene->triangle_count);
+    rtcCommitGeometry(geo);
+    rtcAttachGeometry(rs, geo);
+    rtcReleaseGeometry(geo);
+    rtcCommitScene(rs);
+    return rs;
+}
+
+float gib_fixture_trace(RTCScene s, const float o[3], const float d[3])
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+    rh.ray.tfar = INFINITY;
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(s, &ctx, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1.0f : rh.ray.tfar;
+}
+
+float gib_fixture_diagonal(const gib_scene *scene)
+{
+    float d = 0;
+    for (int k = 0; k < 3; k++)
+        d += (scene->bounds_max[k] - scene->bounds_min[k]) * (scene->bounds_max[k] - scene->bounds_min[k]);
+    return sqrtf(d);
+}
