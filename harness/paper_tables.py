@@ -80,7 +80,8 @@ def ldm_rows(results, paper_csv):
                 rows = [r for r in rows if params(r["params"]).get("dmax") == want["dmax"]] or rows
             best = max(rows, key=lambda r: closeness(r, want)) if rows else None
             rec = {"figure": fig, "scene": pr["scene"], "method": pr["method"], "paper_settings":
-                   f"N={pr['ldm_count'] or '-'} ldm_res={pr['ldm_res'] or '-'} image={pr['image_res']} dmax={pr['dmax_m'] or 'inf'}",
+                   f"N={pr['ldm_count'] or '-'} ldm_res={pr['ldm_res'] or '-'} image={pr['image_res']}"
+                   + (f" dmax={pr['dmax_m'] or 'inf'}" if pr["effect"].startswith("ao") else ""),
                    "paper_ms": pr["ms"], "paper_mb": pr["mb"], "paper_gpu": pr["gpu"], "paper_note": pr["note"]}
             if best:
                 exact = all(params(best["params"]).get(k) == v for k, v in want.items()) and \

@@ -23,25 +23,23 @@
 #define REF_PI 3.14159265358979323846f
 #define REF_MAX_MIPS 24
 
-/* A texture's mip pyramid (box filter, built once per render): level 0 is the scene's own
- * texels, levels 1.. are owned here. levels == 0: not an albedo texture, no pyramid. */
+/* A texture's mip pyramid (box filter, built once per render). levels == 0: not an albedo
+ * texture, no pyramid. srgb8: every level in 8-bit sRGB 4x4 tiles (lv8), as GL stores it;
+ * otherwise floats (lv; level 0 is the scene's own texels). */
 typedef struct ref_mip {
-    int levels;
+    int levels, srgb8;
     int w[REF_MAX_MIPS], h[REF_MAX_MIPS];
     const float *lv[REF_MAX_MIPS];
+    const uint32_t *lv8[REF_MAX_MIPS];
     float *owned;
+    uint32_t *owned8;
 } ref_mip;
 
-/* A triangle's shading data in one aligned 128-byte record (ref_world.c). */
-#define REF_TRI_NG_OK 1u   /* ng is a unit normal (the triangle is not degenerate) */
-#define REF_TRI_HAS_N 2u   /* n[] holds vertex normals */
+/* A triangle's shading data in one 64-byte record, one cache line (ref_world.c). */
 typedef struct ref_tri {
-    _Alignas(64) float p0[3];
-    float e1[3], e2[3];      /* p1 - p0, p2 - p0 */
-    float ng[3];             /* unit geometric normal, e1 x e2 */
-    float n[3][3];           /* vertex normals */
+    _Alignas(64) float n[3][3]; /* vertex normals (0 when the scene has none) */
     float uv[3][2];
-    uint32_t mat, flags;
+    uint32_t mat;
 } ref_tri;
 
 #define REF_GEOM_OPAQUE 0

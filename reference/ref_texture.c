@@ -10,6 +10,7 @@
  * ref_hit_differentials) — so both sides see the same filtered albedo. Secondary hits take level 0
  * bilinear: a bounce ray has no pixel footprint worth filtering over, and its noise averages out. */
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -83,32 +84,193 @@ static void ref_downsample(const float *src, int sw, int sh, float *dst, int dw,
     }
 }
 
+/* ---- sRGB8 storage ----
+ * The scene's textures come from 8-bit files: every colour value is exactly the sRGB decode of
+ * some k / 255 (scenes/textures.c). Such a texture is stored as GL stores it (harness/gl/
+ * gpu_scene.c uploads GL_SRGB8_ALPHA8 and generates its mips): 8-bit sRGB, decoded to linear
+ * before filtering, each mip level averaged in linear and rounded back to 8 bits. That gives the
+ * reference the very values GL filters, and a quarter of the memory traffic: texels are kept in
+ * 4x4 tiles of one 64-byte cache line, so a bilinear footprint mostly touches one line. Textures
+ * with values that are not 8-bit (built in C by tests) keep floats. */
+
+static float ref_srgb_lut[256];
+static pthread_once_t ref_lut_once = PTHREAD_ONCE_INIT;
+
+/* The loader's decode, evaluated the same way, so lut[k] equals its output bit for bit. */
+static void ref_lut_init(void)
+{
+    for (int k = 0; k < 256; k++) {
+        float c = (float)k / 255.0f;
+        ref_srgb_lut[k] = c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+    }
+}
+
+/* The 8-bit code GL's upload would store for a linear value (gib_srgb_encode, rounded). */
+static unsigned ref_srgb_code(float v)
+{
+    if (!(v > 0.0f))
+        return 0;
+    if (v >= 1.0f)
+        return 255;
+    double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+    long k = lrint(e * 255.0);
+    return k < 0 ? 0 : k > 255 ? 255 : (unsigned)k;
+}
+
+static unsigned ref_unorm_code(float v)
+{
+    long k = lrintf(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f);
+    return (unsigned)k;
+}
+
+static size_t ref_tiled_size(int w, int h)
+{
+    return (size_t)((w + 3) / 4) * (size_t)((h + 3) / 4) * 16;
+}
+
+static inline size_t ref_tiled_index(int tw, int x, int y)
+{
+    return (((size_t)(y >> 2) * (size_t)tw + (size_t)(x >> 2)) << 4) |
+           (size_t)(((y & 3) << 2) | (x & 3));
+}
+
+/* Packs linear RGBA into sRGB8 tiles; returns 0 if some value has no exact 8-bit code (only
+ * checked when exact is set: level 0). */
+static int ref_pack8(const float *src, int w, int h, uint32_t *dst, int exact)
+{
+    int tw = (w + 3) / 4;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const float *p = src + ((size_t)y * (size_t)w + (size_t)x) * 4;
+            unsigned c[4];
+            for (int k = 0; k < 3; k++) {
+                c[k] = ref_srgb_code(p[k]);
+                if (exact && ref_srgb_lut[c[k]] != p[k])
+                    return 0;
+            }
+            c[3] = ref_unorm_code(p[3]);
+            if (exact && (float)c[3] / 255.0f != p[3])
+                return 0;
+            dst[ref_tiled_index(tw, x, y)] = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
+        }
+    return 1;
+}
+
+static void ref_unpack8(const uint32_t *src, int w, int h, float *dst)
+{
+    int tw = (w + 3) / 4;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint32_t t = src[ref_tiled_index(tw, x, y)];
+            float *p = dst + ((size_t)y * (size_t)w + (size_t)x) * 4;
+            for (int k = 0; k < 3; k++)
+                p[k] = ref_srgb_lut[(t >> (8 * k)) & 255u];
+            p[3] = (float)(t >> 24) / 255.0f;
+        }
+}
+
+static void ref_bilinear8(const ref_mip *m, int l, float u, float v, float out[4])
+{
+    const int w = m->w[l], h = m->h[l], tw = (w + 3) / 4;
+    const uint32_t *px = m->lv8[l];
+    if (!isfinite(u))
+        u = 0.0f;
+    if (!isfinite(v))
+        v = 0.0f;
+    float s = u - floorf(u), tt = 1.0f - v;
+    tt -= floorf(tt);
+    float x = s * (float)w - 0.5f, y = tt * (float)h - 0.5f;
+    float xf = floorf(x), yf = floorf(y);
+    float ax = x - xf, ay = y - yf;
+    int x0 = (int)xf, y0 = (int)yf, x1 = x0 + 1, y1 = y0 + 1;
+    x0 = x0 < 0 ? w - 1 : x0 >= w ? x0 - w : x0;
+    x1 = x1 >= w ? x1 - w : x1;
+    y0 = y0 < 0 ? h - 1 : y0 >= h ? y0 - h : y0;
+    y1 = y1 >= h ? y1 - h : y1;
+    const uint32_t t00 = px[ref_tiled_index(tw, x0, y0)], t10 = px[ref_tiled_index(tw, x1, y0)];
+    const uint32_t t01 = px[ref_tiled_index(tw, x0, y1)], t11 = px[ref_tiled_index(tw, x1, y1)];
+    for (int c = 0; c < 4; c++) {
+        int sh = 8 * c;
+        float a, b, cc, d;
+        if (c < 3) {
+            a = ref_srgb_lut[(t00 >> sh) & 255u], b = ref_srgb_lut[(t10 >> sh) & 255u];
+            cc = ref_srgb_lut[(t01 >> sh) & 255u], d = ref_srgb_lut[(t11 >> sh) & 255u];
+        } else {
+            a = (float)(t00 >> 24) / 255.0f, b = (float)(t10 >> 24) / 255.0f;
+            cc = (float)(t01 >> 24) / 255.0f, d = (float)(t11 >> 24) / 255.0f;
+        }
+        float top = a + (b - a) * ax, bot = cc + (d - cc) * ax;
+        out[c] = top + (bot - top) * ay;
+    }
+}
+
+static void ref_level_sample(const ref_mip *m, int l, float u, float v, float out[4])
+{
+    if (m->srgb8)
+        ref_bilinear8(m, l, u, v, out);
+    else
+        ref_bilinear(m->lv[l], m->w[l], m->h[l], u, v, out);
+}
+
 int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 {
     memset(m, 0, sizeof *m);
     if (!t || !t->rgba || t->width <= 0 || t->height <= 0)
         return 0;
+    pthread_once(&ref_lut_once, ref_lut_init);
     int w = t->width, h = t->height, levels = 1;
-    size_t total = 0;
+    size_t total = 0, total8 = ref_tiled_size(w, h), maxlv = (size_t)w * (size_t)h;
     while ((w > 1 || h > 1) && levels < REF_MAX_MIPS) {
         w = w > 1 ? w / 2 : 1;
         h = h > 1 ? h / 2 : 1;
         total += (size_t)w * (size_t)h * 4;
+        total8 += ref_tiled_size(w, h);
         levels++;
     }
+    m->levels = levels;
+    m->w[0] = t->width;
+    m->h[0] = t->height;
+    for (int l = 1; l < levels; l++) {
+        m->w[l] = m->w[l - 1] > 1 ? m->w[l - 1] / 2 : 1;
+        m->h[l] = m->h[l - 1] > 1 ? m->h[l - 1] / 2 : 1;
+    }
+    /* sRGB8 when level 0 is exactly 8-bit */
+    uint32_t *p8 = malloc(total8 * sizeof *p8);
+    float *a = p8 ? malloc(maxlv * 4 * sizeof *a) : NULL, *b = a ? malloc(maxlv * sizeof *b) : NULL;
+    if (!b) {
+        free(p8);
+        free(a);
+        return gib_fail(err, "out of memory building the mip maps of texture '%s'", t->path);
+    }
+    if (ref_pack8(t->rgba, t->width, t->height, p8, 1)) {
+        m->srgb8 = 1;
+        m->owned8 = p8;
+        m->lv8[0] = p8;
+        size_t off = ref_tiled_size(m->w[0], m->h[0]);
+        for (int l = 1; l < levels; l++) {
+            /* like glGenerateMipmap on an sRGB8 texture: the previous stored level, decoded,
+             * box-filtered in linear, rounded to 8 bits */
+            ref_unpack8(m->lv8[l - 1], m->w[l - 1], m->h[l - 1], a);
+            ref_downsample(a, m->w[l - 1], m->h[l - 1], b, m->w[l], m->h[l]);
+            m->lv8[l] = p8 + off;
+            ref_pack8(b, m->w[l], m->h[l], p8 + off, 0);
+            off += ref_tiled_size(m->w[l], m->h[l]);
+        }
+        free(a);
+        free(b);
+        return 0;
+    }
+    free(p8);
+    free(a);
+    free(b);
     if (total > 0) {
         m->owned = malloc(total * sizeof(float));
         if (!m->owned)
             return gib_fail(err, "out of memory building the mip maps of texture '%s'", t->path);
     }
-    m->levels = levels;
-    m->w[0] = t->width;
-    m->h[0] = t->height;
     m->lv[0] = t->rgba;
     float *next = m->owned;
     for (int l = 1; l < levels; l++) {
-        m->w[l] = m->w[l - 1] > 1 ? m->w[l - 1] / 2 : 1;
-        m->h[l] = m->h[l - 1] > 1 ? m->h[l - 1] / 2 : 1;
         ref_downsample(m->lv[l - 1], m->w[l - 1], m->h[l - 1], next, m->w[l], m->h[l]);
         m->lv[l] = next;
         next += (size_t)m->w[l] * (size_t)m->h[l] * 4;
@@ -119,6 +281,7 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 void ref_mip_free(ref_mip *m)
 {
     free(m->owned);
+    free(m->owned8);
     memset(m, 0, sizeof *m);
 }
 
@@ -138,7 +301,7 @@ void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float 
 {
     float lod = duv ? ref_mip_lod(m, duv) : -INFINITY;
     if (!(lod > 0.0f) || m->levels <= 1) { /* magnification: GL_LINEAR on level 0 */
-        ref_bilinear(m->lv[0], m->w[0], m->h[0], u, v, out);
+        ref_level_sample(m, 0, u, v, out);
         return;
     }
     int q = m->levels - 1;
@@ -147,12 +310,12 @@ void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float 
     float tau = lf - (float)d1;
     int d2 = d1 + 1 > q ? q : d1 + 1;
     float a[4], b[4];
-    ref_bilinear(m->lv[d1], m->w[d1], m->h[d1], u, v, a);
+    ref_level_sample(m, d1, u, v, a);
     if (tau == 0.0f || d2 == d1) {
         memcpy(out, a, sizeof a);
         return;
     }
-    ref_bilinear(m->lv[d2], m->w[d2], m->h[d2], u, v, b);
+    ref_level_sample(m, d2, u, v, b);
     for (int c = 0; c < 4; c++)
         out[c] = (1.0f - tau) * a[c] + tau * b[c];
 }

@@ -129,9 +129,10 @@ static int ref_validate(const gib_scene *gs, gib_error *err)
     return 0;
 }
 
-/* Everything shading needs of a triangle, in one 128-byte record: a hit costs one or two cache
- * lines instead of the ~11 that indices, three positions, normals and uvs and the material index
- * cost when read from the scene's arrays. Shading data is read from here only. */
+/* What shading needs of a triangle beyond Embree's hit (distance, barycentrics, geometric
+ * normal), in one 64-byte record, one cache line: a hit costs one line instead of the ~11 that
+ * the indices, three positions, normals and uvs and the material index cost when read from the
+ * scene's arrays. */
 static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
 {
     if (gs->triangle_count == 0)
@@ -144,26 +145,12 @@ static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
         ref_tri *t = &w->tris[i];
         memset(t, 0, sizeof *t);
         const uint32_t *ix = gs->indices + 3 * (size_t)i;
-        const float *p0 = gs->positions + 3 * (size_t)ix[0],
-                    *p1 = gs->positions + 3 * (size_t)ix[1],
-                    *p2 = gs->positions + 3 * (size_t)ix[2];
-        for (int k = 0; k < 3; k++) {
-            t->p0[k] = p0[k];
-            t->e1[k] = p1[k] - p0[k];
-            t->e2[k] = p2[k] - p0[k];
-        }
-        t->ng[0] = t->e1[1] * t->e2[2] - t->e1[2] * t->e2[1];
-        t->ng[1] = t->e1[2] * t->e2[0] - t->e1[0] * t->e2[2];
-        t->ng[2] = t->e1[0] * t->e2[1] - t->e1[1] * t->e2[0];
-        t->flags = ref_normalize(t->ng) ? REF_TRI_NG_OK : 0;
         for (int j = 0; j < 3; j++) {
             if (gs->normals)
                 memcpy(t->n[j], gs->normals + 3 * (size_t)ix[j], sizeof t->n[j]);
             if (gs->uvs)
                 memcpy(t->uv[j], gs->uvs + 2 * (size_t)ix[j], sizeof t->uv[j]);
         }
-        if (gs->normals)
-            t->flags |= REF_TRI_HAS_N;
         t->mat = gs->tri_material[i];
     }
     return 0;
@@ -325,18 +312,21 @@ void ref_world_free(ref_world *w)
 /* The front of a surface is the side its vertex normals point to (the geometric normal is turned
  * to agree with them), so a mesh's winding order does not matter; the GL side must use the same
  * rule for one-sided materials. */
-static void ref_fill_hit(const ref_world *w, uint32_t prim, float b1, float b2, const float d[3],
-                         ref_hit *h)
+/* The hit point is o + t d (Embree's distance), the geometric normal Embree's Ng = e1 x e2. */
+static void ref_fill_hit(const ref_world *w, const struct RTCRayHit *rh, uint32_t prim,
+                         const float o[3], const float d[3], ref_hit *h)
 {
     const ref_tri *t = &w->tris[prim];
-    float b0 = 1.0f - b1 - b2;
+    const float b1 = rh->hit.u, b2 = rh->hit.v, b0 = 1.0f - b1 - b2, tt = rh->ray.tfar;
+    h->ng[0] = rh->hit.Ng_x;
+    h->ng[1] = rh->hit.Ng_y;
+    h->ng[2] = rh->hit.Ng_z;
     for (int k = 0; k < 3; k++) {
-        h->p[k] = t->p0[k] + b1 * t->e1[k] + b2 * t->e2[k];
+        h->p[k] = o[k] + tt * d[k];
         h->n[k] = b0 * t->n[0][k] + b1 * t->n[1][k] + b2 * t->n[2][k];
-        h->ng[k] = t->ng[k];
     }
-    int ng_ok = t->flags & REF_TRI_NG_OK;
-    int n_ok = (t->flags & REF_TRI_HAS_N) && ref_normalize(h->n);
+    int ng_ok = ref_normalize(h->ng);
+    int n_ok = w->gs->normals && ref_normalize(h->n);
     if (!ng_ok && !n_ok) { /* a degenerate sliver without normals: face the viewer */
         for (int k = 0; k < 3; k++)
             h->ng[k] = h->n[k] = -d[k];
@@ -425,7 +415,7 @@ int ref_trace(const ref_world *w, const float o[3], const float d[3], ref_hit *h
     struct RTCRayHit rh;
     if (!ref_intersect(w, o, d, INFINITY, &rh))
         return 0;
-    ref_fill_hit(w, w->geo_tri[rh.hit.geomID][rh.hit.primID], rh.hit.u, rh.hit.v, d, hit);
+    ref_fill_hit(w, &rh, w->geo_tri[rh.hit.geomID][rh.hit.primID], o, d, hit);
     hit->t = rh.ray.tfar;
     hit->has_duv = 0;
     hit->has_kd = 0;
@@ -467,11 +457,15 @@ void ref_hit_differentials(const ref_world *w, const gib_camera *cam, int width,
     if (!w->gs->uvs)
         return;
     const ref_tri *tr = &w->tris[h->prim];
-    const float *p0 = tr->p0, *t0 = tr->uv[0], *t1 = tr->uv[1], *t2 = tr->uv[2];
+    const uint32_t *ix = w->gs->indices + 3 * (size_t)h->prim;
+    const float *p0 = w->gs->positions + 3 * (size_t)ix[0],
+                *p1 = w->gs->positions + 3 * (size_t)ix[1],
+                *p2 = w->gs->positions + 3 * (size_t)ix[2];
+    const float *t0 = tr->uv[0], *t1 = tr->uv[1], *t2 = tr->uv[2];
     double e1[3], e2[3], nn[3];
     for (int k = 0; k < 3; k++) {
-        e1[k] = tr->e1[k];
-        e2[k] = tr->e2[k];
+        e1[k] = (double)p1[k] - p0[k];
+        e2[k] = (double)p2[k] - p0[k];
     }
     nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
     nn[1] = e1[2] * e2[0] - e1[0] * e2[2];

@@ -125,7 +125,7 @@ int gib_light_eval(const gib_light *l, const float p[3], float wi[3], float *dis
 void gib_features_str(unsigned features, char *out, int out_len)
 {
     static const char *names[] = {"textures",   "specular",  "mirror",     "point_light",
-                                  "spot_light", "dir_light", "alpha_mask", "closed"};
+                                  "spot_light", "dir_light", "alpha_mask", "closed", "sky"};
     if (!out || out_len <= 0)
         return;
     out[0] = '\0';

@@ -32,6 +32,7 @@ enum gib_feature {
     GIB_FEAT_DIR_LIGHT = 1u << 5,
     GIB_FEAT_ALPHA_MASK = 1u << 6,  /* some material has an alpha (cut-out) mask */
     GIB_FEAT_CLOSED = 1u << 7,      /* geometry encloses the camera and lights (no escaping rays) */
+    GIB_FEAT_SKY = 1u << 8,         /* a uniform sky: rays that escape see radiance `sky` */
 };
 
 typedef struct gib_texture {
@@ -81,6 +82,10 @@ typedef struct gib_scene {
     char file[512];        /* the .scene file, or "" for a scene built purely in C */
     char description[512];
     float exposure;        /* for previews and the SSIM channel; default 1 */
+    float sky[3];          /* radiance of a uniform sky (environment light) seen by every ray that
+                              leaves the scene; 0 = none. Its direct light on a Lambertian point with
+                              unoccluded fraction V (cosine-weighted) is rho * sky * V: part of the
+                              `direct` component (L D E with L the sky). */
 
     uint32_t vertex_count;
     float *positions;      /* 3 per vertex */

@@ -451,6 +451,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         snprintf(sc->file, sizeof sc->file, "%s", s->path);
         snprintf(sc->description, sizeof sc->description, "%s", s->description);
         sc->exposure = s->exposure;
+        memcpy(sc->sky, s->sky, sizeof sc->sky);
         /* The vertex arrays move into the scene as they are (every vertex is referenced). */
         sc->vertex_count = g.vcount;
         sc->positions = g.pos;
@@ -500,6 +501,8 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
                                                         : GIB_FEAT_DIR_LIGHT;
         if (s->closed)
             f |= GIB_FEAT_CLOSED;
+        if (s->sky[0] > 0 || s->sky[1] > 0 || s->sky[2] > 0)
+            f |= GIB_FEAT_SKY;
         f |= room_encloses(s);
         sc->features = f;
         sc->content_hash = hash;

@@ -22,7 +22,7 @@
 
 enum section_kind { SEC_NONE, SEC_SCENE, SEC_MESH, SEC_MATERIAL, SEC_LIGHT, SEC_CAMERA };
 
-static const char *const scene_keys[] = {"description", "exposure", "data", "closed", NULL};
+static const char *const scene_keys[] = {"description", "exposure", "data", "closed", "sky", NULL};
 /* The first 7 are the mesh's own; the rest are generator keys (gib_proc_key_parse). */
 static const char *const mesh_keys[] = {
     "file",     "procedural", "scale", "rotate", "translate", "material", "smooth_angle",
@@ -383,6 +383,11 @@ static int handler(void *user, const char *section, const char *name, const char
         } else if (k == 2) {
             rc = COPY_STR(s->data, value);
             s->data_line = c->lineno;
+        } else if (k == 4) {
+            rc = FLOATS(s->sky, 3, 3, NULL);
+            if (!rc && !(s->sky[0] >= 0 && s->sky[1] >= 0 && s->sky[2] >= 0 &&
+                         isfinite(s->sky[0] + s->sky[1] + s->sky[2])))
+                rc = ctx_fail(c, "%s: 'sky' must be 3 finite radiances >= 0, got '%s'", label, value);
         } else if (parse_bool(value, &s->closed))
             rc = ctx_fail(c, "%s: 'closed' expects 0 or 1, got '%s'", label, value);
         break;

@@ -238,6 +238,7 @@ typedef struct gib_scene_spec {
     char data[256];                /* shared data folder the scene needs, "" for none */
     int data_line;
     int closed;                    /* [scene] closed = 1: geometry encloses camera and lights */
+    float sky[3];                  /* [scene] sky = r g b: uniform environment radiance */
     int scene_line;
     gib_mesh_spec *meshes;
     int mesh_count;

@@ -11,12 +11,14 @@ extern const gib_technique gib_technique_direct;
 extern const gib_technique gib_technique_hbao;
 extern const gib_technique gib_technique_ldm_ao;
 extern const gib_technique gib_technique_ldm_indirect;
+extern const gib_technique gib_technique_ldm_env;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
     &gib_technique_hbao,
     &gib_technique_ldm_ao,
     &gib_technique_ldm_indirect,
+    &gib_technique_ldm_env,
 };
 
 const gib_technique *const *gib_techniques(int *count)

@@ -4,6 +4,8 @@
 //   (the paper names no falloff; Zhukov's linear one is our choice, the reference uses the same).
 // One LDM direction v serves the sample direction w = v or -v, whichever lies in the hemisphere of
 // n. The pass runs once per node page (additive blending) over the LDMs stored in it.
+// With LDM_SKY defined (technique ldm_env, the paper's Fig. 11) the same sum is the direct light of
+// a uniform sky of radiance L: rho/pi * integral L V cos dw = rho * L * (2/N) sum V |cos|.
 #include "ldm/ldm_trace.glsl"
 layout(binding = 0) uniform sampler2D g_position;
 layout(binding = 1) uniform sampler2D g_normal;
@@ -13,6 +15,10 @@ layout(location = 7) uniform float u_weight;        // 2 / N
 layout(location = 8) uniform float u_dmax;          // +inf for unbounded
 layout(location = 9) uniform int u_obscurance;
 layout(location = 10) uniform float u_offset_texels;
+#ifdef LDM_SKY
+layout(binding = 2) uniform sampler2D g_albedo;
+layout(location = 11) uniform vec3 u_sky;
+#endif
 layout(location = 0) out vec4 o_ao;
 void main()
 {
@@ -41,5 +47,9 @@ void main()
             vis = d <= u_dmax ? 0.0 : 1.0;
         sum += vis * abs(c);
     }
+#ifdef LDM_SKY
+    o_ao = vec4(texelFetch(g_albedo, px, 0).rgb * u_sky * (sum * u_weight), 0.0);
+#else
     o_ao = vec4(vec3(sum * u_weight), 0.0);
+#endif
 }

@@ -2,9 +2,9 @@
  * trilinear lookup, the ray differentials (Igehy 1999) and the LOD they give, and the end result
  * in the `albedo` component.
  *
- * Expected values are exact (box averages, linear blends, and the closed-form pixel footprint of a
- * camera looking straight down at a plane), so tolerances are float rounding: 1e-6 absolute on
- * texel values, 1e-4 relative on derivatives. */
+ * Expected values are exact (box averages, linear blends, GL's 8-bit sRGB rounding of mip levels,
+ * and the closed-form pixel footprint of a camera looking straight down at a plane), so tolerances
+ * are float rounding: 1e-6 absolute on texel values, 1e-4 relative on derivatives. */
 #include <math.h>
 #include <string.h>
 
@@ -70,15 +70,32 @@ static void test_pyramid(void)
     RT_CHECK(close_to(m.lv[1][0], 4.0f, 1e-6f), "3x3 top level %g, expected the mean 4",
              m.lv[1][0]);
     ref_mip_free(&m);
-    printf("pyramid, trilinear blend, magnification and odd sizes: exact\n");
+
+    /* 8-bit textures (every colour the decode of some k/255, as loaded from files) are kept as GL
+     * keeps them: sRGB8, level 0 exact, the mips rounded to 8 bits. A 2x2 texture of 0 and 1:
+     * level 1 holds decode(round(encode(0.5) * 255) / 255) = decode(188/255), not 0.5. */
+    float bw[16] = {0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 1};
+    t.width = t.height = 2;
+    t.rgba = bw;
+    RT_CHECK(ref_mip_build(&m, &t, &err) == 0 && m.srgb8 && m.levels == 2, "8-bit texture kept "
+             "as sRGB8 (srgb8 %d, levels %d)", m.srgb8, m.levels);
+    ref_mip_sample(&m, 0.75f, 0.75f, NULL, out); /* texel (1, 0): white, exactly */
+    RT_CHECK(out[0] == 1.0f && out[3] == 1.0f, "sRGB8 level 0 texel: %g, expected 1", out[0]);
+    duv[0] = 10.0f;
+    ref_mip_sample(&m, 0.3f, 0.6f, duv, out);
+    double c = 188.0 / 255.0, want = pow((c + 0.055) / 1.055, 2.4);
+    RT_CHECK(fabs(out[0] - want) <= 1e-6, "sRGB8 level 1: %.7f, expected %.7f", out[0], want);
+    ref_mip_free(&m);
+    printf("pyramid, trilinear blend, magnification, odd sizes, sRGB8 levels (0.5 stored as "
+           "%.6f, as GL rounds it): exact\n", want);
 }
 
 /* 3. Differentials of a floor seen straight down: the floor is parallel to the image plane, so a
  * pixel covers fp = 2 h tan(fov/2) / H metres everywhere; with u = (x - x0) / S and
  * v = (z1 - z) / S, du/dx = fp / S, dv/dy = -fp / S (image down is +z), the cross terms 0.
  * 4. The albedo image of a 1-texel checkerboard (0 and 1) minified past LOD 1: every level from 1
- * up holds exactly 0.5, so every pixel is 0.5 x albedo — where level 0 at the pixel centre would
- * alias between 0 and albedo. */
+ * up holds 0.5 in linear (0.50287 after GL's 8-bit sRGB rounding), so every pixel is that times
+ * the albedo — where level 0 at the pixel centre would alias between 0 and the albedo. */
 static void test_floor(void)
 {
     const float h = 4.0f, fov = 60.0f, S = 10.0f;
@@ -136,12 +153,13 @@ static void test_floor(void)
     gib_image img;
     rt_render(&s, &p, &img, NULL, NULL);
     int bad = 0;
+    const double grey = pow((188.0 / 255.0 + 0.055) / 1.055, 2.4), want = 0.8 * grey;
     for (int i = 0; i < W * H * 3; i++)
-        bad += !close_to(img.px[i], 0.4f, 1e-6f);
-    RT_CHECK(bad == 0, "albedo: %d values differ from 0.5 x 0.8 = 0.4", bad);
-    printf("albedo of a minified 1-texel checkerboard (LOD %.2f): all %d values 0.4 = 0.5 x "
-           "albedo (tol 1e-6)\n",
-           lod_want, W * H * 3);
+        bad += fabs(img.px[i] - want) > 1e-6;
+    RT_CHECK(bad == 0, "albedo: %d values differ from %.6f", bad, want);
+    printf("albedo of a minified 1-texel checkerboard (LOD %.2f): all %d values %.6f = 0.8 x "
+           "the 8-bit mid grey %.6f (tol 1e-6)\n",
+           lod_want, W * H * 3, want, grey);
     gib_image_free(&img);
     rt_scene_free(&s);
 }
