@@ -84,8 +84,8 @@ static void begin_pass(ldm_set *l)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, l->counters);
 }
 
-int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, gib_ledger *ledger,
-               gib_error *err)
+int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, double node_budget,
+               gib_ledger *ledger, gib_error *err)
 {
     memset(l, 0, sizeof *l);
     snprintf(l->status_word, sizeof l->status_word, "ok");
@@ -135,8 +135,8 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     }
     glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts32);
     for (int i = 0; i < l->count; i++) {
-        counts[i] = counts32[i];
-        l->fragments += counts[i];
+        l->fragments += counts32[i];
+        counts[i] = (uint64_t)((double)counts32[i] * node_budget);
     }
     free(counts32);
     l->mean_depth_complexity = (double)l->fragments / ((double)l->count * res * res);

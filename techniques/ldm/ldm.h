@@ -42,9 +42,11 @@ typedef struct ldm_set {
 } ldm_set;
 
 /* Builds the direction set, measures node counts, allocates heads and nodes through the ledger
- * (labels "ldm.heads", "ldm.nodes"). */
-int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, gib_ledger *ledger,
-               gib_error *err);
+ * (labels "ldm.heads", "ldm.nodes"). node_budget scales the measured node counts into the
+ * capacity (1: exact; below 1 caps memory, and the fragments that do not fit are reported as
+ * status `overflow`). */
+int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, double node_budget,
+               gib_ledger *ledger, gib_error *err);
 /* Constructs every LDM for this frame (pass "ldm_build"). */
 void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers);
 /* Binds page p's heads and nodes (bindings 4, 5) and the info SSBO (3). */

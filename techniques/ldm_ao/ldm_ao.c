@@ -32,6 +32,8 @@ static const gib_param_spec ldm_ao_params[] = {
      "maximum occluder distance, world units (inf: unattenuated AO)"},
     {"obscurance", GIB_PARAM_INT, 0, 0, 1, "1: obscurance rho(d) = min(d/dmax, 1) (needs finite dmax)"},
     {"normal_offset", GIB_PARAM_FLOAT, 1.0, 0, 16, "ray origin offset along the normal, LDM texels"},
+    {"node_budget", GIB_PARAM_FLOAT, 1.0, 0.01, 1.0,
+     "LDM nodes allocated, as a fraction of the fragments counted at create (<1: overflow reported)"},
     {0},
 };
 
@@ -71,7 +73,7 @@ static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int 
     const char *files[] = {"common/fullscreen.vert", "ldm_ao/ldm_ao.frag"};
     if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
-                   ledger, err) < 0 ||
+                   gib_param_float(t, p, "node_budget"), ledger, err) < 0 ||
         !(a->program = gib_program(files, 2, NULL, err))) {
         ldm_ao_destroy(a);
         return NULL;

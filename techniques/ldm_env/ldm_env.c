@@ -75,7 +75,7 @@ static void *ldm_env_create(const gib_gpu_scene *scene, const gib_params *p, int
     if (gib_gbuffer_create(&e->gbuffer, w, h, ledger, err) < 0 ||
         gib_shadow_maps_create(&e->shadows, scene, gib_param_int(t, p, "shadow_res"), ledger, err) < 0 ||
         ldm_create(&e->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
-                   ledger, err) < 0 ||
+                   1.0, ledger, err) < 0 ||
         !(e->shade_program = gib_program(shade, 2, NULL, err)) ||
         !(e->sky_program = gib_program(sky, 2, "#define LDM_SKY 1\n", err))) {
         ldm_env_destroy(e);

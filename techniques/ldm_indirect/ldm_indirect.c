@@ -97,7 +97,7 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
     int directions = gib_param_int(t, p, "directions");
     if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         gib_gbuffer_create(&a->rsm, a->photon_res, a->photon_res, ledger, err) < 0 ||
-        ldm_create(&a->ldms, scene, directions, gib_param_int(t, p, "ldm_res"), ledger, err) < 0 ||
+        ldm_create(&a->ldms, scene, directions, gib_param_int(t, p, "ldm_res"), 1.0, ledger, err) < 0 ||
         !(a->trace_program = gib_program(trace, 1, NULL, err)) ||
         !(a->splat_program = gib_program(splat, 3, NULL, err)))
         goto fail;

@@ -114,6 +114,23 @@ int main(void)
     } else {
         printf("PASS: open plane: %d pixels, worst |AO - 1| = %.4g <= 1/N + 1e-3\n", count, worst);
     }
+    /* 5. A node buffer too small for the lists: the row's status says overflow, never ok. */
+    {
+        const gib_technique *t = gib_technique_find("ldm_ao");
+        gib_params p;
+        gib_params_default(t, &p);
+        gib_param_set(t, &p, "directions", "32", &err);
+        gib_param_set(t, &p, "node_budget", "0.5", &err);
+        gib_run_result ro;
+        gib_run_technique(&gpu, t, &p, 0, 64, 64, 0, 1, &ro);
+        if (ro.ok || strcmp(ro.status, "overflow")) {
+            printf("FAIL: node_budget 0.5: status '%s', expected 'overflow'\n", ro.status);
+            ok = 0;
+        } else {
+            printf("PASS: node_budget 0.5 reports status '%s' (%s)\n", ro.status, ro.err.msg);
+        }
+        gib_run_result_free(&ro);
+    }
     printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }
