@@ -45,6 +45,25 @@ static int read_target(unsigned texture, int w, int h, gib_image *img, gib_error
     return gib_gl_check("reading back an image", err);
 }
 
+/* Available video memory in bytes from GL_NVX_gpu_memory_info (NVIDIA), or -1. llvmpipe and Mesa's
+ * other drivers do not expose it (nor GL_ATI_meminfo): there the ledger is the only memory figure. */
+static long long nvx_available_bytes(void)
+{
+    static int checked, has;
+    if (!checked) {
+        GLint n = 0;
+        glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+        for (GLint i = 0; i < n && !has; i++)
+            has = !strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), "GL_NVX_gpu_memory_info");
+        checked = 1;
+    }
+    if (!has)
+        return -1;
+    GLint kb = 0;
+    glGetIntegerv(0x9049 /* GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX */, &kb);
+    return (long long)kb * 1024;
+}
+
 void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
                        int camera, int w, int h, int warmup, int frames, gib_run_result *r)
 {
@@ -85,6 +104,8 @@ void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const
     }
     r->output_count = nt;
 
+    long long avail_before = nvx_available_bytes();
+    r->driver_bytes = -1;
     self = t->create(scene, params, w, h, &ledger, &r->err);
     if (!self) {
         set_status(r, strstr(r->err.msg, "shader") || strstr(r->err.msg, "program")
@@ -115,6 +136,9 @@ void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const
             goto done;
         }
     r->frames = timers.frames;
+    long long avail_after = nvx_available_bytes();
+    if (avail_before >= 0 && avail_after >= 0)
+        r->driver_bytes = avail_before - avail_after;
     r->pass_count = gib_timers_stats(&timers, r->passes, GIB_TIMER_MAX_PASSES, &r->gpu_total,
                                      &r->cpu_total);
 done:

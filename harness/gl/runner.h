@@ -22,6 +22,9 @@ typedef struct gib_run_result {
     gib_pass_stats gpu_total, cpu_total;
     int frames;
     uint64_t technique_bytes;       /* peak bytes the technique's ledger held */
+    long long driver_bytes;         /* what the driver says the run took (GL_NVX_gpu_memory_info:
+                                       drop in available video memory from before create to after
+                                       the last frame), -1 where the driver does not tell */
     char memory_by_label[1024];
     gib_error err;
 } gib_run_result;
