@@ -1,8 +1,9 @@
 /* gibench — internals of the reference renderer shared by its source files (not a public API).
  *
  *   ref_world.c      the Embree scene built from a gib_scene, the alpha-mask filter, ray casting,
- *                    surface points, robust ray offsets, ray differentials at primary hits
- *   ref_texture.c    texture lookups: level-0 bilinear, mip pyramids and trilinear filtering
+ *                    surface points, robust ray offsets
+ *   ref_texture.c    texture lookups: level-0 bilinear, mip pyramids, trilinear filtering, and the
+ *                    ray differentials at primary hits that choose the level
  *   ref_bsdf.c       the material model: albedo, next-event estimation, lobe sampling
  *   ref_estimators.c direct, ao/obscurance, indirect, glossy and the auxiliary images
  *   ref_path.c       full and higher: camera paths with next-event estimation and Russian roulette
@@ -32,7 +33,8 @@ typedef struct ref_mip {
     const float *lv[REF_MAX_MIPS];
     const uint32_t *lv8[REF_MAX_MIPS];
     float *owned;
-    uint32_t *owned8;
+    uint32_t *owned8;        /* ref_alloc_huge'd, owned8_bytes long */
+    size_t owned8_bytes;
 } ref_mip;
 
 /* A triangle's shading data in one 64-byte record, one cache line (ref_world.c). */
@@ -62,8 +64,9 @@ typedef struct ref_world {
     int has_mirror;          /* some material is a mirror */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
     ref_raylog *log;         /* bench: non-NULL records every ray (single thread only) */
-    uint32_t *geo_tri[2];    /* Embree geometry g's primitive -> scene triangle */
-    ref_tri *tris;           /* one per scene triangle */
+    ref_tri *tris;           /* one per triangle, in Embree's order (opaque, then masked) */
+    uint32_t geo_base[2];    /* Embree geometry g's primitive k is record geo_base[g] + k */
+    uint32_t *rec_tri;       /* record -> scene triangle */
     char embree_msg[512];    /* last message from Embree's error callback */
 } ref_world;
 
@@ -78,17 +81,31 @@ typedef struct ref_hit {
     int has_kd;              /* kd holds ref_albedo() (primary hits: filtered once per pixel) */
     float kd[3];
     float t;                 /* ray distance */
-    uint32_t prim;
+    uint32_t prim;           /* triangle record (w->rec_tri[prim] is the scene's triangle) */
     const gib_material *mat;
     int back;                /* seen from behind a one-sided material: shades to 0 */
 } ref_hit;
 
 int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err);
+/* Zeroed memory mapped on 2 MiB boundaries and advised onto transparent huge pages; release with
+ * ref_free_huge and the same size. */
+void *ref_alloc_huge(size_t bytes);
+void ref_free_huge(void *p, size_t bytes);
 void ref_world_free(ref_world *w);
 
 /* Casts the ray (o, d) from tnear = 0 and fills hit, oriented toward the viewer at -d.
  * Returns 1 on a hit, 0 on a miss. */
 int ref_trace(const ref_world *w, const float o[3], const float d[3], ref_hit *hit);
+/* ref_trace in two halves, so that the memory latency of a hit's shading data can overlap other
+ * work: _start finds the hit and prefetches its triangle record; _finish fills the hit and
+ * prefetches its albedo texel. */
+typedef struct ref_pending {
+    struct RTCRayHit rh;
+    float o[3], d[3];
+    uint32_t prim;
+} ref_pending;
+int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq);
+void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit);
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */
 int ref_occluded(const ref_world *w, const float o[3], const float d[3], float tfar);
 /* The distance to the first surface on (o, d) within (0, tfar], or INFINITY. */
@@ -115,6 +132,10 @@ void ref_mip_free(ref_mip *m);
  * duv = du/dx, dv/dx, du/dy, dv/dy; level 0 bilinear (GL's LINEAR magnification) when the LOD
  * is <= 0 or duv is NULL. */
 void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float out[4]);
+/* Builds w->mips: the pyramids of the scene's albedo textures, on all cores. */
+int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err);
+/* Prefetches the cache line of level 0 that a lookup at (u, v) reads first. */
+void ref_mip_prefetch(const ref_mip *m, float u, float v);
 /* The LOD GL would use: log2(max(|duv_x * size|, |duv_y * size|)). */
 float ref_mip_lod(const ref_mip *m, const float duv[4]);
 

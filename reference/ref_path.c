@@ -12,9 +12,10 @@
  * diffuse surfaces behind it, lit by next-event estimation there).
  *
  * Russian roulette from min_depth on: a path that has reached vertex d >= min_depth continues
- * with probability q = min(1, max channel of the throughput), and the survivors' throughput is
- * divided by q, which keeps the estimator unbiased (Arvo and Kirk 1990). max_depth cuts paths
- * off: `full` is exactly the sum of all classes of at most max_depth vertices.
+ * with probability q = min(1, max channel of its throughput after this bounce, estimated from the
+ * material's untextured reflectances), and the survivors' throughput is divided by q, which keeps
+ * the estimator unbiased (Arvo and Kirk 1990). max_depth cuts paths off: `full` is exactly the
+ * sum of all classes of at most max_depth vertices.
  *
  * `higher` runs the same paths and keeps only the contributions whose class none of direct,
  * indirect, glossy and caustic counts (ref_basic_class).
@@ -37,6 +38,13 @@ int ref_basic_class(int verts, int s1, int all_s_rest, int max_specular)
     return !s1 && all_s_rest && verts - 1 <= max_specular; /* L S+ D E: caustic */
 }
 
+/* The order of work at each vertex hides memory latency: the continuation ray is traced (its
+ * hit's triangle record prefetched) BEFORE this vertex's textured material and next-event
+ * estimation are evaluated, and the next hit's albedo texel is prefetched before the next
+ * continuation is traced, so the two cache misses of a hit overlap Embree's work instead of
+ * stalling on it. That is why the lobe and the roulette are chosen from the material's constant
+ * reflectances (any positive selection probabilities keep the estimator unbiased, as long as the
+ * weight divides by the same ones); the sample's weight then uses the textured values. */
 void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
                   ref_pcg32 *rng, float out[3], long long *rays)
 {
@@ -45,15 +53,53 @@ void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int hig
     out[0] = out[1] = out[2] = 0.0f;
     if (h->back)
         return;
-    ref_hit cur = *h;
+    ref_hit cur = *h, next;
     float wcur[3] = {wo[0], wo[1], wo[2]};
     float beta[3] = {1.0f, 1.0f, 1.0f};
     int s1 = 0, all_s_rest = 1; /* lobes of the vertices before the current one */
     for (int depth = 1;; depth++) {
+        /* 1. choose the continuation from the material's constants, and trace it */
+        const gib_material *gm = cur.mat;
+        int spec = gm->spec_type != GIB_SPEC_NONE;
+        float pd = ref_lum(gm->albedo), ps = spec ? ref_lum(gm->specular) : 0.0f;
+        int cont = depth < maxd && pd + ps > 0.0f, lobe_s = 0, hit = 0;
+        float d[3], f = 1.0f, q = 1.0f, prob = 1.0f;
+        ref_pending pend;
+        if (cont) {
+            float u0 = ref_pcg32_float(rng), u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+            lobe_s = u0 * (pd + ps) >= pd;
+            prob = (lobe_s ? ps : pd) / (pd + ps);
+            if (!lobe_s) {
+                ref_sample_cosine(cur.n, u1, u2, d);
+            } else {
+                float r[3];
+                ref_reflect(wcur, cur.n, r);
+                if (gm->spec_type == GIB_SPEC_PHONG)
+                    f = ref_sample_phong(r, gm->phong_n, cur.n, u1, u2, d);
+                else
+                    memcpy(d, r, sizeof d);
+            }
+            cont = f > 0.0f && ref_dot(d, cur.ng) > 0.0f;
+            if (cont && depth >= mind) { /* roulette on the untextured throughput estimate */
+                const float *refl = lobe_s ? gm->specular : gm->albedo;
+                float est = 0.0f;
+                for (int k = 0; k < 3; k++)
+                    est = fmaxf(est, beta[k] * refl[k] * f / prob);
+                q = fminf(1.0f, est);
+                cont = ref_pcg32_float(rng) < q;
+            }
+            if (cont) {
+                float o[3];
+                ref_offset_origin(w, &cur, d, o);
+                ++*rays;
+                hit = ref_trace_start(w, o, d, &pend);
+            }
+        }
+
+        /* 2. this vertex: textured material, next-event estimation (diffuse and Phong parts are
+         * different classes; `higher` skips the parts whose class is basic) */
         ref_mat m;
         ref_material(w, &cur, &m);
-        /* Next-event estimation at vertex `depth`, its diffuse (D) and Phong (S) parts being
-         * different classes. `higher` skips the parts whose class is basic. */
         int keep[2];
         for (int lobe = 0; lobe < 2; lobe++) {
             int c1 = depth == 1 ? lobe : s1, rest = depth == 1 ? 1 : (all_s_rest && lobe);
@@ -63,57 +109,24 @@ void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int hig
             ref_mat mn = m;
             if (!keep[0])
                 mn.kd[0] = mn.kd[1] = mn.kd[2] = 0.0f;
-            float dif[3], spec[3];
-            ref_nee(w, &cur, &mn, wcur, dif, keep[1] ? spec : NULL, rays);
+            float dif[3], sp[3];
+            ref_nee(w, &cur, &mn, wcur, dif, keep[1] ? sp : NULL, rays);
             for (int k = 0; k < 3; k++)
-                out[k] += beta[k] * (dif[k] + (keep[1] ? spec[k] : 0.0f));
+                out[k] += beta[k] * (dif[k] + (keep[1] ? sp[k] : 0.0f));
         }
-        if (depth >= maxd)
+        if (!hit)
             break;
 
-        /* Continue: one lobe, chosen in proportion to its reflectance. */
-        float u0 = ref_pcg32_float(rng), u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
-        float pd = ref_lum(m.kd), ps = m.spec != GIB_SPEC_NONE ? ref_lum(m.ks) : 0.0f;
-        if (!(pd + ps > 0.0f))
-            break;
-        int lobe_s = u0 * (pd + ps) >= pd;
-        float d[3], wgt[3];
-        if (!lobe_s) {
-            ref_sample_cosine(cur.n, u1, u2, d);
-            for (int k = 0; k < 3; k++)
-                wgt[k] = m.kd[k] * (pd + ps) / pd;
-        } else {
-            float r[3], f = 1.0f;
-            ref_reflect(wcur, cur.n, r);
-            if (m.spec == GIB_SPEC_PHONG)
-                f = ref_sample_phong(r, m.phong_n, cur.n, u1, u2, d);
-            else
-                memcpy(d, r, sizeof d);
-            if (!(f > 0.0f))
-                break;
-            for (int k = 0; k < 3; k++)
-                wgt[k] = m.ks[k] * f * (pd + ps) / ps;
-        }
-        if (!(ref_dot(d, cur.ng) > 0.0f))
-            break;
+        /* 3. the continuation's weight with the textured reflectances; the next vertex */
+        const float *refl = lobe_s ? m.ks : m.kd;
         for (int k = 0; k < 3; k++)
-            beta[k] *= wgt[k];
+            beta[k] *= refl[k] * f / (prob * q);
         if (depth == 1)
             s1 = lobe_s;
         else
             all_s_rest = all_s_rest && lobe_s;
-        if (depth >= mind) {
-            float q = fminf(1.0f, fmaxf(beta[0], fmaxf(beta[1], beta[2])));
-            if (!(ref_pcg32_float(rng) < q))
-                break;
-            for (int k = 0; k < 3; k++)
-                beta[k] /= q;
-        }
-        float o[3];
-        ref_offset_origin(w, &cur, d, o);
-        ref_hit next;
-        ++*rays;
-        if (!ref_trace(w, o, d, &next) || next.back)
+        ref_trace_finish(w, &pend, &next);
+        if (next.back || (beta[0] <= 0.0f && beta[1] <= 0.0f && beta[2] <= 0.0f))
             break;
         cur = next;
         wcur[0] = -d[0], wcur[1] = -d[1], wcur[2] = -d[2];

@@ -13,6 +13,7 @@
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ref_internal.h"
 
@@ -94,27 +95,61 @@ static void ref_downsample(const float *src, int sw, int sh, float *dst, int dw,
  * with values that are not 8-bit (built in C by tests) keep floats. */
 
 static float ref_srgb_lut[256];
+static double ref_srgb_mid[255]; /* linear value of the encoded midpoint (k + 0.5) / 255 */
+static uint8_t ref_srgb_bucket[1 << 16]; /* by the top 16 bits of a float: its smallest code */
 static pthread_once_t ref_lut_once = PTHREAD_ONCE_INIT;
 
-/* The loader's decode, evaluated the same way, so lut[k] equals its output bit for bit. */
+static unsigned ref_srgb_search(double v)
+{
+    unsigned lo = 0, hi = 255; /* answer in [lo, hi] */
+    while (lo < hi) {
+        unsigned mid = (lo + hi) / 2; /* is v at or past the midpoint between mid and mid + 1? */
+        if (v >= ref_srgb_mid[mid])
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+static double ref_srgb_decode(double c)
+{
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+/* The loader's decode, evaluated the same way (scenes/textures.c), so lut[k] is its output. */
 static void ref_lut_init(void)
 {
     for (int k = 0; k < 256; k++) {
         float c = (float)k / 255.0f;
         ref_srgb_lut[k] = c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
     }
+    for (int k = 0; k < 255; k++)
+        ref_srgb_mid[k] = ref_srgb_decode((k + 0.5) / 255.0);
+    for (uint32_t b = 0; b < (1u << 16); b++) {
+        uint32_t bits = b << 16;
+        float v;
+        memcpy(&v, &bits, sizeof v);
+        ref_srgb_bucket[b] = (uint8_t)(v > 0.0f && isfinite(v) ? ref_srgb_search(v) : 0);
+    }
 }
 
-/* The 8-bit code GL's upload would store for a linear value (gib_srgb_encode, rounded). */
+/* The 8-bit code GL's upload would store for a linear value: round(encode(v) * 255), i.e. the
+ * number of encoded midpoints at or below v (the encode is monotonic). Found without a pow: the
+ * float's top 16 bits give the code of the bottom of its bucket (buckets are 2^-7 wide in
+ * relative terms, codes at least that far apart), then a step or two up. */
 static unsigned ref_srgb_code(float v)
 {
     if (!(v > 0.0f))
         return 0;
     if (v >= 1.0f)
         return 255;
-    double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
-    long k = lrint(e * 255.0);
-    return k < 0 ? 0 : k > 255 ? 255 : (unsigned)k;
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    unsigned k = ref_srgb_bucket[bits >> 16];
+    while (k < 255 && (double)v >= ref_srgb_mid[k])
+        k++;
+    return k;
 }
 
 static unsigned ref_unorm_code(float v)
@@ -134,8 +169,10 @@ static inline size_t ref_tiled_index(int tw, int x, int y)
            (size_t)(((y & 3) << 2) | (x & 3));
 }
 
-/* Packs linear RGBA into sRGB8 tiles; returns 0 if some value has no exact 8-bit code (only
- * checked when exact is set: level 0). */
+/* Packs linear RGBA into sRGB8 tiles; returns 0 if some value is not the decode of an 8-bit code
+ * (only checked when exact is set: level 0). "Is the decode" allows 2e-6 relative: the loader
+ * decodes 8-bit values that the image library scaled by 1/255 in its own rounding, which can move
+ * them by an ulp or two from decode(k / 255). */
 static int ref_pack8(const float *src, int w, int h, uint32_t *dst, int exact)
 {
     int tw = (w + 3) / 4;
@@ -145,11 +182,11 @@ static int ref_pack8(const float *src, int w, int h, uint32_t *dst, int exact)
             unsigned c[4];
             for (int k = 0; k < 3; k++) {
                 c[k] = ref_srgb_code(p[k]);
-                if (exact && ref_srgb_lut[c[k]] != p[k])
+                if (exact && !(fabsf(ref_srgb_lut[c[k]] - p[k]) <= 2e-6f * p[k] + 1e-9f))
                     return 0;
             }
             c[3] = ref_unorm_code(p[3]);
-            if (exact && (float)c[3] / 255.0f != p[3])
+            if (exact && !(fabsf((float)c[3] / 255.0f - p[3]) <= 1e-6f))
                 return 0;
             dst[ref_tiled_index(tw, x, y)] = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
         }
@@ -235,16 +272,17 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
         m->h[l] = m->h[l - 1] > 1 ? m->h[l - 1] / 2 : 1;
     }
     /* sRGB8 when level 0 is exactly 8-bit */
-    uint32_t *p8 = malloc(total8 * sizeof *p8);
+    uint32_t *p8 = ref_alloc_huge(total8 * sizeof *p8);
     float *a = p8 ? malloc(maxlv * 4 * sizeof *a) : NULL, *b = a ? malloc(maxlv * sizeof *b) : NULL;
     if (!b) {
-        free(p8);
+        ref_free_huge(p8, total8 * sizeof *p8);
         free(a);
         return gib_fail(err, "out of memory building the mip maps of texture '%s'", t->path);
     }
     if (ref_pack8(t->rgba, t->width, t->height, p8, 1)) {
         m->srgb8 = 1;
         m->owned8 = p8;
+        m->owned8_bytes = total8 * sizeof *p8;
         m->lv8[0] = p8;
         size_t off = ref_tiled_size(m->w[0], m->h[0]);
         for (int l = 1; l < levels; l++) {
@@ -260,7 +298,7 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
         free(b);
         return 0;
     }
-    free(p8);
+    ref_free_huge(p8, total8 * sizeof *p8);
     free(a);
     free(b);
     if (total > 0) {
@@ -281,7 +319,7 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 void ref_mip_free(ref_mip *m)
 {
     free(m->owned);
-    free(m->owned8);
+    ref_free_huge(m->owned8, m->owned8_bytes);
     memset(m, 0, sizeof *m);
 }
 
@@ -318,4 +356,124 @@ void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float 
     ref_level_sample(m, d2, u, v, b);
     for (int c = 0; c < 4; c++)
         out[c] = (1.0f - tau) * a[c] + tau * b[c];
+}
+
+void ref_mip_prefetch(const ref_mip *m, float u, float v)
+{
+    if (m->levels == 0 || !isfinite(u) || !isfinite(v))
+        return;
+    float s = u - floorf(u), tt = 1.0f - v;
+    tt -= floorf(tt);
+    int x = (int)(s * (float)m->w[0]), y = (int)(tt * (float)m->h[0]);
+    x = x >= m->w[0] ? m->w[0] - 1 : x;
+    y = y >= m->h[0] ? m->h[0] - 1 : y;
+    if (m->srgb8)
+        __builtin_prefetch(m->lv8[0] + ref_tiled_index((m->w[0] + 3) / 4, x, y));
+    else
+        __builtin_prefetch(m->lv[0] + ((size_t)y * (size_t)m->w[0] + (size_t)x) * 4);
+}
+
+/* ---- the pixel footprint at primary hits ---- */
+
+/* The albedo textures' pyramids, one texture per task on all cores. */
+typedef struct ref_mip_jobs {
+    ref_world *w;
+    const gib_scene *gs;
+    unsigned char *want;
+    gib_error *errs;
+    int *rc;
+} ref_mip_jobs;
+
+static void ref_mip_task(void *ctx, int t)
+{
+    ref_mip_jobs *j = ctx;
+    if (j->want[t])
+        j->rc[t] = ref_mip_build(&j->w->mips[t], &j->gs->textures[t], &j->errs[t]);
+}
+
+int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err)
+{
+    const uint32_t n = gs->texture_count;
+    w->mips = gib_calloc(n, sizeof *w->mips, err);
+    ref_mip_jobs j = {w, gs, gib_calloc(n, 1, err), gib_calloc(n, sizeof *j.errs, err),
+                      gib_calloc(n, sizeof *j.rc, err)};
+    int rc = w->mips && j.want && j.errs && j.rc ? 0 : -1;
+    for (uint32_t m = 0; rc == 0 && m < gs->material_count; m++)
+        if (gs->materials[m].albedo_tex >= 0)
+            j.want[gs->materials[m].albedo_tex] = 1;
+    if (rc == 0)
+        ref_parallel((int)sysconf(_SC_NPROCESSORS_ONLN), (int)n, ref_mip_task, &j, NULL);
+    for (uint32_t t = 0; rc == 0 && t < n; t++)
+        if (j.rc[t] < 0) {
+            *err = j.errs[t];
+            rc = -1;
+        }
+    free(j.want);
+    free(j.errs);
+    free(j.rc);
+    return rc;
+}
+
+/* Igehy 1999, "Tracing Ray Differentials": the footprint of a pixel on the surface is spanned by
+ * the offsets to where the neighbouring pixels' rays meet the tangent plane at the hit. For a
+ * pinhole camera those rays are exactly the camera rays through the pixel centres one to the right
+ * and one down, and the hit triangle's plane is the tangent plane, so the differentials are finite
+ * differences of the triangle's (perspective-correct) uv along that plane — what GL's dFdx/dFdy
+ * give for the triangle's interpolated uv. */
+void ref_hit_differentials(const ref_world *w, const gib_camera *cam, int width, int height,
+                           int px, int py, ref_hit *h)
+{
+    h->has_duv = 0;
+    if (!w->gs->uvs)
+        return;
+    const ref_tri *tr = &w->tris[h->prim];
+    const uint32_t *ix = w->gs->indices + 3 * (size_t)w->rec_tri[h->prim];
+    const float *p0 = w->gs->positions + 3 * (size_t)ix[0],
+                *p1 = w->gs->positions + 3 * (size_t)ix[1],
+                *p2 = w->gs->positions + 3 * (size_t)ix[2];
+    const float *t0 = tr->uv[0], *t1 = tr->uv[1], *t2 = tr->uv[2];
+    double e1[3], e2[3], nn[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)p1[k] - p0[k];
+        e2[k] = (double)p2[k] - p0[k];
+    }
+    nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double nn2 = nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2];
+    if (!(nn2 > 0.0))
+        return;
+    float uvn[2][2];
+    for (int k = 0; k < 2; k++) {
+        float o[3], d[3];
+        gib_camera_ray(cam, width, height, (float)px + 0.5f + (k == 0), (float)py + 0.5f + (k == 1),
+                       o, d);
+        double dn = d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2];
+        double on = (p0[0] - o[0]) * nn[0] + (p0[1] - o[1]) * nn[1] + (p0[2] - o[2]) * nn[2];
+        if (dn == 0.0)
+            return;
+        double t = on / dn, q[3], c1[3], c2[3];
+        if (!(t > 0.0) || !isfinite(t))
+            return; /* the neighbour's ray leaves the plane behind the eye: no footprint */
+        for (int j = 0; j < 3; j++)
+            q[j] = (double)o[j] + t * d[j] - p0[j];
+        /* barycentrics of q: b1 = ((q x e2) . n) / |n|^2, b2 = ((e1 x q) . n) / |n|^2 */
+        c1[0] = q[1] * e2[2] - q[2] * e2[1];
+        c1[1] = q[2] * e2[0] - q[0] * e2[2];
+        c1[2] = q[0] * e2[1] - q[1] * e2[0];
+        c2[0] = e1[1] * q[2] - e1[2] * q[1];
+        c2[1] = e1[2] * q[0] - e1[0] * q[2];
+        c2[2] = e1[0] * q[1] - e1[1] * q[0];
+        double b1 = (c1[0] * nn[0] + c1[1] * nn[1] + c1[2] * nn[2]) / nn2;
+        double b2 = (c2[0] * nn[0] + c2[1] * nn[1] + c2[2] * nn[2]) / nn2;
+        double b0 = 1.0 - b1 - b2;
+        for (int j = 0; j < 2; j++)
+            uvn[k][j] = (float)(b0 * t0[j] + b1 * t1[j] + b2 * t2[j]);
+    }
+    h->duv[0] = uvn[0][0] - h->uv[0];
+    h->duv[1] = uvn[0][1] - h->uv[1];
+    h->duv[2] = uvn[1][0] - h->uv[0];
+    h->duv[3] = uvn[1][1] - h->uv[1];
+    h->has_duv = isfinite(h->duv[0]) && isfinite(h->duv[1]) && isfinite(h->duv[2]) &&
+                 isfinite(h->duv[3]);
 }

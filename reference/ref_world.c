@@ -3,19 +3,57 @@
  * triangles, normals, uvs and cut-out masks the GL techniques rasterise), plus ray casting,
  * surface points, robust ray offsets and ray differentials.
  *
- * Ray API: single rays (rtcIntersect1 / rtcOccluded1). `gibench bench reference` measures the
- * alternatives on the path tracer's own recorded rays; on the development machine (2 cores of an
- * AMD EPYC, AVX2, Embree 3.13.5, Crytek Sponza) the stream API rtcIntersect1M and 8-wide packets
- * were not faster than single rays for these incoherent rays (see ref_bench.c for the figures),
- * so the estimators stay one ray at a time, which also keeps every sample's ray order fixed. */
+ * Ray API: single rays (rtcIntersect1 / rtcOccluded1). `gibench bench reference` replays the path
+ * tracer's own recorded rays with each API; on the development machine (2 cores of an AMD EPYC
+ * with AVX2, Embree 3.13.5, Crytek Sponza, `full` at 256x256, 2.9M rays, best of 3, shared and
+ * noisy machine) single rays ran at 3.3-3.6 Mrays/s, streams (rtcIntersect1M, 256 per call) at
+ * 2.5-3.0, 4- and 8-wide packets of consecutive rays at 2.2-3.2 (never beyond single rays by more
+ * than the noise), 16-wide packets at 0.7-1.1 (emulated on AVX2). So the estimators trace one ray
+ * at a time, which also keeps every sample's work in a fixed order. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "ref_internal.h"
 
 /* ---- the scene ---- */
+
+/* Large, randomly accessed arrays (triangle records, textures) on transparent huge pages where the
+ * kernel offers them: a random access then rarely misses the TLB as well as the cache. Mapped
+ * fresh (malloc would hand back heap pages the loader already touched, which madvise cannot turn
+ * into huge pages) and aligned to 2 MiB by trimming an over-sized mapping. */
+#define REF_HUGE ((size_t)2 << 20)
+static size_t ref_huge_size(size_t bytes)
+{
+    return bytes ? (bytes + REF_HUGE - 1) / REF_HUGE * REF_HUGE : REF_HUGE;
+}
+
+void *ref_alloc_huge(size_t bytes)
+{
+    size_t n = ref_huge_size(bytes);
+    char *p = mmap(NULL, n + REF_HUGE, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED)
+        return NULL;
+    uintptr_t a = ((uintptr_t)p + REF_HUGE - 1) & ~(uintptr_t)(REF_HUGE - 1);
+    char *q = (char *)a;
+    if (q > p)
+        munmap(p, (size_t)(q - p));
+    if (q + n < p + n + REF_HUGE)
+        munmap(q + n, (size_t)(p + n + REF_HUGE - (q + n)));
+#ifdef MADV_HUGEPAGE
+    madvise(q, n, MADV_HUGEPAGE);
+#endif
+    return q;
+}
+
+void ref_free_huge(void *p, size_t bytes)
+{
+    if (p)
+        munmap(p, ref_huge_size(bytes));
+}
 
 static int ref_normalize(float v[3])
 {
@@ -51,8 +89,8 @@ static void ref_alpha_filter(const struct RTCFilterFunctionNArguments *args)
     for (unsigned i = 0; i < n; i++) {
         if (args->valid[i] != -1)
             continue;
-        unsigned prim = w->geo_tri[REF_GEOM_MASKED][hu[5 * n + i]];
-        const gib_material *m = &gs->materials[gs->tri_material[prim]];
+        unsigned prim = w->geo_base[REF_GEOM_MASKED] + hu[5 * n + i];
+        const gib_material *m = &gs->materials[w->tris[prim].mat];
         if (m->alpha_tex < 0)
             continue;
         float uv[2], a[4];
@@ -137,12 +175,22 @@ static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
 {
     if (gs->triangle_count == 0)
         return 0;
-    w->tris = aligned_alloc(64, (size_t)gs->triangle_count * sizeof *w->tris);
-    if (!w->tris)
+    w->tris = ref_alloc_huge((size_t)gs->triangle_count * sizeof *w->tris);
+    w->rec_tri = gib_calloc(gs->triangle_count, sizeof *w->rec_tri, err);
+    if (!w->tris || !w->rec_tri)
         return gib_fail(err, "scene '%s': out of memory for %u triangle records", gs->name,
                         gs->triangle_count);
+    /* records in Embree's order: the opaque geometry's triangles, then the masked one's */
+    uint32_t count0 = 0;
+    for (uint32_t t = 0; t < gs->triangle_count; t++)
+        count0 += gs->materials[gs->tri_material[t]].alpha_tex < 0;
+    w->geo_base[REF_GEOM_OPAQUE] = 0;
+    w->geo_base[REF_GEOM_MASKED] = count0;
+    uint32_t next[2] = {0, count0};
     for (uint32_t i = 0; i < gs->triangle_count; i++) {
-        ref_tri *t = &w->tris[i];
+        uint32_t r = next[gs->materials[gs->tri_material[i]].alpha_tex >= 0]++;
+        ref_tri *t = &w->tris[r];
+        w->rec_tri[r] = i;
         memset(t, 0, sizeof *t);
         const uint32_t *ix = gs->indices + 3 * (size_t)i;
         for (int j = 0; j < 3; j++) {
@@ -169,17 +217,8 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
         w->has_specular |= spec;
         w->has_mirror |= spec && mt->spec_type == GIB_SPEC_MIRROR;
     }
-    if (gs->texture_count > 0) {
-        w->mips = gib_calloc(gs->texture_count, sizeof *w->mips, err);
-        if (!w->mips)
-            return -1;
-        for (uint32_t m = 0; m < gs->material_count; m++) {
-            int t = gs->materials[m].albedo_tex;
-            if (t >= 0 && w->mips[t].levels == 0 &&
-                ref_mip_build(&w->mips[t], &gs->textures[t], err) < 0)
-                return -1;
-        }
-    }
+    if (gs->texture_count > 0 && ref_world_mips(w, gs, err) < 0)
+        return -1;
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (uint32_t i = 0; i < gs->vertex_count; i++)
         for (int k = 0; k < 3; k++) {
@@ -197,7 +236,7 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
 }
 
 /* One triangle geometry holding the scene's opaque (g = 0) or masked (g = 1) triangles, with
- * geomID g; w->geo_tri[g] maps its primitives to scene triangles. */
+ * geomID g; its primitive k is triangle record geo_base[g] + k. */
 static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
 {
     const gib_scene *gs = w->gs;
@@ -215,12 +254,9 @@ static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
                                          : "Embree could not allocate geometry buffers");
     }
     memcpy(vb, gs->positions, 3 * sizeof(float) * gs->vertex_count);
-    uint32_t k = 0;
-    for (uint32_t t = 0; t < gs->triangle_count; t++) {
-        if ((gs->materials[gs->tri_material[t]].alpha_tex >= 0) != g)
-            continue;
+    for (uint32_t k = 0; k < count; k++) {
+        uint32_t t = w->rec_tri[w->geo_base[g] + k];
         memcpy(ib + 3 * (size_t)k, gs->indices + 3 * (size_t)t, 3 * sizeof(unsigned));
-        w->geo_tri[g][k++] = t;
     }
     rtcSetGeometryUserData(geo, w);
     if (g == REF_GEOM_MASKED) {
@@ -269,8 +305,7 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
     for (int g = 0; g < 2; g++) {
         if (count[g] == 0)
             continue;
-        w->geo_tri[g] = gib_calloc(count[g], sizeof *w->geo_tri[g], err);
-        if (!w->geo_tri[g] || ref_add_geometry(w, g, count[g], err) < 0) {
+        if (ref_add_geometry(w, g, count[g], err) < 0) {
             ref_world_free(w);
             return -1;
         }
@@ -292,12 +327,10 @@ void ref_world_free(ref_world *w)
             ref_mip_free(&w->mips[i]);
     free(w->mips);
     w->mips = NULL;
-    free(w->tris);
+    ref_free_huge(w->tris, w->gs ? (size_t)w->gs->triangle_count * sizeof *w->tris : 0);
     w->tris = NULL;
-    for (int g = 0; g < 2; g++) {
-        free(w->geo_tri[g]);
-        w->geo_tri[g] = NULL;
-    }
+    free(w->rec_tri);
+    w->rec_tri = NULL;
     if (w->scene)
         rtcReleaseScene(w->scene);
     if (w->device)
@@ -408,17 +441,34 @@ static int ref_intersect(const ref_world *w, const float o[3], const float d[3],
     return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
-int ref_trace(const ref_world *w, const float o[3], const float d[3], ref_hit *hit)
+int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq)
 {
-    if (!w->scene)
+    if (!w->scene || !ref_intersect(w, o, d, INFINITY, &pq->rh))
         return 0;
-    struct RTCRayHit rh;
-    if (!ref_intersect(w, o, d, INFINITY, &rh))
-        return 0;
-    ref_fill_hit(w, &rh, w->geo_tri[rh.hit.geomID][rh.hit.primID], o, d, hit);
-    hit->t = rh.ray.tfar;
+    pq->prim = w->geo_base[pq->rh.hit.geomID] + pq->rh.hit.primID;
+    memcpy(pq->o, o, sizeof pq->o);
+    memcpy(pq->d, d, sizeof pq->d);
+    __builtin_prefetch(&w->tris[pq->prim]);
+    return 1;
+}
+
+void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit)
+{
+    ref_fill_hit(w, &pq->rh, pq->prim, pq->o, pq->d, hit);
+    hit->t = pq->rh.ray.tfar;
     hit->has_duv = 0;
     hit->has_kd = 0;
+    int tex = hit->mat->albedo_tex;
+    if (tex >= 0 && w->mips && !hit->back)
+        ref_mip_prefetch(&w->mips[tex], hit->uv[0], hit->uv[1]);
+}
+
+int ref_trace(const ref_world *w, const float o[3], const float d[3], ref_hit *hit)
+{
+    ref_pending pq;
+    if (!ref_trace_start(w, o, d, &pq))
+        return 0;
+    ref_trace_finish(w, &pq, hit);
     return 1;
 }
 
@@ -444,69 +494,6 @@ int ref_occluded(const ref_world *w, const float o[3], const float d[3], float t
     return r.tfar == -INFINITY; /* Embree's mark of an occluded ray */
 }
 
-/* Igehy 1999, "Tracing Ray Differentials": the footprint of a pixel on the surface is spanned by
- * the offsets to where the neighbouring pixels' rays meet the tangent plane at the hit. For a
- * pinhole camera those rays are exactly the camera rays through the pixel centres one to the right
- * and one down, and the hit triangle's plane is the tangent plane, so the differentials are finite
- * differences of the triangle's (perspective-correct) uv along that plane — what GL's dFdx/dFdy
- * give for the triangle's interpolated uv. */
-void ref_hit_differentials(const ref_world *w, const gib_camera *cam, int width, int height,
-                           int px, int py, ref_hit *h)
-{
-    h->has_duv = 0;
-    if (!w->gs->uvs)
-        return;
-    const ref_tri *tr = &w->tris[h->prim];
-    const uint32_t *ix = w->gs->indices + 3 * (size_t)h->prim;
-    const float *p0 = w->gs->positions + 3 * (size_t)ix[0],
-                *p1 = w->gs->positions + 3 * (size_t)ix[1],
-                *p2 = w->gs->positions + 3 * (size_t)ix[2];
-    const float *t0 = tr->uv[0], *t1 = tr->uv[1], *t2 = tr->uv[2];
-    double e1[3], e2[3], nn[3];
-    for (int k = 0; k < 3; k++) {
-        e1[k] = (double)p1[k] - p0[k];
-        e2[k] = (double)p2[k] - p0[k];
-    }
-    nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    double nn2 = nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2];
-    if (!(nn2 > 0.0))
-        return;
-    float uvn[2][2];
-    for (int k = 0; k < 2; k++) {
-        float o[3], d[3];
-        gib_camera_ray(cam, width, height, (float)px + 0.5f + (k == 0), (float)py + 0.5f + (k == 1),
-                       o, d);
-        double dn = d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2];
-        double on = (p0[0] - o[0]) * nn[0] + (p0[1] - o[1]) * nn[1] + (p0[2] - o[2]) * nn[2];
-        if (dn == 0.0)
-            return;
-        double t = on / dn, q[3], c1[3], c2[3];
-        if (!(t > 0.0) || !isfinite(t))
-            return; /* the neighbour's ray leaves the plane behind the eye: no footprint */
-        for (int j = 0; j < 3; j++)
-            q[j] = (double)o[j] + t * d[j] - p0[j];
-        /* barycentrics of q: b1 = ((q x e2) . n) / |n|^2, b2 = ((e1 x q) . n) / |n|^2 */
-        c1[0] = q[1] * e2[2] - q[2] * e2[1];
-        c1[1] = q[2] * e2[0] - q[0] * e2[2];
-        c1[2] = q[0] * e2[1] - q[1] * e2[0];
-        c2[0] = e1[1] * q[2] - e1[2] * q[1];
-        c2[1] = e1[2] * q[0] - e1[0] * q[2];
-        c2[2] = e1[0] * q[1] - e1[1] * q[0];
-        double b1 = (c1[0] * nn[0] + c1[1] * nn[1] + c1[2] * nn[2]) / nn2;
-        double b2 = (c2[0] * nn[0] + c2[1] * nn[1] + c2[2] * nn[2]) / nn2;
-        double b0 = 1.0 - b1 - b2;
-        for (int j = 0; j < 2; j++)
-            uvn[k][j] = (float)(b0 * t0[j] + b1 * t1[j] + b2 * t2[j]);
-    }
-    h->duv[0] = uvn[0][0] - h->uv[0];
-    h->duv[1] = uvn[0][1] - h->uv[1];
-    h->duv[2] = uvn[1][0] - h->uv[0];
-    h->duv[3] = uvn[1][1] - h->uv[1];
-    h->has_duv = isfinite(h->duv[0]) && isfinite(h->duv[1]) && isfinite(h->duv[2]) &&
-                 isfinite(h->duv[3]);
-}
 
 void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3], float o[3])
 {

@@ -16,7 +16,7 @@
  *   higher    the paths of `full` that none of direct, indirect, glossy, caustic (with the same
  *             max_specular) counts: full = direct + indirect + glossy + caustic + higher. For
  *             max_depth 2 it is exactly L S S E.
- *   albedo, normal, depth   auxiliary images of the visible point (see gib_component_name).
+ *   albedo, normal, depth   auxiliary images of the visible point (enum gib_component).
  *
  * Paths made only of delta events from a delta light to the eye (a point light seen directly or
  * in mirrors: L E, L S_mirror+ E) have zero measure at a pixel centre and are counted by no
@@ -38,8 +38,18 @@
  * component), and each pixel's statistics are accumulated in sample order, so the same build,
  * scene, size, component and parameters give the same pixels bit for bit, whatever the thread
  * count — and a --target-noise run that stopped at N samples gives the pixels of a plain N-sample
- * run. Each pixel's sample variance gives its standard error; the image's noise RMSE is
- * sqrt(mean over pixels and channels of variance / spp). */
+ * run. An EXR written twice differs only in its `seconds` attribute (DESIGN.md wants the time in
+ * the header); pixels and every other attribute are identical.
+ *
+ * Noise: each pixel's sample variance (n - 1) gives its standard error; the image's noise RMSE is
+ * sqrt(mean over pixels and channels of variance / spp). With one sample the variance is unknown,
+ * so random estimators refuse spp < 2; deterministic ones (direct with the scene's delta lights,
+ * the auxiliary images, components identically 0 in the scene) take one sample whatever spp asks
+ * and report a standard error of exactly 0, which is their true error.
+ *
+ * Textures: at primary hits albedo is filtered as GL filters it (mip maps, trilinear, the LOD of
+ * the pixel's footprint from ray differentials); at secondary hits level 0, bilinear
+ * (ref_texture.c). */
 #ifndef GIB_REFERENCE_H
 #define GIB_REFERENCE_H
 
