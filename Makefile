@@ -49,9 +49,12 @@ test: build build-asan
 	  ctest -L unit --output-on-failure -j$(JOBS)
 	cd $(BUILD) && ctest --output-on-failure
 
+# The matrices, the reference's ray throughput, then plots and the papers' tables beside ours.
 reproduce: build
 	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
-	  rc=$$?; $(MAKE) --no-print-directory plots; exit $$rc
+	  rc=$$?; \
+	  $(BUILD)/gibench bench reference --out $(RESULTS)/bench_reference.csv || rc=1; \
+	  $(MAKE) --no-print-directory plots || rc=1; exit $$rc
 
 plots:
 	python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots

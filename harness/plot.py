@@ -126,7 +126,7 @@ def sweep_plots(key, rows, out_dir, renderer):
                        f"set xlabel {gp_quote(name)} noenhanced", "set ylabel 'GPU ms per frame (median)'", "set logscale y",
                        "plot " + ", ".join(f"{gp_quote(data_path)} index {i} using 1:2 with linespoints pt 7 title {gp_quote(l)}"
                                            for i, l in enumerate(labels)),
-                       "unset logscale y", "set ylabel 'relative RMSE'",
+                       "set logscale y", "set ylabel 'relative RMSE (log)'",
                        "plot " + ", ".join(f"{gp_quote(data_path)} index {i} using 1:3 with linespoints pt 7 title {gp_quote(l)}"
                                            for i, l in enumerate(labels)),
                        "unset multiplot", "unset output", "unset xtics", "set xtics autofreq"]

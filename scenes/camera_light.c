@@ -75,7 +75,10 @@ float gib_spot_falloff(const gib_light *l, const float dir_from_light[3])
     if (cos_theta < cos_outer)
         return 0.0f;
     /* Clamped so an outer angle beyond 90 degrees never takes pow() of a negative number. */
-    return powf(fmaxf(cos_theta, 0.0f), l->spot_exponent);
+    float c = fmaxf(cos_theta, 0.0f);
+    /* Cosine falloff (e = 1, the Cornell and Sponza spots) is common and powf is ~5% of the path
+     * tracer's time on Sponza: the shortcut gives the identical value. */
+    return l->spot_exponent == 1.0f ? c : powf(c, l->spot_exponent);
 }
 
 int gib_light_eval(const gib_light *l, const float p[3], float wi[3], float *dist, float E[3])

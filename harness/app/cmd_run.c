@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "../gl/runner.h"
 #include "app.h"
@@ -218,6 +219,17 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         for (char *p = name; *p; p++)
             if (*p == ';' || *p == '=')
                 *p = *p == ';' ? '_' : '-';
+        if (ctx->images) {
+            /* The reference beside the technique images, once per (scene, component, size, dmax). */
+            char ref_png[4096];
+            const char *slash = strrchr(ref.path, '/');
+            snprintf(ref_png, sizeof ref_png, "%s/reference_%s", img_dir, slash ? slash + 1 : ref.path);
+            char *dot = strrchr(ref_png, '.');
+            if (dot)
+                strcpy(dot, ".png");
+            if (access(ref_png, F_OK) != 0 && gib_png_write_preview(ref_png, &ref.image, scene->exposure, &err) < 0)
+                fprintf(stderr, "gibench run: %s\n", err.msg);
+        }
         gib_metrics m;
         if (gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
                                name, &m, &err) < 0) {
