@@ -21,6 +21,10 @@ int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *er
 int gib_parse_int(const char *opt, const char *s, long min, long max, long *out, gib_error *err);
 int gib_parse_float(const char *opt, const char *s, double min, double max, double *out,
                     gib_error *err);
+/* Loads a scene for command `cmd` and checks that it has camera `camera`. Returns 0, or the exit
+ * status to return after printing the error: 3 when the scene's shared data is absent, 1 when the
+ * scene cannot be loaded, 2 for a camera it lacks. */
+int gib_cli_load_scene(const char *cmd, const char *name, long camera, gib_scene *scene);
 /* Makes a directory and its parents. */
 int gib_mkdirs(const char *path, gib_error *err);
 /* The git revision the binary was built from ("unknown" outside a checkout). */

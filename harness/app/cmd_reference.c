@@ -128,17 +128,9 @@ int gib_cmd_reference(int argc, char **argv)
         return 2;
     }
     gib_scene scene;
-    int rc = gib_scene_load(scene_name, &scene, &err);
-    if (rc < 0) {
-        fprintf(stderr, "gibench reference: %s\n", err.msg);
-        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
-    }
-    if (camera >= (long)scene.camera_count) {
-        fprintf(stderr, "gibench reference: --camera %ld: scene '%s' has %u camera(s)\n", camera,
-                scene.name, scene.camera_count);
-        gib_scene_free(&scene);
-        return 2;
-    }
+    int rc = gib_cli_load_scene("reference", scene_name, camera, &scene);
+    if (rc)
+        return rc;
     gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
                         .dmax = (float)dmax, .obscurance = (int)obsc, .max_depth = (int)max_depth,
                         .min_depth = (int)min_depth, .max_specular = (int)max_spec,

@@ -89,17 +89,9 @@ int gib_cmd_render(int argc, char **argv)
         return 2;
     }
     gib_scene scene;
-    int rc = gib_scene_load(scene_name, &scene, &err);
-    if (rc < 0) {
-        fprintf(stderr, "gibench render: %s\n", err.msg);
-        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
-    }
-    if (camera >= (long)scene.camera_count) {
-        fprintf(stderr, "gibench render: --camera %ld: scene '%s' has %u camera(s)\n", camera,
-                scene.name, scene.camera_count);
-        gib_scene_free(&scene);
-        return 2;
-    }
+    int rc = gib_cli_load_scene("render", scene_name, camera, &scene);
+    if (rc)
+        return rc;
     gib_gl_info info;
     gib_gpu_scene gpu;
     if (gib_gl_init(backend, &info, &err) < 0 || gib_gpu_scene_upload(&scene, &gpu, &err) < 0 ||

@@ -52,6 +52,23 @@ int gib_parse_float(const char *opt, const char *s, double min, double max, doub
     return 0;
 }
 
+int gib_cli_load_scene(const char *cmd, const char *name, long camera, gib_scene *scene)
+{
+    gib_error err;
+    int rc = gib_scene_load(name, scene, &err);
+    if (rc < 0) {
+        fprintf(stderr, "gibench %s: %s\n", cmd, err.msg);
+        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
+    }
+    if (camera < 0 || camera >= (long)scene->camera_count) {
+        fprintf(stderr, "gibench %s: --camera %ld: scene '%s' has %u camera(s)\n", cmd, camera,
+                scene->name, scene->camera_count);
+        gib_scene_free(scene);
+        return 2;
+    }
+    return 0;
+}
+
 int gib_mkdirs(const char *path, gib_error *err)
 {
     char buf[4096];

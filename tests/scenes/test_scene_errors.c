@@ -8,31 +8,7 @@
 #include <unistd.h>
 
 #include "scenes/scene.h"
-
-static int failures;
-static char tmpdir[256];
-
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            failures++;                                                                            \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-        }                                                                                          \
-    } while (0)
-
-static void write_file(const char *name, const char *text, char *path_out, size_t n)
-{
-    snprintf(path_out, n, "%s/%s", tmpdir, name);
-    FILE *f = fopen(path_out, "wb");
-    if (!f) {
-        printf("FAIL: cannot write %s\n", path_out);
-        exit(1);
-    }
-    fputs(text, f);
-    fclose(f);
-}
+#include "tests/scenes/scene_test.h"
 
 /* Loads `text` as a scene file and expects return code `want_rc`, and a message that names the
  * file, `:line:` and contains `phrase` (and `phrase2` when non-NULL). */
@@ -65,32 +41,12 @@ static void expect(const char *what, const char *text, int want_rc, int line, co
     printf("ok   %-28s %s\n", what, err.msg);
 }
 
-static void remove_tmpdir(void)
-{
-    DIR *d = opendir(tmpdir);
-    if (d) {
-        struct dirent *e;
-        char p[600];
-        while ((e = readdir(d)) != NULL) {
-            if (e->d_name[0] == '.')
-                continue;
-            snprintf(p, sizeof p, "%s/%s", tmpdir, e->d_name);
-            unlink(p);
-        }
-        closedir(d);
-    }
-    rmdir(tmpdir);
-}
-
 #define CAMERA "[camera.c]\neye = 0 0 5\ntarget = 0 0 0\n"
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/gib_scene_errors_XXXXXX");
-    if (!mkdtemp(tmpdir)) {
-        printf("FAIL: mkdtemp\n");
+    if (scene_test_begin("gib_scene_errors") < 0)
         return 1;
-    }
     /* Mesh files are looked up under the data root: point it at the (otherwise empty) temp dir,
      * so that "missing mesh file" is an error and not "data unavailable". */
     setenv("GIBENCH_SCENES", tmpdir, 1);
@@ -215,7 +171,5 @@ int main(void)
            "[camera.c]\r\n\teye = 0 0 5\r\n\ttarget = 0 0 0\r\n",
            0, 0, "", NULL);
 
-    remove_tmpdir();
-    printf("%s: %d failure(s)\n", failures ? "FAILED" : "passed", failures);
-    return failures ? 1 : 0;
+    return scene_test_end();
 }

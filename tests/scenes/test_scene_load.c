@@ -14,24 +14,7 @@
 
 #include "harness/imaging/oiio_shim.h"
 #include "scenes/scene.h"
-
-static int failures;
-static char tmpdir[256];
-
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            failures++;                                                                            \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-        }                                                                                          \
-    } while (0)
-
-/* |a - b| <= tol; `why` says where the tolerance comes from. */
-#define NEAR(a, b, tol, why)                                                                       \
-    CHECK(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.9g, want %.9g +- %g (%s)", #a,         \
-          (double)(a), (double)(b), (double)(tol), why)
+#include "tests/scenes/scene_test.h"
 
 static double now(void)
 {
@@ -43,35 +26,6 @@ static double now(void)
 static double dot3(const float *a, const float *b)
 {
     return (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
-}
-
-static void write_file(const char *name, const char *text, char *out, size_t n)
-{
-    snprintf(out, n, "%s/%s", tmpdir, name);
-    FILE *f = fopen(out, "wb");
-    if (!f) {
-        printf("FAIL: cannot write %s\n", out);
-        exit(1);
-    }
-    fputs(text, f);
-    fclose(f);
-}
-
-static void remove_tmpdir(void)
-{
-    DIR *d = opendir(tmpdir);
-    if (d) {
-        struct dirent *e;
-        char p[600];
-        while ((e = readdir(d)) != NULL) {
-            if (e->d_name[0] == '.')
-                continue;
-            snprintf(p, sizeof p, "%s/%s", tmpdir, e->d_name);
-            unlink(p);
-        }
-        closedir(d);
-    }
-    rmdir(tmpdir);
 }
 
 /* Invariants every loaded scene must satisfy, whatever it is. */
@@ -485,11 +439,8 @@ static void test_shared_data(void)
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/gib_scene_load_XXXXXX");
-    if (!mkdtemp(tmpdir)) {
-        printf("FAIL: mkdtemp\n");
+    if (scene_test_begin("gib_scene_load") < 0)
         return 1;
-    }
     test_cornell();
     test_camera();
     test_lights();
@@ -497,7 +448,5 @@ int main(void)
     setenv("GIBENCH_SCENES", tmpdir, 1); /* mesh files of test_mesh_files live there */
     test_mesh_files();
     test_shared_data();
-    remove_tmpdir();
-    printf("%s: %d failure(s)\n", failures ? "FAILED" : "passed", failures);
-    return failures ? 1 : 0;
+    return scene_test_end();
 }

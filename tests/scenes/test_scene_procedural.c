@@ -11,23 +11,7 @@
 #include <unistd.h>
 
 #include "scenes/scene.h"
-
-static int failures;
-static char tmpdir[256];
-
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            failures++;                                                                            \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-        }                                                                                          \
-    } while (0)
-
-#define NEAR(a, b, tol, why)                                                                       \
-    CHECK(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.9g, want %.9g +- %g (%s)", #a,         \
-          (double)(a), (double)(b), (double)(tol), why)
+#include "tests/scenes/scene_test.h"
 
 static const double *vtx(const gib_scene *s, uint32_t tri, int k, double out[3])
 {
@@ -475,16 +459,11 @@ static void test_key_errors(void)
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/gib_scene_proc_XXXXXX");
-    if (!mkdtemp(tmpdir)) {
-        printf("FAIL: mkdtemp\n");
+    if (scene_test_begin("gib_scene_proc") < 0)
         return 1;
-    }
     test_hairball();
     test_furnace();
     test_hard_cases();
     test_key_errors();
-    rmdir(tmpdir);
-    printf("%s: %d failure(s)\n", failures ? "FAILED" : "passed", failures);
-    return failures ? 1 : 0;
+    return scene_test_end();
 }
