@@ -1,7 +1,7 @@
 /* gibench — the reference renderer's material model (scene.h): Lambertian rho_d / pi plus an
  * optional specular lobe, normalised Phong rho_s (n + 2) / (2 pi) max(0, r . wi)^n or a mirror
- * (a delta lobe of reflectance rho_s). Next-event estimation toward the scene's delta lights, and
- * importance sampling of each lobe. */
+ * (a delta lobe of reflectance rho_s). Next-event estimation toward the scene's delta lights and
+ * toward its sky, and importance sampling of each lobe. */
 #include <math.h>
 
 #include "ref_internal.h"
@@ -86,6 +86,52 @@ void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float
                 spec[k] += m->ks[k] * lobe * E[k] * cosn;
         }
     }
+}
+
+/* 1 when the ray leaving h along d (d . n_g > 0) escapes the scene and sees the sky. */
+static int ref_sees_sky(const ref_world *w, const ref_hit *h, const float d[3], long long *rays)
+{
+    if (!(ref_dot(d, h->ng) > 0.0f))
+        return 0;
+    float o[3];
+    ref_offset_origin(w, h, d, o);
+    ++*rays;
+    return !ref_occluded(w, o, d, INFINITY);
+}
+
+/* The sky is a light like the others (L in Heckbert notation), but not a delta: every non-delta
+ * lobe is sampled by its own importance sampling (for a uniform sky of radiance L the integrand
+ * of the diffuse lobe is rho_d / pi L V cos, and cosine-weighted directions make its weight
+ * rho_d L V, 0 or rho_d L; the Phong lobe's weight is rho_s (n + 2) / (n + 1) cos L V, as in
+ * ref_sample_phong), and the mirror lobe by its one direction. */
+void ref_nee_sky(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+                 ref_pcg32 *rng, float dif[3], float spec[3], long long *rays)
+{
+    const float *L = w->gs->sky;
+    if (!ref_has_sky(w->gs))
+        return;
+    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    float u3 = ref_pcg32_float(rng), u4 = ref_pcg32_float(rng);
+    if (h->back)
+        return;
+    float d[3];
+    if (m->kd[0] > 0.0f || m->kd[1] > 0.0f || m->kd[2] > 0.0f) {
+        ref_sample_cosine(h->n, u1, u2, d);
+        if (ref_sees_sky(w, h, d, rays))
+            for (int k = 0; k < 3; k++)
+                dif[k] += m->kd[k] * L[k];
+    }
+    if (!spec || m->spec == GIB_SPEC_NONE)
+        return;
+    float r[3], wgt = 1.0f;
+    ref_reflect(wo, h->n, r);
+    if (m->spec == GIB_SPEC_PHONG)
+        wgt = ref_sample_phong(r, m->phong_n, h->n, u3, u4, d);
+    else
+        d[0] = r[0], d[1] = r[1], d[2] = r[2];
+    if (wgt > 0.0f && ref_sees_sky(w, h, d, rays))
+        for (int k = 0; k < 3; k++)
+            spec[k] += m->ks[k] * wgt * L[k];
 }
 
 /* Duff et al. 2017, "Building an Orthonormal Basis, Revisited": branch-free and continuous except

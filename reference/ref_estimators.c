@@ -6,19 +6,30 @@
  *
  * Every sampled reflection that would leave through the geometric surface (d . n_g <= 0, possible
  * with interpolated normals) contributes 0: a reflected ray cannot enter the surface it leaves.
- * The same rule holds in ref_path.c and ref_light.c, so the components add up. */
+ * The same rule holds in ref_path.c and ref_light.c, so the components add up.
+ *
+ * The sky (scenes with one): every path whose light is the sky is found by next-event estimation
+ * toward the sky at its light-side vertex (ref_nee_sky), in every component alike, and a sampled
+ * bounce or continuation ray that escapes adds nothing, so each such path is counted once and by
+ * the same strategy everywhere. */
 #include <math.h>
 
 #include "ref_internal.h"
 
 /* Direct light, L D E and L S E with shadows: for every light, f(wo, wi) E max(0, n.wi), with
  * f = rho_d / pi + rho_s (n + 2) / (2 pi) max(0, r.wi)^n (normalised Phong, r the mirror direction
- * of wo about n). A mirror lobe adds nothing here: a delta lobe meets a point, spot or directional
- * light (a delta in direction) with probability zero, so only its diffuse part is lit directly;
- * the light seen in a mirror belongs to caustic/full paths, not to `direct`.
- * No random numbers: with delta lights the estimator is exact, so 1 spp is the converged image. */
-void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], float out[3],
-                    long long *rays)
+ * of wo about n). A mirror lobe adds nothing from the delta lights: a delta lobe meets a point,
+ * spot or directional light (a delta in direction) with probability zero (that zero-measure path,
+ * a light seen in a mirror, is counted by no component, reference.h).
+ * The sky (scenes with one) is a light too: integral f L_sky V cos dw over the hemisphere, one
+ * importance-sampled direction per lobe and sample (ref_nee_sky): rho_d L V from a cosine-
+ * weighted direction, the Phong lobe's share from a Phong-sampled one, and a mirror's rho_s L V
+ * from its mirror direction (the sky has area, so the sky seen in a mirror at the visible point,
+ * L S E, is a path of positive measure and belongs here).
+ * Without a sky no random numbers are used: with delta lights the estimator is exact, so 1 spp is
+ * the converged image; with a sky it is random and needs spp >= 2 like the others. */
+void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                    float out[3], long long *rays)
 {
     out[0] = out[1] = out[2] = 0.0f;
     if (h->back)
@@ -27,6 +38,7 @@ void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], flo
     ref_material(w, h, &m);
     float dif[3], spec[3];
     ref_nee(w, h, &m, wo, dif, spec, rays);
+    ref_nee_sky(w, h, &m, wo, rng, dif, spec, rays);
     for (int k = 0; k < 3; k++)
         out[k] = dif[k] + spec[k];
 }
@@ -60,9 +72,10 @@ float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscuranc
 }
 
 /* The diffuse-only direct light leaving y toward -d (the D vertex next to the light in L D D E
- * and L D S E). */
-static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float d[3], float L[3],
-                              long long *rays)
+ * and L D S E), the sky's included. A bounce ray that escapes contributes nothing: that path
+ * (L_sky D E or L_sky S E) is one vertex long and `direct` counts it, by its own sky sampling. */
+static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float d[3],
+                              ref_pcg32 *rng, float L[3], long long *rays)
 {
     L[0] = L[1] = L[2] = 0.0f;
     if (!(ref_dot(d, h->ng) > 0.0f))
@@ -77,6 +90,7 @@ static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float 
     ref_material(w, &y, &m);
     const float wo[3] = {-d[0], -d[1], -d[2]};
     ref_nee(w, &y, &m, wo, L, NULL, rays);
+    ref_nee_sky(w, &y, &m, wo, rng, L, NULL, rays);
     return 1;
 }
 
@@ -96,7 +110,7 @@ void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_pcg32 *rng, floa
         return;
     float d[3], L[3];
     ref_sample_cosine(h->n, u1, u2, d);
-    if (ref_bounce_diffuse(w, h, d, L, rays))
+    if (ref_bounce_diffuse(w, h, d, rng, L, rays))
         for (int k = 0; k < 3; k++)
             out[k] = kd[k] * L[k];
 }
@@ -122,7 +136,7 @@ void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref
         d[0] = r[0], d[1] = r[1], d[2] = r[2];
     if (!(wgt > 0.0f))
         return;
-    if (ref_bounce_diffuse(w, h, d, L, rays))
+    if (ref_bounce_diffuse(w, h, d, rng, L, rays))
         for (int k = 0; k < 3; k++)
             out[k] = m.ks[k] * wgt * L[k];
 }
@@ -160,7 +174,7 @@ void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], re
             ref_est_ao(c->w, h, c->p.dmax, c->p.obscurance, rng, rays);
         break;
     case GIB_COMP_DIRECT:
-        ref_est_direct(c->w, h, wo, out, rays);
+        ref_est_direct(c->w, h, wo, rng, out, rays);
         break;
     case GIB_COMP_INDIRECT:
         ref_est_indirect(c->w, h, rng, out, rays);

@@ -159,6 +159,24 @@ void ref_albedo(const ref_world *w, const ref_hit *h, float a[3]);
 void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
              float dif[3], float spec[3], long long *rays);
 
+/* 1 when the scene has a sky (gib_scene.sky: a uniform environment of that radiance, seen by rays
+ * that escape; 0 = none). */
+static inline int ref_has_sky(const gib_scene *s)
+{
+    return s && (s->sky[0] > 0.0f || s->sky[1] > 0.0f || s->sky[2] > 0.0f);
+}
+
+/* Next-event estimation toward the sky: ADDS to dif (diffuse lobe) and spec (specular lobe; NULL:
+ * not wanted) the reflected sky radiance toward wo, one importance-sampled direction per lobe,
+ * each tested for escaping the scene: diffuse rho_d L V (cosine-weighted direction), Phong
+ * rho_s (n + 2) / (n + 1) cos L V (a direction from the Phong lobe), mirror rho_s L V (the mirror
+ * direction: the sky is not a delta light, so a mirror does show it). Directions leaving through
+ * the geometric surface give 0. With a sky it draws exactly 4 random numbers (diffuse u1 u2, then
+ * Phong u1 u2) whatever is wanted; without one it draws none and casts no ray, so scenes without
+ * a sky render exactly as before it existed. */
+void ref_nee_sky(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+                 ref_pcg32 *rng, float dif[3], float spec[3], long long *rays);
+
 /* Orthonormal basis around unit n. */
 void ref_basis(const float n[3], float t[3], float b[3]);
 /* Cosine-weighted direction about n (pdf cos / pi). */
@@ -204,8 +222,8 @@ void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], re
                        float out[3], long long *rays);
 
 /* Estimators. Each adds the rays it casts to *rays. */
-void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], float out[3],
-                    long long *rays);
+void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                    float out[3], long long *rays);
 /* One cosine-weighted visibility sample: 1 when unoccluded within dmax (<= 0 or inf: unbounded);
  * with obscurance, min(d / dmax, 1). */
 float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_pcg32 *rng,

@@ -52,7 +52,8 @@ static int ref_scene_has_mirror(const gib_scene *s)
 int ref_deterministic(const gib_scene *s, int comp, int max_depth)
 {
     switch (comp) {
-    case GIB_COMP_DIRECT: /* every light is a delta: next-event estimation is exact */
+    case GIB_COMP_DIRECT: /* every light a delta: next-event estimation is exact; a sky is not */
+        return !ref_has_sky(s);
     case GIB_COMP_ALBEDO:
     case GIB_COMP_NORMAL:
     case GIB_COMP_DEPTH:
@@ -60,8 +61,9 @@ int ref_deterministic(const gib_scene *s, int comp, int max_depth)
     case GIB_COMP_GLOSSY: /* identically 0 without a specular lobe */
     case GIB_COMP_CAUSTIC:
         return !ref_scene_has_specular(s);
-    case GIB_COMP_FULL: /* one vertex: direct; higher is then 0 */
-    case GIB_COMP_HIGHER:
+    case GIB_COMP_FULL: /* one vertex: direct */
+        return max_depth == 1 && !ref_has_sky(s);
+    case GIB_COMP_HIGHER: /* one vertex: 0 */
         return max_depth == 1;
     default:
         return 0;
@@ -131,6 +133,11 @@ uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params 
         h = gib_hash_bytes(h, cam->up, sizeof cam->up);
         h = gib_hash_f32(h, cam->vfov_deg);
     }
+    /* The sky is scene content, which the scene's content hash already covers for a scene read
+     * from a file (its bytes); hashed here too for scenes built in C, whose content_hash is
+     * whatever the builder set. Scenes without a sky hash nothing more. */
+    if (ref_has_sky(scene))
+        h = gib_hash_bytes(h, scene->sky, sizeof scene->sky);
     return h;
 }
 
@@ -205,5 +212,8 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
     ref_attr(attrs, max_attrs, &n, "footprint", "%s", footprint);
     ref_attr(attrs, max_attrs, &n, "missing", "%s", missing);
     ref_attr(attrs, max_attrs, &n, "cache_key", "%s", key);
+    ref_attr(attrs, max_attrs, &n, "sky", "%.9g %.9g %.9g",
+             scene ? (double)scene->sky[0] : 0.0, scene ? (double)scene->sky[1] : 0.0,
+             scene ? (double)scene->sky[2] : 0.0);
     return n;
 }

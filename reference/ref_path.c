@@ -11,6 +11,13 @@
  * mirrors). Camera paths through mirrors are followed (a mirror seen from the camera shows the
  * diffuse surfaces behind it, lit by next-event estimation there).
  *
+ * The sky (scenes with one) is not a delta: a continuation can escape and see it. Such escapes
+ * add nothing; the sky is reached only by next-event estimation at every vertex, one sampled
+ * direction per lobe (ref_nee_sky: diffuse, Phong, and the mirror direction of a mirror), so
+ * again one strategy per path class and no MIS. Sky paths through mirrors are all found this way
+ * (the sky seen through a mirror is not a delta light seen through a delta lobe), so no sky path
+ * needs light tracing and none is missing.
+ *
  * Russian roulette from min_depth on: a path that has reached vertex d >= min_depth continues
  * with probability q = min(1, max channel of its throughput after this bounce, estimated from the
  * material's untextured reflectances), and the survivors' throughput is divided by q, which keeps
@@ -23,7 +30,9 @@
  * The camera part of `caustic` is here too: L S+ D E whose vertex next to the light is Phong,
  * found like full's paths (diffuse bounce from the visible point, specular continuations,
  * next-event estimation through the Phong lobe). Its mirror-first paths come from light tracing
- * (ref_light.c), as full's do. */
+ * (ref_light.c), as full's do — except those whose light is the sky: L_sky S+ D E, Phong or
+ * mirror next to the sky, comes from these camera paths by the sky's next-event estimation
+ * through the specular lobe (mirror: its one direction). */
 #include <math.h>
 #include <string.h>
 
@@ -111,6 +120,7 @@ void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int hig
                 mn.kd[0] = mn.kd[1] = mn.kd[2] = 0.0f;
             float dif[3], sp[3];
             ref_nee(w, &cur, &mn, wcur, dif, keep[1] ? sp : NULL, rays);
+            ref_nee_sky(w, &cur, &mn, wcur, rng, dif, keep[1] ? sp : NULL, rays);
             for (int k = 0; k < 3; k++)
                 out[k] += beta[k] * (dif[k] + (keep[1] ? sp[k] : 0.0f));
         }
@@ -160,14 +170,15 @@ void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float o
         if (m.spec == GIB_SPEC_NONE)
             return;
         const float wo[3] = {-d[0], -d[1], -d[2]};
-        if (m.spec == GIB_SPEC_PHONG) { /* x_verts next to the light, through its Phong lobe */
-            ref_mat ms = m;
-            ms.kd[0] = ms.kd[1] = ms.kd[2] = 0.0f;
-            float dif[3], spec[3];
-            ref_nee(w, &cur, &ms, wo, dif, spec, rays);
-            for (int k = 0; k < 3; k++)
-                out[k] += beta[k] * spec[k];
-        }
+        /* x_verts next to the light, through its specular lobe: the delta lights through a Phong
+         * lobe, the sky through a Phong lobe or a mirror */
+        ref_mat ms = m;
+        ms.kd[0] = ms.kd[1] = ms.kd[2] = 0.0f;
+        float dif[3], spec[3];
+        ref_nee(w, &cur, &ms, wo, dif, spec, rays);
+        ref_nee_sky(w, &cur, &ms, wo, rng, dif, spec, rays);
+        for (int k = 0; k < 3; k++)
+            out[k] += beta[k] * spec[k];
         if (verts == c->p.max_specular + 1)
             return;
         float r[3], f = 1.0f;

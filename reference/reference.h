@@ -25,6 +25,21 @@
  * by neither camera paths with next-event estimation nor light tracing; `full` and `higher` miss
  * them, and say so in the EXR header (`missing`). Up to max_depth 2 no nonzero class is missed.
  *
+ * The sky (gib_scene.sky, scenes with GIB_FEAT_SKY): a uniform light at infinity of radiance
+ * L_sky, seen by every ray that escapes the scene. It is an L like the scene's lights, so it
+ * joins each component at the same vertex: `direct` gains L_sky D E and L_sky S E (the sky over
+ * the visible point, Phong lobe and mirror included: rho_d L_sky V for a Lambertian point with
+ * cosine-weighted unoccluded fraction V), `indirect` L_sky D D E, `glossy` L_sky D S E, `caustic`
+ * L_sky S+ D E (the sky through Phong lobes and mirrors), full and higher the rest. Every sky path
+ * is found by next-event estimation toward the sky at its light-side vertex (one importance-
+ * sampled direction per lobe, tested for escaping), in every component, and a sampled ray that
+ * escapes adds nothing: each path is counted once, by the same strategy everywhere, so the sum
+ * rule below holds with a sky. The sky is not a delta, so no sky path needs light tracing and
+ * none is missing (the sky through a mirror is seen from the camera). `ao` is unchanged
+ * (visibility only). A pixel whose PRIMARY ray escapes is 0 in every component (L_sky E is not
+ * counted: misses are 0). Scenes without a sky draw no extra random numbers and cast no extra
+ * rays: their images are bit-identical to the renderer's before the sky existed.
+ *
  * Strategies and pixel footprint: every path class is estimated by camera paths with next-event
  * estimation at the pixel CENTRE (the GL techniques rasterise there), except the classes whose
  * vertex next to the light is a MIRROR: a delta light seen through a delta lobe cannot be found
@@ -43,9 +58,9 @@
  *
  * Noise: each pixel's sample variance (n - 1) gives its standard error; the image's noise RMSE is
  * sqrt(mean over pixels and channels of variance / spp). With one sample the variance is unknown,
- * so random estimators refuse spp < 2; deterministic ones (direct with the scene's delta lights,
- * the auxiliary images, components identically 0 in the scene) take one sample whatever spp asks
- * and report a standard error of exactly 0, which is their true error.
+ * so random estimators refuse spp < 2; deterministic ones (direct with the scene's delta lights and
+ * no sky, the auxiliary images, components identically 0 in the scene) take one sample whatever
+ * spp asks and report a standard error of exactly 0, which is their true error.
  *
  * Textures: at primary hits albedo is filtered as GL filters it (mip maps, trilinear, the LOD of
  * the pixel's footprint from ray differentials); at secondary hits level 0, bilinear
@@ -57,7 +72,7 @@
 #include "../scenes/scene.h"
 
 /* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). */
-#define GIB_REFERENCE_VERSION "gibench-ref-3"
+#define GIB_REFERENCE_VERSION "gibench-ref-4"
 
 enum gib_component {
     GIB_COMP_AO = 0,
@@ -77,8 +92,9 @@ const char *gib_component_name(int component);
 /* Returns the enum value, or -1 for an unknown name. */
 int gib_component_parse(const char *name);
 /* 1 when the component's estimator uses no random numbers for this scene (direct with its delta
- * lights, the auxiliary images, and components that are identically 0 in the scene, e.g. glossy
- * without specular materials): its standard error is exactly 0 and one sample is the answer. */
+ * lights in a scene without a sky, the auxiliary images, and components that are identically 0 in
+ * the scene, e.g. glossy without specular materials): its standard error is exactly 0 and one
+ * sample is the answer. With a sky, direct samples the sky at random and needs spp >= 2. */
 int gib_component_deterministic(const gib_scene *scene, int component);
 
 /* Parameter defaults, used where a field is 0. */
@@ -128,22 +144,25 @@ int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_im
  * quiet are zeroed (they never change the image). */
 void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gib_ref_params *out);
 
-/* A hash of everything in p that changes the image (after gib_reference_normalize) and of the
- * renderer version. */
+/* A hash of everything in p that changes the image (after gib_reference_normalize), of the
+ * renderer version, of the camera p->camera names (eye, target, up, fov) and of the scene's sky
+ * where it has one (a scene file's bytes already change the content hash when its sky changes;
+ * this covers scenes built in C too). */
 uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params *p);
 
 /* The cache key of a reference image: the params hash plus the scene's content hash (scene file,
- * meshes, textures) and the camera p->camera names (eye, target, up, fov). */
+ * meshes, textures). */
 uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p);
 
 /* Fills the EXR header attributes describing a reference render, all strings: component, spp,
  * seconds, scene_hash (16 hex digits), renderer_version, noise_rmse, mean, width, height, dmax
  * ("inf" when unbounded), seed, camera, obscurance, max_depth, min_depth, max_specular,
  * target_noise, max_spp, rounds, estimator ("deterministic" or "random"), footprint ("centre" or
- * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key.
+ * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key,
+ * sky (the sky's radiance, three numbers, "0 0 0" without one).
  * Parameters are written normalised. Returns the count written, at most max_attrs;
  * GIB_REF_ATTR_COUNT is how many there are. */
-#define GIB_REF_ATTR_COUNT 23
+#define GIB_REF_ATTR_COUNT 24
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
 

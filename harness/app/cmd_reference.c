@@ -28,7 +28,8 @@ static const char help[] =
     "--spp N (default 16) is the sample count, or with --target-noise X the first round's:\n"
     "rounds are added until the noise RMSE is at most X times the image mean, or --max-spp\n"
     "(default 65536) is reached. Random components need spp >= 2 (the variance of one sample is\n"
-    "unknown); deterministic ones (direct, the auxiliary images) take one sample.\n"
+    "unknown); deterministic ones (direct with only point,\n"
+    "spot and directional lights - not with a sky -, the auxiliary images) take one sample.\n"
     "The EXR header records component, parameters, spp, seconds, scene hash, renderer version,\n"
     "the cache key and the image's noise RMSE (standard error from the per-pixel variance).\n";
 

@@ -4,7 +4,9 @@
  * light ... traced using LDMs"). For a uniform sky of radiance L the sky's share of the direct
  * radiance is rho * L * (2/N) sum_i V(x, w_i) |n . v_i| (Eq. 2 with unbounded visibility), so the
  * LDM pass is ldm_ao.frag with LDM_SKY defined, added onto the shaded lights. Output component
- * `direct`; only for scenes with a sky (GIB_FEAT_SKY). */
+ * `direct`; only for scenes with a sky (GIB_FEAT_SKY). The sky's glossy reflection (a Phong lobe
+ * seeing the sky, which the reference includes) is not rendered: Lambertian receivers only, as the
+ * paper's Eq. 2; on a sky scene with Phong materials that shows up as this technique's error. */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdlib.h>

@@ -43,28 +43,6 @@
 
 #include "ref_test_util.h"
 
-static double rt_angle(const double a[3], const double b[3])
-{
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-}
-
-/* Lambert's formula, normal +y, for a polygon entirely above the origin's horizon. */
-static double rt_form_factor(double R[][3], int n)
-{
-    double sum = 0.0;
-    for (int i = 0; i < n; i++) {
-        const double *a = R[i], *b = R[(i + 1) % n];
-        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                       a[0] * b[1] - a[1] * b[0]};
-        double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (len > 0.0)
-            sum += rt_angle(a, b) * c[1] / len;
-    }
-    return fabs(sum) / (2.0 * M_PI);
-}
-
 int main(void)
 {
     const float wall_x = 1.0f, wall_h = 60.0f, wall_z = 60.0f;
@@ -104,7 +82,7 @@ int main(void)
                 if (isinf(dmaxes[k])) {
                     double z0 = -wall_z - P[2], z1 = wall_z - P[2], top = wall_h - eps;
                     double R[4][3] = {{a, 0, z0}, {a, 0, z1}, {a, top, z1}, {a, top, z0}};
-                    expect = 1.0 - rt_form_factor(R, 4);
+                    expect = 1.0 - rt_form_factor_up(R, 4);
                 } else {
                     double c = a / dmaxes[k], sc = sqrt(fmax(0.0, 1.0 - c * c));
                     double cap = acos(fmin(c, 1.0)) - c * sc;

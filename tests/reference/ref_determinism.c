@@ -11,43 +11,13 @@
  *    target_reached = 0), and the image of a run that stopped at N samples is bit-identical to a
  *    plain N-sample render (sample N is the same number whether drawn in round 1 or round 3).
  * The scene has an alpha-masked occluder (Embree filter callbacks run concurrently), a Phong
- * object and a mirror (so glossy, caustic and the light-traced part of full/higher run). No
- * tolerance: equality of bytes, and the target inequality itself. */
+ * object and a mirror (so glossy, caustic and the light-traced part of full/higher run); all of it
+ * runs again with a sky (the sky's sampling in every estimator; `direct` then random, so its
+ * seed must matter and its target noise be reachable). No tolerance: equality of bytes, and the
+ * target inequality itself. */
 #include <string.h>
 
 #include "ref_test_util.h"
-
-static void rt_build(gib_scene *s)
-{
-    rt_scene_init(s, "determinism");
-    int m = rt_material(s, 0.6f, 0.6f, 0.6f);
-    rt_floor(s, 0.0f, -4.0f, 4.0f, -4.0f, 4.0f, m);
-    /* A checkerboard cut-out above the floor. */
-    float rgba[8 * 8 * 4];
-    for (int y = 0; y < 8; y++)
-        for (int x = 0; x < 8; x++)
-            for (int c = 0; c < 4; c++)
-                rgba[(y * 8 + x) * 4 + c] = ((x + y) & 1) ? 1.0f : 0.0f;
-    int mc = rt_material(s, 0.3f, 0.6f, 0.9f);
-    s->materials[mc].alpha_tex = rt_texture(s, 8, 8, rgba);
-    s->materials[mc].two_sided = 1;
-    s->materials[mc].spec_type = GIB_SPEC_PHONG;
-    s->materials[mc].specular[0] = s->materials[mc].specular[1] =
-        s->materials[mc].specular[2] = 0.3f;
-    s->materials[mc].phong_n = 8.0f;
-    s->features |= GIB_FEAT_ALPHA_MASK | GIB_FEAT_SPECULAR | GIB_FEAT_MIRROR;
-    rt_floor(s, 0.4f, -1.0f, 1.0f, -1.0f, 1.0f, mc);
-    int mirror = rt_material(s, 0.1f, 0.1f, 0.1f);
-    s->materials[mirror].spec_type = GIB_SPEC_MIRROR;
-    s->materials[mirror].specular[0] = s->materials[mirror].specular[1] =
-        s->materials[mirror].specular[2] = 0.8f;
-    const float a[3] = {1.5f, 0, 1.5f}, b[3] = {1.5f, 0, -1.5f}, c[3] = {1.5f, 1.5f, -1.5f},
-                d[3] = {1.5f, 1.5f, 1.5f}, n[3] = {-1, 0, 0};
-    rt_quad(s, a, b, c, d, n, mirror);
-    rt_point_light(s, -0.5f, 2.0f, 0.5f, 5.0f, 5.0f, 5.0f);
-    const float eye[3] = {-2.5f, 2.5f, 2.5f}, tgt[3] = {0.5f, 0.0f, 0.0f}, up[3] = {0, 1, 0};
-    rt_camera(s, eye, tgt, up, 55.0f);
-}
 
 static int same(const gib_image *a, const gib_image *b)
 {
@@ -143,11 +113,17 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
 int main(void)
 {
     gib_scene s;
-    rt_build(&s);
+    rt_scene_mixed(&s);
     test_threads(&s);
     test_target(&s, GIB_COMP_INDIRECT, 0.25, 4096, 1);
     test_target(&s, GIB_COMP_FULL, 0.05, 4096, 1); /* camera and light-traced parts */
     test_target(&s, GIB_COMP_AO, 1e-4, 16, 0);
+    /* the same scene under a sky: direct is random then, and every estimator samples the sky */
+    printf("with a sky:\n");
+    rt_sky(&s, 0.3f, 0.35f, 0.4f);
+    RT_CHECK(!gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct with a sky is random");
+    test_threads(&s);
+    test_target(&s, GIB_COMP_DIRECT, 0.02, 4096, 1);
     rt_scene_free(&s);
     return rt_failures ? 1 : 0;
 }

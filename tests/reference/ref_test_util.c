@@ -1,5 +1,6 @@
 #include "ref_test_util.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -197,4 +198,65 @@ int rt_hit_plane_y(const gib_scene *s, int cam, int w, int h, int x, int y, doub
     for (int k = 0; k < 3; k++)
         P[k] = (double)o[k] + t * (double)d[k];
     return 1;
+}
+
+void rt_sky(gib_scene *s, float r, float g, float b)
+{
+    s->sky[0] = r;
+    s->sky[1] = g;
+    s->sky[2] = b;
+    s->features |= GIB_FEAT_SKY;
+}
+
+void rt_scene_mixed(gib_scene *s)
+{
+    rt_scene_init(s, "determinism");
+    int m = rt_material(s, 0.6f, 0.6f, 0.6f);
+    rt_floor(s, 0.0f, -4.0f, 4.0f, -4.0f, 4.0f, m);
+    /* A checkerboard cut-out above the floor. */
+    float rgba[8 * 8 * 4];
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++)
+            for (int c = 0; c < 4; c++)
+                rgba[(y * 8 + x) * 4 + c] = ((x + y) & 1) ? 1.0f : 0.0f;
+    int mc = rt_material(s, 0.3f, 0.6f, 0.9f);
+    s->materials[mc].alpha_tex = rt_texture(s, 8, 8, rgba);
+    s->materials[mc].two_sided = 1;
+    s->materials[mc].spec_type = GIB_SPEC_PHONG;
+    s->materials[mc].specular[0] = s->materials[mc].specular[1] =
+        s->materials[mc].specular[2] = 0.3f;
+    s->materials[mc].phong_n = 8.0f;
+    s->features |= GIB_FEAT_ALPHA_MASK | GIB_FEAT_SPECULAR | GIB_FEAT_MIRROR;
+    rt_floor(s, 0.4f, -1.0f, 1.0f, -1.0f, 1.0f, mc);
+    int mirror = rt_material(s, 0.1f, 0.1f, 0.1f);
+    s->materials[mirror].spec_type = GIB_SPEC_MIRROR;
+    s->materials[mirror].specular[0] = s->materials[mirror].specular[1] =
+        s->materials[mirror].specular[2] = 0.8f;
+    const float a[3] = {1.5f, 0, 1.5f}, b[3] = {1.5f, 0, -1.5f}, c[3] = {1.5f, 1.5f, -1.5f},
+                d[3] = {1.5f, 1.5f, 1.5f}, n[3] = {-1, 0, 0};
+    rt_quad(s, a, b, c, d, n, mirror);
+    rt_point_light(s, -0.5f, 2.0f, 0.5f, 5.0f, 5.0f, 5.0f);
+    const float eye[3] = {-2.5f, 2.5f, 2.5f}, tgt[3] = {0.5f, 0.0f, 0.0f}, up[3] = {0, 1, 0};
+    rt_camera(s, eye, tgt, up, 55.0f);
+}
+
+static double rt_angle(const double a[3], const double b[3])
+{
+    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+}
+
+double rt_form_factor_up(double R[][3], int n)
+{
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) {
+        const double *a = R[i], *b = R[(i + 1) % n];
+        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                       a[0] * b[1] - a[1] * b[0]};
+        double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (len > 0.0)
+            sum += rt_angle(a, b) * c[1] / len;
+    }
+    return fabs(sum) / (2.0 * M_PI);
 }

@@ -40,6 +40,19 @@ void rt_spot_light(gib_scene *s, const float pos[3], const float dir[3], float i
 void rt_camera(gib_scene *s, const float eye[3], const float target[3], const float up[3],
                float vfov_deg);
 
+/* A uniform sky of radiance (r, g, b) (gib_scene.sky), and GIB_FEAT_SKY. */
+void rt_sky(gib_scene *s, float r, float g, float b);
+
+/* The scene of ref_determinism: a 8 x 8 m floor, an alpha-masked two-sided Phong board above it,
+ * a mirror wall and a point light (every estimator runs on it, light tracing included). */
+void rt_scene_mixed(gib_scene *s);
+
+/* The form factor from a point (normal +y) at the origin to the polygon R[0..n-1] (coordinates
+ * relative to the point, entirely above its horizon), by Lambert's formula
+ *     F = (1 / 2 pi) | sum_i angle(R_i, R_i+1) * (n . unit(R_i x R_i+1)) |:
+ * the fraction of cosine-weighted directions that hit the polygon. */
+double rt_form_factor_up(double R[][3], int n);
+
 /* Default parameters: quiet, seed 1, all cores. */
 gib_ref_params rt_params(int component, int w, int h, int spp);
 
