@@ -21,7 +21,13 @@
 /* Bilinear lookup of one level: texel centres at (i + 0.5) / size, as in GL, so a lookup at a
  * texel centre returns that texel exactly; repeat wrap in both directions; row 0 is the top of the
  * image (scene.h). */
-static void ref_bilinear(const float *px, int w, int h, float u, float v, float out[4])
+/* The four texels and weights of a bilinear lookup at (u, v) in a w x h level (both lookups below). */
+typedef struct ref_bilerp {
+    int x0, x1, y0, y1;
+    float ax, ay;
+} ref_bilerp;
+
+static inline ref_bilerp ref_bilerp_at(int w, int h, float u, float v)
 {
     if (!isfinite(u))
         u = 0.0f;
@@ -32,13 +38,21 @@ static void ref_bilinear(const float *px, int w, int h, float u, float v, float 
     tt -= floorf(tt);
     float x = s * (float)w - 0.5f, y = tt * (float)h - 0.5f;
     float xf = floorf(x), yf = floorf(y);
-    float ax = x - xf, ay = y - yf;
+    ref_bilerp b = {.ax = x - xf, .ay = y - yf};
     /* s, tt in [0, 1] put xf in [-1, w - 1]: repeat wrap without a division */
-    int x0 = (int)xf, y0 = (int)yf, x1 = x0 + 1, y1 = y0 + 1;
-    x0 = x0 < 0 ? w - 1 : x0 >= w ? x0 - w : x0;
-    x1 = x1 >= w ? x1 - w : x1;
-    y0 = y0 < 0 ? h - 1 : y0 >= h ? y0 - h : y0;
-    y1 = y1 >= h ? y1 - h : y1;
+    b.x0 = (int)xf, b.y0 = (int)yf, b.x1 = b.x0 + 1, b.y1 = b.y0 + 1;
+    b.x0 = b.x0 < 0 ? w - 1 : b.x0 >= w ? b.x0 - w : b.x0;
+    b.x1 = b.x1 >= w ? b.x1 - w : b.x1;
+    b.y0 = b.y0 < 0 ? h - 1 : b.y0 >= h ? b.y0 - h : b.y0;
+    b.y1 = b.y1 >= h ? b.y1 - h : b.y1;
+    return b;
+}
+
+static void ref_bilinear(const float *px, int w, int h, float u, float v, float out[4])
+{
+    const ref_bilerp b = ref_bilerp_at(w, h, u, v);
+    const int x0 = b.x0, x1 = b.x1, y0 = b.y0, y1 = b.y1;
+    const float ax = b.ax, ay = b.ay;
     const float *p00 = px + ((size_t)y0 * (size_t)w + (size_t)x0) * 4;
     const float *p10 = px + ((size_t)y0 * (size_t)w + (size_t)x1) * 4;
     const float *p01 = px + ((size_t)y1 * (size_t)w + (size_t)x0) * 4;
@@ -210,20 +224,9 @@ static void ref_bilinear8(const ref_mip *m, int l, float u, float v, float out[4
 {
     const int w = m->w[l], h = m->h[l], tw = (w + 3) / 4;
     const uint32_t *px = m->lv8[l];
-    if (!isfinite(u))
-        u = 0.0f;
-    if (!isfinite(v))
-        v = 0.0f;
-    float s = u - floorf(u), tt = 1.0f - v;
-    tt -= floorf(tt);
-    float x = s * (float)w - 0.5f, y = tt * (float)h - 0.5f;
-    float xf = floorf(x), yf = floorf(y);
-    float ax = x - xf, ay = y - yf;
-    int x0 = (int)xf, y0 = (int)yf, x1 = x0 + 1, y1 = y0 + 1;
-    x0 = x0 < 0 ? w - 1 : x0 >= w ? x0 - w : x0;
-    x1 = x1 >= w ? x1 - w : x1;
-    y0 = y0 < 0 ? h - 1 : y0 >= h ? y0 - h : y0;
-    y1 = y1 >= h ? y1 - h : y1;
+    const ref_bilerp b = ref_bilerp_at(w, h, u, v);
+    const int x0 = b.x0, x1 = b.x1, y0 = b.y0, y1 = b.y1;
+    const float ax = b.ax, ay = b.ay;
     const uint32_t t00 = px[ref_tiled_index(tw, x0, y0)], t10 = px[ref_tiled_index(tw, x1, y0)];
     const uint32_t t01 = px[ref_tiled_index(tw, x0, y1)], t11 = px[ref_tiled_index(tw, x1, y1)];
     for (int c = 0; c < 4; c++) {
