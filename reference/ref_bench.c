@@ -194,8 +194,8 @@ static double ref_replay_run(const ref_world *w, const ref_raylog *log, int api,
     return ref_now() - t0;
 }
 
-int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, gib_ref_bench_row *rows,
-                        int max_rows, gib_error *err)
+int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int repeats,
+                        gib_ref_bench_row *rows, int max_rows, gib_error *err)
 {
     if (ref_check_params(scene, p, err) < 0)
         return -1;
@@ -234,8 +234,8 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, gib_ref
     if (ok < 0 || ref_random_log(&w, &rnd, err) < 0)
         goto done;
 
-    /* Best of three of each, interleaved: the machine may be shared, and the fastest run is the
-     * one least disturbed. */
+    /* Best of `repeats` (default 3) of each, interleaved: the machine may be shared, and the
+     * fastest run is the one least disturbed. */
     static const struct {
         int api;
         const char *name;
@@ -248,7 +248,7 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, gib_ref
         t_api[i] = INFINITY;
     q = *p;
     q.quiet = 1;
-    for (int rep = 0; rep < 3; rep++) {
+    for (int rep = 0; rep < (repeats > 0 ? repeats : 1); rep++) {
         if (ref_render_world(&w, scene, &q, &img, NULL, &st, err) < 0)
             goto done;
         gib_image_free(&img);

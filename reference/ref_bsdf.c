@@ -59,7 +59,7 @@ void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float
         ref_reflect(wo, h->n, r);
     for (uint32_t i = 0; i < gs->light_count; i++) {
         float wi[3], dist, E[3];
-        if (!gib_light_eval(&gs->lights[i], h->p, wi, &dist, E))
+        if (!gib_light_eval_cos(&gs->lights[i], w->spot_cos[i], h->p, wi, &dist, E))
             continue;
         float cosn = ref_dot(h->n, wi);
         if (!(cosn > 0.0f) || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f))

@@ -60,6 +60,7 @@ typedef struct ref_world {
     const gib_scene *gs;
     float eps;               /* ray offset, gib_reference_ray_eps() */
     ref_mip *mips;           /* one per scene texture */
+    float *spot_cos;         /* per light: gib_spot_cos_outer (spots), computed once */
     int has_specular;        /* some material has a specular lobe (Phong or mirror) */
     int has_mirror;          /* some material is a mirror */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */

@@ -219,6 +219,10 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
     }
     if (gs->texture_count > 0 && ref_world_mips(w, gs, err) < 0)
         return -1;
+    if (gs->light_count > 0 && !(w->spot_cos = gib_calloc(gs->light_count, sizeof(float), err)))
+        return -1;
+    for (uint32_t i = 0; i < gs->light_count; i++)
+        w->spot_cos[i] = gib_spot_cos_outer(&gs->lights[i]);
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (uint32_t i = 0; i < gs->vertex_count; i++)
         for (int k = 0; k < 3; k++) {
@@ -327,6 +331,8 @@ void ref_world_free(ref_world *w)
             ref_mip_free(&w->mips[i]);
     free(w->mips);
     w->mips = NULL;
+    free(w->spot_cos);
+    w->spot_cos = NULL;
     ref_free_huge(w->tris, w->gs ? (size_t)w->gs->triangle_count * sizeof *w->tris : 0);
     w->tris = NULL;
     free(w->rec_tri);

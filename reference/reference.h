@@ -185,8 +185,9 @@ typedef struct gib_ref_bench_row {
 /* Measures, on one scene with all p->threads threads: raw Embree throughput on random incoherent
  * rays and on a replay of the path tracer's own rays with each ray API, and the path tracer's
  * throughput (p->component, p->spp at p->width x p->height, sampling and shading included).
- * Fills up to max_rows rows; returns the count, or -1 with err. */
-int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, gib_ref_bench_row *rows,
-                        int max_rows, gib_error *err);
+ * Each figure is the best of `repeats` runs, interleaved. Fills up to max_rows rows; returns the
+ * count, or -1 with err. */
+int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int repeats,
+                        gib_ref_bench_row *rows, int max_rows, gib_error *err);
 
 #endif

@@ -63,7 +63,17 @@ void gib_camera_ray(const gib_camera *cam, int width, int height, float px, floa
     normalize3(dir);
 }
 
+float gib_spot_cos_outer(const gib_light *l)
+{
+    return cosf(l->spot_outer_deg * (float)(M_PI / 180.0));
+}
+
 float gib_spot_falloff(const gib_light *l, const float dir_from_light[3])
+{
+    return gib_spot_falloff_cos(l, gib_spot_cos_outer(l), dir_from_light);
+}
+
+float gib_spot_falloff_cos(const gib_light *l, float cos_outer, const float dir_from_light[3])
 {
     /* Compare cosines instead of angles: no acos, and theta == outer counts as inside on both
      * sides. dir_from_light need not be unit length; the axis is (the loader normalises it). */
@@ -71,7 +81,6 @@ float gib_spot_falloff(const gib_light *l, const float dir_from_light[3])
     if (!(len > 0.0f))
         return 0.0f;
     const float cos_theta = dot3(dir_from_light, l->direction) / len;
-    const float cos_outer = cosf(l->spot_outer_deg * (float)(M_PI / 180.0));
     if (cos_theta < cos_outer)
         return 0.0f;
     /* Clamped so an outer angle beyond 90 degrees never takes pow() of a negative number. */
@@ -82,6 +91,13 @@ float gib_spot_falloff(const gib_light *l, const float dir_from_light[3])
 }
 
 int gib_light_eval(const gib_light *l, const float p[3], float wi[3], float *dist, float E[3])
+{
+    return gib_light_eval_cos(l, l->type == GIB_LIGHT_SPOT ? gib_spot_cos_outer(l) : -1.0f, p, wi,
+                              dist, E);
+}
+
+int gib_light_eval_cos(const gib_light *l, float cos_outer, const float p[3], float wi[3],
+                       float *dist, float E[3])
 {
     if (l->type == GIB_LIGHT_DIRECTIONAL) {
         wi[0] = -l->direction[0];
@@ -113,7 +129,7 @@ int gib_light_eval(const gib_light *l, const float p[3], float wi[3], float *dis
     float falloff = 1.0f;
     if (l->type == GIB_LIGHT_SPOT) {
         const float from_light[3] = {-wi[0], -wi[1], -wi[2]};
-        falloff = gib_spot_falloff(l, from_light);
+        falloff = gib_spot_falloff_cos(l, cos_outer, from_light);
         if (falloff <= 0.0f) {
             E[0] = E[1] = E[2] = 0.0f;
             return 0;

@@ -12,13 +12,14 @@
 
 static const char help[] =
     "usage: gibench bench reference [--scene S] [--size WxH] [--component C] [--spp N]\n"
-    "                               [--threads N] [--out F.csv]\n"
+    "                               [--threads N] [--repeat N] [--out F.csv]\n"
     "\n"
     "Measures, on one scene and BVH: raw Embree throughput on random incoherent rays\n"
     "(rtcIntersect1), the path tracer's own rays replayed with each ray API (single rays,\n"
     "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
     "second including sampling and shading). Defaults: scene sponza (cornell when its data is\n"
-    "absent), 256x256, component full, 16 spp, all cores.\n";
+    "absent), 256x256, component full, 16 spp, all cores. Each figure is the best of --repeat\n"
+    "runs (default 3), interleaved, as a shared machine disturbs some of them.\n";
 
 static void machine_name(char *out, size_t len)
 {
@@ -59,7 +60,7 @@ int gib_cmd_bench(int argc, char **argv)
         return 2;
     }
     const char *scene_name = NULL, *size = "256x256", *out = NULL, *comp = "full";
-    long spp = 16, threads = 0;
+    long spp = 16, threads = 0, repeat = 3;
     gib_error err = {{0}};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -79,6 +80,7 @@ int gib_cmd_bench(int argc, char **argv)
         else if (!strcmp(a, "--component")) comp = v;
         else if (!strcmp(a, "--spp")) rc = gib_parse_int(a, v, 2, 1 << 20, &spp, &err);
         else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &threads, &err);
+        else if (!strcmp(a, "--repeat")) rc = gib_parse_int(a, v, 1, 100, &repeat, &err);
         else {
             fprintf(stderr, "gibench bench: unknown option '%s'\n%s", a, help);
             return 2;
@@ -110,7 +112,7 @@ int gib_cmd_bench(int argc, char **argv)
     gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
                         .seed = 1, .threads = (int)threads, .quiet = 1};
     gib_ref_bench_row rows[16];
-    int n = gib_reference_bench(&scene, &p, rows, 16, &err);
+    int n = gib_reference_bench(&scene, &p, (int)repeat, rows, 16, &err);
     if (n < 0) {
         fprintf(stderr, "gibench bench: %s\n", err.msg);
         gib_scene_free(&scene);
