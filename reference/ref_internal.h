@@ -81,6 +81,9 @@ typedef struct ref_hit {
     int has_duv;             /* 1 at primary hits: albedo is filtered at the pixel's footprint */
     int has_kd;              /* kd holds ref_albedo() (primary hits: filtered once per pixel) */
     float kd[3];
+    int has_nee;             /* nee_dif/nee_spec hold ref_nee() toward wo (primary hits of `full`:
+                              * delta lights give the same value every sample, so once per pixel) */
+    float nee_dif[3], nee_spec[3];
     float t;                 /* ray distance */
     uint32_t prim;           /* triangle record (w->rec_tri[prim] is the scene's triangle) */
     const gib_material *mat;

@@ -119,7 +119,12 @@ void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int hig
             if (!keep[0])
                 mn.kd[0] = mn.kd[1] = mn.kd[2] = 0.0f;
             float dif[3], sp[3];
-            ref_nee(w, &cur, &mn, wcur, dif, keep[1] ? sp : NULL, rays);
+            if (cur.has_nee && keep[0] && keep[1]) { /* the pixel's own, computed once */
+                memcpy(dif, cur.nee_dif, sizeof dif);
+                memcpy(sp, cur.nee_spec, sizeof sp);
+            } else {
+                ref_nee(w, &cur, &mn, wcur, dif, keep[1] ? sp : NULL, rays);
+            }
             ref_nee_sky(w, &cur, &mn, wcur, rng, dif, keep[1] ? sp : NULL, rays);
             for (int k = 0; k < 3; k++)
                 out[k] += beta[k] * (dif[k] + (keep[1] ? sp[k] : 0.0f));

@@ -464,6 +464,7 @@ void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit)
     hit->t = pq->rh.ray.tfar;
     hit->has_duv = 0;
     hit->has_kd = 0;
+    hit->has_nee = 0;
     int tex = hit->mat->albedo_tex;
     if (tex >= 0 && w->mips && !hit->back)
         ref_mip_prefetch(&w->mips[tex], hit->uv[0], hit->uv[1]);

@@ -68,6 +68,12 @@ static void ref_row_task(void *ctx, int y)
         ref_albedo(c->w, &h, h.kd); /* trilinear once per pixel, not once per sample */
         h.has_kd = 1;
         const float wo[3] = {-d[0], -d[1], -d[2]};
+        if (c->p.component == GIB_COMP_FULL) { /* next-event estimation at x1: once per pixel */
+            ref_mat m;
+            ref_material(c->w, &h, &m);
+            ref_nee(c->w, &h, &m, wo, h.nee_dif, h.nee_spec, &rays);
+            h.has_nee = 1;
+        }
         for (int s = r->s0; s < r->s1; s++) {
             ref_pcg32 rng;
             ref_pcg32_seed_sample(&rng, pix, (uint64_t)s, c->p.seed, c->p.component);
