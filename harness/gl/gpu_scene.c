@@ -106,7 +106,7 @@ int gib_gpu_scene_upload(const gib_scene *s, gib_gpu_scene *gpu, gib_error *err)
         memcpy(o + 4, l->direction, 12);
         o[7] = l->spot_exponent;
         memcpy(o + 8, l->intensity, 12);
-        o[11] = l->type == GIB_LIGHT_SPOT ? cosf(l->spot_outer_deg * (float)M_PI / 180.0f) : -2.0f;
+        o[11] = l->type == GIB_LIGHT_SPOT ? gib_spot_cos_outer(l) : -2.0f; /* as the reference */
     }
     gpu->lights = upload_array(gpu, "scene.lights", lights,
                                48 * (size_t)(s->light_count ? s->light_count : 1), err);
