@@ -243,6 +243,12 @@ void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3]);
 /* full (higher_only = 0) or higher (1): one camera path. */
 void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
                   ref_pcg32 *rng, float out[3], long long *rays);
+/* n camera paths from one visible point, path i on its own stream rng[i] into out[i], run in
+ * batches of REF_PATH_BATCH (ref_path.c: their memory misses overlap); each out[i] is what
+ * ref_est_path gives for rng[i]. */
+#define REF_PATH_BATCH 16
+void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
+                   int n, ref_pcg32 *rng, float (*out)[3], long long *rays);
 
 /* Path classes (reference.h): 1 when a path of `verts` surface vertices whose visible point x1
  * leaves through lobe s1 (1 = S) and whose other vertices are all S (all_s_rest) belongs to
