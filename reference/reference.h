@@ -68,6 +68,7 @@
 #ifndef GIB_REFERENCE_H
 #define GIB_REFERENCE_H
 
+#include <stdio.h>
 #include "../harness/imaging/image.h"
 #include "../scenes/scene.h"
 
@@ -185,9 +186,10 @@ typedef struct gib_ref_bench_row {
 /* Measures, on one scene with all p->threads threads: raw Embree throughput on random incoherent
  * rays and on a replay of the path tracer's own rays with each ray API, and the path tracer's
  * throughput (p->component, p->spp at p->width x p->height, sampling and shading included).
- * Each figure is the best of `repeats` runs, interleaved. Fills up to max_rows rows; returns the
- * count, or -1 with err. */
-int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int repeats,
+ * Each figure is the best of `repeats` runs, interleaved; each repeat's own ratio (path tracer
+ * against the fastest replay) goes to `log` when it is not NULL. Fills up to max_rows rows;
+ * returns the count, or -1 with err. */
+int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int repeats, FILE *log,
                         gib_ref_bench_row *rows, int max_rows, gib_error *err);
 
 #endif

@@ -112,7 +112,7 @@ int gib_cmd_bench(int argc, char **argv)
     gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
                         .seed = 1, .threads = (int)threads, .quiet = 1};
     gib_ref_bench_row rows[16];
-    int n = gib_reference_bench(&scene, &p, (int)repeat, rows, 16, &err);
+    int n = gib_reference_bench(&scene, &p, (int)repeat, stderr, rows, 16, &err);
     if (n < 0) {
         fprintf(stderr, "gibench bench: %s\n", err.msg);
         gib_scene_free(&scene);
