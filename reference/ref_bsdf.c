@@ -3,6 +3,7 @@
  * (a delta lobe of reflectance rho_s). Next-event estimation toward the scene's delta lights and
  * toward its sky, and importance sampling of each lobe. */
 #include <math.h>
+#include <string.h>
 
 #include "ref_internal.h"
 
@@ -43,21 +44,18 @@ void ref_material(const ref_world *w, const ref_hit *h, ref_mat *m)
 
 /* The shadow ray stops eps short of the light: a light resting on a surface is not shadowed by
  * that surface (DESIGN.md, "Hard cases": a light touching a surface). */
-void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
-             float dif[3], float spec[3], long long *rays)
+void ref_nee_visible(const ref_world *w, const ref_hit *h, const float wo[3], int want_d,
+                     int want_s, float phong_n, uint32_t first, ref_nee_vis *v, long long *rays)
 {
     const gib_scene *gs = w->gs;
-    dif[0] = dif[1] = dif[2] = 0.0f;
-    if (spec)
-        spec[0] = spec[1] = spec[2] = 0.0f;
-    int want_d = m->kd[0] > 0.0f || m->kd[1] > 0.0f || m->kd[2] > 0.0f;
-    int want_s = spec && m->spec == GIB_SPEC_PHONG;
+    v->n = 0;
     if (h->back || (!want_d && !want_s))
         return;
     float r[3] = {0.0f, 0.0f, 0.0f};
     if (want_s)
         ref_reflect(wo, h->n, r);
-    for (uint32_t i = 0; i < gs->light_count; i++) {
+    uint32_t end = gs->light_count - first < REF_NEE_LIGHTS ? gs->light_count : first + REF_NEE_LIGHTS;
+    for (uint32_t i = first; i < end; i++) {
         float wi[3], dist, E[3];
         if (!gib_light_eval_cos(&gs->lights[i], w->spot_cos[i], h->p, wi, &dist, E))
             continue;
@@ -68,7 +66,7 @@ void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float
         if (want_s) {
             float rw = ref_dot(r, wi);
             if (rw > 0.0f)
-                lobe = (m->phong_n + 2.0f) * (0.5f / REF_PI) * powf(rw, m->phong_n);
+                lobe = (phong_n + 2.0f) * (0.5f / REF_PI) * powf(rw, phong_n);
         }
         if (!want_d && !(lobe > 0.0f))
             continue;
@@ -80,11 +78,34 @@ void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float
             if (ref_occluded(w, o, wi, tfar))
                 continue;
         }
+        memcpy(v->e[v->n], E, sizeof E);
+        v->cosn[v->n] = cosn;
+        v->lobe[v->n++] = lobe;
+    }
+}
+
+void ref_nee_shade(const ref_nee_vis *v, const ref_mat *m, float dif[3], float spec[3])
+{
+    for (int i = 0; i < v->n; i++)
         for (int k = 0; k < 3; k++) {
-            dif[k] += m->kd[k] * (1.0f / REF_PI) * E[k] * cosn;
-            if (want_s)
-                spec[k] += m->ks[k] * lobe * E[k] * cosn;
+            dif[k] += m->kd[k] * (1.0f / REF_PI) * v->e[i][k] * v->cosn[i];
+            if (spec)
+                spec[k] += m->ks[k] * v->lobe[i] * v->e[i][k] * v->cosn[i];
         }
+}
+
+void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+             float dif[3], float spec[3], long long *rays)
+{
+    dif[0] = dif[1] = dif[2] = 0.0f;
+    if (spec)
+        spec[0] = spec[1] = spec[2] = 0.0f;
+    int want_d = m->kd[0] > 0.0f || m->kd[1] > 0.0f || m->kd[2] > 0.0f;
+    int want_s = spec && m->spec == GIB_SPEC_PHONG;
+    for (uint32_t first = 0; first < w->gs->light_count; first += REF_NEE_LIGHTS) {
+        ref_nee_vis v;
+        ref_nee_visible(w, h, wo, want_d, want_s, m->phong_n, first, &v, rays);
+        ref_nee_shade(&v, m, dif, want_s ? spec : NULL);
     }
 }
 

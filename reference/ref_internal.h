@@ -162,6 +162,19 @@ void ref_albedo(const ref_world *w, const ref_hit *h, float a[3]);
  * not wanted). Mirrors add nothing (a delta lobe never meets a delta light). */
 void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
              float dif[3], float spec[3], long long *rays);
+/* ref_nee in two halves, so that the shadow rays can be cast before the albedo texel is read:
+ * _visible casts them for lights [first, first + REF_NEE_LIGHTS) and keeps the unoccluded ones'
+ * irradiance, cosine and Phong lobe (wanted lobes: want_d, want_s); _shade adds their reflected
+ * radiance with the material's (textured) reflectances, in light order: the same arithmetic as
+ * ref_nee. spec NULL: the Phong lobe is not wanted. */
+#define REF_NEE_LIGHTS 8
+typedef struct ref_nee_vis {
+    int n;
+    float e[REF_NEE_LIGHTS][3], cosn[REF_NEE_LIGHTS], lobe[REF_NEE_LIGHTS];
+} ref_nee_vis;
+void ref_nee_visible(const ref_world *w, const ref_hit *h, const float wo[3], int want_d,
+                     int want_s, float phong_n, uint32_t first, ref_nee_vis *v, long long *rays);
+void ref_nee_shade(const ref_nee_vis *v, const ref_mat *m, float dif[3], float spec[3]);
 
 /* 1 when the scene has a sky (gib_scene.sky: a uniform environment of that radiance, seen by rays
  * that escape; 0 = none). */

@@ -67,10 +67,48 @@ typedef struct ref_path_state {
     float wcur[3], beta[3], d[3], f, q, prob;
     int depth, s1, all_s_rest; /* lobes of the vertices before the current one */
     int lobe_s, hit, live;
+    int keep[2];             /* the vertex's diffuse and Phong parts count (`higher` drops some) */
+    int nee_cast, nee_want_s; /* vis holds the vertex's next-event shadow rays, cast */
+    ref_nee_vis vis;
 } ref_path_state;
 
-/* 1. choose the continuation from the material's constants, and trace it */
-static void ref_path_continue(const ref_ctx *c, ref_path_state *ps, long long *rays)
+/* The vertex's diffuse and Phong parts are different classes; `higher` keeps only those whose
+ * class is not basic. */
+static void ref_path_keep(const ref_ctx *c, int higher_only, ref_path_state *ps)
+{
+    for (int lobe = 0; lobe < 2; lobe++) {
+        int c1 = ps->depth == 1 ? lobe : ps->s1,
+            rest = ps->depth == 1 ? 1 : (ps->all_s_rest && lobe);
+        ps->keep[lobe] = !higher_only || !ref_basic_class(ps->depth, c1, rest, c->p.max_specular);
+    }
+}
+
+static int ref_any_positive(const float v[3])
+{
+    return v[0] > 0.0f || v[1] > 0.0f || v[2] > 0.0f;
+}
+
+/* The vertex's shadow rays toward the delta lights, cast before its texel is read: the light's
+ * part does not depend on the texel (a texel of 0 only makes a ray unnecessary), and a last
+ * vertex that no light reaches then needs no texel at all. Scenes with more lights than one
+ * ref_nee_vis holds take ref_nee whole at the vertex instead. */
+static void ref_path_shadow_rays(const ref_ctx *c, ref_path_state *ps, long long *rays)
+{
+    const ref_hit *cur = &ps->cur;
+    const gib_material *gm = cur->mat;
+    ps->nee_cast = 0;
+    if (!(ps->keep[0] || ps->keep[1]) || (cur->has_nee && ps->keep[0] && ps->keep[1]) ||
+        c->w->gs->light_count > REF_NEE_LIGHTS)
+        return;
+    int want_d = ps->keep[0] && ref_any_positive(gm->albedo);
+    ps->nee_want_s = ps->keep[1] && gm->spec_type == GIB_SPEC_PHONG &&
+                     ref_any_positive(gm->specular);
+    ref_nee_visible(c->w, cur, ps->wcur, want_d, ps->nee_want_s, gm->phong_n, 0, &ps->vis, rays);
+    ps->nee_cast = 1;
+}
+
+/* 1a. choose the continuation from the material's constants, and trace it */
+static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, long long *rays)
 {
     const ref_world *w = c->w;
     const gib_material *gm = ps->cur.mat;
@@ -111,22 +149,33 @@ static void ref_path_continue(const ref_ctx *c, ref_path_state *ps, long long *r
     }
 }
 
+/* 1. the continuation, then the vertex's shadow rays (from the same point: Embree finds the two
+ * close together in its tree) */
+static void ref_path_continue(const ref_ctx *c, int higher_only, ref_path_state *ps,
+                              long long *rays)
+{
+    ref_path_keep(c, higher_only, ps);
+    ref_path_trace_continuation(c, ps, rays);
+    ref_path_shadow_rays(c, ps, rays);
+}
+
 /* 2. this vertex: textured material, next-event estimation (diffuse and Phong parts are different
  * classes; `higher` skips the parts whose class is basic); 3. the continuation's weight with the
  * textured reflectances, and the next vertex. Clears live when the path ends here. */
-static void ref_path_vertex(const ref_ctx *c, int higher_only, ref_path_state *ps,
-                            long long *rays)
+static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *rays)
 {
     const ref_world *w = c->w;
     const ref_hit *cur = &ps->cur;
     const int depth = ps->depth;
+    const int *keep = ps->keep;
+    ps->live = 0;
+    /* a last vertex that adds nothing (no part kept, or no light reaches it and there is no sky)
+     * reads no texel: out += beta * 0 would leave out exactly as it is */
+    if (!ps->hit && (!(keep[0] || keep[1]) ||
+                     (ps->nee_cast && ps->vis.n == 0 && !ref_has_sky(w->gs))))
+        return;
     ref_mat m;
     ref_material(w, cur, &m);
-    int keep[2];
-    for (int lobe = 0; lobe < 2; lobe++) {
-        int c1 = depth == 1 ? lobe : ps->s1, rest = depth == 1 ? 1 : (ps->all_s_rest && lobe);
-        keep[lobe] = !higher_only || !ref_basic_class(depth, c1, rest, c->p.max_specular);
-    }
     if (keep[0] || keep[1]) {
         ref_mat mn = m;
         if (!keep[0])
@@ -135,6 +184,9 @@ static void ref_path_vertex(const ref_ctx *c, int higher_only, ref_path_state *p
         if (cur->has_nee && keep[0] && keep[1]) { /* the pixel's own, computed once */
             memcpy(dif, cur->nee_dif, sizeof dif);
             memcpy(sp, cur->nee_spec, sizeof sp);
+        } else if (ps->nee_cast) {
+            dif[0] = dif[1] = dif[2] = sp[0] = sp[1] = sp[2] = 0.0f;
+            ref_nee_shade(&ps->vis, &mn, dif, ps->nee_want_s ? sp : NULL);
         } else {
             ref_nee(w, cur, &mn, ps->wcur, dif, keep[1] ? sp : NULL, rays);
         }
@@ -142,7 +194,6 @@ static void ref_path_vertex(const ref_ctx *c, int higher_only, ref_path_state *p
         for (int k = 0; k < 3; k++)
             ps->out[k] += ps->beta[k] * (dif[k] + (keep[1] ? sp[k] : 0.0f));
     }
-    ps->live = 0;
     if (!ps->hit)
         return;
 
@@ -186,11 +237,11 @@ void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int hi
         while (live > 0) {
             for (int i = 0; i < nb; i++)
                 if (ps[i].live)
-                    ref_path_continue(c, &ps[i], rays);
+                    ref_path_continue(c, higher_only, &ps[i], rays);
             live = 0;
             for (int i = 0; i < nb; i++)
                 if (ps[i].live) {
-                    ref_path_vertex(c, higher_only, &ps[i], rays);
+                    ref_path_vertex(c, &ps[i], rays);
                     live += ps[i].live;
                 }
         }
