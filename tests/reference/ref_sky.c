@@ -185,9 +185,8 @@ static void test_wall_component(const gib_scene *s, int comp, const char *what, 
     gib_image img, sd;
     gib_ref_stats st;
     rt_render(s, &p, &img, &sd, &st);
-    double dsum = 0.0, var_r = 0.0, var_a = 0.0, esum = 0.0, msum = 0.0, worst_z = 0.0, cse = 0;
-    double cexp = 0.0, cgot = 0.0;
-    int n = 0;
+    rt_zstats z = {0};
+    double cexp = 0.0, cgot = 0.0, cse = 0.0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             double P[3];
@@ -204,31 +203,17 @@ static void test_wall_component(const gib_scene *s, int comp, const char *what, 
             else
                 expect = dl * (1.0 - F) + ml * F, var1 = (dl * dl + ml * ml) * F * (1.0 - F);
             double got = img.px[(y * W + x) * 3], se = sd.px[(y * W + x) * 3];
-            double se_a = sqrt(var1 / spp), z = fabs(got - expect) / se_a;
-            worst_z = z > worst_z ? z : worst_z;
-            dsum += got - expect;
-            var_r += se * se;
-            var_a += se_a * se_a;
-            esum += expect;
-            msum += got;
-            n++;
+            rt_zstats_add(&z, got, se, expect, var1, spp);
             if (x == W / 2 && y == H / 2)
                 cexp = expect, cgot = got, cse = se;
         }
-    double zsum = dsum / sqrt(var_r);
-    RT_CHECK(n == W * H, "test geometry: %d of %d pixels on the floor", n, W * H);
-    RT_CHECK(fabs(zsum) <= 3.0, "%s: image-wide deviation %.2f standard errors (max 3)", what,
-             zsum);
-    RT_CHECK(worst_z <= 5.0, "%s: a pixel deviates %.2f analytic standard errors (max 5)", what,
-             worst_z);
-    RT_CHECK(fabs(var_r / var_a - 1.0) <= 0.05,
-             "%s: renderer variance %.4g vs analytic %.4g (ratio must be within 5%%)", what, var_r,
-             var_a);
+    RT_CHECK(z.n == W * H, "test geometry: %d of %d pixels on the floor", z.n, W * H);
+    rt_zstats_check(&z, what);
     printf("%s, %d spp, red: centre pixel expected %.5f measured %.5f stderr %.5f; mean of %d "
            "pixels expected %.6f measured %.6f, stderr of the mean %.6f (deviation %.2f sigma, "
            "max 3); worst pixel %.2f sigma (max 5); variance ratio %.4f (within 5%%)\n",
-           what, spp, cexp, cgot, cse, n, esum / n, msum / n, sqrt(var_r) / n, zsum, worst_z,
-           var_r / var_a);
+           what, spp, cexp, cgot, cse, z.n, z.esum / z.n, z.msum / z.n, sqrt(z.var_r) / z.n, z.zsum,
+           z.worst_z, z.var_r / z.var_a);
     gib_image_free(&img);
     gib_image_free(&sd);
 }

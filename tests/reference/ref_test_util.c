@@ -260,3 +260,27 @@ double rt_form_factor_up(double R[][3], int n)
     }
     return fabs(sum) / (2.0 * M_PI);
 }
+
+void rt_zstats_add(rt_zstats *z, double got, double se, double expect, double var1, int spp)
+{
+    double se_a = sqrt(var1 / spp), dev = fabs(got - expect) / se_a;
+    z->worst_z = dev > z->worst_z ? dev : z->worst_z;
+    z->dsum += got - expect;
+    z->var_r += se * se;
+    z->var_a += se_a * se_a;
+    z->esum += expect;
+    z->msum += got;
+    z->n++;
+}
+
+void rt_zstats_check(rt_zstats *z, const char *what)
+{
+    z->zsum = z->dsum / sqrt(z->var_r);
+    RT_CHECK(fabs(z->zsum) <= 3.0, "%s: image-wide deviation %.2f standard errors (max 3)", what,
+             z->zsum);
+    RT_CHECK(z->worst_z <= 5.0, "%s: a pixel deviates %.2f analytic standard errors (max 5)",
+             what, z->worst_z);
+    RT_CHECK(fabs(z->var_r / z->var_a - 1.0) <= 0.05,
+             "%s: renderer variance %.4g vs analytic %.4g (ratio must be within 5%%)", what,
+             z->var_r, z->var_a);
+}

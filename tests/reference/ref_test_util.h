@@ -65,4 +65,17 @@ void rt_render(const gib_scene *s, const gib_ref_params *p, gib_image *img, gib_
 int rt_hit_plane_y(const gib_scene *s, int cam, int w, int h, int x, int y, double plane_y,
                    double P[3]);
 
+/* Per-pixel agreement with an analytic answer whose one-sample variance is known: rt_zstats_add
+ * takes a pixel (measured value and the renderer's standard error; expected value and variance
+ * of one sample, over spp samples); rt_zstats_check asks that the image-wide deviation be within
+ * 3 of the renderer's standard errors of the sum, no pixel beyond 5 analytic standard errors
+ * (~0.5 expected false alarms per million pixels), and the renderer's variance within 5% of the
+ * analytic one (it estimates the same variance from thousands of pixels). */
+typedef struct rt_zstats {
+    double dsum, var_r, var_a, esum, msum, worst_z, zsum;
+    int n;
+} rt_zstats;
+void rt_zstats_add(rt_zstats *z, double got, double se, double expect, double var1, int spp);
+void rt_zstats_check(rt_zstats *z, const char *what);
+
 #endif
