@@ -165,8 +165,8 @@ void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3])
     }
 }
 
-void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
-                       float out[3], long long *rays)
+static void ref_sample_one(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+                           float out[3], long long *rays)
 {
     switch (c->p.component) {
     case GIB_COMP_AO:
@@ -182,10 +182,6 @@ void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], re
     case GIB_COMP_GLOSSY:
         ref_est_glossy(c->w, h, wo, rng, out, rays);
         break;
-    case GIB_COMP_FULL:
-    case GIB_COMP_HIGHER:
-        ref_est_path(c, h, wo, c->p.component == GIB_COMP_HIGHER, rng, out, rays);
-        break;
     case GIB_COMP_ALBEDO:
     case GIB_COMP_NORMAL:
     case GIB_COMP_DEPTH:
@@ -194,4 +190,15 @@ void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], re
     default:
         ref_est_caustic(c, h, rng, out, rays);
     }
+}
+
+void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], int n,
+                       ref_pcg32 *rng, float (*out)[3], long long *rays)
+{
+    if (c->p.component == GIB_COMP_FULL || c->p.component == GIB_COMP_HIGHER) {
+        ref_est_paths(c, h, wo, c->p.component == GIB_COMP_HIGHER, n, rng, out, rays);
+        return;
+    }
+    for (int i = 0; i < n; i++)
+        ref_sample_one(c, h, wo, &rng[i], out[i], rays);
 }

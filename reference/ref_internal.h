@@ -234,9 +234,12 @@ typedef struct ref_splats {
     int oom;
 } ref_splats;
 
-/* One camera sample of the component at the visible point h (wo toward the eye). */
-void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
-                       float out[3], long long *rays);
+/* n <= REF_PATH_BATCH camera samples of the component at the visible point h (wo toward the
+ * eye), sample i on its own stream rng[i] into out[i]: the same values whether taken one at a
+ * time or together (full and higher run them as one batch, ref_est_paths). */
+#define REF_PATH_BATCH 16
+void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], int n,
+                       ref_pcg32 *rng, float (*out)[3], long long *rays);
 
 /* Estimators. Each adds the rays it casts to *rays. */
 void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
@@ -253,13 +256,9 @@ void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref
 void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float out[3],
                      long long *rays);
 void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3]);
-/* full (higher_only = 0) or higher (1): one camera path. */
-void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
-                  ref_pcg32 *rng, float out[3], long long *rays);
-/* n camera paths from one visible point, path i on its own stream rng[i] into out[i], run in
- * batches of REF_PATH_BATCH (ref_path.c: their memory misses overlap); each out[i] is what
- * ref_est_path gives for rng[i]. */
-#define REF_PATH_BATCH 16
+/* full (higher_only = 0) or higher (1): n <= REF_PATH_BATCH camera paths from one visible
+ * point, path i on its own stream rng[i] into out[i], run together depth by depth so that their
+ * memory misses overlap (ref_path.c); each out[i] is what the path alone would give. */
 void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
                    int n, ref_pcg32 *rng, float (*out)[3], long long *rays);
 

@@ -107,7 +107,7 @@ static void ref_path_shadow_rays(const ref_ctx *c, ref_path_state *ps, long long
     ps->nee_cast = 1;
 }
 
-/* 1a. choose the continuation from the material's constants, and trace it */
+/* choose the continuation from the material's constants, and trace it */
 static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, long long *rays)
 {
     const ref_world *w = c->w;
@@ -215,43 +215,36 @@ static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *ray
 void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
                    int n, ref_pcg32 *rng, float (*out)[3], long long *rays)
 {
-    for (int b0 = 0; b0 < n; b0 += REF_PATH_BATCH) {
-        ref_path_state ps[REF_PATH_BATCH];
-        int nb = n - b0 < REF_PATH_BATCH ? n - b0 : REF_PATH_BATCH, live = 0;
-        for (int i = 0; i < nb; i++) {
-            ref_path_state *p = &ps[i];
-            p->rng = &rng[b0 + i];
-            p->out = out[b0 + i];
-            p->out[0] = p->out[1] = p->out[2] = 0.0f;
-            p->live = !h->back;
-            live += p->live;
-            if (!p->live)
-                continue;
-            p->cur = *h;
-            memcpy(p->wcur, wo, sizeof p->wcur);
-            p->beta[0] = p->beta[1] = p->beta[2] = 1.0f;
-            p->depth = 1;
-            p->s1 = 0;
-            p->all_s_rest = 1;
-        }
-        while (live > 0) {
-            for (int i = 0; i < nb; i++)
-                if (ps[i].live)
-                    ref_path_continue(c, higher_only, &ps[i], rays);
-            live = 0;
-            for (int i = 0; i < nb; i++)
-                if (ps[i].live) {
-                    ref_path_vertex(c, &ps[i], rays);
-                    live += ps[i].live;
-                }
-        }
+    ref_path_state ps[REF_PATH_BATCH];
+    int live = 0;
+    n = n < REF_PATH_BATCH ? n : REF_PATH_BATCH;
+    for (int i = 0; i < n; i++) {
+        ref_path_state *p = &ps[i];
+        p->rng = &rng[i];
+        p->out = out[i];
+        p->out[0] = p->out[1] = p->out[2] = 0.0f;
+        p->live = !h->back;
+        live += p->live;
+        if (!p->live)
+            continue;
+        p->cur = *h;
+        memcpy(p->wcur, wo, sizeof p->wcur);
+        p->beta[0] = p->beta[1] = p->beta[2] = 1.0f;
+        p->depth = 1;
+        p->s1 = 0;
+        p->all_s_rest = 1;
     }
-}
-
-void ref_est_path(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
-                  ref_pcg32 *rng, float out[3], long long *rays)
-{
-    ref_est_paths(c, h, wo, higher_only, 1, rng, (float(*)[3])out, rays);
+    while (live > 0) {
+        for (int i = 0; i < n; i++)
+            if (ps[i].live)
+                ref_path_continue(c, higher_only, &ps[i], rays);
+        live = 0;
+        for (int i = 0; i < n; i++)
+            if (ps[i].live) {
+                ref_path_vertex(c, &ps[i], rays);
+                live += ps[i].live;
+            }
+    }
 }
 
 void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float out[3],

@@ -74,27 +74,17 @@ static void ref_row_task(void *ctx, int y)
             ref_nee(c->w, &h, &m, wo, h.nee_dif, h.nee_spec, &rays);
             h.has_nee = 1;
         }
-        if (c->p.component == GIB_COMP_FULL || c->p.component == GIB_COMP_HIGHER) {
-            /* the pixel's paths in batches (ref_est_paths), each on its sample's own stream */
-            for (int s0 = r->s0; s0 < r->s1; s0 += REF_PATH_BATCH) {
-                int nb = r->s1 - s0 < REF_PATH_BATCH ? r->s1 - s0 : REF_PATH_BATCH;
-                ref_pcg32 rng[REF_PATH_BATCH];
-                float v[REF_PATH_BATCH][3];
-                for (int i = 0; i < nb; i++)
-                    ref_pcg32_seed_sample(&rng[i], pix, (uint64_t)(s0 + i), c->p.seed,
-                                          c->p.component);
-                ref_est_paths(c, &h, wo, c->p.component == GIB_COMP_HIGHER, nb, rng, v, &rays);
-                for (int i = 0; i < nb; i++)
-                    ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s0 + i + 1, v[i]);
-            }
-            continue;
-        }
-        for (int s = r->s0; s < r->s1; s++) {
-            ref_pcg32 rng;
-            ref_pcg32_seed_sample(&rng, pix, (uint64_t)s, c->p.seed, c->p.component);
-            float v[3];
-            ref_sample_camera(c, &h, wo, &rng, v, &rays);
-            ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s + 1, v);
+        /* the pixel's samples in batches, each on its sample's own stream (ref_sample_camera) */
+        for (int s0 = r->s0; s0 < r->s1; s0 += REF_PATH_BATCH) {
+            int nb = r->s1 - s0 < REF_PATH_BATCH ? r->s1 - s0 : REF_PATH_BATCH;
+            ref_pcg32 rng[REF_PATH_BATCH];
+            float v[REF_PATH_BATCH][3];
+            for (int i = 0; i < nb; i++)
+                ref_pcg32_seed_sample(&rng[i], pix, (uint64_t)(s0 + i), c->p.seed,
+                                      c->p.component);
+            ref_sample_camera(c, &h, wo, nb, rng, v, &rays);
+            for (int i = 0; i < nb; i++)
+                ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s0 + i + 1, v[i]);
         }
     }
     atomic_fetch_add(&r->prog->rays, rays);
