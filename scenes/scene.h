@@ -160,8 +160,8 @@ float gib_spot_falloff(const gib_light *l, const float dir_from_light[3]);
 /* The same two with the spot's cos(outer angle) given, as gib_spot_cos_outer(l) computes it once
  * per light (the path tracer evaluates lights at every vertex; the cosine was ~2% of its time). */
 float gib_spot_cos_outer(const gib_light *l);
-float gib_spot_falloff_cos(const gib_light *l, float cos_outer, const float dir_from_light[3]);
-int gib_light_eval_cos(const gib_light *l, float cos_outer, const float p[3], float wi[3],
-                       float *dist, float E[3]);
+/* gib_spot_falloff_cos(l, cos_outer, dir_from_light) and
+ * gib_light_eval_cos(l, cos_outer, p, wi, dist, E): static inline, in light_eval.h. */
+#include "light_eval.h"
 
 #endif

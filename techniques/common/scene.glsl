@@ -1,6 +1,7 @@
 // gibench — the GLSL mirror of scenes/scene.h: materials, lights and the light falloff.
-// gib_light_eval() and gib_spot_falloff() in scenes/camera_light.c are the definitions; these
-// functions must compute the same numbers (tests/gl checks the images agree with the reference).
+// gib_light_eval() and gib_spot_falloff() (scenes/camera_light.c, scenes/light_eval.h) are the
+// definitions; these functions must compute the same numbers (tests/gl checks the images agree
+// with the reference).
 
 struct Material {
     vec4 albedo;    // rgb = rho_d, w = albedo texture bound (1) or not (0)
