@@ -8,8 +8,12 @@
  * with AVX2, Embree 3.13.5, Crytek Sponza, `full` at 256x256, 2.9M rays, best of 3, shared and
  * noisy machine) single rays ran at 3.3-3.6 Mrays/s, streams (rtcIntersect1M, 256 per call) at
  * 2.5-3.0, 4- and 8-wide packets of consecutive rays at 2.2-3.2 (never beyond single rays by more
- * than the noise), 16-wide packets at 0.7-1.1 (emulated on AVX2). So the estimators trace one ray
- * at a time, which also keeps every sample's work in a fixed order. */
+ * than the noise), 16-wide packets at 0.7-1.1 (emulated on AVX2). Later runs: 256-ray streams and
+ * single rays trade places on Sponza (within 2%) and streams lead on the Cornell box (~15%), but
+ * streams as long as a pixel's path batch (16 rays, the most the estimators could gather without
+ * holding paths of several pixels) were 7% slower than single rays in the replay on both scenes.
+ * So the estimators trace one ray at a time, which also keeps every sample's work in a fixed
+ * order. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +26,8 @@
 /* ---- the scene ---- */
 
 /* Large, randomly accessed arrays (triangle records, textures) on transparent huge pages where the
- * kernel offers them: a random access then rarely misses the TLB as well as the cache. Mapped
+ * kernel offers them: on bare metal a random access then rarely misses the TLB as well as the
+ * cache (in the development VM the host maps 4 KiB pages, so the TLB still walks them). Mapped
  * fresh (malloc would hand back heap pages the loader already touched, which madvise cannot turn
  * into huge pages) and aligned to 2 MiB by trimming an over-sized mapping. */
 #define REF_HUGE ((size_t)2 << 20)
