@@ -54,7 +54,8 @@ void ref_nee_visible(const ref_world *w, const ref_hit *h, const float wo[3], in
     float r[3] = {0.0f, 0.0f, 0.0f};
     if (want_s)
         ref_reflect(wo, h->n, r);
-    uint32_t end = gs->light_count - first < REF_NEE_LIGHTS ? gs->light_count : first + REF_NEE_LIGHTS;
+    uint32_t end = gs->light_count - first < REF_NEE_LIGHTS ? gs->light_count
+                                                             : first + REF_NEE_LIGHTS;
     for (uint32_t i = first; i < end; i++) {
         float wi[3], dist, E[3];
         if (!gib_light_eval_cos(&gs->lights[i], w->spot_cos[i], h->p, wi, &dist, E))

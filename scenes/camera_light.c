@@ -10,11 +10,6 @@
 
 #include "scene.h"
 
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static void cross3(const float a[3], const float b[3], float out[3])
 {
     float x = a[1] * b[2] - a[2] * b[1];
@@ -27,7 +22,7 @@ static void cross3(const float a[3], const float b[3], float out[3])
 
 static void normalize3(float v[3])
 {
-    float len = sqrtf(dot3(v, v));
+    float len = sqrtf(gib_dot3(v, v));
     if (len > 0.0f) {
         v[0] /= len;
         v[1] /= len;
