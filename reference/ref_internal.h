@@ -138,7 +138,7 @@ void ref_mip_free(ref_mip *m);
 void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float out[4]);
 /* Builds w->mips: the pyramids of the scene's albedo textures, on all cores. */
 int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err);
-/* Prefetches the cache line of level 0 that a lookup at (u, v) reads first. */
+/* Prefetches the cache lines of level 0 that a bilinear lookup at (u, v) reads. */
 void ref_mip_prefetch(const ref_mip *m, float u, float v);
 /* The LOD GL would use: log2(max(|duv_x * size|, |duv_y * size|)). */
 float ref_mip_lod(const ref_mip *m, const float duv[4]);
