@@ -37,6 +37,17 @@ typedef struct ref_mip {
     size_t owned8_bytes;
 } ref_mip;
 
+/* A cut-out mask's first channel, which is all the alpha test reads (ref_texture.c): one byte a
+ * texel in 8x8 tiles of one cache line, each byte indexing the texture's own distinct values, so
+ * a lookup gives bit for bit what the floats would. code == NULL: more than 256 distinct values,
+ * the lookup reads the texture's floats (rgba). */
+typedef struct ref_mask {
+    int w, h;
+    const float *rgba;
+    uint8_t *code;
+    float value[256];
+} ref_mask;
+
 /* A triangle's shading data in one 64-byte record, one cache line (ref_world.c). */
 typedef struct ref_tri {
     _Alignas(64) float n[3][3]; /* vertex normals (0 when the scene has none) */
@@ -60,6 +71,7 @@ typedef struct ref_world {
     const gib_scene *gs;
     float eps;               /* ray offset, gib_reference_ray_eps() */
     ref_mip *mips;           /* one per scene texture */
+    ref_mask *masks;         /* one per scene texture (code set for the cut-out masks) */
     float *spot_cos;         /* per light: gib_spot_cos_outer (spots), computed once */
     int has_specular;        /* some material has a specular lobe (Phong or mirror) */
     int has_mirror;          /* some material is a mirror */
@@ -136,8 +148,13 @@ void ref_mip_free(ref_mip *m);
  * duv = du/dx, dv/dx, du/dy, dv/dy; level 0 bilinear (GL's LINEAR magnification) when the LOD
  * is <= 0 or duv is NULL. */
 void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float out[4]);
-/* Builds w->mips: the pyramids of the scene's albedo textures, on all cores. */
+/* Builds w->mips and w->masks: the pyramids of the scene's albedo textures and the compact
+ * first channels of its cut-out masks, one texture a task on all cores. */
 int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err);
+int ref_mask_build(ref_mask *m, const gib_texture *t, gib_error *err);
+void ref_mask_free(ref_mask *m);
+/* The mask's first channel, bilinear as ref_tex_sample's (identical arithmetic). */
+float ref_mask_sample(const ref_mask *m, float u, float v);
 /* Prefetches the cache lines of level 0 that a bilinear lookup at (u, v) reads. */
 void ref_mip_prefetch(const ref_mip *m, float u, float v);
 /* The LOD GL would use: log2(max(|duv_x * size|, |duv_y * size|)). */

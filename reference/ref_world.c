@@ -98,10 +98,9 @@ static void ref_alpha_filter(const struct RTCFilterFunctionNArguments *args)
         const gib_material *m = &gs->materials[w->tris[prim].mat];
         if (m->alpha_tex < 0)
             continue;
-        float uv[2], a[4];
+        float uv[2];
         ref_interp_uv(w, prim, hf[3 * n + i], hf[4 * n + i], uv);
-        ref_tex_sample(&gs->textures[m->alpha_tex], uv[0], uv[1], a);
-        if (a[0] < 0.5f)
+        if (ref_mask_sample(&w->masks[m->alpha_tex], uv[0], uv[1]) < 0.5f)
             args->valid[i] = 0;
     }
 }
@@ -336,6 +335,11 @@ void ref_world_free(ref_world *w)
             ref_mip_free(&w->mips[i]);
     free(w->mips);
     w->mips = NULL;
+    if (w->masks && w->gs)
+        for (uint32_t i = 0; i < w->gs->texture_count; i++)
+            ref_mask_free(&w->masks[i]);
+    free(w->masks);
+    w->masks = NULL;
     free(w->spot_cos);
     w->spot_cos = NULL;
     ref_free_huge(w->tris, w->gs ? (size_t)w->gs->triangle_count * sizeof *w->tris : 0);

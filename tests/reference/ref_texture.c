@@ -1,6 +1,6 @@
 /* Reference renderer, filtered textures at primary hits (ref_texture.c): the mip pyramid, GL's
  * trilinear lookup, the ray differentials (Igehy 1999) and the LOD they give, and the end result
- * in the `albedo` component.
+ * in the `albedo` component; the compact cut-out masks against the floats they replace.
  *
  * Expected values are exact (box averages, linear blends, GL's 8-bit sRGB rounding of mip levels,
  * and the closed-form pixel footprint of a camera looking straight down at a plane), so tolerances
@@ -164,9 +164,54 @@ static void test_floor(void)
     rt_scene_free(&s);
 }
 
+/* 3. Cut-out masks in their compact form (one byte a texel indexing the distinct first-channel
+ * values) give bit for bit the lookup of the floats, at sizes that are not multiples of the 8x8
+ * tile, with u and v outside [0, 1], and with -0 and +0 kept apart; more than 256 distinct values
+ * fall back to the floats. Exact: the same floats in the same arithmetic. */
+static void test_mask(void)
+{
+    enum { W = 37, H = 21 };
+    static float rgba[W * H * 4];
+    for (int pass = 0; pass < 2; pass++) {
+        int distinct = pass == 0 ? 200 : 300;
+        for (int i = 0; i < W * H; i++) {
+            int k = (i * 7919) % distinct;
+            rgba[4 * i] = k == 0 ? -0.0f : k == 1 ? 0.0f : 0.5f + 0.5f * sinf((float)k);
+            rgba[4 * i + 1] = rgba[4 * i + 2] = 0.25f, rgba[4 * i + 3] = 1.0f;
+        }
+        gib_texture t;
+        memset(&t, 0, sizeof t);
+        t.width = W, t.height = H, t.rgba = rgba;
+        ref_mask m;
+        gib_error err;
+        RT_CHECK(ref_mask_build(&m, &t, &err) == 0, "mask build");
+        RT_CHECK((m.code != NULL) == (pass == 0), "%d distinct values: compact form %s", distinct,
+                 m.code ? "built" : "not built");
+        uint32_t state = 12345u;
+        int mismatches = 0;
+        for (int n = 0; n < 20000; n++) {
+            state = state * 1664525u + 1013904223u;
+            float u = (float)(state >> 8) / 16777216.0f * 3.0f - 1.0f;
+            state = state * 1664525u + 1013904223u;
+            float v = (float)(state >> 8) / 16777216.0f * 3.0f - 1.0f;
+            if (n < 64) /* texel centres, where the lookup is one texel exactly */
+                u = ((float)(n % W) + 0.5f) / W, v = 1.0f - ((float)(n % H) + 0.5f) / H;
+            float a[4], b = ref_mask_sample(&m, u, v);
+            ref_tex_sample(&t, u, v, a);
+            mismatches += memcmp(&a[0], &b, sizeof b) != 0;
+        }
+        RT_CHECK(mismatches == 0, "%d distinct values: %d of 20000 lookups differ from the floats",
+                 distinct, mismatches);
+        printf("mask with %d distinct values: compact %d, 20000 lookups bit-identical to the "
+               "floats: %s\n", distinct, m.code != NULL, mismatches == 0 ? "yes" : "no");
+        ref_mask_free(&m);
+    }
+}
+
 int main(void)
 {
     test_pyramid();
     test_floor();
+    test_mask();
     return rt_failures ? 1 : 0;
 }
