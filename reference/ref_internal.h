@@ -150,7 +150,7 @@ void ref_mip_free(ref_mip *m);
 void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float out[4]);
 /* Builds w->mips and w->masks: the pyramids of the scene's albedo textures and the compact
  * first channels of its cut-out masks, one texture a task on all cores. */
-int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err);
+int ref_world_textures(ref_world *w, const gib_scene *gs, gib_error *err);
 int ref_mask_build(ref_mask *m, const gib_texture *t, gib_error *err);
 void ref_mask_free(ref_mask *m);
 /* The mask's first channel, bilinear as ref_tex_sample's (identical arithmetic). */

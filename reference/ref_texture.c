@@ -474,29 +474,29 @@ void ref_mip_prefetch(const ref_mip *m, float u, float v)
 /* ---- the pixel footprint at primary hits ---- */
 
 /* The albedo textures' pyramids, one texture per task on all cores. */
-typedef struct ref_mip_jobs {
+typedef struct ref_texture_jobs {
     ref_world *w;
     const gib_scene *gs;
     unsigned char *want;
     gib_error *errs;
     int *rc;
-} ref_mip_jobs;
+} ref_texture_jobs;
 
-static void ref_mip_task(void *ctx, int t)
+static void ref_texture_task(void *ctx, int t)
 {
-    ref_mip_jobs *j = ctx;
+    ref_texture_jobs *j = ctx;
     if (j->want[t] & 1)
         j->rc[t] = ref_mip_build(&j->w->mips[t], &j->gs->textures[t], &j->errs[t]);
     if ((j->want[t] & 2) && j->rc[t] == 0)
         j->rc[t] = ref_mask_build(&j->w->masks[t], &j->gs->textures[t], &j->errs[t]);
 }
 
-int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err)
+int ref_world_textures(ref_world *w, const gib_scene *gs, gib_error *err)
 {
     const uint32_t n = gs->texture_count;
     w->mips = gib_calloc(n, sizeof *w->mips, err);
     w->masks = w->mips ? gib_calloc(n, sizeof *w->masks, err) : NULL;
-    ref_mip_jobs j = {w, gs, gib_calloc(n, 1, err), gib_calloc(n, sizeof *j.errs, err),
+    ref_texture_jobs j = {w, gs, gib_calloc(n, 1, err), gib_calloc(n, sizeof *j.errs, err),
                       gib_calloc(n, sizeof *j.rc, err)};
     int rc = w->masks && j.want && j.errs && j.rc ? 0 : -1;
     for (uint32_t m = 0; rc == 0 && m < gs->material_count; m++) {
@@ -506,7 +506,7 @@ int ref_world_mips(ref_world *w, const gib_scene *gs, gib_error *err)
             j.want[gs->materials[m].alpha_tex] |= 2;
     }
     if (rc == 0)
-        ref_parallel((int)sysconf(_SC_NPROCESSORS_ONLN), (int)n, ref_mip_task, &j, NULL);
+        ref_parallel((int)sysconf(_SC_NPROCESSORS_ONLN), (int)n, ref_texture_task, &j, NULL);
     for (uint32_t t = 0; rc == 0 && t < n; t++)
         if (j.rc[t] < 0) {
             *err = j.errs[t];

@@ -221,7 +221,7 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
         w->has_specular |= spec;
         w->has_mirror |= spec && mt->spec_type == GIB_SPEC_MIRROR;
     }
-    if (gs->texture_count > 0 && ref_world_mips(w, gs, err) < 0)
+    if (gs->texture_count > 0 && ref_world_textures(w, gs, err) < 0)
         return -1;
     if (gs->light_count > 0 && !(w->spot_cos = gib_calloc(gs->light_count, sizeof(float), err)))
         return -1;
