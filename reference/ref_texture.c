@@ -473,7 +473,7 @@ void ref_mip_prefetch(const ref_mip *m, float u, float v)
 
 /* ---- the pixel footprint at primary hits ---- */
 
-/* The albedo textures' pyramids, one texture per task on all cores. */
+/* The albedo textures' pyramids and the cut-out masks, one texture per task on all cores. */
 typedef struct ref_texture_jobs {
     ref_world *w;
     const gib_scene *gs;
