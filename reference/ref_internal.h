@@ -39,11 +39,11 @@ typedef struct ref_mip {
 
 /* A cut-out mask's first channel, which is all the alpha test reads (ref_texture.c): one byte a
  * texel in 8x8 tiles of one cache line, each byte indexing the texture's own distinct values, so
- * a lookup gives bit for bit what the floats would. code == NULL: more than 256 distinct values,
- * the lookup reads the texture's floats (rgba). */
+ * a lookup gives bit for bit what the floats would. code == NULL: more than 256 distinct values
+ * (or no texels), the lookup is ref_tex_sample's on the texture itself. */
 typedef struct ref_mask {
     int w, h;
-    const float *rgba;
+    const gib_texture *tex;
     uint8_t *code;
     float value[256];
 } ref_mask;

@@ -93,9 +93,10 @@ static size_t ref_mask_index(int tw, int x, int y)
 int ref_mask_build(ref_mask *m, const gib_texture *t, gib_error *err)
 {
     memset(m, 0, sizeof *m);
+    m->tex = t;
     if (!t || !t->rgba || t->width <= 0 || t->height <= 0)
         return 0;
-    m->w = t->width, m->h = t->height, m->rgba = t->rgba;
+    m->w = t->width, m->h = t->height;
     const int tw = (m->w + 7) / 8, th = (m->h + 7) / 8;
     uint32_t key[REF_MASK_SLOTS];
     int16_t slot_code[REF_MASK_SLOTS];
@@ -139,9 +140,7 @@ float ref_mask_sample(const ref_mask *m, float u, float v)
 {
     if (!m->code) {
         float out[4];
-        if (!m->rgba)
-            return 1.0f;
-        ref_bilinear(m->rgba, m->w, m->h, u, v, out);
+        ref_tex_sample(m->tex, u, v, out);
         return out[0];
     }
     const ref_bilerp b = ref_bilerp_at(m->w, m->h, u, v);
