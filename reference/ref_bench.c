@@ -154,6 +154,21 @@ static void ref_row(gib_ref_bench_row *row, const char *measure, const char *api
     row->mrays_per_s = seconds > 0.0 ? (double)rays / seconds * 1e-6 : 0.0;
 }
 
+static int ref_cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sorts v[0..n) (n >= 1); returns the least, with the median and the greatest. */
+static double ref_sorted_stats(double *v, int n, double *median, double *max)
+{
+    qsort(v, (size_t)n, sizeof *v, ref_cmp_double);
+    *median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    *max = v[n - 1];
+    return v[0];
+}
+
 /* Random rays: origins uniform in the bounding box, directions uniform on the sphere. */
 static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
 {
@@ -201,6 +216,9 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         return -1;
     if (scene->triangle_count == 0)
         return gib_fail(err, "bench: scene '%s' has no triangles", scene->name);
+    if (repeats > GIB_REF_BENCH_MAX_REPEATS)
+        return gib_fail(err, "bench: at most %d repeats, got %d", GIB_REF_BENCH_MAX_REPEATS,
+                        repeats);
     int threads = p->threads > 0 ? p->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
     threads = threads < 1 ? 1 : threads;
     ref_world w;
@@ -214,8 +232,12 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     gib_ref_stats st;
     if (max_rows < 1)
         goto done;
-    if (n < max_rows)
-        ref_row(&rows[n++], "world_build", "rtcCommitScene", 0, build);
+    if (n < max_rows) {
+        ref_row(&rows[n], "world_build", "rtcCommitScene", 0, build);
+        rows[n].repeats = 1;
+        rows[n].seconds_median = rows[n].seconds_max = build;
+        n++;
+    }
 
     /* The path tracer's rays, recorded single-threaded at a resolution that gives ~3M rays. */
     gib_ref_params q = *p;
@@ -234,46 +256,60 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     if (ok < 0 || ref_random_log(&w, &rnd, err) < 0)
         goto done;
 
-    /* Best of `repeats` (default 3) of each, interleaved: the machine may be shared, and the
-     * fastest run is the one least disturbed. */
+    /* `repeats` rounds, each running every measure once, interleaved: the machine may be shared
+     * and its speed drifts (on the 2-core virtual machine of the committed results, one run's
+     * repeats spread by +-10% while the ratio of two measures within a repeat moves less). Each
+     * row keeps the best time (the run least disturbed), the median and the worst, and the
+     * paired ratios: the row's rays/s over the fastest replay's in the same repeat. */
     static const struct {
         int api;
         const char *name;
     } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
                 {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
-    enum { NAPI = sizeof apis / sizeof apis[0] };
-    double t_pt = INFINITY, t_rnd = INFINITY, t_api[NAPI];
-    long long pt_rays = 0;
+    enum { NAPI = sizeof apis / sizeof apis[0], M_PT = 0, M_RND = 1, M_API = 2, NM = M_API + NAPI };
+    const int reps = repeats < 1 ? 1 : repeats;
+    double t[NM][GIB_REF_BENCH_MAX_REPEATS];
+    long long nrays[NM];
+    nrays[M_RND] = (long long)rnd.n;
     for (int i = 0; i < NAPI; i++)
-        t_api[i] = INFINITY;
+        nrays[M_API + i] = (long long)rec.n;
     q = *p;
     q.quiet = 1;
-    for (int rep = 0; rep < (repeats > 0 ? repeats : 1); rep++) {
+    for (int rep = 0; rep < reps; rep++) {
         if (ref_render_world(&w, scene, &q, &img, NULL, &st, err) < 0)
             goto done;
         gib_image_free(&img);
-        t_pt = fmin(t_pt, st.seconds);
-        pt_rays = st.rays;
-        t_rnd = fmin(t_rnd, ref_replay_run(&w, &rnd, 1, threads));
+        t[M_PT][rep] = st.seconds;
+        nrays[M_PT] = st.rays;
+        t[M_RND][rep] = ref_replay_run(&w, &rnd, 1, threads);
         double best = INFINITY;
         for (int i = 0; i < NAPI; i++) {
-            double t = ref_replay_run(&w, &rec, apis[i].api, threads);
-            t_api[i] = fmin(t_api[i], t);
-            best = fmin(best, t);
+            t[M_API + i][rep] = ref_replay_run(&w, &rec, apis[i].api, threads);
+            best = fmin(best, t[M_API + i][rep]);
         }
-        /* this repeat's own ratio: its runs saw the same machine, so the spread of these says
-         * how far to trust the best-of figures in the CSV */
         if (log)
             fprintf(log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
                             "ratio %.3f\n",
                     rep + 1, st.seconds, best, best / st.seconds);
     }
-    if (n < max_rows)
-        ref_row(&rows[n++], "path_tracer", "rtcIntersect1", pt_rays, t_pt);
-    if (n < max_rows)
-        ref_row(&rows[n++], "raw_random", "rtcIntersect1", (long long)rnd.n, t_rnd);
-    for (int i = 0; i < NAPI && n < max_rows; i++)
-        ref_row(&rows[n++], "raw_replay", apis[i].name, (long long)rec.n, t_api[i]);
+    for (int m = 0; m < NM && n < max_rows; m++) {
+        const char *measure = m == M_PT ? "path_tracer" : m == M_RND ? "raw_random" : "raw_replay";
+        const char *api = m < M_API ? "rtcIntersect1" : apis[m - M_API].name;
+        double sec[GIB_REF_BENCH_MAX_REPEATS], pair[GIB_REF_BENCH_MAX_REPEATS];
+        for (int rep = 0; rep < reps; rep++) {
+            double best = INFINITY;
+            for (int i = 0; i < NAPI; i++)
+                best = fmin(best, t[M_API + i][rep]);
+            sec[rep] = t[m][rep];
+            pair[rep] = ((double)nrays[m] / t[m][rep]) / ((double)rec.n / best);
+        }
+        gib_ref_bench_row *row = &rows[n++];
+        double med, max, best = ref_sorted_stats(sec, reps, &med, &max);
+        ref_row(row, measure, api, nrays[m], best);
+        row->seconds_median = med, row->seconds_max = max;
+        row->paired_min = ref_sorted_stats(pair, reps, &row->paired_median, &row->paired_max);
+        row->repeats = reps;
+    }
     rc = n;
 done:
     free(rnd.rays);

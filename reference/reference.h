@@ -179,16 +179,26 @@ typedef struct gib_ref_bench_row {
     char measure[48];     /* "raw_random", "raw_replay", "path_tracer" */
     char api[32];         /* "rtcIntersect1", "rtcIntersect1M", "rtcIntersect8", ... */
     long long rays;
-    double seconds;
+    double seconds;       /* the best (least) of the repeats; mrays_per_s is rays over it */
     double mrays_per_s;
+    int repeats;
+    double seconds_median, seconds_max;
+    /* Paired: in each repeat, this row's rays/s over the fastest replay's rays/s of the same
+     * repeat (both ran on the machine as it was then); median, least and greatest over repeats.
+     * The world_build row (once, no rays) has 0. */
+    double paired_median, paired_min, paired_max;
 } gib_ref_bench_row;
+
+/* At most this many repeats are kept for the medians (more are refused). */
+#define GIB_REF_BENCH_MAX_REPEATS 100
 
 /* Measures, on one scene with all p->threads threads: raw Embree throughput on random incoherent
  * rays and on a replay of the path tracer's own rays with each ray API, and the path tracer's
  * throughput (p->component, p->spp at p->width x p->height, sampling and shading included).
- * Each figure is the best of `repeats` runs, interleaved; each repeat's own ratio (path tracer
- * against the fastest replay) goes to `log` when it is not NULL. Fills up to max_rows rows;
- * returns the count, or -1 with err. */
+ * `repeats` rounds (1 to GIB_REF_BENCH_MAX_REPEATS), each running every measure once; each row
+ * has the best, median and worst time and its paired ratios (see gib_ref_bench_row); each
+ * repeat's own ratio (path tracer against the fastest replay) goes to `log` when it is not NULL.
+ * Fills up to max_rows rows; returns the count, or -1 with err. */
 int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int repeats, FILE *log,
                         gib_ref_bench_row *rows, int max_rows, gib_error *err);
 

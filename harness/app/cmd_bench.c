@@ -18,8 +18,10 @@ static const char help[] =
     "(rtcIntersect1), the path tracer's own rays replayed with each ray API (single rays,\n"
     "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
     "second including sampling and shading). Defaults: scene sponza (cornell when its data is\n"
-    "absent), 256x256, component full, 16 spp, all cores. Each figure is the best of --repeat\n"
-    "runs (default 3), interleaved, as a shared machine disturbs some of them.\n";
+    "absent), 256x256, component full, 16 spp, all cores. --repeat N rounds (default 3, at\n"
+    "most 100) each run every measure once; each row has the best, median and worst time, and\n"
+    "its paired ratio: its rays/s over the fastest replay's in the same round, whose median\n"
+    "is the figure to quote on a shared machine (both sides of a pair ran under the same load).\n";
 
 static void machine_name(char *out, size_t len)
 {
@@ -139,7 +141,9 @@ int gib_cmd_bench(int argc, char **argv)
     }
     if (f)
         fprintf(f, "scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,"
-                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_replay_best\n");
+                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_replay_best,repeats,"
+                   "seconds_median,seconds_max,vs_replay_paired_median,vs_replay_paired_min,"
+                   "vs_replay_paired_max\n");
     printf("scene %s (%u triangles), %s %dx%d at %ld spp, %ld cores, %s\n", scene.name,
            scene.triangle_count, comp, w, h, spp, cores, machine);
     for (int i = 0; i < n; i++) {
@@ -147,15 +151,25 @@ int gib_cmd_bench(int argc, char **argv)
         double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
         double b = raw_best > 0 ? r->mrays_per_s / raw_best : 0.0;
         printf("  %-12s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
-               "replay\n",
-               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b);
+               "replay  paired %.3f [%.3f, %.3f]\n",
+               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
+               r->paired_min, r->paired_max);
         if (f)
-            fprintf(f, "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f\n",
+            fprintf(f,
+                    "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%d,%.6f,%.6f,"
+                    "%.4f,%.4f,%.4f\n",
                     scene.name, scene.triangle_count, comp, w, h, spp, cores, machine,
                     RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure, r->api,
-                    r->rays, r->seconds, r->mrays_per_s, a, b);
+                    r->rays, r->seconds, r->mrays_per_s, a, b, r->repeats, r->seconds_median,
+                    r->seconds_max, r->paired_median, r->paired_min, r->paired_max);
     }
     printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(rows[i].measure, "path_tracer"))
+            printf("path tracer against the fastest replay: %.3f, the median of %d paired repeats "
+                   "(range %.3f to %.3f); best against best %.3f\n",
+                   rows[i].paired_median, rows[i].repeats, rows[i].paired_min, rows[i].paired_max,
+                   raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0);
     if (f) {
         fclose(f);
         printf("-> %s\n", out);

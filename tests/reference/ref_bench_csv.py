@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""gibench bench reference: the CSV's structure and the consistency of its statistics.
+
+Runs the benchmark on the Cornell box at a tiny size (a second or two) and checks what every
+reader of results/bench_reference.csv relies on: the header, one world_build, path_tracer and
+raw_random row and one raw_replay row per ray API, every time and rate positive and finite, the
+best <= median <= worst time, least <= median <= greatest paired ratio, mrays_per_s equal to
+rays / seconds (to the printed digits), the fastest replay at exactly 1.0 of itself and every
+replay's paired ratio at most 1. No timing is asserted: only that the numbers written are
+consistent with each other. Also: --repeat beyond 100 is refused with the parameter named.
+Usage: ref_bench_csv.py GIBENCH WORKDIR."""
+import csv
+import math
+import os
+import subprocess
+import sys
+
+HEADER = ("scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,rays,"
+          "seconds,mrays_per_s,vs_raw_random,vs_raw_replay_best,repeats,seconds_median,"
+          "seconds_max,vs_replay_paired_median,vs_replay_paired_min,vs_replay_paired_max")
+APIS = ["rtcIntersect1", "rtcIntersect1M", "rtcIntersect4", "rtcIntersect8", "rtcIntersect16"]
+fails = []
+
+
+def check(what, ok):
+    print(("ok: " if ok else "FAIL: ") + what)
+    if not ok:
+        fails.append(what)
+
+
+gib, work = sys.argv[1], sys.argv[2]
+os.makedirs(work, exist_ok=True)
+out = os.path.join(work, "bench_reference.csv")
+run = subprocess.run([gib, "bench", "reference", "--scene", "cornell", "--size", "24x16",
+                      "--spp", "4", "--repeat", "3", "--threads", "2", "--out", out],
+                     capture_output=True, text=True)
+check("bench exits 0 (%s)" % run.stderr.strip()[-200:], run.returncode == 0)
+with open(out) as f:
+    text = f.read()
+check("header", text.splitlines()[0] == HEADER)
+rows = list(csv.DictReader(text.splitlines()))
+measures = [(r["measure"], r["api"]) for r in rows]
+check("rows: build, path tracer, random, one replay per API",
+      measures == [("world_build", "rtcCommitScene"), ("path_tracer", "rtcIntersect1"),
+                   ("raw_random", "rtcIntersect1")] + [("raw_replay", a) for a in APIS])
+for r in rows[1:]:
+    name = r["measure"] + "/" + r["api"]
+    rays, best = int(r["rays"]), float(r["seconds"])
+    med, worst = float(r["seconds_median"]), float(r["seconds_max"])
+    pmed, pmin, pmax = (float(r["vs_replay_paired_" + k]) for k in ("median", "min", "max"))
+    check(name + ": 3 repeats", r["repeats"] == "3")
+    check(name + ": rays and times positive and finite",
+          rays > 0 and all(math.isfinite(x) and x > 0 for x in (best, med, worst)))
+    check(name + ": best <= median <= worst", best <= med <= worst)
+    # seconds is printed to 1e-6 s and the rate to 1e-4 Mrays/s: the tolerance is their rounding
+    rate = rays / best * 1e-6
+    check(name + ": rate %s is rays over the best time (%.4f)" % (r["mrays_per_s"], rate),
+          abs(float(r["mrays_per_s"]) - rate) <= 5e-5 + rate * 5e-7 / best * 1.01)
+    check(name + ": paired least <= median <= greatest", 0 < pmin <= pmed <= pmax)
+replays = [r for r in rows if r["measure"] == "raw_replay"]
+fastest = max(replays, key=lambda r: float(r["mrays_per_s"]))
+check("fastest replay is 1.0 of itself (best-of)", float(fastest["vs_raw_replay_best"]) == 1.0)
+check("every replay's paired ratio is at most 1 (the fastest of each repeat is the reference)",
+      all(float(r["vs_replay_paired_max"]) <= 1.0 for r in replays))
+check("some replay is the fastest in some repeat (paired max exactly 1)",
+      any(float(r["vs_replay_paired_max"]) == 1.0 for r in replays))
+pt = rows[1]
+check("path tracer counts the same rays as the replay at this size (recorded at full size)",
+      int(pt["rays"]) == int(replays[0]["rays"]))
+bad = subprocess.run([gib, "bench", "reference", "--scene", "cornell", "--repeat", "101"],
+                     capture_output=True, text=True)
+check("--repeat 101 refused naming the parameter",
+      bad.returncode != 0 and "--repeat" in bad.stderr)
+sys.exit(1 if fails else 0)
