@@ -15,7 +15,8 @@ static const char help[] =
     "                               [--threads N] [--repeat N] [--out F.csv]\n"
     "\n"
     "Measures, on one scene and BVH: raw Embree throughput on random incoherent rays\n"
-    "(rtcIntersect1), the path tracer's own rays replayed with each ray API (single rays,\n"
+    "(rtcIntersect1; from the bounding box, and Aila and Laine's diffuse rays from the visible\n"
+    "surfaces), the path tracer's own rays replayed with each ray API (single rays,\n"
     "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
     "second including sampling and shading). Defaults: scene sponza (cornell when its data is\n"
     "absent), 256x256, component full, 16 spp, all cores. --repeat N rounds (default 3, at\n"
@@ -116,7 +117,9 @@ int gib_cmd_bench(int argc, char **argv)
     gib_ref_bench_row rows[16];
     int n = gib_reference_bench(&scene, &p, (int)repeat, stderr, rows, 16, &err);
     if (n < 0) {
-        fprintf(stderr, "gibench bench: %s\n", err.msg);
+        /* the library's own messages begin "bench: "; the renderer's "reference: " */
+        fprintf(stderr, "gibench %s%s\n", strncmp(err.msg, "bench: ", 7) ? "bench: " : "",
+                err.msg);
         gib_scene_free(&scene);
         return 1;
     }

@@ -2,12 +2,14 @@
 """gibench bench reference: the CSV's structure and the consistency of its statistics.
 
 Runs the benchmark on the Cornell box at a tiny size (a second or two) and checks what every
-reader of results/bench_reference.csv relies on: the header, one world_build, path_tracer and
-raw_random row and one raw_replay row per ray API, every time and rate positive and finite, the
-best <= median <= worst time, least <= median <= greatest paired ratio, mrays_per_s equal to
-rays / seconds (to the printed digits), the fastest replay at exactly 1.0 of itself and every
-replay's paired ratio at most 1. No timing is asserted: only that the numbers written are
-consistent with each other. Also: --repeat beyond 100 is refused with the parameter named.
+reader of results/bench_reference.csv relies on: the header, one world_build, path_tracer,
+raw_random and raw_diffuse row and one raw_replay row per ray API, every time and rate
+positive and finite, the best <= median <= worst time, least <= median <= greatest paired
+ratio, mrays_per_s equal to rays / seconds (to the printed digits), the fastest replay at
+exactly 1.0 of itself and every replay's paired ratio at most 1. No timing is asserted: only
+that the numbers written are consistent with each other. Also: --repeat beyond 100 is refused
+with the parameter named, and a camera that sees no surface (hard_empty) is an error naming
+the camera and scene, not a diffuse-ray figure of nothing.
 Usage: ref_bench_csv.py GIBENCH WORKDIR."""
 import csv
 import math
@@ -40,9 +42,10 @@ with open(out) as f:
 check("header", text.splitlines()[0] == HEADER)
 rows = list(csv.DictReader(text.splitlines()))
 measures = [(r["measure"], r["api"]) for r in rows]
-check("rows: build, path tracer, random, one replay per API",
+check("rows: build, path tracer, random, diffuse, one replay per API",
       measures == [("world_build", "rtcCommitScene"), ("path_tracer", "rtcIntersect1"),
-                   ("raw_random", "rtcIntersect1")] + [("raw_replay", a) for a in APIS])
+                   ("raw_random", "rtcIntersect1"), ("raw_diffuse", "rtcIntersect1")] +
+      [("raw_replay", a) for a in APIS])
 for r in rows[1:]:
     name = r["measure"] + "/" + r["api"]
     rays, best = int(r["rays"]), float(r["seconds"])
@@ -71,4 +74,9 @@ bad = subprocess.run([gib, "bench", "reference", "--scene", "cornell", "--repeat
                      capture_output=True, text=True)
 check("--repeat 101 refused naming the parameter",
       bad.returncode != 0 and "--repeat" in bad.stderr)
+empty = subprocess.run([gib, "bench", "reference", "--scene", "hard_empty", "--size", "8x8",
+                        "--spp", "2", "--repeat", "1"], capture_output=True, text=True)
+check("empty view refused: " + empty.stderr.strip()[-160:],
+      empty.returncode != 0 and "sees (almost) no surface" in empty.stderr
+      and "hard_empty" in empty.stderr)
 sys.exit(1 if fails else 0)
