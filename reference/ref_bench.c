@@ -15,7 +15,8 @@
  * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
  * tracer's (in Sponza many start outside the building and leave at once; the path tracer's
  * primary and shadow rays cross the whole atrium); diffuse rays are all closest-hit rays, dearer
- * than the path tracer's mix, a third of which are shadow rays that stop at the first occluder.
+ * than the path tracer's mix, a fifth of which (Sponza `full`) are shadow rays that stop at the
+ * first occluder.
  * So the yardstick for the path tracer is the replay, the same rays with nothing else done; the
  * other two place the scene among published figures.
  * Nothing here is asserted: performance is measured, reported and written to CSV, never a test's

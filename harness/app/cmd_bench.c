@@ -126,11 +126,13 @@ int gib_cmd_bench(int argc, char **argv)
     char machine[256];
     machine_name(machine, sizeof machine);
     long cores = threads > 0 ? threads : sysconf(_SC_NPROCESSORS_ONLN);
-    double raw_random = 0.0, raw_best = 0.0;
+    double raw_random = 0.0, raw_diffuse = 0.0, raw_best = 0.0;
     const char *best_api = "";
     for (int i = 0; i < n; i++) {
         if (!strcmp(rows[i].measure, "raw_random"))
             raw_random = rows[i].mrays_per_s;
+        if (!strcmp(rows[i].measure, "raw_diffuse"))
+            raw_diffuse = rows[i].mrays_per_s;
         if (!strcmp(rows[i].measure, "raw_replay") && rows[i].mrays_per_s > raw_best) {
             raw_best = rows[i].mrays_per_s;
             best_api = rows[i].api;
@@ -144,7 +146,7 @@ int gib_cmd_bench(int argc, char **argv)
     }
     if (f)
         fprintf(f, "scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,"
-                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_replay_best,repeats,"
+                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,vs_raw_replay_best,repeats,"
                    "seconds_median,seconds_max,vs_replay_paired_median,vs_replay_paired_min,"
                    "vs_replay_paired_max\n");
     printf("scene %s (%u triangles), %s %dx%d at %ld spp, %ld cores, %s\n", scene.name,
@@ -153,26 +155,30 @@ int gib_cmd_bench(int argc, char **argv)
         const gib_ref_bench_row *r = &rows[i];
         double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
         double b = raw_best > 0 ? r->mrays_per_s / raw_best : 0.0;
+        double c = raw_diffuse > 0 ? r->mrays_per_s / raw_diffuse : 0.0;
         printf("  %-12s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
                "replay  paired %.3f [%.3f, %.3f]\n",
                r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
                r->paired_min, r->paired_max);
         if (f)
             fprintf(f,
-                    "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%d,%.6f,%.6f,"
+                    "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,%.6f,%.6f,"
                     "%.4f,%.4f,%.4f\n",
                     scene.name, scene.triangle_count, comp, w, h, spp, cores, machine,
                     RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure, r->api,
-                    r->rays, r->seconds, r->mrays_per_s, a, b, r->repeats, r->seconds_median,
+                    r->rays, r->seconds, r->mrays_per_s, a, c, b, r->repeats, r->seconds_median,
                     r->seconds_max, r->paired_median, r->paired_min, r->paired_max);
     }
     printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
     for (int i = 0; i < n; i++)
         if (!strcmp(rows[i].measure, "path_tracer"))
             printf("path tracer against the fastest replay: %.3f, the median of %d paired repeats "
-                   "(range %.3f to %.3f); best against best %.3f\n",
+                   "(range %.3f to %.3f); best against best %.3f; against diffuse rays %.3f, "
+                   "bounding-box rays %.3f\n",
                    rows[i].paired_median, rows[i].repeats, rows[i].paired_min, rows[i].paired_max,
-                   raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0);
+                   raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0,
+                   raw_diffuse > 0 ? rows[i].mrays_per_s / raw_diffuse : 0.0,
+                   raw_random > 0 ? rows[i].mrays_per_s / raw_random : 0.0);
     if (f) {
         fclose(f);
         printf("-> %s\n", out);

@@ -18,8 +18,9 @@ import subprocess
 import sys
 
 HEADER = ("scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,rays,"
-          "seconds,mrays_per_s,vs_raw_random,vs_raw_replay_best,repeats,seconds_median,"
-          "seconds_max,vs_replay_paired_median,vs_replay_paired_min,vs_replay_paired_max")
+          "seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,vs_raw_replay_best,repeats,"
+          "seconds_median,seconds_max,vs_replay_paired_median,vs_replay_paired_min,"
+          "vs_replay_paired_max")
 APIS = ["rtcIntersect1", "rtcIntersect1M", "rtcIntersect4", "rtcIntersect8", "rtcIntersect16"]
 fails = []
 
@@ -63,6 +64,8 @@ for r in rows[1:]:
 replays = [r for r in rows if r["measure"] == "raw_replay"]
 fastest = max(replays, key=lambda r: float(r["mrays_per_s"]))
 check("fastest replay is 1.0 of itself (best-of)", float(fastest["vs_raw_replay_best"]) == 1.0)
+check("raw rows are 1.0 of themselves",
+      float(rows[2]["vs_raw_random"]) == 1.0 and float(rows[3]["vs_raw_diffuse"]) == 1.0)
 check("every replay's paired ratio is at most 1 (the fastest of each repeat is the reference)",
       all(float(r["vs_replay_paired_max"]) <= 1.0 for r in replays))
 check("some replay is the fastest in some repeat (paired max exactly 1)",
