@@ -174,6 +174,14 @@ static double ref_sorted_stats(double *v, int n, double *median, double *max)
     return v[0];
 }
 
+/* An unbounded closest-hit ray from o along d. */
+static void ref_bench_ray(struct RTCRay *r, const float o[3], const float d[3])
+{
+    r->org_x = o[0], r->org_y = o[1], r->org_z = o[2], r->tnear = 0.0f;
+    r->dir_x = d[0], r->dir_y = d[1], r->dir_z = d[2], r->time = 0.0f;
+    r->tfar = INFINITY, r->mask = 0xffffffffu, r->id = 0, r->flags = 0;
+}
+
 /* Random rays: origins uniform in the bounding box, directions uniform on the sphere. */
 static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
 {
@@ -196,10 +204,7 @@ static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
         float s = sqrtf(fmaxf(0.0f, 1.0f - z * z)), d[3] = {s * cosf(phi), s * sinf(phi), z};
         for (int k = 0; k < 3; k++)
             o[k] = lo[k] + (hi[k] - lo[k]) * ref_pcg32_float(&rng);
-        struct RTCRay *r = &log->rays[i];
-        r->org_x = o[0], r->org_y = o[1], r->org_z = o[2], r->tnear = 0.0f;
-        r->dir_x = d[0], r->dir_y = d[1], r->dir_z = d[2], r->time = 0.0f;
-        r->tfar = INFINITY, r->mask = 0xffffffffu, r->id = 0, r->flags = 0;
+        ref_bench_ray(&log->rays[i], o, d);
     }
     return 0;
 }
@@ -232,10 +237,7 @@ static int ref_diffuse_log(const ref_world *w, const gib_ref_params *p, ref_rayl
         gib_camera_ray(cam, p->width, p->height, ref_pcg32_float(&rng) * (float)p->width,
                        ref_pcg32_float(&rng) * (float)p->height, o, d);
         struct RTCRayHit rh;
-        struct RTCRay *r = &rh.ray;
-        r->org_x = o[0], r->org_y = o[1], r->org_z = o[2], r->tnear = 0.0f;
-        r->dir_x = d[0], r->dir_y = d[1], r->dir_z = d[2], r->time = 0.0f;
-        r->tfar = INFINITY, r->mask = 0xffffffffu, r->id = 0, r->flags = 0;
+        ref_bench_ray(&rh.ray, o, d);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(w->scene, &ctx, &rh);
@@ -249,11 +251,8 @@ static int ref_diffuse_log(const ref_world *w, const gib_ref_params *p, ref_rayl
             n[k] *= side;
         ref_sample_cosine(n, u1, u2, dir);
         for (int k = 0; k < 3; k++)
-            org[k] = o[k] + r->tfar * d[k] + w->eps * n[k];
-        struct RTCRay *q = &log->rays[i++];
-        q->org_x = org[0], q->org_y = org[1], q->org_z = org[2], q->tnear = 0.0f;
-        q->dir_x = dir[0], q->dir_y = dir[1], q->dir_z = dir[2], q->time = 0.0f;
-        q->tfar = INFINITY, q->mask = 0xffffffffu, q->id = 0, q->flags = 0;
+            org[k] = o[k] + rh.ray.tfar * d[k] + w->eps * n[k];
+        ref_bench_ray(&log->rays[i++], org, dir);
     }
     return 0;
 }
@@ -325,9 +324,10 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         const char *name;
     } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
                 {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
-    enum { NAPI = sizeof apis / sizeof apis[0], M_PT = 0, M_RND = 1, M_DIF = 2, M_API = 3, NM = M_API + NAPI };
+    enum { NAPI = sizeof apis / sizeof apis[0] };
+    enum { M_PT, M_RND, M_DIF, M_API, NM = M_API + NAPI }; /* measures, in the CSV's order */
     const int reps = repeats < 1 ? 1 : repeats;
-    double t[NM][GIB_REF_BENCH_MAX_REPEATS];
+    double t[NM][GIB_REF_BENCH_MAX_REPEATS], best_replay[GIB_REF_BENCH_MAX_REPEATS];
     long long nrays[NM];
     nrays[M_RND] = (long long)rnd.n;
     nrays[M_DIF] = (long long)dif.n;
@@ -348,6 +348,7 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
             t[M_API + i][rep] = ref_replay_run(&w, &rec, apis[i].api, threads);
             best = fmin(best, t[M_API + i][rep]);
         }
+        best_replay[rep] = best;
         if (log)
             fprintf(log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
                             "ratio %.3f\n",
@@ -361,11 +362,8 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         const char *api = m < M_API ? "rtcIntersect1" : apis[m - M_API].name;
         double sec[GIB_REF_BENCH_MAX_REPEATS], pair[GIB_REF_BENCH_MAX_REPEATS];
         for (int rep = 0; rep < reps; rep++) {
-            double best = INFINITY;
-            for (int i = 0; i < NAPI; i++)
-                best = fmin(best, t[M_API + i][rep]);
             sec[rep] = t[m][rep];
-            pair[rep] = ((double)nrays[m] / t[m][rep]) / ((double)rec.n / best);
+            pair[rep] = ((double)nrays[m] / t[m][rep]) / ((double)rec.n / best_replay[rep]);
         }
         gib_ref_bench_row *row = &rows[n++];
         double med, max, best = ref_sorted_stats(sec, reps, &med, &max);

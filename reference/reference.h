@@ -176,7 +176,7 @@ float gib_reference_ray_eps(const gib_scene *scene);
 /* ---- throughput benchmark (gibench bench reference) ---- */
 
 typedef struct gib_ref_bench_row {
-    char measure[48];     /* "raw_random", "raw_replay", "path_tracer" */
+    char measure[48];     /* "path_tracer", "raw_random", "raw_diffuse", "raw_replay" */
     char api[32];         /* "rtcIntersect1", "rtcIntersect1M", "rtcIntersect8", ... */
     long long rays;
     double seconds;       /* the best (least) of the repeats; mrays_per_s is rays over it */

@@ -146,9 +146,9 @@ int gib_cmd_bench(int argc, char **argv)
     }
     if (f)
         fprintf(f, "scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,"
-                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,vs_raw_replay_best,repeats,"
-                   "seconds_median,seconds_max,vs_replay_paired_median,vs_replay_paired_min,"
-                   "vs_replay_paired_max\n");
+                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,vs_raw_replay_best,"
+                   "repeats,seconds_median,seconds_max,vs_replay_paired_median,"
+                   "vs_replay_paired_min,vs_replay_paired_max\n");
     printf("scene %s (%u triangles), %s %dx%d at %ld spp, %ld cores, %s\n", scene.name,
            scene.triangle_count, comp, w, h, spp, cores, machine);
     for (int i = 0; i < n; i++) {
@@ -162,8 +162,8 @@ int gib_cmd_bench(int argc, char **argv)
                r->paired_min, r->paired_max);
         if (f)
             fprintf(f,
-                    "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,%.6f,%.6f,"
-                    "%.4f,%.4f,%.4f\n",
+                    "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,"
+                    "%.6f,%.6f,%.4f,%.4f,%.4f\n",
                     scene.name, scene.triangle_count, comp, w, h, spp, cores, machine,
                     RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure, r->api,
                     r->rays, r->seconds, r->mrays_per_s, a, c, b, r->repeats, r->seconds_median,
