@@ -53,7 +53,8 @@ test: build build-asan
 reproduce: build
 	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
 	  rc=$$?; \
-	  $(BUILD)/gibench bench reference --repeat 9 --out $(RESULTS)/bench_reference.csv || rc=1; \
+	  $(BUILD)/gibench bench reference --scene cornell,sibenik,sponza --repeat 9 \
+	    --out $(RESULTS)/bench_reference.csv || rc=1; \
 	  $(MAKE) --no-print-directory plots || rc=1; exit $$rc
 
 plots:

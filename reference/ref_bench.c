@@ -351,8 +351,9 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         best_replay[rep] = best;
         if (log)
             fprintf(log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
-                            "ratio %.3f\n",
-                    rep + 1, st.seconds, best, best / st.seconds);
+                            "paired ratio %.3f\n",
+                    rep + 1, st.seconds, best,
+                    ((double)st.rays / st.seconds) / ((double)rec.n / best));
     }
     for (int m = 0; m < NM && n < max_rows; m++) {
         const char *measure = m == M_PT    ? "path_tracer"

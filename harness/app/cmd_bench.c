@@ -11,14 +11,15 @@
 #include "app.h"
 
 static const char help[] =
-    "usage: gibench bench reference [--scene S] [--size WxH] [--component C] [--spp N]\n"
+    "usage: gibench bench reference [--scene S[,S...]] [--size WxH] [--component C] [--spp N]\n"
     "                               [--threads N] [--repeat N] [--out F.csv]\n"
     "\n"
     "Measures, on one scene and BVH: raw Embree throughput on random incoherent rays\n"
     "(rtcIntersect1; from the bounding box, and Aila and Laine's diffuse rays from the visible\n"
     "surfaces), the path tracer's own rays replayed with each ray API (single rays,\n"
     "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
-    "second including sampling and shading). Defaults: scene sponza (cornell when its data is\n"
+    "second including sampling and shading). A list of scenes runs each in turn into one CSV,\n"
+    "skipping those whose data is absent. Defaults: scene sponza (cornell when its data is\n"
     "absent), 256x256, component full, 16 spp, all cores. --repeat N rounds (default 3, at\n"
     "most 100) each run every measure once; each row has the best, median and worst time, and\n"
     "its paired ratio: its rays/s over the fastest replay's in the same round, whose median\n"
@@ -50,6 +51,104 @@ static void machine_name(char *out, size_t len)
     for (char *p = out; *p; p++) /* CSV-safe */
         if (*p == ',' || *p == '"')
             *p = ' ';
+}
+
+/* The path tracer's figures of one scene, for the summary of a multi-scene run. */
+typedef struct bench_summary {
+    char scene[64];
+    unsigned triangles;
+    double mrays, paired_median, paired_min, paired_max;
+} bench_summary;
+
+/* Benchmarks one scene and writes its rows to f (NULL: print only). fallback: an absent sponza
+ * is replaced by the built-in cornell (the default scene); in_list: an absent scene is skipped
+ * with a message. Returns 0, 3 when the scene's data is absent, 1 on another error. */
+static int bench_scene(const char *name, int fallback, int in_list, const gib_ref_params *p,
+                       const char *comp, int repeat, FILE *f, bench_summary *sum)
+{
+    gib_error err = {{0}};
+    gib_scene scene;
+    int rc = gib_scene_load(name, &scene, &err);
+    if (rc == GIB_SCENE_UNAVAILABLE && fallback) {
+        fprintf(stderr, "gibench bench: sponza unavailable (%s); using cornell\n", err.msg);
+        rc = gib_scene_load("cornell", &scene, &err);
+    }
+    if (rc < 0) {
+        if (rc == GIB_SCENE_UNAVAILABLE && in_list)
+            fprintf(stderr, "gibench bench: skipping scene '%s': %s\n", name, err.msg);
+        else
+            fprintf(stderr, "gibench bench: %s\n", err.msg);
+        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
+    }
+    gib_ref_bench_row rows[16];
+    int n = gib_reference_bench(&scene, p, repeat, stderr, rows, 16, &err);
+    if (n < 0) {
+        /* the library's own messages begin "bench: "; the renderer's "reference: " */
+        fprintf(stderr, "gibench %s%s\n", strncmp(err.msg, "bench: ", 7) ? "bench: " : "",
+                err.msg);
+        gib_scene_free(&scene);
+        return 1;
+    }
+    char machine[256];
+    machine_name(machine, sizeof machine);
+    long cores = p->threads > 0 ? p->threads : sysconf(_SC_NPROCESSORS_ONLN);
+    double raw_random = 0.0, raw_diffuse = 0.0, raw_best = 0.0;
+    const char *best_api = "";
+    for (int i = 0; i < n; i++) {
+        if (!strcmp(rows[i].measure, "raw_random"))
+            raw_random = rows[i].mrays_per_s;
+        if (!strcmp(rows[i].measure, "raw_diffuse"))
+            raw_diffuse = rows[i].mrays_per_s;
+        if (!strcmp(rows[i].measure, "raw_replay") && rows[i].mrays_per_s > raw_best) {
+            raw_best = rows[i].mrays_per_s;
+            best_api = rows[i].api;
+        }
+    }
+    printf("scene %s (%u triangles), %s %dx%d at %d spp, %ld cores, %s\n", scene.name,
+           scene.triangle_count, comp, p->width, p->height, p->spp, cores, machine);
+    for (int i = 0; i < n; i++) {
+        const gib_ref_bench_row *r = &rows[i];
+        double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
+        double b = raw_best > 0 ? r->mrays_per_s / raw_best : 0.0;
+        double c = raw_diffuse > 0 ? r->mrays_per_s / raw_diffuse : 0.0;
+        printf("  %-12s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
+               "replay  paired %.3f [%.3f, %.3f]\n",
+               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
+               r->paired_min, r->paired_max);
+        if (f)
+            fprintf(f,
+                    "%s,%u,%s,%d,%d,%d,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,"
+                    "%.6f,%.6f,%.4f,%.4f,%.4f\n",
+                    scene.name, scene.triangle_count, comp, p->width, p->height, p->spp, cores,
+                    machine, RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure,
+                    r->api, r->rays, r->seconds, r->mrays_per_s, a, c, b, r->repeats,
+                    r->seconds_median, r->seconds_max, r->paired_median, r->paired_min,
+                    r->paired_max);
+    }
+    if (f)
+        fflush(f);
+    printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
+    for (int i = 0; i < n; i++) {
+        if (strcmp(rows[i].measure, "path_tracer"))
+            continue;
+        printf("path tracer against the fastest replay: %.3f, the median of %d paired repeats "
+               "(range %.3f to %.3f); best against best %.3f; against diffuse rays %.3f, "
+               "bounding-box rays %.3f\n",
+               rows[i].paired_median, rows[i].repeats, rows[i].paired_min, rows[i].paired_max,
+               raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0,
+               raw_diffuse > 0 ? rows[i].mrays_per_s / raw_diffuse : 0.0,
+               raw_random > 0 ? rows[i].mrays_per_s / raw_random : 0.0);
+        if (sum) {
+            snprintf(sum->scene, sizeof sum->scene, "%s", scene.name);
+            sum->triangles = scene.triangle_count;
+            sum->mrays = rows[i].mrays_per_s;
+            sum->paired_median = rows[i].paired_median;
+            sum->paired_min = rows[i].paired_min;
+            sum->paired_max = rows[i].paired_max;
+        }
+    }
+    gib_scene_free(&scene);
+    return 0;
 }
 
 int gib_cmd_bench(int argc, char **argv)
@@ -102,46 +201,15 @@ int gib_cmd_bench(int argc, char **argv)
         fprintf(stderr, "gibench bench: %s\n", err.msg);
         return 2;
     }
-    gib_scene scene;
-    int rc = gib_scene_load(scene_name ? scene_name : "sponza", &scene, &err);
-    if (rc == GIB_SCENE_UNAVAILABLE && !scene_name) {
-        fprintf(stderr, "gibench bench: sponza unavailable (%s); using cornell\n", err.msg);
-        rc = gib_scene_load("cornell", &scene, &err);
-    }
-    if (rc < 0) {
-        fprintf(stderr, "gibench bench: %s\n", err.msg);
-        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
-    }
     gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
                         .seed = 1, .threads = (int)threads, .quiet = 1};
-    gib_ref_bench_row rows[16];
-    int n = gib_reference_bench(&scene, &p, (int)repeat, stderr, rows, 16, &err);
-    if (n < 0) {
-        /* the library's own messages begin "bench: "; the renderer's "reference: " */
-        fprintf(stderr, "gibench %s%s\n", strncmp(err.msg, "bench: ", 7) ? "bench: " : "",
-                err.msg);
-        gib_scene_free(&scene);
-        return 1;
-    }
-    char machine[256];
-    machine_name(machine, sizeof machine);
-    long cores = threads > 0 ? threads : sysconf(_SC_NPROCESSORS_ONLN);
-    double raw_random = 0.0, raw_diffuse = 0.0, raw_best = 0.0;
-    const char *best_api = "";
-    for (int i = 0; i < n; i++) {
-        if (!strcmp(rows[i].measure, "raw_random"))
-            raw_random = rows[i].mrays_per_s;
-        if (!strcmp(rows[i].measure, "raw_diffuse"))
-            raw_diffuse = rows[i].mrays_per_s;
-        if (!strcmp(rows[i].measure, "raw_replay") && rows[i].mrays_per_s > raw_best) {
-            raw_best = rows[i].mrays_per_s;
-            best_api = rows[i].api;
-        }
-    }
-    FILE *f = out ? fopen(out, "w") : NULL;
+    /* Written beside --out and renamed over it once a scene has its rows: a run where no scene
+     * could be measured leaves an earlier file of that name as it was. */
+    char part[4096];
+    snprintf(part, sizeof part, "%s.part", out ? out : "");
+    FILE *f = out ? fopen(part, "w") : NULL;
     if (out && !f) {
-        fprintf(stderr, "gibench bench: cannot write %s\n", out);
-        gib_scene_free(&scene);
+        fprintf(stderr, "gibench bench: cannot write %s\n", part);
         return 1;
     }
     if (f)
@@ -149,40 +217,55 @@ int gib_cmd_bench(int argc, char **argv)
                    "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,vs_raw_replay_best,"
                    "repeats,seconds_median,seconds_max,vs_replay_paired_median,"
                    "vs_replay_paired_min,vs_replay_paired_max\n");
-    printf("scene %s (%u triangles), %s %dx%d at %ld spp, %ld cores, %s\n", scene.name,
-           scene.triangle_count, comp, w, h, spp, cores, machine);
-    for (int i = 0; i < n; i++) {
-        const gib_ref_bench_row *r = &rows[i];
-        double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
-        double b = raw_best > 0 ? r->mrays_per_s / raw_best : 0.0;
-        double c = raw_diffuse > 0 ? r->mrays_per_s / raw_diffuse : 0.0;
-        printf("  %-12s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
-               "replay  paired %.3f [%.3f, %.3f]\n",
-               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
-               r->paired_min, r->paired_max);
-        if (f)
-            fprintf(f,
-                    "%s,%u,%s,%d,%d,%ld,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,"
-                    "%.6f,%.6f,%.4f,%.4f,%.4f\n",
-                    scene.name, scene.triangle_count, comp, w, h, spp, cores, machine,
-                    RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure, r->api,
-                    r->rays, r->seconds, r->mrays_per_s, a, c, b, r->repeats, r->seconds_median,
-                    r->seconds_max, r->paired_median, r->paired_min, r->paired_max);
+    /* Scenes one after another, each row written as soon as its scene is done: a scene that
+     * fails keeps the others' rows. In a list, a scene whose data is absent is skipped. */
+    char list[1024];
+    snprintf(list, sizeof list, "%s", scene_name ? scene_name : "sponza");
+    int nlist = 1, ran = 0, failed = 0, unavailable = 0;
+    for (const char *c = list; *c; c++)
+        nlist += *c == ',';
+    bench_summary sum[64];
+    int nsum = 0;
+    for (char *save = NULL, *name = strtok_r(list, ",", &save); name;
+         name = strtok_r(NULL, ",", &save)) {
+        int rc = bench_scene(name, !scene_name, nlist > 1, &p, comp, (int)repeat, f,
+                             nsum < 64 ? &sum[nsum] : NULL);
+        if (rc == 0) {
+            ran++;
+            nsum += nsum < 64;
+        } else if (rc == 3) {
+            unavailable++;
+        } else {
+            failed++;
+        }
     }
-    printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(rows[i].measure, "path_tracer"))
-            printf("path tracer against the fastest replay: %.3f, the median of %d paired repeats "
-                   "(range %.3f to %.3f); best against best %.3f; against diffuse rays %.3f, "
-                   "bounding-box rays %.3f\n",
-                   rows[i].paired_median, rows[i].repeats, rows[i].paired_min, rows[i].paired_max,
-                   raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0,
-                   raw_diffuse > 0 ? rows[i].mrays_per_s / raw_diffuse : 0.0,
-                   raw_random > 0 ? rows[i].mrays_per_s / raw_random : 0.0);
     if (f) {
-        fclose(f);
-        printf("-> %s\n", out);
+        int werr = ferror(f);
+        if (fclose(f) != 0 || werr) {
+            fprintf(stderr, "gibench bench: writing %s failed\n", part);
+            remove(part);
+            return 1;
+        }
+        if (ran == 0) {
+            remove(part);
+        } else if (rename(part, out) != 0) {
+            fprintf(stderr, "gibench bench: cannot rename %s to %s\n", part, out);
+            return 1;
+        } else {
+            printf("-> %s\n", out);
+        }
     }
-    gib_scene_free(&scene);
+    if (nsum > 1) {
+        printf("path tracer against the fastest replay of its own rays, by scene (paired "
+               "median [least, greatest]):\n");
+        for (int i = 0; i < nsum; i++)
+            printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]\n", sum[i].scene,
+                   sum[i].triangles, sum[i].mrays, sum[i].paired_median, sum[i].paired_min,
+                   sum[i].paired_max);
+    }
+    if (failed > 0)
+        return 1;
+    if (ran == 0)
+        return unavailable > 0 ? 3 : 1;
     return 0;
 }

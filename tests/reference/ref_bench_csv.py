@@ -8,8 +8,9 @@ positive and finite, the best <= median <= worst time, least <= median <= greate
 ratio, mrays_per_s equal to rays / seconds (to the printed digits), the fastest replay at
 exactly 1.0 of itself and every replay's paired ratio at most 1. No timing is asserted: only
 that the numbers written are consistent with each other. Also: --repeat beyond 100 is refused
-with the parameter named, and a camera that sees no surface (hard_empty) is an error naming
-the camera and scene, not a diffuse-ray figure of nothing.
+with the parameter named, a camera that sees no surface (hard_empty) is an error naming
+the camera and scene, not a diffuse-ray figure of nothing, and a list of scenes writes one CSV
+(a failing scene keeps the others' rows; a run that measures nothing keeps an earlier file).
 Usage: ref_bench_csv.py GIBENCH WORKDIR."""
 import csv
 import math
@@ -82,4 +83,32 @@ empty = subprocess.run([gib, "bench", "reference", "--scene", "hard_empty", "--s
 check("empty view refused: " + empty.stderr.strip()[-160:],
       empty.returncode != 0 and "sees (almost) no surface" in empty.stderr
       and "hard_empty" in empty.stderr)
+
+# A list of scenes: one CSV, each scene's rows in the order given; a scene that fails keeps the
+# rows already measured; a run that measures nothing leaves an earlier file as it was.
+multi = os.path.join(work, "bench_multi.csv")
+run = subprocess.run([gib, "bench", "reference", "--scene", "cornell,plane_box", "--size", "16x8",
+                      "--spp", "2", "--repeat", "1", "--out", multi],
+                     capture_output=True, text=True)
+check("two scenes exit 0 (%s)" % run.stderr.strip()[-200:], run.returncode == 0)
+with open(multi) as f:
+    mrows = list(csv.DictReader(f))
+check("two scenes: 9 rows each, cornell's first",
+      [r["scene"] for r in mrows] == ["cornell"] * 9 + ["plane_box"] * 9)
+check("two scenes: a summary line per scene",
+      "by scene" in run.stdout and run.stdout.count(" triangles  ") == 2)
+run = subprocess.run([gib, "bench", "reference", "--scene", "cornell,no_such_scene", "--size",
+                      "16x8", "--spp", "2", "--repeat", "1", "--out", multi],
+                     capture_output=True, text=True)
+with open(multi) as f:
+    kept = [r["scene"] for r in csv.DictReader(f)]
+check("an unknown scene in a list fails naming it, the other's rows kept",
+      run.returncode != 0 and "no_such_scene" in run.stderr and kept == ["cornell"] * 9)
+with open(multi, "w") as f:
+    f.write("earlier\n")
+run = subprocess.run([gib, "bench", "reference", "--scene", "no_such_scene", "--out", multi],
+                     capture_output=True, text=True)
+with open(multi) as f:
+    check("nothing measured: the earlier file is untouched and no .part is left",
+          run.returncode != 0 and f.read() == "earlier\n" and not os.path.exists(multi + ".part"))
 sys.exit(1 if fails else 0)
