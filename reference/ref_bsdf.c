@@ -175,7 +175,7 @@ void ref_basis(const float n[3], float t[3], float b[3])
 void ref_sample_cosine(const float n[3], float u1, float u2, float d[3])
 {
     float phi = 2.0f * REF_PI * u1, r = sqrtf(u2);
-    float lx = r * cosf(phi), ly = r * sinf(phi), lz = sqrtf(fmaxf(0.0f, 1.0f - u2));
+    float lx = r * cosf(phi), ly = r * sinf(phi), lz = sqrtf(ref_fmaxf(0.0f, 1.0f - u2));
     float t[3], b[3];
     ref_basis(n, t, b);
     for (int k = 0; k < 3; k++)
@@ -195,7 +195,7 @@ float ref_sample_phong(const float r[3], float n_exp, const float ns[3], float u
                        float d[3])
 {
     float ca = powf(u1, 1.0f / (n_exp + 1.0f));
-    float sa = sqrtf(fmaxf(0.0f, 1.0f - ca * ca));
+    float sa = sqrtf(ref_fmaxf(0.0f, 1.0f - ca * ca));
     float phi = 2.0f * REF_PI * u2;
     float t[3], b[3];
     ref_basis(r, t, b);

@@ -127,10 +127,6 @@ int ref_occluded(const ref_world *w, const float o[3], const float d[3], float t
 /* The distance to the first surface on (o, d) within (0, tfar], or INFINITY. */
 float ref_hit_distance(const ref_world *w, const float o[3], const float d[3], float tfar);
 
-/* Origin for a ray leaving h in direction d: offset along the geometric normal, toward the side d
- * points to, by w->eps. */
-void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3], float o[3]);
-
 /* Ray differentials at a primary hit (Igehy 1999): fills h->duv from the camera rays through the
  * centres of the pixels one to the right and one down, intersected with the hit triangle's
  * plane. */
@@ -332,10 +328,32 @@ void ref_progress_round(ref_progress *prog, int spp_done, double noise_rel);
 void ref_progress_end(ref_progress *prog);
 double ref_now(void);
 
+/* fmaxf and fminf, inlined: without -ffinite-math-only GCC calls libm for them. The same results
+ * as glibc's for every input, NaN (the other operand) and signed zeros (the first) included. */
+static inline float ref_fmaxf(float a, float b)
+{
+    return (a >= b || b != b) ? a : b;
+}
+
+static inline float ref_fminf(float a, float b)
+{
+    return (a <= b || b != b) ? a : b;
+}
+
 /* Small vector helpers. */
 static inline float ref_dot(const float a[3], const float b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Origin for a ray leaving h in direction d: offset along the geometric normal, toward the side d
+ * points to, by w->eps. (Inline: it runs for every ray the path tracer casts.) */
+static inline void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3],
+                                     float o[3])
+{
+    float s = ref_dot(h->ng, d) >= 0.0f ? w->eps : -w->eps;
+    for (int k = 0; k < 3; k++)
+        o[k] = h->p[k] + s * h->ng[k];
 }
 
 #endif

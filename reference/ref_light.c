@@ -93,7 +93,7 @@ static int ref_emit(const ref_ctx *c, ref_pcg32 *rng, float o[3], float d[3], fl
         ct = 1.0f - 2.0f * u1;
         scale = 4.0f * REF_PI / psel;
     }
-    float st = sqrtf(fmaxf(0.0f, 1.0f - ct * ct)), phi = 2.0f * REF_PI * u2, t[3], b[3];
+    float st = sqrtf(ref_fmaxf(0.0f, 1.0f - ct * ct)), phi = 2.0f * REF_PI * u2, t[3], b[3];
     ref_basis(axis, t, b);
     for (int k = 0; k < 3; k++) {
         d[k] = st * cosf(phi) * t[k] + st * sinf(phi) * b[k] + ct * axis[k];
@@ -269,7 +269,7 @@ static void ref_particle(const ref_ctx *c, ref_pcg32 *rng, ref_splats *out, long
                     return;
                 all_s = all_s && lobe_s;
                 if (verts >= mind) {
-                    float q = fminf(1.0f, fmaxf(beta[0], fmaxf(beta[1], beta[2])));
+                    float q = ref_fminf(1.0f, ref_fmaxf(beta[0], ref_fmaxf(beta[1], beta[2])));
                     if (!(ref_pcg32_float(rng) < q))
                         return;
                     for (int k = 0; k < 3; k++)

@@ -137,8 +137,8 @@ static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, lo
         const float *refl = ps->lobe_s ? gm->specular : gm->albedo;
         float est = 0.0f;
         for (int k = 0; k < 3; k++)
-            est = fmaxf(est, ps->beta[k] * refl[k] * ps->f / ps->prob);
-        ps->q = fminf(1.0f, est);
+            est = ref_fmaxf(est, ps->beta[k] * refl[k] * ps->f / ps->prob);
+        ps->q = ref_fminf(1.0f, est);
         cont = ref_pcg32_float(ps->rng) < ps->q;
     }
     if (cont) {
@@ -177,20 +177,25 @@ static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *ray
     ref_mat m;
     ref_material(w, cur, &m);
     if (keep[0] || keep[1]) {
-        ref_mat mn = m;
-        if (!keep[0])
+        ref_mat mn; /* m with the diffuse part dropped when it is not kept */
+        const ref_mat *mk = &m;
+        if (!keep[0]) {
+            mn = m;
             mn.kd[0] = mn.kd[1] = mn.kd[2] = 0.0f;
+            mk = &mn;
+        }
         float dif[3], sp[3];
         if (cur->has_nee && keep[0] && keep[1]) { /* the pixel's own, computed once */
             memcpy(dif, cur->nee_dif, sizeof dif);
             memcpy(sp, cur->nee_spec, sizeof sp);
         } else if (ps->nee_cast) {
             dif[0] = dif[1] = dif[2] = sp[0] = sp[1] = sp[2] = 0.0f;
-            ref_nee_shade(&ps->vis, &mn, dif, ps->nee_want_s ? sp : NULL);
+            ref_nee_shade(&ps->vis, mk, dif, ps->nee_want_s ? sp : NULL);
         } else {
-            ref_nee(w, cur, &mn, ps->wcur, dif, keep[1] ? sp : NULL, rays);
+            ref_nee(w, cur, mk, ps->wcur, dif, keep[1] ? sp : NULL, rays);
         }
-        ref_nee_sky(w, cur, &mn, ps->wcur, ps->rng, dif, keep[1] ? sp : NULL, rays);
+        if (ref_has_sky(w->gs))
+            ref_nee_sky(w, cur, mk, ps->wcur, ps->rng, dif, keep[1] ? sp : NULL, rays);
         for (int k = 0; k < 3; k++)
             ps->out[k] += ps->beta[k] * (dif[k] + (keep[1] ? sp[k] : 0.0f));
     }

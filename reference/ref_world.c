@@ -509,11 +509,3 @@ int ref_occluded(const ref_world *w, const float o[3], const float d[3], float t
     rtcOccluded1(w->scene, &ctx, &r);
     return r.tfar == -INFINITY; /* Embree's mark of an occluded ray */
 }
-
-
-void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3], float o[3])
-{
-    float s = ref_dot(h->ng, d) >= 0.0f ? w->eps : -w->eps;
-    for (int k = 0; k < 3; k++)
-        o[k] = h->p[k] + s * h->ng[k];
-}
