@@ -201,6 +201,14 @@ int gib_cmd_bench(int argc, char **argv)
         fprintf(stderr, "gibench bench: %s\n", err.msg);
         return 2;
     }
+    char list[1024];
+    if (scene_name && (strlen(scene_name) >= sizeof list || !scene_name[strspn(scene_name, ",")])) {
+        fprintf(stderr, "gibench bench: --scene '%.60s%s': %s\n", scene_name,
+                strlen(scene_name) > 60 ? "..." : "",
+                strlen(scene_name) >= sizeof list ? "list too long" : "names no scene");
+        return 2;
+    }
+    snprintf(list, sizeof list, "%s", scene_name ? scene_name : "sponza");
     gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
                         .seed = 1, .threads = (int)threads, .quiet = 1};
     /* Written beside --out and renamed over it once a scene has its rows: a run where no scene
@@ -219,8 +227,6 @@ int gib_cmd_bench(int argc, char **argv)
                    "vs_replay_paired_min,vs_replay_paired_max\n");
     /* Scenes one after another, each row written as soon as its scene is done: a scene that
      * fails keeps the others' rows. In a list, a scene whose data is absent is skipped. */
-    char list[1024];
-    snprintf(list, sizeof list, "%s", scene_name ? scene_name : "sponza");
     int nlist = 1, ran = 0, failed = 0, unavailable = 0;
     for (const char *c = list; *c; c++)
         nlist += *c == ',';

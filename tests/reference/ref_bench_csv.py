@@ -111,4 +111,7 @@ run = subprocess.run([gib, "bench", "reference", "--scene", "no_such_scene", "--
 with open(multi) as f:
     check("nothing measured: the earlier file is untouched and no .part is left",
           run.returncode != 0 and f.read() == "earlier\n" and not os.path.exists(multi + ".part"))
+bad = subprocess.run([gib, "bench", "reference", "--scene", ",,"], capture_output=True, text=True)
+check("a --scene list of no names refused naming the parameter",
+      bad.returncode == 2 and "--scene" in bad.stderr)
 sys.exit(1 if fails else 0)
