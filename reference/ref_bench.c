@@ -1,6 +1,6 @@
 /* gibench — the reference renderer's throughput benchmark (gibench bench reference).
  *
- * Four figures on one scene and one BVH, all threads:
+ * Five figures on one scene and one BVH, all threads:
  *  - raw_random: rtcIntersect1 on random incoherent rays (origins uniform in the scene's bounding
  *    box, directions uniform on the sphere): Embree's own speed, nothing else;
  *  - raw_diffuse: rtcIntersect1 on Aila and Laine's "diffuse" rays (ref_diffuse_log): random
@@ -12,6 +12,10 @@
  *  - path_tracer: the renderer itself (sampling, shading, textures, statistics; BVH, triangle
  *    records and mip maps prebuilt, their time is the world_build row), rays per second over all
  *    the rays it casts.
+ *  - path_tracer_embree: the time the path tracer spends inside Embree's ray calls (a second
+ *    render with a clock read around each): Embree's speed inside the renderer. Its paired ratio
+ *    to the replay (same rays) is how much the renderer's memory traffic slows Embree down; the
+ *    path tracer's time less this one is the renderer's own work.
  * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
  * tracer's (in Sponza many start outside the building and leave at once; the path tracer's
  * primary and shadow rays cross the whole atrium); diffuse rays are all closest-hit rays, dearer
@@ -325,7 +329,7 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
                 {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
     enum { NAPI = sizeof apis / sizeof apis[0] };
-    enum { M_PT, M_RND, M_DIF, M_API, NM = M_API + NAPI }; /* measures, in the CSV's order */
+    enum { M_PT, M_PTE, M_RND, M_DIF, M_API, NM = M_API + NAPI }; /* the CSV's order */
     const int reps = repeats < 1 ? 1 : repeats;
     double t[NM][GIB_REF_BENCH_MAX_REPEATS], best_replay[GIB_REF_BENCH_MAX_REPEATS];
     long long nrays[NM];
@@ -341,6 +345,19 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         gib_image_free(&img);
         t[M_PT][rep] = st.seconds;
         nrays[M_PT] = st.rays;
+        /* The same render again, with the time inside Embree's calls counted (not in the
+         * path_tracer row: the clock reads cost ~2% of it): Embree's own speed inside the path
+         * tracer, whose paired ratio to the replay's shows how much the renderer's memory traffic
+         * slows Embree down. CPU seconds over threads, the replay's wall time's equivalent. */
+        w.time_embree = 1;
+        gib_ref_stats ste;
+        int te = ref_render_world(&w, scene, &q, &img, NULL, &ste, err);
+        w.time_embree = 0;
+        if (te < 0)
+            goto done;
+        gib_image_free(&img);
+        t[M_PTE][rep] = ste.embree_cpu_seconds / threads;
+        nrays[M_PTE] = ste.rays;
         t[M_RND][rep] = ref_replay_run(&w, &rnd, 1, threads);
         t[M_DIF][rep] = ref_replay_run(&w, &dif, 1, threads);
         double best = INFINITY;
@@ -357,6 +374,7 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     }
     for (int m = 0; m < NM && n < max_rows; m++) {
         const char *measure = m == M_PT    ? "path_tracer"
+                              : m == M_PTE ? "path_tracer_embree"
                               : m == M_RND ? "raw_random"
                               : m == M_DIF ? "raw_diffuse"
                                            : "raw_replay";

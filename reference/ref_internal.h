@@ -77,6 +77,7 @@ typedef struct ref_world {
     int has_mirror;          /* some material is a mirror */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
     ref_raylog *log;         /* bench: non-NULL records every ray (single thread only) */
+    int time_embree;         /* bench: count the clock ticks spent inside Embree's ray calls */
     ref_tri *tris;           /* one per triangle, in Embree's order (opaque, then masked) */
     uint32_t geo_base[2];    /* Embree geometry g's primitive k is record geo_base[g] + k */
     uint32_t *rec_tri;       /* record -> scene triangle */
@@ -124,6 +125,12 @@ int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_
 void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit);
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */
 int ref_occluded(const ref_world *w, const float o[3], const float d[3], float tfar);
+/* Bench: a cheap clock (the time-stamp counter on x86, nanoseconds elsewhere; ticks to seconds
+ * by comparing it with the wall clock over a run), and the ticks the calling thread has spent
+ * inside Embree's ray calls since it last asked, with w->time_embree set. */
+uint64_t ref_ticks(void);
+uint64_t ref_embree_ticks_take(void);
+double ref_ticks_overhead(void);
 /* The distance to the first surface on (o, d) within (0, tfar], or INFINITY. */
 float ref_hit_distance(const ref_world *w, const float o[3], const float d[3], float tfar);
 
@@ -312,6 +319,7 @@ typedef struct ref_progress {
     long long units_per_spp;    /* work units (pixel samples + particles) per sample per pixel */
     atomic_llong units;         /* done so far */
     atomic_llong rays;
+    atomic_llong embree_ticks;  /* with w->time_embree: ticks inside Embree, all threads */
     long long units_target;     /* for the estimate of time left */
     int round, spp_goal;
     double noise_rel;           /* last round's noise / mean, or < 0 */

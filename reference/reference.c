@@ -89,6 +89,8 @@ static void ref_row_task(void *ctx, int y)
     }
     atomic_fetch_add(&r->prog->rays, rays);
     atomic_fetch_add(&r->prog->units, (long long)W * (r->s1 - r->s0));
+    if (c->w->time_embree)
+        atomic_fetch_add(&r->prog->embree_ticks, (long long)ref_embree_ticks_take());
 }
 
 static void ref_chunk_task(void *ctx, int task)
@@ -104,6 +106,8 @@ static void ref_chunk_task(void *ctx, int task)
     ref_light_chunk(c, (uint64_t)pass, (uint32_t)chunk, count, out, &rays);
     atomic_fetch_add(&r->prog->rays, rays);
     atomic_fetch_add(&r->prog->units, (long long)count);
+    if (c->w->time_embree)
+        atomic_fetch_add(&r->prog->embree_ticks, (long long)ref_embree_ticks_take());
 }
 
 /* Each pixel takes its pass values in pass order; pass images are cleared for the next group. */
@@ -274,6 +278,7 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
                      gib_image *out, gib_image *stderr_img, gib_ref_stats *stats, gib_error *err)
 {
     double t0 = ref_now();
+    uint64_t k0 = w->time_embree ? ref_ticks() : 0;
     memset(out, 0, sizeof *out);
     if (stderr_img)
         memset(stderr_img, 0, sizeof *stderr_img);
@@ -294,6 +299,7 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     prog.noise_rel = -1.0;
     atomic_init(&prog.units, 0);
     atomic_init(&prog.rays, 0);
+    atomic_init(&prog.embree_ticks, 0);
     r.prog = &prog;
     int rc = -1, n = 0, goal = np->spp, rounds = 0, reached = 0;
     double mean = 0.0, noise = 0.0;
@@ -345,6 +351,14 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         stats->target_reached = np->target_noise > 0.0 ? reached : 0;
         stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
         stats->seconds = ref_now() - t0;
+        if (w->time_embree) { /* ticks to seconds at the rate the clock ran during this render,
+                               * less the clock reads themselves (one pair a ray) */
+            double k = (double)(ref_ticks() - k0), wall = ref_now() - t0;
+            double ke = (double)(atomic_load(&prog.embree_ticks) +
+                                 (long long)ref_embree_ticks_take()) -
+                        (double)stats->rays * ref_ticks_overhead();
+            stats->embree_cpu_seconds = k > 0.0 && ke > 0.0 ? ke * wall / k : 0.0;
+        }
     }
     rc = 0;
 

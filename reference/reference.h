@@ -132,6 +132,8 @@ typedef struct gib_ref_stats {
     int rounds;           /* sampling rounds (1 without target_noise) */
     int target_reached;   /* with target_noise: 1 if noise_rmse / mean <= target_noise */
     int deterministic;    /* gib_component_deterministic() */
+    double embree_cpu_seconds; /* bench only: seconds inside Embree's ray calls, summed over
+                                * threads (0 unless the bench asked for it) */
 } gib_ref_stats;
 
 /* Renders into out (3 channels, allocated here). If stderr_img is non-NULL it receives the per-pixel
@@ -176,7 +178,8 @@ float gib_reference_ray_eps(const gib_scene *scene);
 /* ---- throughput benchmark (gibench bench reference) ---- */
 
 typedef struct gib_ref_bench_row {
-    char measure[48];     /* "path_tracer", "raw_random", "raw_diffuse", "raw_replay" */
+    char measure[48];     /* "path_tracer", "path_tracer_embree", "raw_random", "raw_diffuse",
+                           * "raw_replay" */
     char api[32];         /* "rtcIntersect1", "rtcIntersect1M", "rtcIntersect8", ... */
     long long rays;
     double seconds;       /* the best (least) of the repeats; mrays_per_s is rays over it */

@@ -58,6 +58,7 @@ typedef struct bench_summary {
     char scene[64];
     unsigned triangles;
     double mrays, paired_median, paired_min, paired_max;
+    double embree_inside; /* path_tracer_embree's paired median */
 } bench_summary;
 
 /* Benchmarks one scene and writes its rows to f (NULL: print only). fallback: an absent sponza
@@ -111,7 +112,7 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
         double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
         double b = raw_best > 0 ? r->mrays_per_s / raw_best : 0.0;
         double c = raw_diffuse > 0 ? r->mrays_per_s / raw_diffuse : 0.0;
-        printf("  %-12s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
+        printf("  %-18s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
                "replay  paired %.3f [%.3f, %.3f]\n",
                r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
                r->paired_min, r->paired_max);
@@ -128,6 +129,10 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
     if (f)
         fflush(f);
     printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
+    double embree_inside = 0.0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(rows[i].measure, "path_tracer_embree"))
+            embree_inside = rows[i].paired_median;
     for (int i = 0; i < n; i++) {
         if (strcmp(rows[i].measure, "path_tracer"))
             continue;
@@ -138,7 +143,10 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
                raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0,
                raw_diffuse > 0 ? rows[i].mrays_per_s / raw_diffuse : 0.0,
                raw_random > 0 ? rows[i].mrays_per_s / raw_random : 0.0);
+        printf("Embree inside the path tracer runs at %.3f of its speed alone on the same rays "
+               "(paired median)\n", embree_inside);
         if (sum) {
+            sum->embree_inside = embree_inside;
             snprintf(sum->scene, sizeof sum->scene, "%s", scene.name);
             sum->triangles = scene.triangle_count;
             sum->mrays = rows[i].mrays_per_s;
@@ -263,11 +271,11 @@ int gib_cmd_bench(int argc, char **argv)
     }
     if (nsum > 1) {
         printf("path tracer against the fastest replay of its own rays, by scene (paired "
-               "median [least, greatest]):\n");
+               "median [least, greatest]; Embree's speed inside it):\n");
         for (int i = 0; i < nsum; i++)
-            printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]\n", sum[i].scene,
-                   sum[i].triangles, sum[i].mrays, sum[i].paired_median, sum[i].paired_min,
-                   sum[i].paired_max);
+            printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]  Embree %.3f\n",
+                   sum[i].scene, sum[i].triangles, sum[i].mrays, sum[i].paired_median,
+                   sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside);
     }
     if (failed > 0)
         return 1;
