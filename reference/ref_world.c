@@ -431,7 +431,7 @@ static void ref_log_ray(const ref_world *w, const struct RTCRay *r, int occl)
 uint64_t ref_ticks(void)
 {
 #if defined(__x86_64__) || defined(__i386__)
-    return __rdtsc(); /* ~20 cycles; clock_gettime in a virtual machine costs several times that */
+    return __rdtsc(); /* the time-stamp counter: a read costs tens of cycles */
 #else
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
