@@ -356,7 +356,13 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         if (te < 0)
             goto done;
         gib_image_free(&img);
-        t[M_PTE][rep] = ste.embree_cpu_seconds / threads;
+        if (!(ste.embree_cpu_seconds > 0.0) || ste.threads < 1) {
+            gib_fail(err, "bench: the time inside Embree's calls could not be measured (%.3g s "
+                          "on %d threads; calls cheaper than the clock reads?)",
+                     ste.embree_cpu_seconds, ste.threads);
+            goto done;
+        }
+        t[M_PTE][rep] = ste.embree_cpu_seconds / ste.threads; /* the threads it really ran */
         nrays[M_PTE] = ste.rays;
         t[M_RND][rep] = ref_replay_run(&w, &rnd, 1, threads);
         t[M_DIF][rep] = ref_replay_run(&w, &dif, 1, threads);

@@ -320,6 +320,7 @@ typedef struct ref_progress {
     atomic_llong units;         /* done so far */
     atomic_llong rays;
     atomic_llong embree_ticks;  /* with w->time_embree: ticks inside Embree, all threads */
+    int threads_used;           /* the most threads any ref_parallel of this render ran */
     long long units_target;     /* for the estimate of time left */
     int round, spp_goal;
     double noise_rel;           /* last round's noise / mean, or < 0 */
@@ -337,15 +338,16 @@ void ref_progress_end(ref_progress *prog);
 double ref_now(void);
 
 /* fmaxf and fminf, inlined: without -ffinite-math-only GCC calls libm for them. The same results
- * as glibc's for every input, NaN (the other operand) and signed zeros (the first) included. */
+ * as x86-64 glibc's for every input but signalling NaNs: a quiet NaN gives the other operand, and
+ * a tie (+0 against -0) the second operand, as maxss/minss do. */
 static inline float ref_fmaxf(float a, float b)
 {
-    return (a >= b || b != b) ? a : b;
+    return (a > b || b != b) ? a : b;
 }
 
 static inline float ref_fminf(float a, float b)
 {
-    return (a <= b || b != b) ? a : b;
+    return (a < b || b != b) ? a : b;
 }
 
 /* Small vector helpers. */

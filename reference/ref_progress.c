@@ -67,6 +67,8 @@ void ref_parallel(int nthreads, int ntasks, ref_task_fn fn, void *ctx, ref_progr
             break; /* fewer threads is slower, not wrong */
         started++;
     }
+    if (prog && (started > 0 ? started : 1) > prog->threads_used)
+        prog->threads_used = started > 0 ? started : 1;
     if (started == 0) {
         ref_pool_worker(&pl);
     } else if (prog && prog->enabled) {

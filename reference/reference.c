@@ -351,6 +351,7 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         stats->target_reached = np->target_noise > 0.0 ? reached : 0;
         stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
         stats->seconds = ref_now() - t0;
+        stats->threads = prog.threads_used;
         if (w->time_embree) { /* ticks to seconds at the rate the clock ran during this render,
                                * less the clock reads themselves (one pair a ray) */
             double k = (double)(ref_ticks() - k0), wall = ref_now() - t0;

@@ -133,7 +133,8 @@ typedef struct gib_ref_stats {
     int target_reached;   /* with target_noise: 1 if noise_rmse / mean <= target_noise */
     int deterministic;    /* gib_component_deterministic() */
     double embree_cpu_seconds; /* bench only: seconds inside Embree's ray calls, summed over
-                                * threads (0 unless the bench asked for it) */
+                                * threads (0 unless the bench asked for it, or not measurable) */
+    int threads;          /* threads the render ran on (at most one per image row, 256) */
 } gib_ref_stats;
 
 /* Renders into out (3 channels, allocated here). If stderr_img is non-NULL it receives the per-pixel

@@ -222,7 +222,10 @@ int gib_cmd_bench(int argc, char **argv)
     /* Written beside --out and renamed over it once a scene has its rows: a run where no scene
      * could be measured leaves an earlier file of that name as it was. */
     char part[4096];
-    snprintf(part, sizeof part, "%s.part", out ? out : "");
+    if (snprintf(part, sizeof part, "%s.part", out ? out : "") >= (int)sizeof part) {
+        fprintf(stderr, "gibench bench: --out path too long (%zu characters)\n", strlen(out));
+        return 2;
+    }
     FILE *f = out ? fopen(part, "w") : NULL;
     if (out && !f) {
         fprintf(stderr, "gibench bench: cannot write %s\n", part);
