@@ -178,14 +178,6 @@ static double ref_sorted_stats(double *v, int n, double *median, double *max)
     return v[0];
 }
 
-/* An unbounded closest-hit ray from o along d. */
-static void ref_bench_ray(struct RTCRay *r, const float o[3], const float d[3])
-{
-    r->org_x = o[0], r->org_y = o[1], r->org_z = o[2], r->tnear = 0.0f;
-    r->dir_x = d[0], r->dir_y = d[1], r->dir_z = d[2], r->time = 0.0f;
-    r->tfar = INFINITY, r->mask = 0xffffffffu, r->id = 0, r->flags = 0;
-}
-
 /* Random rays: origins uniform in the bounding box, directions uniform on the sphere. */
 static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
 {
@@ -208,7 +200,7 @@ static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
         float s = sqrtf(fmaxf(0.0f, 1.0f - z * z)), d[3] = {s * cosf(phi), s * sinf(phi), z};
         for (int k = 0; k < 3; k++)
             o[k] = lo[k] + (hi[k] - lo[k]) * ref_pcg32_float(&rng);
-        ref_bench_ray(&log->rays[i], o, d);
+        ref_ray_init(&log->rays[i], o, d, INFINITY);
     }
     return 0;
 }
@@ -241,7 +233,7 @@ static int ref_diffuse_log(const ref_world *w, const gib_ref_params *p, ref_rayl
         gib_camera_ray(cam, p->width, p->height, ref_pcg32_float(&rng) * (float)p->width,
                        ref_pcg32_float(&rng) * (float)p->height, o, d);
         struct RTCRayHit rh;
-        ref_bench_ray(&rh.ray, o, d);
+        ref_ray_init(&rh.ray, o, d, INFINITY);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(w->scene, &ctx, &rh);
@@ -256,7 +248,7 @@ static int ref_diffuse_log(const ref_world *w, const gib_ref_params *p, ref_rayl
         ref_sample_cosine(n, u1, u2, dir);
         for (int k = 0; k < 3; k++)
             org[k] = o[k] + rh.ray.tfar * d[k] + w->eps * n[k];
-        ref_bench_ray(&log->rays[i++], org, dir);
+        ref_ray_init(&log->rays[i++], org, dir, INFINITY);
     }
     return 0;
 }

@@ -123,6 +123,8 @@ typedef struct ref_pending {
 } ref_pending;
 int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq);
 void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit);
+/* Fills an Embree ray (o, d) over [0, tfar], time 0, every mask bit. */
+void ref_ray_init(struct RTCRay *r, const float o[3], const float d[3], float tfar);
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */
 int ref_occluded(const ref_world *w, const float o[3], const float d[3], float tfar);
 /* Bench: a cheap clock (the time-stamp counter on x86, nanoseconds elsewhere; ticks to seconds
