@@ -81,6 +81,7 @@ void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gi
     const int c = p->component;
     o->threads = 0;
     o->quiet = 0;
+    o->interrupt = NULL;
     int bounded = p->dmax > 0.0f && isfinite(p->dmax);
     if (c == GIB_COMP_AO) {
         o->dmax = bounded ? p->dmax : INFINITY; /* <= 0 and inf: the same unbounded image */
@@ -215,5 +216,10 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
     ref_attr(attrs, max_attrs, &n, "sky", "%.9g %.9g %.9g",
              scene ? (double)scene->sky[0] : 0.0, scene ? (double)scene->sky[1] : 0.0,
              scene ? (double)scene->sky[2] : 0.0);
+    ref_attr(attrs, max_attrs, &n, "stop", "%s",
+             s && s->interrupted       ? "interrupted"
+             : !(q.target_noise > 0.0) ? "spp"
+             : s && s->target_reached  ? "target"
+                                       : "max_spp");
     return n;
 }

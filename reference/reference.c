@@ -301,7 +301,7 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     atomic_init(&prog.rays, 0);
     atomic_init(&prog.embree_ticks, 0);
     r.prog = &prog;
-    int rc = -1, n = 0, goal = np->spp, rounds = 0, reached = 0;
+    int rc = -1, n = 0, goal = np->spp, rounds = 0, reached = 0, interrupted = 0;
     double mean = 0.0, noise = 0.0;
     if (ref_run_alloc(&r, err) < 0)
         goto done;
@@ -325,11 +325,17 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         ref_summary(&r, n, &mean, &noise);
         double rel = mean > 0.0 ? noise / mean : (noise > 0.0 ? INFINITY : 0.0);
         ref_progress_round(&prog, n, rel);
+        if (p->interrupt)
+            p->interrupt->rounds_done = rounds;
         if (!(np->target_noise > 0.0))
             break;
         reached = rel <= np->target_noise;
         if (reached || n >= np->max_spp)
             break;
+        if (p->interrupt && p->interrupt->requested) {
+            interrupted = 1;
+            break;
+        }
         goal = ref_next_goal(n, rel, np->target_noise, np->max_spp);
     }
     ref_progress_end(&prog);
@@ -348,7 +354,10 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         stats->rays = atomic_load(&prog.rays);
         stats->spp = n;
         stats->rounds = rounds;
-        stats->target_reached = np->target_noise > 0.0 ? reached : 0;
+        /* a target asked of a deterministic estimator is met: normalisation dropped it, the
+         * noise is exactly 0 */
+        stats->target_reached = np->target_noise > 0.0 ? reached : p->target_noise > 0.0;
+        stats->interrupted = interrupted;
         stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
         stats->seconds = ref_now() - t0;
         stats->threads = prog.threads_used;

@@ -68,6 +68,7 @@
 #ifndef GIB_REFERENCE_H
 #define GIB_REFERENCE_H
 
+#include <signal.h>
 #include <stdio.h>
 #include "../harness/imaging/image.h"
 #include "../scenes/scene.h"
@@ -104,6 +105,16 @@ int gib_component_deterministic(const gib_scene *scene, int component);
 #define GIB_REF_DEFAULT_MAX_SPECULAR 1
 #define GIB_REF_DEFAULT_MAX_SPP 65536
 
+/* A request to stop early, for a caller that catches an interrupt (`gibench reference` on Ctrl-C):
+ * a render in rounds toward a target noise ends after the round in progress once `requested` is
+ * set, and returns the rounds done (gib_ref_stats.interrupted), each sample as it would have been.
+ * The renderer sets rounds_done after each round, so a handler can tell whether anything would be
+ * kept. Both are written from a signal handler or read in one, hence sig_atomic_t. */
+typedef struct gib_ref_interrupt {
+    volatile sig_atomic_t requested;
+    volatile sig_atomic_t rounds_done;
+} gib_ref_interrupt;
+
 typedef struct gib_ref_params {
     int component;        /* enum gib_component */
     int width, height;
@@ -121,6 +132,7 @@ typedef struct gib_ref_params {
     int threads;          /* 0 = all cores */
     int camera;           /* index into scene->cameras */
     int quiet;            /* no progress output */
+    gib_ref_interrupt *interrupt; /* NULL: none; never changes the image */
 } gib_ref_params;
 
 typedef struct gib_ref_stats {
@@ -130,7 +142,9 @@ typedef struct gib_ref_stats {
     long long rays;       /* rays traced (primary, shadow, bounce, ao, light paths, camera links) */
     int spp;              /* samples per pixel actually taken (1 for deterministic estimators) */
     int rounds;           /* sampling rounds (1 without target_noise) */
-    int target_reached;   /* with target_noise: 1 if noise_rmse / mean <= target_noise */
+    int target_reached;   /* with target_noise: 1 if noise_rmse / mean <= target_noise (always for
+                           * a deterministic estimator: its noise is exactly 0) */
+    int interrupted;      /* 1: stopped early by p->interrupt, before the target or max_spp */
     int deterministic;    /* gib_component_deterministic() */
     double embree_cpu_seconds; /* bench only: seconds inside Embree's ray calls, summed over
                                 * threads (0 unless the bench asked for it, or not measurable) */
@@ -163,10 +177,11 @@ uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p
  * ("inf" when unbounded), seed, camera, obscurance, max_depth, min_depth, max_specular,
  * target_noise, max_spp, rounds, estimator ("deterministic" or "random"), footprint ("centre" or
  * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key,
- * sky (the sky's radiance, three numbers, "0 0 0" without one).
+ * sky (the sky's radiance, three numbers, "0 0 0" without one), stop (why sampling ended: "spp"
+ * the fixed count, "target" the target noise, "max_spp" the cap before the target, "interrupted").
  * Parameters are written normalised. Returns the count written, at most max_attrs;
  * GIB_REF_ATTR_COUNT is how many there are. */
-#define GIB_REF_ATTR_COUNT 24
+#define GIB_REF_ATTR_COUNT 25
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
 

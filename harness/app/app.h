@@ -27,6 +27,10 @@ int gib_parse_float(const char *opt, const char *s, double min, double max, doub
 int gib_cli_load_scene(const char *cmd, const char *name, long camera, gib_scene *scene);
 /* Makes a directory and its parents. */
 int gib_mkdirs(const char *path, gib_error *err);
+/* Refuses, before any work is done, an output file that could not be written at the end: a path
+ * that is a directory, a folder that is missing or not writable, a read-only file, or (ext not
+ * NULL) a name that does not end in ext. Errors name the option. */
+int gib_check_output(const char *opt, const char *path, const char *ext, gib_error *err);
 /* The git revision the binary was built from ("unknown" outside a checkout). */
 const char *gib_git_revision(void);
 
@@ -49,6 +53,11 @@ typedef struct gib_ref_request {
     const char *cache_dir;
     int force;           /* render even when a valid entry exists */
     int quiet;           /* no progress output */
+    int threads;         /* 0: all cores (the image does not depend on it) */
+    gib_ref_interrupt *interrupt; /* NULL, or stop early on request (reference.h): the rounds done
+                                   * are not stored as the entry (they missed its target) but
+                                   * written beside it, and gib_reference_get fails naming that
+                                   * file */
 } gib_ref_request;
 
 typedef struct gib_ref_result {
@@ -64,8 +73,16 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
 /* Sets the reference parameters that a technique's own parameters decide, so the reference models
  * what the technique estimates: `dmax` (unbounded when the technique has none) and `obscurance`. */
 void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p);
-/* The renderer parameters of a request (seed 1, all cores). */
+/* The renderer parameters of a request (seed 1). */
 gib_ref_params gib_ref_request_params(const gib_ref_request *rq);
+/* The seal of a reference EXR: appends a "content_hash" attribute (when max allows) that hashes
+ * the pixels and every other attribute, so that an image or header changed after writing is
+ * detected (FNV-1a: edits and corruption, not forgery). Returns the new count. */
+int gib_ref_seal(const gib_image *img, gib_kv *attrs, int n, int max);
+/* 1 when the header got (as read back) carries the seal of img and of the values of the
+ * attributes named in want (the keys written: a header may hold others), 0 otherwise. */
+int gib_ref_seal_ok(const gib_image *img, const gib_kv *want, int nwant, const gib_kv *got,
+                    int ngot);
 
 /* Scores a technique image against a reference and writes the images: DIR/NAME.exr, NAME.png
  * (preview at the scene's exposure) and NAME_error.png. */

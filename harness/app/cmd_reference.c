@@ -1,10 +1,14 @@
 /* gibench reference — renders one light-transport component with the Embree path tracer and
  * writes it as EXR with its metadata (and a PNG preview beside it), directly (--out) or through
  * the reference cache (--cache DIR, --force to render again). */
+#include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "app.h"
 
@@ -16,8 +20,9 @@ static const char help[] =
     "                         [--camera I] [--seed N] [--threads N] [--stderr F.exr] [--quiet]\n"
     "\n"
     "Components (paths in Heckbert notation, reference/reference.h):\n"
-    "  ao        ambient occlusion within --dmax (default unbounded); --obscurance 1 weights an\n"
-    "            occluder at distance d by min(d / dmax, 1) (Zhukov et al. 1998; needs --dmax)\n"
+    "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
+    "            weights an occluder at distance d by min(d / dmax, 1) (Zhukov et al. 1998; needs\n"
+    "            a finite --dmax)\n"
     "  direct    L D E, L S E            indirect  L D D E         glossy  L D S E\n"
     "  caustic   L S+ D E with at most --max-specular S vertices (default 1), light traced\n"
     "  full      all paths of at most --max-depth vertices (default 8), Russian roulette from\n"
@@ -30,8 +35,57 @@ static const char help[] =
     "(default 65536) is reached. Random components need spp >= 2 (the variance of one sample is\n"
     "unknown); deterministic ones (direct with only point,\n"
     "spot and directional lights - not with a sky -, the auxiliary images) take one sample.\n"
+    "Ctrl-C during a --target-noise render finishes the round in progress and writes the rounds\n"
+    "done (header stop: interrupted; exit status 130); a second Ctrl-C abandons them. Through\n"
+    "--cache they are written beside the entry, not as it (they missed its target).\n"
     "The EXR header records component, parameters, spp, seconds, scene hash, renderer version,\n"
-    "the cache key and the image's noise RMSE (standard error from the per-pixel variance).\n";
+    "the cache key, the image's noise RMSE (standard error from the per-pixel variance), why\n"
+    "sampling stopped, and a seal of pixels and header (a changed cache entry is rendered again).\n"
+    "--stderr writes the standard error of each pixel, its header marked image: standard_error.\n"
+    "--out and --stderr are EXR files, checked to be writable before rendering.\n";
+
+/* Ctrl-C: once a round is done, the first one asks the renderer to stop after the round in
+ * progress (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
+ * as usual. */
+static gib_ref_interrupt interrupt_req;
+
+static void on_interrupt(int sig)
+{
+    if (interrupt_req.rounds_done > 0 && !interrupt_req.requested) {
+        interrupt_req.requested = 1;
+        static const char msg[] = "\ngibench reference: interrupted: finishing the round in "
+                                  "progress, then writing the rounds done (Ctrl-C again to "
+                                  "abandon them)\n";
+        ssize_t wr = write(STDERR_FILENO, msg, sizeof msg - 1);
+        (void)wr;
+        return;
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+/* The path with its folder resolved (gib_check_output has made sure the folder exists). */
+static void resolved_path(const char *path, char out[PATH_MAX + 256])
+{
+    char dir[PATH_MAX], real[PATH_MAX];
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) + 1 : 1, slash ? path : ".");
+    if (realpath(dir, real))
+        snprintf(out, PATH_MAX + 256, "%s/%.200s", real, base);
+    else
+        snprintf(out, PATH_MAX + 256, "%s", path);
+}
+
+/* 1 when a and b name the same file: the same resolved path, or the same existing file. */
+static int same_file(const char *a, const char *b)
+{
+    char ra[PATH_MAX + 256], rb[PATH_MAX + 256];
+    struct stat sa, sb;
+    resolved_path(a, ra);
+    resolved_path(b, rb);
+    return !strcmp(ra, rb) || (stat(a, &sa) == 0 && stat(b, &sb) == 0 &&
+                               sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
+}
 
 static int write_png_beside(const char *exr, const gib_image *img, float exposure, gib_error *err)
 {
@@ -112,6 +166,21 @@ int gib_cmd_reference(int argc, char **argv)
         fprintf(stderr, "gibench reference: --force re-renders a cache entry: give --cache DIR\n");
         return 2;
     }
+    if (target > 0 && max_spp > 0 && max_spp < spp) {
+        fprintf(stderr, "gibench reference: --max-spp %ld is below --spp %ld (the first round's "
+                        "count)\n", max_spp, spp);
+        return 2;
+    }
+    if ((out && gib_check_output("--out", out, ".exr", &err) < 0) ||
+        (se_out && gib_check_output("--stderr", se_out, ".exr", &err) < 0)) {
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+        return 2;
+    }
+    if (out && se_out && same_file(out, se_out)) {
+        fprintf(stderr, "gibench reference: --stderr %s is the --out file: the image and its "
+                        "standard-error map need two files\n", se_out);
+        return 2;
+    }
     if (cache && se_out) {
         fprintf(stderr, "gibench reference: --stderr needs a fresh render: use --out without "
                         "--cache\n");
@@ -142,10 +211,14 @@ int gib_cmd_reference(int argc, char **argv)
     int status = 0;
     gib_ref_result res = {0};
     const char *where = out;
+    if (target > 0) { /* rounds: Ctrl-C keeps the rounds done */
+        p.interrupt = &interrupt_req;
+        signal(SIGINT, on_interrupt);
+    }
     if (cache) {
-        if (seed != 1 || threads != 0) {
-            fprintf(stderr, "gibench reference: the cache holds seed 1 renders on all cores: "
-                            "--seed and --threads go with --out only\n");
+        if (seed != 1) {
+            fprintf(stderr, "gibench reference: the cache holds seed 1 renders: --seed goes with "
+                            "--out only\n");
             gib_scene_free(&scene);
             return 2;
         }
@@ -154,11 +227,14 @@ int gib_cmd_reference(int argc, char **argv)
                               .obscurance = (int)obsc, .max_depth = (int)max_depth,
                               .min_depth = (int)min_depth, .max_specular = (int)max_spec,
                               .target_noise = target, .max_spp = (int)max_spp,
-                              .cache_dir = cache, .force = force, .quiet = quiet};
-        if (gib_reference_get(&rq, &res, &err) < 0) {
+                              .cache_dir = cache, .force = force, .quiet = quiet,
+                              .threads = (int)threads, .interrupt = p.interrupt};
+        int grc = gib_reference_get(&rq, &res, &err);
+        signal(SIGINT, SIG_DFL);
+        if (grc < 0) {
             fprintf(stderr, "gibench reference: %s\n", err.msg);
             gib_scene_free(&scene);
-            return 1;
+            return interrupt_req.requested ? 130 : 1;
         }
         img = res.image;
         st.spp = res.spp;
@@ -170,13 +246,17 @@ int gib_cmd_reference(int argc, char **argv)
                res.from_cache ? "from cache" : "rendered into cache", res.path, res.spp,
                res.noise_rmse);
         where = res.path;
-    } else if (gib_reference_render(&scene, &p, &img, se_out ? &se : NULL, &st, &err) < 0) {
-        fprintf(stderr, "gibench reference: %s\n", err.msg);
-        gib_scene_free(&scene);
-        return 1;
+    } else {
+        int rrc = gib_reference_render(&scene, &p, &img, se_out ? &se : NULL, &st, &err);
+        signal(SIGINT, SIG_DFL);
+        if (rrc < 0) {
+            fprintf(stderr, "gibench reference: %s\n", err.msg);
+            gib_scene_free(&scene);
+            return 1;
+        }
     }
     if (out) {
-        gib_kv attrs[GIB_REF_ATTR_COUNT];
+        gib_kv attrs[GIB_REF_ATTR_COUNT + 1], se_attrs[GIB_REF_ATTR_COUNT + 2];
         int n = gib_reference_attrs(&scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
         if (cache) { /* the entry's own values (time, rounds, mean, ...) for our keys */
             gib_kv *ca = NULL;
@@ -192,9 +272,22 @@ int gib_cmd_reference(int argc, char **argv)
             }
             free(ca);
         }
+        /* the standard-error map: the render's header, marked, and no cache key (it is no
+         * reference image) */
+        int sn = n;
+        memcpy(se_attrs, attrs, (size_t)n * sizeof attrs[0]);
+        if (se_out) {
+            for (int i = 0; i < sn; i++)
+                if (!strcmp(se_attrs[i].key, "cache_key"))
+                    snprintf(se_attrs[i].value, sizeof se_attrs[i].value, "none");
+            snprintf(se_attrs[sn].key, sizeof se_attrs[sn].key, "image");
+            snprintf(se_attrs[sn].value, sizeof se_attrs[sn].value, "standard_error");
+            sn = gib_ref_seal(&se, se_attrs, sn + 1, GIB_REF_ATTR_COUNT + 2);
+        }
+        n = gib_ref_seal(&img, attrs, n, GIB_REF_ATTR_COUNT + 1);
         if (gib_exr_write(out, &img, attrs, n, &err) < 0 ||
             write_png_beside(out, &img, scene.exposure, &err) < 0 ||
-            (se_out && gib_exr_write(se_out, &se, attrs, n, &err) < 0)) {
+            (se_out && gib_exr_write(se_out, &se, se_attrs, sn, &err) < 0)) {
             fprintf(stderr, "gibench reference: %s\n", err.msg);
             status = 1;
         } else if (!cache) {
@@ -204,8 +297,13 @@ int gib_cmd_reference(int argc, char **argv)
                    st.deterministic ? " (deterministic)" : "", st.seconds,
                    st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.mean, st.noise_rmse,
                    st.mean > 0 ? 100.0 * st.noise_rmse / st.mean : 0.0, out);
-            if (target > 0 && !st.target_reached)
+            if (st.interrupted) {
+                printf("interrupted: the %d spp of the rounds done are in %s (target noise %.3g "
+                       "not reached)\n", st.spp, out, target);
+                status = 130;
+            } else if (target > 0 && !st.target_reached) {
                 printf("warning: target noise %.3g not reached within --max-spp\n", target);
+            }
         }
     }
     gib_image_free(&img);

@@ -3,9 +3,12 @@
  * An entry is an EXR named by gib_reference_cache_key(): a hash of everything that changes the
  * image — the scene's content hash (scene file, meshes, textures), the camera, size, component and
  * all its parameters (normalised, so that equal images share a key), spp or the target noise, seed
- * and the renderer version. Its header repeats those facts; an entry that cannot be read, whose
- * header's key, renderer version, scene hash, component or size do not match the request, or that
- * holds NaN or Inf, is rendered again and overwritten, never used. */
+ * and the renderer version. Its header repeats those facts and carries a seal (gib_ref_seal: a
+ * hash of the pixels and of every other attribute); an entry that cannot be read, whose header's
+ * key, renderer version, scene hash, component or size do not match the request, whose seal does
+ * not match its pixels and header (edited or corrupted since it was written: a wrong spp or noise
+ * figure would go into every results table), or that holds NaN or Inf, is rendered again and
+ * overwritten, never used. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,9 +24,52 @@ gib_ref_params gib_ref_request_params(const gib_ref_request *rq)
                         .spp = rq->spp, .dmax = rq->dmax, .obscurance = rq->obscurance,
                         .max_depth = rq->max_depth, .min_depth = rq->min_depth,
                         .max_specular = rq->max_specular, .target_noise = rq->target_noise,
-                        .max_spp = rq->max_spp, .seed = 1, .threads = 0, .camera = rq->camera,
-                        .quiet = rq->quiet};
+                        .max_spp = rq->max_spp, .seed = 1, .threads = rq->threads,
+                        .camera = rq->camera, .quiet = rq->quiet, .interrupt = rq->interrupt};
     return p;
+}
+
+#define GIB_SEAL_KEY "content_hash"
+
+/* The hash of the pixels and of want's keys with their values in got, or 0 when got lacks one. */
+static uint64_t seal_hash(const gib_image *img, const gib_kv *want, int nwant, const gib_kv *got,
+                          int ngot)
+{
+    uint64_t h = gib_hash_u64(GIB_HASH_INIT, (uint64_t)img->width << 32 | (uint32_t)img->height);
+    h = gib_hash_u64(h, (uint64_t)img->channels);
+    h = gib_hash_bytes(h, img->px,
+                       (size_t)img->width * (size_t)img->height * (size_t)img->channels *
+                           sizeof *img->px);
+    for (int i = 0; i < nwant; i++) {
+        if (!strcmp(want[i].key, GIB_SEAL_KEY))
+            continue;
+        const char *v = gib_kv_get(got, ngot, want[i].key);
+        if (!v)
+            return 0;
+        h = gib_hash_str(gib_hash_str(h, want[i].key), v);
+    }
+    return h ? h : 1;
+}
+
+int gib_ref_seal(const gib_image *img, gib_kv *attrs, int n, int max)
+{
+    if (n >= max)
+        return n;
+    char hex[17];
+    gib_hash_hex(seal_hash(img, attrs, n, attrs, n), hex);
+    snprintf(attrs[n].key, sizeof attrs[n].key, "%s", GIB_SEAL_KEY);
+    snprintf(attrs[n].value, sizeof attrs[n].value, "%s", hex);
+    return n + 1;
+}
+
+int gib_ref_seal_ok(const gib_image *img, const gib_kv *want, int nwant, const gib_kv *got,
+                    int ngot)
+{
+    const char *seal = gib_kv_get(got, ngot, GIB_SEAL_KEY);
+    uint64_t h = seal_hash(img, want, nwant, got, ngot);
+    char hex[17];
+    gib_hash_hex(h, hex);
+    return seal && h && !strcmp(seal, hex);
 }
 
 static int attr_is(const gib_kv *attrs, int n, const char *key, const char *want)
@@ -47,6 +93,9 @@ static int entry_valid(const char *path, const gib_ref_request *rq, const char *
     }
     char scene_hex[17], num[32];
     gib_hash_hex(rq->scene->content_hash, scene_hex);
+    gib_ref_params p = gib_ref_request_params(rq);
+    gib_kv want[GIB_REF_ATTR_COUNT];
+    int want_n = 0;
     const char *noise = gib_kv_get(attrs, n, "noise_rmse");
     const char *spp = gib_kv_get(attrs, n, "spp");
     const char *secs = gib_kv_get(attrs, n, "seconds");
@@ -64,6 +113,9 @@ static int entry_valid(const char *path, const gib_ref_request *rq, const char *
         why = "the image size";
     else if (!noise || !spp)
         why = "its header (no noise_rmse or spp)";
+    else if (want_n = gib_reference_attrs(rq->scene, &p, NULL, want, GIB_REF_ATTR_COUNT),
+             !gib_ref_seal_ok(img, want, want_n, attrs, n))
+        why = "its seal (pixels or header changed since it was written, or written before seals)";
     else if (gib_image_count_nonfinite(img) != 0)
         why = "finite pixels (it holds NaN or Inf)";
     if (!why) {
@@ -104,8 +156,20 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
     if (gib_reference_render(rq->scene, &p, &out->image, NULL, &st, err) < 0)
         return gib_error_prefix(err, "reference %s/%s", rq->scene->name,
                                 gib_component_name(rq->component));
-    gib_kv attrs[GIB_REF_ATTR_COUNT];
+    gib_kv attrs[GIB_REF_ATTR_COUNT + 1];
     int n = gib_reference_attrs(rq->scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
+    n = gib_ref_seal(&out->image, attrs, n, GIB_REF_ATTR_COUNT + 1);
+    if (st.interrupted) { /* the rounds done missed the entry's target: kept beside it, not as it */
+        char kept[1100];
+        snprintf(kept, sizeof kept, "%.*s.interrupted.exr", (int)strlen(out->path) - 4, out->path);
+        int wrc = gib_exr_write(kept, &out->image, attrs, n, err);
+        gib_image_free(&out->image);
+        if (wrc < 0)
+            return gib_error_prefix(err, "interrupted, and writing the rounds done to %s", kept);
+        return gib_fail(err, "interrupted after %d spp (noise RMSE %.3g, target not reached): "
+                             "the rounds done are in %s; no cache entry was written",
+                        st.spp, st.noise_rmse, kept);
+    }
     /* Write to a temporary name and rename, so an interrupted write never leaves a valid-looking
      * entry behind. */
     char tmp[1100];

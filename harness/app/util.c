@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "app.h"
 
@@ -83,6 +84,39 @@ int gib_mkdirs(const char *path, gib_error *err)
     }
     if (mkdir(buf, 0777) < 0 && errno != EEXIST)
         return gib_fail(err, "cannot create directory '%s': %s", buf, strerror(errno));
+    return 0;
+}
+
+int gib_check_output(const char *opt, const char *path, const char *ext, gib_error *err)
+{
+    size_t n = strlen(path), e = ext ? strlen(ext) : 0;
+    if (n == 0)
+        return gib_fail(err, "%s: empty path", opt);
+    if (ext && (n <= e || strcmp(path + n - e, ext) != 0))
+        return gib_fail(err, "%s %s: the file name must end in %s", opt, path, ext);
+    struct stat sb;
+    if (stat(path, &sb) == 0) {
+        if (S_ISDIR(sb.st_mode))
+            return gib_fail(err, "%s %s is a directory", opt, path);
+        if (access(path, W_OK) != 0)
+            return gib_fail(err, "%s %s: cannot write it: %s", opt, path, strerror(errno));
+    }
+    char dir[4096];
+    if (n >= sizeof dir)
+        return gib_fail(err, "%s: path too long (%zu characters)", opt, n);
+    memcpy(dir, path, n + 1);
+    char *slash = strrchr(dir, '/');
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == dir)
+        dir[1] = 0;
+    else
+        *slash = 0;
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
+        return gib_fail(err, "%s %s: folder %s does not exist", opt, path, dir);
+    if (access(dir, W_OK | X_OK) != 0)
+        return gib_fail(err, "%s %s: cannot write in folder %s: %s", opt, path, dir,
+                        strerror(errno));
     return 0;
 }
 

@@ -70,7 +70,7 @@ int main(void)
                 {"obscurance", "0"},      {"max_depth", "0"},
                 {"estimator", "random"},  {"footprint", "centre"},
                 {"missing", "none"},      {"rounds", "1"},
-                {"sky", "0 0 0"}};
+                {"sky", "0 0 0"},         {"stop", "spp"}};
     for (unsigned i = 0; i < sizeof want / sizeof want[0]; i++) {
         const char *v = rt_get(kv, n, want[i].key);
         RT_CHECK(v && strcmp(v, want[i].value) == 0, "attribute %s = '%s', expected '%s'",

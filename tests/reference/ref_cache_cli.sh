@@ -1,9 +1,12 @@
 #!/bin/sh
 # The reference cache through the CLI (harness/app/refcache.c, cmd_reference.c): a first request
 # renders into the cache, a second one reads it, --force renders again, and an entry that is
-# truncated or whose header belongs to another request is detected and rendered again, never used.
+# truncated, whose header belongs to another request, or whose header or pixels were edited after
+# it was written (its seal) is detected and rendered again, never used.
 # Also: --out beside --cache writes the same pixels (gibench compare: RMSE exactly 0), and two
-# plain --out renders of the same request have identical pixels.
+# plain --out renders of the same request have identical pixels; output paths that could not be
+# written are refused before rendering; the --stderr map is marked as one; Ctrl-C during a
+# --target-noise render keeps the rounds done (exit 130), equal to a plain render of that spp.
 # Usage: ref_cache_cli.sh GIBENCH WORKDIR. Expected values are exact strings and an RMSE of 0.
 set -u
 G="$1"
@@ -16,6 +19,15 @@ check() { # check WHAT EXPECTED-SUBSTRING OUTPUT
     *"$2"*) echo "ok: $1" ;;
     *) echo "FAIL: $1: expected '$2' in: $3"; fail=1 ;;
     esac
+}
+check_not() { # check_not WHAT UNEXPECTED-SUBSTRING OUTPUT
+    case "$3" in
+    *"$2"*) echo "FAIL: $1: did not expect '$2' in: $3"; fail=1 ;;
+    *) echo "ok: $1" ;;
+    esac
+}
+attr() { # attr FILE KEY: the header attribute's value, quoted as oiiotool prints it
+    oiiotool --info -v "$1" 2>&1 | sed -n "s/^ *$2: //p"
 }
 ref() { "$G" reference --scene cornell --component ao --spp 4 --size 16x12 --quiet "$@" 2>&1; }
 
@@ -42,6 +54,16 @@ check "an entry of another request is rendered again" "does not match its key" "
 out=$(ref --cache "$D/cache")
 check "... and then read" "from cache" "$out"
 
+# an entry whose header (spp) or pixels were edited after it was written: its seal does not match
+oiiotool "$entry" --sattrib spp 99 -o "$D/edit.exr" && mv "$D/edit.exr" "$entry"
+out=$(ref --cache "$D/cache")
+check "an entry with an edited header is rendered again" "does not match its seal" "$out"
+oiiotool "$entry" --mulc 2 -o "$D/edit.exr" && mv "$D/edit.exr" "$entry"
+out=$(ref --cache "$D/cache")
+check "an entry with edited pixels is rendered again" "does not match its seal" "$out"
+out=$(ref --cache "$D/cache" --threads 1)
+check "--threads goes with --cache (it does not change the image)" "from cache" "$out"
+
 # --out beside --cache, and two plain renders: the same pixels
 ref --cache "$D/cache" --out "$D/via_cache.exr" > /dev/null
 ref --out "$D/a.exr" > /dev/null
@@ -57,4 +79,58 @@ check "spp 1 of a random component is refused" "at least 2" "$out"
 # --force without --cache is refused
 out=$(ref --out "$D/x.exr" --force)
 check "--force needs --cache" "give --cache" "$out"
+# output files that could not be written are refused before rendering, naming the option
+mkdir -p "$D/dir.exr"
+out=$(ref --out "$D/dir.exr"); rc=$?
+check "--out a directory is refused" "--out $D/dir.exr is a directory" "$out"
+check "... as a usage error" "2" "$rc"
+out=$(ref --out "$D/no_such_folder/x.exr")
+check "--out in a missing folder is refused" "folder $D/no_such_folder does not exist" "$out"
+out=$(ref --out "$D/x.png")
+check "--out must be an EXR" "must end in .exr" "$out"
+out=$(ref --out "$D/s.exr" --stderr "$D/./s.exr")
+check "--stderr onto the --out file is refused" "need two files" "$out"
+out=$("$G" reference --scene cornell --component indirect --size 8x8 --spp 8 --target-noise 0.1 \
+      --max-spp 4 --out "$D/x.exr" 2>&1)
+check "--max-spp below --spp is refused, naming both" "--max-spp 4 is below --spp 8" "$out"
+
+# the standard-error map says what it is, and is no cache entry
+ref --out "$D/s.exr" --stderr "$D/se.exr" > /dev/null
+check "the --stderr header is marked" '"standard_error"' "$(attr "$D/se.exr" image)"
+check "... and has no cache key" '"none"' "$(attr "$D/se.exr" cache_key)"
+check_not "the image's header is not marked" 'standard_error' "$(attr "$D/s.exr" image)"
+
+# a target noise asked of a deterministic estimator is met at once (its noise is exactly 0)
+out=$("$G" reference --scene cornell --component direct --size 8x8 --target-noise 0.01 \
+      --out "$D/d.exr" 2>&1)
+check_not "a deterministic component meets any target noise" "not reached" "$out"
+
+# Ctrl-C once a round is done: the round in progress ends, the rounds done are written (exit
+# 130), and they are exactly a plain render of that many samples. The target cannot be met.
+interrupt() { # interrupt LOG ARGS...: runs gibench reference ARGS, interrupts it after round 2
+    log="$1"; shift
+    "$G" reference --scene cornell --component ao --size 16x12 --spp 4 --target-noise 1e-9 \
+        --max-spp 16777216 "$@" 2> "$log" &
+    pid=$!
+    n=0
+    while ! grep -q "(round 2)" "$log" && [ $n -lt 600 ]; do sleep 0.05; n=$((n + 1)); done
+    kill -INT $pid
+    (sleep 60; kill -KILL $pid) > /dev/null 2>&1 & # one that ignored it fails, never hangs
+    watchdog=$!
+    wait $pid
+    rc=$?
+    kill $watchdog 2> /dev/null
+    return $rc
+}
+interrupt "$D/int.log" --out "$D/int.exr" > /dev/null; rc=$?
+check "an interrupted render exits with 130" "130" "$rc"
+check "... and says why it stopped in its header" '"interrupted"' "$(attr "$D/int.exr" stop)"
+spp=$(attr "$D/int.exr" spp | tr -d '"')
+ref --spp "$spp" --out "$D/plain.exr" > /dev/null
+out=$("$G" compare "$D/plain.exr" "$D/int.exr" --json 2>&1)
+check "the rounds done ($spp spp) are a plain render of that spp" '"rmse": 0,' "$out"
+interrupt "$D/intc.log" --cache "$D/icache" > /dev/null; rc=$?
+check "an interrupted cache render exits with 130" "130" "$rc"
+check "... writes the rounds done beside the entry" "interrupted.exr" "$(ls "$D/icache")"
+check_not "... and no entry (it missed its target)" "_ao_16x12_" "$(ls "$D/icache" | grep -v interrupted)"
 exit $fail

@@ -94,6 +94,12 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
                  "%s: unreachable target %.3g: reached %d, %d spp (max %d)",
                  gib_component_name(comp), target, st.target_reached, st.spp, max_spp);
     }
+    /* the header says why sampling stopped */
+    gib_kv kv[GIB_REF_ATTR_COUNT];
+    int nkv = gib_reference_attrs(s, &p, &st, kv, GIB_REF_ATTR_COUNT);
+    const char *stop = gib_kv_get(kv, nkv, "stop");
+    RT_CHECK(stop && !strcmp(stop, reach ? "target" : "max_spp"), "%s: header stop '%s', want %s",
+             gib_component_name(comp), stop ? stop : "(missing)", reach ? "target" : "max_spp");
     gib_ref_params q = rt_params(comp, W, H, st.spp);
     q.max_depth = 3;
     rt_render(s, &q, &img2, &sd2, &st2);
@@ -110,6 +116,38 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
     gib_image_free(&sd2);
 }
 
+/* An interrupt requested before the render starts: the first round completes and is the result
+ * (a plain render of its spp, bit for bit), marked interrupted; the renderer counted the round. */
+static void test_interrupt(const gib_scene *s)
+{
+    gib_ref_params p = rt_params(GIB_COMP_FULL, 24, 20, 4);
+    p.target_noise = 1e-9;
+    p.max_depth = 3;
+    gib_ref_interrupt stop = {.requested = 1, .rounds_done = 0};
+    p.interrupt = &stop;
+    gib_image img, sd, img2, sd2;
+    gib_ref_stats st, st2;
+    rt_render(s, &p, &img, &sd, &st);
+    RT_CHECK(st.interrupted && !st.target_reached && st.rounds == 1 && st.spp == 4 &&
+                 stop.rounds_done == 1,
+             "interrupt: interrupted %d, reached %d, %d rounds, %d spp, rounds_done %d",
+             st.interrupted, st.target_reached, st.rounds, st.spp, (int)stop.rounds_done);
+    gib_kv kv[GIB_REF_ATTR_COUNT];
+    int nkv = gib_reference_attrs(s, &p, &st, kv, GIB_REF_ATTR_COUNT);
+    const char *why = gib_kv_get(kv, nkv, "stop");
+    RT_CHECK(why && !strcmp(why, "interrupted"), "interrupt: header stop '%s'", why ? why : "-");
+    gib_ref_params q = rt_params(GIB_COMP_FULL, 24, 20, 4);
+    q.max_depth = 3;
+    rt_render(s, &q, &img2, &sd2, &st2);
+    RT_CHECK(same(&img, &img2) && same(&sd, &sd2), "interrupt: the round kept differs from a "
+                                                   "plain 4 spp render");
+    printf("interrupted before round 1 ended: 1 round, 4 spp, bit-identical to a plain render\n");
+    gib_image_free(&img);
+    gib_image_free(&sd);
+    gib_image_free(&img2);
+    gib_image_free(&sd2);
+}
+
 int main(void)
 {
     gib_scene s;
@@ -118,6 +156,7 @@ int main(void)
     test_target(&s, GIB_COMP_INDIRECT, 0.25, 4096, 1);
     test_target(&s, GIB_COMP_FULL, 0.05, 4096, 1); /* camera and light-traced parts */
     test_target(&s, GIB_COMP_AO, 1e-4, 16, 0);
+    test_interrupt(&s);
     /* the same scene under a sky: direct is random then, and every estimator samples the sky */
     printf("with a sky:\n");
     rt_sky(&s, 0.3f, 0.35f, 0.4f);
