@@ -26,7 +26,7 @@ static const char help[] =
     "  direct    L D E, L S E            indirect  L D D E         glossy  L D S E\n"
     "  caustic   L S+ D E with at most --max-specular S vertices (default 1), light traced\n"
     "  full      all paths of at most --max-depth vertices (default 8), Russian roulette from\n"
-    "            --min-depth (default 3)\n"
+    "            --min-depth (default 3; none when it is not below --max-depth)\n"
     "  higher    what full has beyond direct + indirect + glossy + caustic\n"
     "  albedo, normal, depth   auxiliary images of the visible point\n"
     "\n"
