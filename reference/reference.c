@@ -326,13 +326,13 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         double rel = mean > 0.0 ? noise / mean : (noise > 0.0 ? INFINITY : 0.0);
         ref_progress_round(&prog, n, rel);
         if (p->interrupt)
-            p->interrupt->rounds_done = rounds;
+            atomic_store(&p->interrupt->rounds_done, rounds);
         if (!(np->target_noise > 0.0))
             break;
         reached = rel <= np->target_noise;
         if (reached || n >= np->max_spp)
             break;
-        if (p->interrupt && p->interrupt->requested) {
+        if (p->interrupt && atomic_load(&p->interrupt->requested)) {
             interrupted = 1;
             break;
         }

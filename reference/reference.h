@@ -68,7 +68,7 @@
 #ifndef GIB_REFERENCE_H
 #define GIB_REFERENCE_H
 
-#include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include "../harness/imaging/image.h"
 #include "../scenes/scene.h"
@@ -109,10 +109,11 @@ int gib_component_deterministic(const gib_scene *scene, int component);
  * a render in rounds toward a target noise ends after the round in progress once `requested` is
  * set, and returns the rounds done (gib_ref_stats.interrupted), each sample as it would have been.
  * The renderer sets rounds_done after each round, so a handler can tell whether anything would be
- * kept. Both are written from a signal handler or read in one, hence sig_atomic_t. */
+ * kept. Lock-free atomics: a signal handler on any of the render's threads may use them (C11
+ * 7.14.1.1), and the renderer's threads read them without a data race. */
 typedef struct gib_ref_interrupt {
-    volatile sig_atomic_t requested;
-    volatile sig_atomic_t rounds_done;
+    atomic_int requested;
+    atomic_int rounds_done;
 } gib_ref_interrupt;
 
 typedef struct gib_ref_params {

@@ -65,6 +65,7 @@ typedef struct gib_ref_result {
     int spp;             /* samples per pixel actually taken */
     double noise_rmse, seconds;
     int from_cache;
+    int interrupted;     /* the request's interrupt stopped it: no entry, see the error */
     char path[1024];
 } gib_ref_result;
 

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -46,13 +47,16 @@ static const char help[] =
 
 /* Ctrl-C: once a round is done, the first one asks the renderer to stop after the round in
  * progress (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
- * as usual. */
+ * as it would have. Not installed where the caller ignores SIGINT (a background job of a script,
+ * nohup): that choice is kept. */
 static gib_ref_interrupt interrupt_req;
+static struct sigaction interrupt_prev;
+static int interrupt_installed;
 
 static void on_interrupt(int sig)
 {
-    if (interrupt_req.rounds_done > 0 && !interrupt_req.requested) {
-        interrupt_req.requested = 1;
+    if (atomic_load(&interrupt_req.rounds_done) > 0 &&
+        atomic_exchange(&interrupt_req.requested, 1) == 0) {
         static const char msg[] = "\ngibench reference: interrupted: finishing the round in "
                                   "progress, then writing the rounds done (Ctrl-C again to "
                                   "abandon them)\n";
@@ -64,22 +68,42 @@ static void on_interrupt(int sig)
     raise(sig);
 }
 
+static void interrupt_install(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_interrupt;
+    sigemptyset(&sa.sa_mask);
+    if (sigaction(SIGINT, NULL, &interrupt_prev) == 0 && interrupt_prev.sa_handler != SIG_IGN &&
+        sigaction(SIGINT, &sa, NULL) == 0)
+        interrupt_installed = 1;
+}
+
+/* After the render: SIGINT as the caller had it (the files are then written or not at all). */
+static void interrupt_restore(void)
+{
+    if (interrupt_installed)
+        sigaction(SIGINT, &interrupt_prev, NULL);
+    interrupt_installed = 0;
+}
+
 /* The path with its folder resolved (gib_check_output has made sure the folder exists). */
-static void resolved_path(const char *path, char out[PATH_MAX + 256])
+#define RESOLVED_MAX (PATH_MAX + NAME_MAX + 2)
+static void resolved_path(const char *path, char out[RESOLVED_MAX])
 {
     char dir[PATH_MAX], real[PATH_MAX];
     const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
     snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) + 1 : 1, slash ? path : ".");
     if (realpath(dir, real))
-        snprintf(out, PATH_MAX + 256, "%s/%.200s", real, base);
+        snprintf(out, RESOLVED_MAX, "%s/%s", real, base);
     else
-        snprintf(out, PATH_MAX + 256, "%s", path);
+        snprintf(out, RESOLVED_MAX, "%s", path);
 }
 
 /* 1 when a and b name the same file: the same resolved path, or the same existing file. */
 static int same_file(const char *a, const char *b)
 {
-    char ra[PATH_MAX + 256], rb[PATH_MAX + 256];
+    char ra[RESOLVED_MAX], rb[RESOLVED_MAX];
     struct stat sa, sb;
     resolved_path(a, ra);
     resolved_path(b, rb);
@@ -92,7 +116,7 @@ static int write_png_beside(const char *exr, const gib_image *img, float exposur
     char png[4096];
     snprintf(png, sizeof png, "%s", exr);
     char *dot = strrchr(png, '.');
-    if (dot && !strcmp(dot, ".exr"))
+    if (dot && !strcasecmp(dot, ".exr"))
         *dot = 0;
     strncat(png, ".png", sizeof png - strlen(png) - 1);
     return gib_png_write_preview(png, img, exposure, err);
@@ -212,8 +236,10 @@ int gib_cmd_reference(int argc, char **argv)
     gib_ref_result res = {0};
     const char *where = out;
     if (target > 0) { /* rounds: Ctrl-C keeps the rounds done */
+        atomic_init(&interrupt_req.requested, 0);
+        atomic_init(&interrupt_req.rounds_done, 0);
         p.interrupt = &interrupt_req;
-        signal(SIGINT, on_interrupt);
+        interrupt_install();
     }
     if (cache) {
         if (seed != 1) {
@@ -230,11 +256,11 @@ int gib_cmd_reference(int argc, char **argv)
                               .cache_dir = cache, .force = force, .quiet = quiet,
                               .threads = (int)threads, .interrupt = p.interrupt};
         int grc = gib_reference_get(&rq, &res, &err);
-        signal(SIGINT, SIG_DFL);
+        interrupt_restore();
         if (grc < 0) {
             fprintf(stderr, "gibench reference: %s\n", err.msg);
             gib_scene_free(&scene);
-            return interrupt_req.requested ? 130 : 1;
+            return res.interrupted ? 130 : 1;
         }
         img = res.image;
         st.spp = res.spp;
@@ -248,7 +274,7 @@ int gib_cmd_reference(int argc, char **argv)
         where = res.path;
     } else {
         int rrc = gib_reference_render(&scene, &p, &img, se_out ? &se : NULL, &st, &err);
-        signal(SIGINT, SIG_DFL);
+        interrupt_restore();
         if (rrc < 0) {
             fprintf(stderr, "gibench reference: %s\n", err.msg);
             gib_scene_free(&scene);

@@ -113,6 +113,8 @@ static int entry_valid(const char *path, const gib_ref_request *rq, const char *
         why = "the image size";
     else if (!noise || !spp)
         why = "its header (no noise_rmse or spp)";
+    else if (attr_is(attrs, n, "stop", "interrupted"))
+        why = "a finished render (it holds the rounds done of an interrupted one)";
     else if (want_n = gib_reference_attrs(rq->scene, &p, NULL, want, GIB_REF_ATTR_COUNT),
              !gib_ref_seal_ok(img, want, want_n, attrs, n))
         why = "its seal (pixels or header changed since it was written, or written before seals)";
@@ -160,6 +162,7 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
     int n = gib_reference_attrs(rq->scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
     n = gib_ref_seal(&out->image, attrs, n, GIB_REF_ATTR_COUNT + 1);
     if (st.interrupted) { /* the rounds done missed the entry's target: kept beside it, not as it */
+        out->interrupted = 1;
         char kept[1100];
         snprintf(kept, sizeof kept, "%.*s.interrupted.exr", (int)strlen(out->path) - 4, out->path);
         int wrc = gib_exr_write(kept, &out->image, attrs, n, err);

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -92,7 +93,7 @@ int gib_check_output(const char *opt, const char *path, const char *ext, gib_err
     size_t n = strlen(path), e = ext ? strlen(ext) : 0;
     if (n == 0)
         return gib_fail(err, "%s: empty path", opt);
-    if (ext && (n <= e || strcmp(path + n - e, ext) != 0))
+    if (ext && (n <= e || strcasecmp(path + n - e, ext) != 0))
         return gib_fail(err, "%s %s: the file name must end in %s", opt, path, ext);
     struct stat sb;
     if (stat(path, &sb) == 0) {

@@ -20,6 +20,9 @@ check() { # check WHAT EXPECTED-SUBSTRING OUTPUT
     *) echo "FAIL: $1: expected '$2' in: $3"; fail=1 ;;
     esac
 }
+check_eq() { # check_eq WHAT EXPECTED ACTUAL
+    if [ "$2" = "$3" ]; then echo "ok: $1"; else echo "FAIL: $1: expected '$2', got '$3'"; fail=1; fi
+}
 check_not() { # check_not WHAT UNEXPECTED-SUBSTRING OUTPUT
     case "$3" in
     *"$2"*) echo "FAIL: $1: did not expect '$2' in: $3"; fail=1 ;;
@@ -83,7 +86,7 @@ check "--force needs --cache" "give --cache" "$out"
 mkdir -p "$D/dir.exr"
 out=$(ref --out "$D/dir.exr"); rc=$?
 check "--out a directory is refused" "--out $D/dir.exr is a directory" "$out"
-check "... as a usage error" "2" "$rc"
+check_eq "... as a usage error" "2" "$rc"
 out=$(ref --out "$D/no_such_folder/x.exr")
 check "--out in a missing folder is refused" "folder $D/no_such_folder does not exist" "$out"
 out=$(ref --out "$D/x.png")
@@ -107,30 +110,49 @@ check_not "a deterministic component meets any target noise" "not reached" "$out
 
 # Ctrl-C once a round is done: the round in progress ends, the rounds done are written (exit
 # 130), and they are exactly a plain render of that many samples. The target cannot be met.
-interrupt() { # interrupt LOG ARGS...: runs gibench reference ARGS, interrupts it after round 2
-    log="$1"; shift
-    "$G" reference --scene cornell --component ao --size 16x12 --spp 4 --target-noise 1e-9 \
-        --max-spp 16777216 "$@" 2> "$log" &
+# A background job of a script inherits SIGINT ignored; `env --default-signal=INT` gives it the
+# terminal's default, as an interactive shell would.
+start() { # start LOG PREFIX ARGS...: PREFIX gibench reference ARGS in the background ($pid),
+           # returning after its round 2
+    log="$1"; pre="$2"; shift 2
+    $pre "$G" reference --scene cornell --component ao --size 16x12 --spp 4 \
+        --target-noise 1e-9 --max-spp 16777216 "$@" 2> "$log" &
     pid=$!
+    wait_for "(round 2)" "$log"
+}
+wait_for() { # wait_for TEXT LOG: up to 60 s
     n=0
-    while ! grep -q "(round 2)" "$log" && [ $n -lt 600 ]; do sleep 0.05; n=$((n + 1)); done
-    kill -INT $pid
-    (sleep 60; kill -KILL $pid) > /dev/null 2>&1 & # one that ignored it fails, never hangs
+    while ! grep -q "$1" "$2" && [ $n -lt 1200 ]; do sleep 0.05; n=$((n + 1)); done
+}
+finish() { # finish: waits for $pid (killing it after 60 s: one that ignored SIGINT fails here)
+    (sleep 60; kill -KILL $pid) > /dev/null 2>&1 &
     watchdog=$!
     wait $pid
     rc=$?
     kill $watchdog 2> /dev/null
     return $rc
 }
-interrupt "$D/int.log" --out "$D/int.exr" > /dev/null; rc=$?
-check "an interrupted render exits with 130" "130" "$rc"
+start "$D/int.log" "env --default-signal=INT" --out "$D/int.exr" > /dev/null
+kill -INT $pid; finish; rc=$?
+check_eq "an interrupted render exits with 130" "130" "$rc"
 check "... and says why it stopped in its header" '"interrupted"' "$(attr "$D/int.exr" stop)"
 spp=$(attr "$D/int.exr" spp | tr -d '"')
 ref --spp "$spp" --out "$D/plain.exr" > /dev/null
 out=$("$G" compare "$D/plain.exr" "$D/int.exr" --json 2>&1)
 check "the rounds done ($spp spp) are a plain render of that spp" '"rmse": 0,' "$out"
-interrupt "$D/intc.log" --cache "$D/icache" > /dev/null; rc=$?
-check "an interrupted cache render exits with 130" "130" "$rc"
+start "$D/intc.log" "env --default-signal=INT" --cache "$D/icache" > /dev/null
+kill -INT $pid; finish; rc=$?
+check_eq "an interrupted cache render exits with 130" "130" "$rc"
 check "... writes the rounds done beside the entry" "interrupted.exr" "$(ls "$D/icache")"
 check_not "... and no entry (it missed its target)" "_ao_16x12_" "$(ls "$D/icache" | grep -v interrupted)"
+oiiotool "$entry" --sattrib stop interrupted -o "$D/edit.exr" && mv "$D/edit.exr" "$entry"
+out=$(ref --cache "$D/cache")
+check "an interrupted render put in as an entry is rendered again" "a finished render" "$out"
+# SIGINT ignored by whoever started it (a script's background job) stays ignored: more rounds
+# follow the signal than the one that was in progress
+start "$D/ign.log" "" --out "$D/ign.exr" > /dev/null
+kill -INT $pid
+wait_for "(round 4)" "$D/ign.log"
+check "an inherited SIGINT ignore is kept" "(round 4)" "$(cat "$D/ign.log")"
+kill -TERM $pid; finish 2> /dev/null
 exit $fail

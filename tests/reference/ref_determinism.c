@@ -123,15 +123,17 @@ static void test_interrupt(const gib_scene *s)
     gib_ref_params p = rt_params(GIB_COMP_FULL, 24, 20, 4);
     p.target_noise = 1e-9;
     p.max_depth = 3;
-    gib_ref_interrupt stop = {.requested = 1, .rounds_done = 0};
+    gib_ref_interrupt stop;
+    atomic_init(&stop.requested, 1);
+    atomic_init(&stop.rounds_done, 0);
     p.interrupt = &stop;
     gib_image img, sd, img2, sd2;
     gib_ref_stats st, st2;
     rt_render(s, &p, &img, &sd, &st);
     RT_CHECK(st.interrupted && !st.target_reached && st.rounds == 1 && st.spp == 4 &&
-                 stop.rounds_done == 1,
+                 atomic_load(&stop.rounds_done) == 1,
              "interrupt: interrupted %d, reached %d, %d rounds, %d spp, rounds_done %d",
-             st.interrupted, st.target_reached, st.rounds, st.spp, (int)stop.rounds_done);
+             st.interrupted, st.target_reached, st.rounds, st.spp, atomic_load(&stop.rounds_done));
     gib_kv kv[GIB_REF_ATTR_COUNT];
     int nkv = gib_reference_attrs(s, &p, &st, kv, GIB_REF_ATTR_COUNT);
     const char *why = gib_kv_get(kv, nkv, "stop");
