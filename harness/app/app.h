@@ -27,6 +27,8 @@ int gib_parse_float(const char *opt, const char *s, double min, double max, doub
 int gib_cli_load_scene(const char *cmd, const char *name, long camera, gib_scene *scene);
 /* Makes a directory and its parents. */
 int gib_mkdirs(const char *path, gib_error *err);
+/* The folder a file path names: "." without a slash, "/" for a file in the root. */
+void gib_path_folder(const char *path, char *out, size_t size);
 /* Refuses, before any work is done, an output file that could not be written at the end: a path
  * that is a directory, a folder that is missing or not writable, a read-only file, or (ext not
  * NULL) a name that does not end in ext. Errors name the option. */

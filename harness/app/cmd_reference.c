@@ -93,7 +93,7 @@ static void resolved_path(const char *path, char out[RESOLVED_MAX])
 {
     char dir[PATH_MAX], real[PATH_MAX];
     const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
-    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) + 1 : 1, slash ? path : ".");
+    gib_path_folder(path, dir, sizeof dir);
     if (realpath(dir, real))
         snprintf(out, RESOLVED_MAX, "%s/%s", real, base);
     else
@@ -205,6 +205,11 @@ int gib_cmd_reference(int argc, char **argv)
                         "standard-error map need two files\n", se_out);
         return 2;
     }
+    if (cache && seed != 1) {
+        fprintf(stderr, "gibench reference: the cache holds seed 1 renders: --seed goes with "
+                        "--out only\n");
+        return 2;
+    }
     if (cache && se_out) {
         fprintf(stderr, "gibench reference: --stderr needs a fresh render: use --out without "
                         "--cache\n");
@@ -242,12 +247,6 @@ int gib_cmd_reference(int argc, char **argv)
         interrupt_install();
     }
     if (cache) {
-        if (seed != 1) {
-            fprintf(stderr, "gibench reference: the cache holds seed 1 renders: --seed goes with "
-                            "--out only\n");
-            gib_scene_free(&scene);
-            return 2;
-        }
         gib_ref_request rq = {.scene = &scene, .camera = (int)camera, .width = w, .height = h,
                               .component = component, .spp = (int)spp, .dmax = (float)dmax,
                               .obscurance = (int)obsc, .max_depth = (int)max_depth,
@@ -300,9 +299,10 @@ int gib_cmd_reference(int argc, char **argv)
         }
         /* the standard-error map: the render's header, marked, and no cache key (it is no
          * reference image) */
-        int sn = n;
-        memcpy(se_attrs, attrs, (size_t)n * sizeof attrs[0]);
+        int sn = 0;
         if (se_out) {
+            memcpy(se_attrs, attrs, (size_t)n * sizeof attrs[0]);
+            sn = n;
             for (int i = 0; i < sn; i++)
                 if (!strcmp(se_attrs[i].key, "cache_key"))
                     snprintf(se_attrs[i].value, sizeof se_attrs[i].value, "none");

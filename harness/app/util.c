@@ -88,6 +88,17 @@ int gib_mkdirs(const char *path, gib_error *err)
     return 0;
 }
 
+void gib_path_folder(const char *path, char *out, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(out, size, ".");
+    else if (slash == path)
+        snprintf(out, size, "/");
+    else
+        snprintf(out, size, "%.*s", (int)(slash - path), path);
+}
+
 int gib_check_output(const char *opt, const char *path, const char *ext, gib_error *err)
 {
     size_t n = strlen(path), e = ext ? strlen(ext) : 0;
@@ -105,14 +116,7 @@ int gib_check_output(const char *opt, const char *path, const char *ext, gib_err
     char dir[4096];
     if (n >= sizeof dir)
         return gib_fail(err, "%s: path too long (%zu characters)", opt, n);
-    memcpy(dir, path, n + 1);
-    char *slash = strrchr(dir, '/');
-    if (!slash)
-        snprintf(dir, sizeof dir, ".");
-    else if (slash == dir)
-        dir[1] = 0;
-    else
-        *slash = 0;
+    gib_path_folder(path, dir, sizeof dir);
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode))
         return gib_fail(err, "%s %s: folder %s does not exist", opt, path, dir);
     if (access(dir, W_OK | X_OK) != 0)
