@@ -35,7 +35,23 @@ typedef struct ref_run {
     ref_splats *splats;       /* gn * chunks */
     double *pass_img;         /* gn * W*H*3 */
     int oom;
+    /* Interrupts (gib_ref_interrupt): the statistics as the last finished round left them, so a
+     * round in progress can be abandoned at once (its tasks skip their work) and undone. */
+    const gib_ref_interrupt *stop;
+    double *saved;            /* cm, cm2, lm, lm2 of the last finished round; NULL: none kept */
+    int can_abandon;          /* a finished round is saved */
+    atomic_int abandoned;     /* a task of this round skipped its work */
 } ref_run;
+
+/* 1 when the task should skip its work: an interrupt was requested and a finished round is saved
+ * to fall back to (without one, the round in progress is finished instead). */
+static int ref_abandon(ref_run *r)
+{
+    if (!r->can_abandon || !atomic_load(&r->stop->requested))
+        return 0;
+    atomic_store(&r->abandoned, 1);
+    return 1;
+}
 
 static inline void ref_welford(double *mean, double *m2, int n, const float v[3])
 {
@@ -54,6 +70,8 @@ static void ref_row_task(void *ctx, int y)
     const int aux = c->p.component >= GIB_COMP_ALBEDO;
     long long rays = 0;
     for (int x = 0; x < W; x++) {
+        if (ref_abandon(r))
+            return;
         size_t pix = (size_t)y * (size_t)W + (size_t)x;
         float o[3], d[3];
         /* Pixel centres only, no jitter: the GL techniques rasterise there without anti-aliasing,
@@ -103,6 +121,8 @@ static void ref_chunk_task(void *ctx, int task)
     long long rays = 0;
     ref_splats *out = &r->splats[task];
     out->n = 0;
+    if (ref_abandon(r))
+        return;
     ref_light_chunk(c, (uint64_t)pass, (uint32_t)chunk, count, out, &rays);
     atomic_fetch_add(&r->prog->rays, rays);
     atomic_fetch_add(&r->prog->units, (long long)count);
@@ -137,6 +157,8 @@ static int ref_light_round(ref_run *r, int nthreads)
         r->g0 = g0;
         r->gn = r->s1 - g0 < r->group ? r->s1 - g0 : r->group;
         ref_parallel(nthreads, r->gn * r->chunks, ref_chunk_task, r, r->prog);
+        if (atomic_load(&r->abandoned))
+            return 0; /* the round is undone from r->saved */
         for (int t = 0; t < r->gn * r->chunks; t++) { /* chunk order: deterministic sums */
             const ref_splats *sp = &r->splats[t];
             if (sp->oom)
@@ -244,8 +266,23 @@ static int ref_run_alloc(ref_run *r, gib_error *err)
     return r->splats ? 0 : -1;
 }
 
+/* Keeps (save 1) or restores (save 0) the statistics of the last finished round. */
+static void ref_run_saved(ref_run *r, int save)
+{
+    const size_t m = (size_t)r->c.p.width * (size_t)r->c.p.height * 3;
+    double *arr[4] = {r->cm, r->cm2, r->lm, r->lm2};
+    for (int i = 0; i < 4; i++)
+        if (arr[i]) {
+            if (save)
+                memcpy(r->saved + (size_t)i * m, arr[i], m * sizeof *arr[i]);
+            else
+                memcpy(arr[i], r->saved + (size_t)i * m, m * sizeof *arr[i]);
+        }
+}
+
 static void ref_run_free(ref_run *r)
 {
+    free(r->saved);
     if (r->splats)
         for (size_t i = 0; i < (size_t)r->group * r->chunks; i++)
             free(r->splats[i].s);
@@ -305,6 +342,11 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     double mean = 0.0, noise = 0.0;
     if (ref_run_alloc(&r, err) < 0)
         goto done;
+    r.stop = p->interrupt;
+    atomic_init(&r.abandoned, 0);
+    if (r.stop && np->target_noise > 0.0 &&
+        !(r.saved = gib_calloc((size_t)W * H * 3 * 4, sizeof *r.saved, err)))
+        goto done;
     if (gib_image_alloc(out, W, H, 3, err) < 0 ||
         (stderr_img && gib_image_alloc(stderr_img, W, H, 3, err) < 0))
         goto done;
@@ -321,6 +363,12 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
             gib_fail(err, "reference: out of memory for light-tracing splats");
             goto done;
         }
+        if (atomic_load(&r.abandoned)) { /* interrupted: back to the last finished round */
+            ref_run_saved(&r, 0);
+            rounds--;
+            interrupted = 1;
+            break;
+        }
         n = goal;
         ref_summary(&r, n, &mean, &noise);
         double rel = mean > 0.0 ? noise / mean : (noise > 0.0 ? INFINITY : 0.0);
@@ -335,6 +383,10 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         if (p->interrupt && atomic_load(&p->interrupt->requested)) {
             interrupted = 1;
             break;
+        }
+        if (r.saved) {
+            ref_run_saved(&r, 1);
+            r.can_abandon = 1;
         }
         goal = ref_next_goal(n, rel, np->target_noise, np->max_spp);
     }

@@ -106,10 +106,11 @@ int gib_component_deterministic(const gib_scene *scene, int component);
 #define GIB_REF_DEFAULT_MAX_SPP 65536
 
 /* A request to stop early, for a caller that catches an interrupt (`gibench reference` on Ctrl-C):
- * a render in rounds toward a target noise ends after the round in progress once `requested` is
- * set, and returns the rounds done (gib_ref_stats.interrupted), each sample as it would have been.
- * The renderer sets rounds_done after each round, so a handler can tell whether anything would be
- * kept. Lock-free atomics: a signal handler on any of the render's threads may use them (C11
+ * once `requested` is set, a render in rounds toward a target noise abandons the round in progress
+ * (its threads stop at the next pixel or light chunk; the statistics go back to the last finished
+ * round) and returns the rounds finished (gib_ref_stats.interrupted), each sample as it would have
+ * been; a request during the first round ends the render after it. The renderer sets rounds_done
+ * after each round, so a handler can tell whether anything would be kept. Lock-free atomics: a signal handler on any of the render's threads may use them (C11
  * 7.14.1.1), and the renderer's threads read them without a data race. */
 typedef struct gib_ref_interrupt {
     atomic_int requested;

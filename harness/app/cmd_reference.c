@@ -36,17 +36,18 @@ static const char help[] =
     "(default 65536) is reached. Random components need spp >= 2 (the variance of one sample is\n"
     "unknown); deterministic ones (direct with only point,\n"
     "spot and directional lights - not with a sky -, the auxiliary images) take one sample.\n"
-    "Ctrl-C during a --target-noise render finishes the round in progress and writes the rounds\n"
-    "done (header stop: interrupted; exit status 130); a second Ctrl-C abandons them. Through\n"
-    "--cache they are written beside the entry, not as it (they missed its target).\n"
+    "Ctrl-C during a --target-noise render, once a round is finished, stops at once and writes\n"
+    "the rounds finished (header stop: interrupted; exit status 130; during the first round it\n"
+    "ends the process). Through --cache they go beside the entry, not as it (they missed its\n"
+    "target).\n"
     "The EXR header records component, parameters, spp, seconds, scene hash, renderer version,\n"
     "the cache key, the image's noise RMSE (standard error from the per-pixel variance), why\n"
     "sampling stopped, and a seal of pixels and header (a changed cache entry is rendered again).\n"
     "--stderr writes the standard error of each pixel, its header marked image: standard_error.\n"
     "--out and --stderr are EXR files, checked to be writable before rendering.\n";
 
-/* Ctrl-C: once a round is done, the first one asks the renderer to stop after the round in
- * progress (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
+/* Ctrl-C: once a round is done, the first one asks the renderer to stop and keep the rounds
+ * finished (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
  * as it would have. Not installed where the caller ignores SIGINT (a background job of a script,
  * nohup): that choice is kept. */
 static gib_ref_interrupt interrupt_req;
@@ -57,9 +58,8 @@ static void on_interrupt(int sig)
 {
     if (atomic_load(&interrupt_req.rounds_done) > 0 &&
         atomic_exchange(&interrupt_req.requested, 1) == 0) {
-        static const char msg[] = "\ngibench reference: interrupted: finishing the round in "
-                                  "progress, then writing the rounds done (Ctrl-C again to "
-                                  "abandon them)\n";
+        static const char msg[] = "\ngibench reference: interrupted: writing the rounds "
+                                  "finished (Ctrl-C again to quit without them)\n";
         ssize_t wr = write(STDERR_FILENO, msg, sizeof msg - 1);
         (void)wr;
         return;
@@ -324,8 +324,8 @@ int gib_cmd_reference(int argc, char **argv)
                    st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.mean, st.noise_rmse,
                    st.mean > 0 ? 100.0 * st.noise_rmse / st.mean : 0.0, out);
             if (st.interrupted) {
-                printf("interrupted: the %d spp of the rounds done are in %s (target noise %.3g "
-                       "not reached)\n", st.spp, out, target);
+                printf("interrupted: the %d spp of the rounds finished are in %s (target noise "
+                       "%.3g not reached)\n", st.spp, out, target);
                 status = 130;
             } else if (target > 0 && !st.target_reached) {
                 printf("warning: target noise %.3g not reached within --max-spp\n", target);

@@ -108,8 +108,9 @@ out=$("$G" reference --scene cornell --component direct --size 8x8 --target-nois
       --out "$D/d.exr" 2>&1)
 check_not "a deterministic component meets any target noise" "not reached" "$out"
 
-# Ctrl-C once a round is done: the round in progress ends, the rounds done are written (exit
-# 130), and they are exactly a plain render of that many samples. The target cannot be met.
+# Ctrl-C once a round is done: the round in progress is abandoned, the rounds finished are
+# written (exit 130), and they are exactly a plain render of that many samples. The target
+# cannot be met.
 # A background job of a script inherits SIGINT ignored; `env --default-signal=INT` gives it the
 # terminal's default, as an interactive shell would.
 start() { # start LOG PREFIX ARGS...: PREFIX gibench reference ARGS in the background ($pid),

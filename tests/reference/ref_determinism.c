@@ -9,13 +9,19 @@
  *  - a different seed changes a random component's image (else the seed is ignored);
  *  - --target-noise: the rounds stop once noise_rmse / mean <= target (or at max_spp, then
  *    target_reached = 0), and the image of a run that stopped at N samples is bit-identical to a
- *    plain N-sample render (sample N is the same number whether drawn in round 1 or round 3).
+ *    plain N-sample render (sample N is the same number whether drawn in round 1 or round 3);
+ *    the header's `stop` says which;
+ *  - an interrupt (gib_ref_interrupt) requested before the first round ends the render after it;
+ *    one requested during round 2 abandons that round (or stops after it, if it had finished),
+ *    and the rounds kept are bit-identical to a plain render of their spp.
  * The scene has an alpha-masked occluder (Embree filter callbacks run concurrently), a Phong
  * object and a mirror (so glossy, caustic and the light-traced part of full/higher run); all of it
  * runs again with a sky (the sky's sampling in every estimator; `direct` then random, so its
  * seed must matter and its target noise be reachable). No tolerance: equality of bytes, and the
  * target inequality itself. */
+#include <pthread.h>
 #include <string.h>
+#include <time.h>
 
 #include "ref_test_util.h"
 
@@ -150,6 +156,52 @@ static void test_interrupt(const gib_scene *s)
     gib_image_free(&sd2);
 }
 
+/* Sets the interrupt as soon as the first round is finished, as a Ctrl-C handler would. */
+static void *interrupt_after_round_1(void *arg)
+{
+    gib_ref_interrupt *stop = arg;
+    while (atomic_load(&stop->rounds_done) < 1) {
+        struct timespec nap = {0, 100 * 1000};
+        nanosleep(&nap, NULL);
+    }
+    atomic_store(&stop->requested, 1);
+    return NULL;
+}
+
+/* An interrupt during round 2: the round is abandoned and the result is round 1's, bit for bit
+ * (or, when round 2 finished before its threads saw the request, rounds 1 and 2). */
+static void test_interrupt_mid_round(const gib_scene *s)
+{
+    gib_ref_params p = rt_params(GIB_COMP_FULL, 24, 20, 4);
+    p.target_noise = 1e-9;
+    p.max_spp = 1 << 20;
+    p.max_depth = 3;
+    gib_ref_interrupt stop;
+    atomic_init(&stop.requested, 0);
+    atomic_init(&stop.rounds_done, 0);
+    p.interrupt = &stop;
+    pthread_t th;
+    RT_CHECK(pthread_create(&th, NULL, interrupt_after_round_1, &stop) == 0, "pthread_create");
+    gib_image img, sd, img2, sd2;
+    gib_ref_stats st, st2;
+    rt_render(s, &p, &img, &sd, &st);
+    pthread_join(th, NULL);
+    RT_CHECK(st.interrupted && ((st.spp == 4 && st.rounds == 1) || (st.spp == 16 && st.rounds == 2)),
+             "interrupt in round 2: interrupted %d, %d rounds, %d spp (want 1 round of 4 or 2 "
+             "rounds, 16)", st.interrupted, st.rounds, st.spp);
+    gib_ref_params q = rt_params(GIB_COMP_FULL, 24, 20, st.spp);
+    q.max_depth = 3;
+    rt_render(s, &q, &img2, &sd2, &st2);
+    RT_CHECK(same(&img, &img2) && same(&sd, &sd2) && st.noise_rmse == st2.noise_rmse,
+             "interrupt in round 2: the %d spp kept differ from a plain render", st.spp);
+    printf("interrupted in round 2: %s, %d spp kept, bit-identical to a plain render\n",
+           st.rounds == 1 ? "round 2 abandoned" : "round 2 had finished", st.spp);
+    gib_image_free(&img);
+    gib_image_free(&sd);
+    gib_image_free(&img2);
+    gib_image_free(&sd2);
+}
+
 int main(void)
 {
     gib_scene s;
@@ -159,6 +211,7 @@ int main(void)
     test_target(&s, GIB_COMP_FULL, 0.05, 4096, 1); /* camera and light-traced parts */
     test_target(&s, GIB_COMP_AO, 1e-4, 16, 0);
     test_interrupt(&s);
+    test_interrupt_mid_round(&s);
     /* the same scene under a sky: direct is random then, and every estimator samples the sky */
     printf("with a sky:\n");
     rt_sky(&s, 0.3f, 0.35f, 0.4f);
