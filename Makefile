@@ -50,7 +50,16 @@ test: build build-asan
 	cd $(BUILD) && ctest --output-on-failure
 
 # The matrices, the reference's ray throughput, then plots and the papers' tables beside ours.
+# Afresh: `gibench run` skips the runs its CSV already holds, so the tables of the last run (the
+# committed ones, in a clone) move to $(RESULTS)/previous/ first; RESUME=1 continues an
+# interrupted run instead.
 reproduce: build
+	@if [ -z "$(RESUME)" ]; then \
+	  mkdir -p $(RESULTS)/previous; \
+	  for m in $(MATRICES); do n=$$(basename $$m .matrix); \
+	    for f in $(RESULTS)/$$n.csv $(RESULTS)/$${n}_passes.csv; do \
+	      if [ -f $$f ]; then mv $$f $(RESULTS)/previous/; fi; done; done; \
+	fi
 	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
 	  rc=$$?; \
 	  $(BUILD)/gibench bench reference --scene cornell,sibenik,sponza --repeat 9 \
