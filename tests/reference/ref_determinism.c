@@ -80,6 +80,31 @@ static void test_threads(const gib_scene *s)
     }
 }
 
+/* 1 when img, its standard error sd and its noise (st) are those of a plain render of st->spp
+ * samples at img's size (max_depth 3, as every test here). */
+static int same_as_plain(const gib_scene *s, int comp, const gib_image *img, const gib_image *sd,
+                         const gib_ref_stats *st)
+{
+    gib_ref_params q = rt_params(comp, img->width, img->height, st->spp);
+    q.max_depth = 3;
+    gib_image img2, sd2;
+    gib_ref_stats st2;
+    rt_render(s, &q, &img2, &sd2, &st2);
+    int ok = same(img, &img2) && same(sd, &sd2) && st->noise_rmse == st2.noise_rmse;
+    gib_image_free(&img2);
+    gib_image_free(&sd2);
+    return ok;
+}
+
+/* The header's `stop` for a render of p that ended with st. */
+static const char *header_stop(const gib_scene *s, const gib_ref_params *p,
+                               const gib_ref_stats *st, gib_kv kv[GIB_REF_ATTR_COUNT])
+{
+    int nkv = gib_reference_attrs(s, p, st, kv, GIB_REF_ATTR_COUNT);
+    const char *stop = gib_kv_get(kv, nkv, "stop");
+    return stop ? stop : "(missing)";
+}
+
 static void test_target(const gib_scene *s, int comp, double target, int max_spp, int reach)
 {
     const int W = 24, H = 20;
@@ -87,8 +112,8 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
     p.target_noise = target;
     p.max_spp = max_spp;
     p.max_depth = 3;
-    gib_image img, sd, img2, sd2;
-    gib_ref_stats st, st2;
+    gib_image img, sd;
+    gib_ref_stats st;
     rt_render(s, &p, &img, &sd, &st);
     double rel = st.noise_rmse / st.mean;
     if (reach) {
@@ -102,14 +127,10 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
     }
     /* the header says why sampling stopped */
     gib_kv kv[GIB_REF_ATTR_COUNT];
-    int nkv = gib_reference_attrs(s, &p, &st, kv, GIB_REF_ATTR_COUNT);
-    const char *stop = gib_kv_get(kv, nkv, "stop");
-    RT_CHECK(stop && !strcmp(stop, reach ? "target" : "max_spp"), "%s: header stop '%s', want %s",
-             gib_component_name(comp), stop ? stop : "(missing)", reach ? "target" : "max_spp");
-    gib_ref_params q = rt_params(comp, W, H, st.spp);
-    q.max_depth = 3;
-    rt_render(s, &q, &img2, &sd2, &st2);
-    RT_CHECK(same(&img, &img2) && same(&sd, &sd2) && st.noise_rmse == st2.noise_rmse,
+    const char *stop = header_stop(s, &p, &st, kv);
+    RT_CHECK(!strcmp(stop, reach ? "target" : "max_spp"), "%s: header stop '%s', want %s",
+             gib_component_name(comp), stop, reach ? "target" : "max_spp");
+    RT_CHECK(same_as_plain(s, comp, &img, &sd, &st),
              "%s: the %d-round run (%d spp) differs from a plain %d spp render",
              gib_component_name(comp), st.rounds, st.spp, st.spp);
     printf("%-8s target %.3g%s: %d rounds, %d spp, noise/mean %.4f, %s; bit-identical to a "
@@ -118,8 +139,6 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
            st.spp, rel, st.target_reached ? "reached" : "not reached", st.spp);
     gib_image_free(&img);
     gib_image_free(&sd);
-    gib_image_free(&img2);
-    gib_image_free(&sd2);
 }
 
 /* An interrupt requested before the render starts: the first round completes and is the result
@@ -133,27 +152,21 @@ static void test_interrupt(const gib_scene *s)
     atomic_init(&stop.requested, 1);
     atomic_init(&stop.rounds_done, 0);
     p.interrupt = &stop;
-    gib_image img, sd, img2, sd2;
-    gib_ref_stats st, st2;
+    gib_image img, sd;
+    gib_ref_stats st;
     rt_render(s, &p, &img, &sd, &st);
     RT_CHECK(st.interrupted && !st.target_reached && st.rounds == 1 && st.spp == 4 &&
                  atomic_load(&stop.rounds_done) == 1,
              "interrupt: interrupted %d, reached %d, %d rounds, %d spp, rounds_done %d",
              st.interrupted, st.target_reached, st.rounds, st.spp, atomic_load(&stop.rounds_done));
     gib_kv kv[GIB_REF_ATTR_COUNT];
-    int nkv = gib_reference_attrs(s, &p, &st, kv, GIB_REF_ATTR_COUNT);
-    const char *why = gib_kv_get(kv, nkv, "stop");
-    RT_CHECK(why && !strcmp(why, "interrupted"), "interrupt: header stop '%s'", why ? why : "-");
-    gib_ref_params q = rt_params(GIB_COMP_FULL, 24, 20, 4);
-    q.max_depth = 3;
-    rt_render(s, &q, &img2, &sd2, &st2);
-    RT_CHECK(same(&img, &img2) && same(&sd, &sd2), "interrupt: the round kept differs from a "
-                                                   "plain 4 spp render");
+    const char *why = header_stop(s, &p, &st, kv);
+    RT_CHECK(!strcmp(why, "interrupted"), "interrupt: header stop '%s'", why);
+    RT_CHECK(same_as_plain(s, GIB_COMP_FULL, &img, &sd, &st),
+             "interrupt: the round kept differs from a plain 4 spp render");
     printf("interrupted before round 1 ended: 1 round, 4 spp, bit-identical to a plain render\n");
     gib_image_free(&img);
     gib_image_free(&sd);
-    gib_image_free(&img2);
-    gib_image_free(&sd2);
 }
 
 /* Sets the interrupt as soon as the first round is finished, as a Ctrl-C handler would. */
@@ -182,24 +195,19 @@ static void test_interrupt_mid_round(const gib_scene *s)
     p.interrupt = &stop;
     pthread_t th;
     RT_CHECK(pthread_create(&th, NULL, interrupt_after_round_1, &stop) == 0, "pthread_create");
-    gib_image img, sd, img2, sd2;
-    gib_ref_stats st, st2;
+    gib_image img, sd;
+    gib_ref_stats st;
     rt_render(s, &p, &img, &sd, &st);
     pthread_join(th, NULL);
     RT_CHECK(st.interrupted && ((st.spp == 4 && st.rounds == 1) || (st.spp == 16 && st.rounds == 2)),
              "interrupt in round 2: interrupted %d, %d rounds, %d spp (want 1 round of 4 or 2 "
              "rounds, 16)", st.interrupted, st.rounds, st.spp);
-    gib_ref_params q = rt_params(GIB_COMP_FULL, 24, 20, st.spp);
-    q.max_depth = 3;
-    rt_render(s, &q, &img2, &sd2, &st2);
-    RT_CHECK(same(&img, &img2) && same(&sd, &sd2) && st.noise_rmse == st2.noise_rmse,
+    RT_CHECK(same_as_plain(s, GIB_COMP_FULL, &img, &sd, &st),
              "interrupt in round 2: the %d spp kept differ from a plain render", st.spp);
     printf("interrupted in round 2: %s, %d spp kept, bit-identical to a plain render\n",
            st.rounds == 1 ? "round 2 abandoned" : "round 2 had finished", st.spp);
     gib_image_free(&img);
     gib_image_free(&sd);
-    gib_image_free(&img2);
-    gib_image_free(&sd2);
 }
 
 int main(void)
