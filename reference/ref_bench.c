@@ -16,6 +16,11 @@
  *    render with a clock read around each): Embree's speed inside the renderer. Its paired ratio
  *    to the replay (same rays) is how much the renderer's memory traffic slows Embree down; the
  *    path tracer's time less this one is the renderer's own work.
+ *  - lean_tracer and lean_replay: the lean tracer (ref_bench_lean.c: the path tracer's ray
+ *    structure with nothing but the work a path needs) and its own rays replayed (single rays
+ *    and streams); lean rows' paired ratios are over the fastest replay of the lean tracer's
+ *    rays. The lean tracer's ratio is the ceiling that the path tracer's is measured against:
+ *    what any renderer with these rays reaches on this machine and scene.
  * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
  * tracer's (in Sponza many start outside the building and leave at once; the path tracer's
  * primary and shadow rays cross the whole atrium); diffuse rays are all closest-hit rays, dearer
@@ -281,7 +286,7 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
         return gib_error_prefix(err, "bench");
     double build = ref_now() - t0;
     int n = 0, rc = -1;
-    ref_raylog rnd = {0}, dif = {0}, rec = {0};
+    ref_raylog rnd = {0}, dif = {0}, rec = {0}, lrec = {0};
     gib_image img = {0};
     gib_ref_stats st;
     if (max_rows < 1)
@@ -305,6 +310,10 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;
     w.log = &rec;
     int ok = ref_render_world(&w, scene, &q, &img, NULL, NULL, err);
+    long long lean_rays = 0;
+    w.log = &lrec; /* the lean tracer's rays, at the same size */
+    if (ok == 0)
+        ref_lean_render(&w, &q, 1, &lean_rays);
     w.log = NULL;
     gib_image_free(&img);
     if (ok < 0 || ref_random_log(&w, &rnd, err) < 0 || ref_diffuse_log(&w, p, &dif, err) < 0)
@@ -321,14 +330,17 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
                 {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
     enum { NAPI = sizeof apis / sizeof apis[0] };
-    enum { M_PT, M_PTE, M_RND, M_DIF, M_API, NM = M_API + NAPI }; /* the CSV's order */
+    /* the CSV's order; the lean tracer's replays: single rays and streams */
+    enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LREP1, M_LREPM, NM };
     const int reps = repeats < 1 ? 1 : repeats;
-    double t[NM][GIB_REF_BENCH_MAX_REPEATS], best_replay[GIB_REF_BENCH_MAX_REPEATS];
+    double t[NM][GIB_REF_BENCH_MAX_REPEATS], best_replay[GIB_REF_BENCH_MAX_REPEATS],
+        best_lean[GIB_REF_BENCH_MAX_REPEATS];
     long long nrays[NM];
     nrays[M_RND] = (long long)rnd.n;
     nrays[M_DIF] = (long long)dif.n;
     for (int i = 0; i < NAPI; i++)
         nrays[M_API + i] = (long long)rec.n;
+    nrays[M_LREP1] = nrays[M_LREPM] = (long long)lrec.n;
     q = *p;
     q.quiet = 1;
     for (int rep = 0; rep < reps; rep++) {
@@ -364,23 +376,34 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
             best = fmin(best, t[M_API + i][rep]);
         }
         best_replay[rep] = best;
+        t[M_LEAN][rep] = ref_lean_render(&w, p, threads, &nrays[M_LEAN]);
+        t[M_LREP1][rep] = ref_replay_run(&w, &lrec, 1, threads);
+        t[M_LREPM][rep] = ref_replay_run(&w, &lrec, 0, threads);
+        best_lean[rep] = fmin(t[M_LREP1][rep], t[M_LREPM][rep]);
         if (log)
             fprintf(log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
-                            "paired ratio %.3f\n",
+                            "paired ratio %.3f; lean tracer's %.3f\n",
                     rep + 1, st.seconds, best,
-                    ((double)st.rays / st.seconds) / ((double)rec.n / best));
+                    ((double)st.rays / st.seconds) / ((double)rec.n / best),
+                    ((double)nrays[M_LEAN] / t[M_LEAN][rep]) / ((double)lrec.n / best_lean[rep]));
     }
     for (int m = 0; m < NM && n < max_rows; m++) {
-        const char *measure = m == M_PT    ? "path_tracer"
-                              : m == M_PTE ? "path_tracer_embree"
-                              : m == M_RND ? "raw_random"
-                              : m == M_DIF ? "raw_diffuse"
-                                           : "raw_replay";
-        const char *api = m < M_API ? "rtcIntersect1" : apis[m - M_API].name;
+        const char *measure = m == M_PT     ? "path_tracer"
+                              : m == M_PTE  ? "path_tracer_embree"
+                              : m == M_RND  ? "raw_random"
+                              : m == M_DIF  ? "raw_diffuse"
+                              : m == M_LEAN ? "lean_tracer"
+                              : m > M_LEAN  ? "lean_replay"
+                                            : "raw_replay";
+        const char *api = m == M_LREPM                ? "rtcIntersect1M"
+                          : m < M_API || m >= M_LEAN ? "rtcIntersect1"
+                                                     : apis[m - M_API].name;
+        int lean = m >= M_LEAN; /* paired with the fastest replay of the lean tracer's rays */
         double sec[GIB_REF_BENCH_MAX_REPEATS], pair[GIB_REF_BENCH_MAX_REPEATS];
         for (int rep = 0; rep < reps; rep++) {
             sec[rep] = t[m][rep];
-            pair[rep] = ((double)nrays[m] / t[m][rep]) / ((double)rec.n / best_replay[rep]);
+            pair[rep] = ((double)nrays[m] / t[m][rep]) /
+                        ((double)(lean ? lrec.n : rec.n) / (lean ? best_lean : best_replay)[rep]);
         }
         gib_ref_bench_row *row = &rows[n++];
         double med, max, best = ref_sorted_stats(sec, reps, &med, &max);
@@ -397,6 +420,8 @@ done:
     free(dif.occl);
     free(rec.rays);
     free(rec.occl);
+    free(lrec.rays);
+    free(lrec.occl);
     ref_world_free(&w);
     return rc;
 }

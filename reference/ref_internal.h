@@ -133,6 +133,10 @@ int ref_occluded(const ref_world *w, const float o[3], const float d[3], float t
 uint64_t ref_ticks(void);
 uint64_t ref_embree_ticks_take(void);
 double ref_ticks_overhead(void);
+/* Bench: the lean tracer (ref_bench_lean.c), the least work a next-event-estimation path tracer
+ * can do per ray on w: p's camera, size, spp and depths on `threads` threads (w->log, when set,
+ * records its rays). Returns its seconds; *rays is every ray it cast. */
+double ref_lean_render(const ref_world *w, const gib_ref_params *p, int threads, long long *rays);
 /* The distance to the first surface on (o, d) within (0, tfar], or INFINITY. */
 float ref_hit_distance(const ref_world *w, const float o[3], const float d[3], float tfar);
 

@@ -18,7 +18,9 @@ static const char help[] =
     "(rtcIntersect1; from the bounding box, and Aila and Laine's diffuse rays from the visible\n"
     "surfaces), the path tracer's own rays replayed with each ray API (single rays,\n"
     "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
-    "second including sampling and shading). A list of scenes runs each in turn into one CSV,\n"
+    "second including sampling and shading), and a lean tracer (the same kind of paths with\n"
+    "nothing but the work a path needs, its own rays replayed too: the ceiling of the ratio on\n"
+    "this machine and scene). A list of scenes runs each in turn into one CSV,\n"
     "skipping those whose data is absent. Defaults: scene sponza (cornell when its data is\n"
     "absent), 256x256, component full, 16 spp, all cores. --repeat N rounds (default 3, at\n"
     "most 100) each run every measure once; each row has the best, median and worst time, and\n"
@@ -59,6 +61,7 @@ typedef struct bench_summary {
     unsigned triangles;
     double mrays, paired_median, paired_min, paired_max;
     double embree_inside; /* path_tracer_embree's paired median */
+    double lean;          /* lean_tracer's paired median: the ceiling on this machine */
 } bench_summary;
 
 /* Benchmarks one scene and writes its rows to f (NULL: print only). fallback: an absent sponza
@@ -129,10 +132,13 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
     if (f)
         fflush(f);
     printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
-    double embree_inside = 0.0;
-    for (int i = 0; i < n; i++)
+    double embree_inside = 0.0, lean = 0.0;
+    for (int i = 0; i < n; i++) {
         if (!strcmp(rows[i].measure, "path_tracer_embree"))
             embree_inside = rows[i].paired_median;
+        if (!strcmp(rows[i].measure, "lean_tracer"))
+            lean = rows[i].paired_median;
+    }
     for (int i = 0; i < n; i++) {
         if (strcmp(rows[i].measure, "path_tracer"))
             continue;
@@ -145,8 +151,12 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
                raw_random > 0 ? rows[i].mrays_per_s / raw_random : 0.0);
         printf("Embree inside the path tracer runs at %.3f of its speed alone on the same rays "
                "(paired median)\n", embree_inside);
+        printf("lean tracer (the least work a path tracer can do per ray) against the replay of "
+               "its own rays: %.3f (paired median), the ceiling here; the path tracer reaches "
+               "%.2f of it\n", lean, lean > 0.0 ? rows[i].paired_median / lean : 0.0);
         if (sum) {
             sum->embree_inside = embree_inside;
+            sum->lean = lean;
             snprintf(sum->scene, sizeof sum->scene, "%s", scene.name);
             sum->triangles = scene.triangle_count;
             sum->mrays = rows[i].mrays_per_s;
@@ -274,11 +284,13 @@ int gib_cmd_bench(int argc, char **argv)
     }
     if (nsum > 1) {
         printf("path tracer against the fastest replay of its own rays, by scene (paired "
-               "median [least, greatest]; Embree's speed inside it):\n");
+               "median [least, greatest]; Embree's speed inside it; the lean tracer's ratio, "
+               "the ceiling here):\n");
         for (int i = 0; i < nsum; i++)
-            printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]  Embree %.3f\n",
+            printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]  Embree %.3f  "
+                   "lean %.3f\n",
                    sum[i].scene, sum[i].triangles, sum[i].mrays, sum[i].paired_median,
-                   sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside);
+                   sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside, sum[i].lean);
     }
     if (failed > 0)
         return 1;

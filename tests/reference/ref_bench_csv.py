@@ -3,7 +3,8 @@
 
 Runs the benchmark on the Cornell box at a tiny size (a second or two) and checks what every
 reader of results/bench_reference.csv relies on: the header, one world_build, path_tracer,
-path_tracer_embree, raw_random and raw_diffuse row and one raw_replay row per ray API, every
+path_tracer_embree, raw_random and raw_diffuse row, one raw_replay row per ray API and the lean
+tracer's rows (lean_tracer, lean_replay for single rays and streams, paired with its own rays), every
 time and rate positive and finite, the best <= median <= worst time, least <= median <= greatest paired
 ratio, mrays_per_s equal to rays / seconds (to the printed digits), the fastest replay at
 exactly 1.0 of itself and every replay's paired ratio at most 1. No timing is asserted: only
@@ -44,10 +45,13 @@ with open(out) as f:
 check("header", text.splitlines()[0] == HEADER)
 rows = list(csv.DictReader(text.splitlines()))
 measures = [(r["measure"], r["api"]) for r in rows]
-check("rows: build, path tracer, Embree inside it, random, diffuse, one replay per API",
+check("rows: build, path tracer, Embree inside it, random, diffuse, one replay per API, the "
+      "lean tracer and its replays",
       measures == [("world_build", "rtcCommitScene"), ("path_tracer", "rtcIntersect1"),
                    ("path_tracer_embree", "rtcIntersect1"), ("raw_random", "rtcIntersect1"),
-                   ("raw_diffuse", "rtcIntersect1")] + [("raw_replay", a) for a in APIS])
+                   ("raw_diffuse", "rtcIntersect1")] + [("raw_replay", a) for a in APIS]
+      + [("lean_tracer", "rtcIntersect1"), ("lean_replay", "rtcIntersect1"),
+         ("lean_replay", "rtcIntersect1M")])
 for r in rows[1:]:
     name = r["measure"] + "/" + r["api"]
     rays, best = int(r["rays"]), float(r["seconds"])
@@ -74,6 +78,17 @@ check("some replay is the fastest in some repeat (paired max exactly 1)",
 pt = rows[1]
 check("path tracer counts the same rays as the replay at this size (recorded at full size)",
       int(pt["rays"]) == int(replays[0]["rays"]))
+# The lean tracer's rows are paired with the fastest replay of its own rays, as the path
+# tracer's are with theirs: the same checks, on its own group.
+lean_replays = [r for r in rows if r["measure"] == "lean_replay"]
+check("every lean replay's paired ratio is at most 1, and one is the fastest in some repeat",
+      all(float(r["vs_replay_paired_max"]) <= 1.0 for r in lean_replays)
+      and any(float(r["vs_replay_paired_max"]) == 1.0 for r in lean_replays))
+lean = [r for r in rows if r["measure"] == "lean_tracer"][0]
+check("lean tracer counts the same rays as its replay at this size (recorded at full size): "
+      "%s and %s" % (lean["rays"], lean_replays[0]["rays"]),
+      int(lean["rays"]) == int(lean_replays[0]["rays"]) > 0)
+check("the lean tracer's summary line", "lean tracer" in run.stdout and "of it" in run.stdout)
 pte = rows[2]
 check("Embree inside the path tracer: the same rays as the path tracer",
       int(pte["rays"]) == int(pt["rays"]))
@@ -102,8 +117,8 @@ run = subprocess.run([gib, "bench", "reference", "--scene", "cornell,plane_box",
 check("two scenes exit 0 (%s)" % run.stderr.strip()[-200:], run.returncode == 0)
 with open(multi) as f:
     mrows = list(csv.DictReader(f))
-check("two scenes: 10 rows each, cornell's first",
-      [r["scene"] for r in mrows] == ["cornell"] * 10 + ["plane_box"] * 10)
+check("two scenes: 13 rows each, cornell's first",
+      [r["scene"] for r in mrows] == ["cornell"] * 13 + ["plane_box"] * 13)
 check("two scenes: a summary line per scene",
       "by scene" in run.stdout and run.stdout.count(" triangles  ") == 2)
 run = subprocess.run([gib, "bench", "reference", "--scene", "cornell,no_such_scene", "--size",
@@ -112,7 +127,7 @@ run = subprocess.run([gib, "bench", "reference", "--scene", "cornell,no_such_sce
 with open(multi) as f:
     kept = [r["scene"] for r in csv.DictReader(f)]
 check("an unknown scene in a list fails naming it, the other's rows kept",
-      run.returncode != 0 and "no_such_scene" in run.stderr and kept == ["cornell"] * 10)
+      run.returncode != 0 and "no_such_scene" in run.stderr and kept == ["cornell"] * 13)
 with open(multi, "w") as f:
     f.write("earlier\n")
 run = subprocess.run([gib, "bench", "reference", "--scene", "no_such_scene", "--out", multi],
