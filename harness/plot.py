@@ -6,7 +6,9 @@
   the Pareto front (runs no other run beats in both);
 - sweeps: for every parameter a matrix varies over three or more values, GPU time and relative RMSE
   against that parameter, one line per technique and setting of the other parameters (scaling curves:
-  time against LDM count, resolution, dmax...). An unbounded value (inf) is drawn at the right end.
+  time against LDM count, resolution, dmax...). An unbounded value (inf) is drawn at the right end;
+- the reference path tracer's throughput against Embree on the same rays, by scene, beside its
+  ceiling on the machine (results/bench_reference.csv, `gibench bench reference`).
 Writes PNG and SVG. Uses only the standard library and gnuplot (Debian's gnuplot-nox).
 
 usage: plot.py RESULTS_DIR [--out PLOTS_DIR]
@@ -136,6 +138,58 @@ def sweep_plots(key, rows, out_dir, renderer):
     return written
 
 
+def bench_plot(results, out_dir):
+    """The reference path tracer's throughput against Embree on the same rays, by scene, beside
+    its ceiling on the machine (the lean tracer): paired medians with their least and greatest
+    over the repeats, and the issue's target of 0.7 (results/bench_reference.csv)."""
+    path = os.path.join(results, "bench_reference.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    scenes, by = [], {}
+    for r in rows:
+        if r["measure"] in ("path_tracer", "lean_tracer"):
+            if r["scene"] not in scenes:
+                scenes.append(r["scene"])
+            by[(r["scene"], r["measure"])] = r
+    scenes = [s for s in scenes if (s, "path_tracer") in by]
+    if not scenes:
+        return None
+    base = os.path.join(out_dir, "reference_throughput")
+    data_path = base + ".dat"
+    with open(data_path, "w") as f:
+        for s in scenes:
+            cols = [f"{s} ({int(by[(s, 'path_tracer')]['triangles']):,} triangles)"]
+            for m in ("path_tracer", "lean_tracer"):
+                r = by.get((s, m))
+                cols += ([r["vs_replay_paired_median"], r["vs_replay_paired_min"],
+                          r["vs_replay_paired_max"]] if r else ["NaN"] * 3)
+            f.write(" ".join(gp_quote(c) if i == 0 else c for i, c in enumerate(cols)) + "\n")
+    r0 = by[(scenes[0], "path_tracer")]
+    # two lines: gnuplot reads \n in a double-quoted string as a line break
+    title = (gp_quote("reference path tracer: its rays/s over Embree's alone on the same rays")[:-1]
+             + "\\n" + gp_quote(f"{r0['component']} {r0['width']}x{r0['height']} {r0['spp']} spp, "
+                                  f"{r0['cores']} cores, {r0['machine']}; median of {r0['repeats']} "
+                                  "paired repeats, bars: least and greatest")[1:])
+    script = []
+    for term, ext in (("pngcairo size 900,560 font 'sans,10'", "png"), ("svg size 900,560", "svg")):
+        script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
+                   f"set title {title} noenhanced",
+                   "set style data histogram", "set style histogram errorbars gap 2 lw 1",
+                   "set style fill solid 0.6 border -1", "set boxwidth 0.9",
+                   "set yrange [0:1.15]", f"set xrange [-0.5:{len(scenes) - 0.5}]",
+                   "set grid ytics", "set key inside left top",
+                   "set ylabel 'paired ratio (1 = Embree alone)'",
+                   f"plot {gp_quote(data_path)} using 2:3:4:xtic(1) title 'path tracer', "
+                   f"'' using 5:6:7 title 'lean tracer (ceiling here)', "
+                   "0.7 with lines dt 2 lw 2 lc rgb 'red' title 'issue target 0.7'",
+                   "unset output"]
+    subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
+    os.remove(data_path)
+    return base + ".png"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("results")
@@ -145,6 +199,9 @@ def main():
     if not shutil.which("gnuplot"):
         sys.exit("plot.py: gnuplot not found: run `make deps` (Debian package gnuplot-nox)")
     os.makedirs(out, exist_ok=True)
+    bench = bench_plot(a.results, out)
+    if bench:
+        print("plot.py: wrote", bench)
     groups, renderers = {}, {}
     for name in sorted(os.listdir(a.results)):
         if not name.endswith(".csv") or name.endswith("_passes.csv"):
