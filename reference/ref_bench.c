@@ -1,6 +1,6 @@
 /* gibench — the reference renderer's throughput benchmark (gibench bench reference).
  *
- * Five figures on one scene and one BVH, all threads:
+ * Six figures on one scene and one BVH, all threads:
  *  - raw_random: rtcIntersect1 on random incoherent rays (origins uniform in the scene's bounding
  *    box, directions uniform on the sphere): Embree's own speed, nothing else;
  *  - raw_diffuse: rtcIntersect1 on Aila and Laine's "diffuse" rays (ref_diffuse_log): random
@@ -16,11 +16,11 @@
  *    render with a clock read around each): Embree's speed inside the renderer. Its paired ratio
  *    to the replay (same rays) is how much the renderer's memory traffic slows Embree down; the
  *    path tracer's time less this one is the renderer's own work.
- *  - lean_tracer and lean_replay: the lean tracer (ref_bench_lean.c: the path tracer's ray
- *    structure with nothing but the work a path needs) and its own rays replayed (single rays
- *    and streams); lean rows' paired ratios are over the fastest replay of the lean tracer's
- *    rays. The lean tracer's ratio is the ceiling that the path tracer's is measured against:
- *    what any renderer with these rays reaches on this machine and scene.
+ *  - lean_tracer and lean_replay (component `full` only): the lean tracer (ref_bench_lean.c: the
+ *    path tracer's kind of rays with as little other work as a path allows) and its own rays
+ *    replayed with each API; the lean rows' paired ratios are over the fastest replay of the lean
+ *    tracer's rays. The lean tracer's ratio is the reference point for the path tracer's: what
+ *    a renderer that does almost nothing but trace these paths reaches on this machine and scene.
  * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
  * tracer's (in Sponza many start outside the building and leave at once; the path tracer's
  * primary and shadow rays cross the whole atrium); diffuse rays are all closest-hit rays, dearer
@@ -310,11 +310,17 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;
     w.log = &rec;
     int ok = ref_render_world(&w, scene, &q, &img, NULL, NULL, err);
+    const int lean = p->component == GIB_COMP_FULL; /* it traces `full`'s kind of paths */
     long long lean_rays = 0;
     w.log = &lrec; /* the lean tracer's rays, at the same size */
-    if (ok == 0)
-        ref_lean_render(&w, &q, 1, &lean_rays);
+    double lean_t = ok == 0 && lean ? ref_lean_render(&w, &q, 1, &lean_rays) : 0.0;
     w.log = NULL;
+    if (ok == 0 && lean && (lean_t < 0.0 || lean_rays == 0 || lrec.n != (size_t)lean_rays)) {
+        gib_fail(err, "bench: the lean tracer %s (%zu rays logged of %lld)",
+                 lean_t < 0.0 ? "ran out of memory" : "cast no ray, or its ray log is incomplete",
+                 lrec.n, lean_rays);
+        goto done;
+    }
     gib_image_free(&img);
     if (ok < 0 || ref_random_log(&w, &rnd, err) < 0 || ref_diffuse_log(&w, p, &dif, err) < 0)
         goto done;
@@ -330,8 +336,9 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
                 {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
     enum { NAPI = sizeof apis / sizeof apis[0] };
-    /* the CSV's order; the lean tracer's replays: single rays and streams */
-    enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LREP1, M_LREPM, NM };
+    /* the CSV's order; the lean tracer's rows last (component `full` only) */
+    enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LAPI, NM = M_LAPI + NAPI };
+    const int nm = lean ? NM : M_LEAN;
     const int reps = repeats < 1 ? 1 : repeats;
     double t[NM][GIB_REF_BENCH_MAX_REPEATS], best_replay[GIB_REF_BENCH_MAX_REPEATS],
         best_lean[GIB_REF_BENCH_MAX_REPEATS];
@@ -340,7 +347,9 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     nrays[M_DIF] = (long long)dif.n;
     for (int i = 0; i < NAPI; i++)
         nrays[M_API + i] = (long long)rec.n;
-    nrays[M_LREP1] = nrays[M_LREPM] = (long long)lrec.n;
+    for (int i = 0; i < NAPI; i++)
+        nrays[M_LAPI + i] = (long long)lrec.n;
+    nrays[M_LEAN] = 0;
     q = *p;
     q.quiet = 1;
     for (int rep = 0; rep < reps; rep++) {
@@ -376,18 +385,31 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
             best = fmin(best, t[M_API + i][rep]);
         }
         best_replay[rep] = best;
-        t[M_LEAN][rep] = ref_lean_render(&w, p, threads, &nrays[M_LEAN]);
-        t[M_LREP1][rep] = ref_replay_run(&w, &lrec, 1, threads);
-        t[M_LREPM][rep] = ref_replay_run(&w, &lrec, 0, threads);
-        best_lean[rep] = fmin(t[M_LREP1][rep], t[M_LREPM][rep]);
-        if (log)
+        best_lean[rep] = INFINITY;
+        if (lean) {
+            t[M_LEAN][rep] = ref_lean_render(&w, p, threads, &nrays[M_LEAN]);
+            if (t[M_LEAN][rep] < 0.0) {
+                gib_fail(err, "bench: the lean tracer ran out of memory");
+                goto done;
+            }
+            for (int i = 0; i < NAPI; i++) {
+                t[M_LAPI + i][rep] = ref_replay_run(&w, &lrec, apis[i].api, threads);
+                best_lean[rep] = fmin(best_lean[rep], t[M_LAPI + i][rep]);
+            }
+        }
+        if (log) {
             fprintf(log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
-                            "paired ratio %.3f; lean tracer's %.3f\n",
+                         "paired ratio %.3f",
                     rep + 1, st.seconds, best,
-                    ((double)st.rays / st.seconds) / ((double)rec.n / best),
-                    ((double)nrays[M_LEAN] / t[M_LEAN][rep]) / ((double)lrec.n / best_lean[rep]));
+                    ((double)st.rays / st.seconds) / ((double)rec.n / best));
+            if (lean)
+                fprintf(log, "; lean tracer's %.4f",
+                        ((double)nrays[M_LEAN] / t[M_LEAN][rep]) /
+                            ((double)lrec.n / best_lean[rep]));
+            fputc('\n', log);
+        }
     }
-    for (int m = 0; m < NM && n < max_rows; m++) {
+    for (int m = 0; m < nm && n < max_rows; m++) {
         const char *measure = m == M_PT     ? "path_tracer"
                               : m == M_PTE  ? "path_tracer_embree"
                               : m == M_RND  ? "raw_random"
@@ -395,15 +417,16 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
                               : m == M_LEAN ? "lean_tracer"
                               : m > M_LEAN  ? "lean_replay"
                                             : "raw_replay";
-        const char *api = m == M_LREPM                ? "rtcIntersect1M"
-                          : m < M_API || m >= M_LEAN ? "rtcIntersect1"
+        const char *api = m <= M_DIF || m == M_LEAN ? "rtcIntersect1"
+                          : m > M_LEAN               ? apis[m - M_LAPI].name
                                                      : apis[m - M_API].name;
-        int lean = m >= M_LEAN; /* paired with the fastest replay of the lean tracer's rays */
+        int of_lean = m >= M_LEAN; /* paired with the fastest replay of the lean tracer's rays */
         double sec[GIB_REF_BENCH_MAX_REPEATS], pair[GIB_REF_BENCH_MAX_REPEATS];
         for (int rep = 0; rep < reps; rep++) {
             sec[rep] = t[m][rep];
             pair[rep] = ((double)nrays[m] / t[m][rep]) /
-                        ((double)(lean ? lrec.n : rec.n) / (lean ? best_lean : best_replay)[rep]);
+                        ((double)(of_lean ? lrec.n : rec.n) /
+                         (of_lean ? best_lean : best_replay)[rep]);
         }
         gib_ref_bench_row *row = &rows[n++];
         double med, max, best = ref_sorted_stats(sec, reps, &med, &max);

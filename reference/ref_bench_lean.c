@@ -1,26 +1,32 @@
-/* gibench — the bench's lean tracer: the least work a path tracer with next-event estimation can
- * do per ray, on the path tracer's own world (BVH, triangle records, lights), as a ceiling for the
- * throughput ratio that any renderer reaches on this machine and scene (gibench bench reference,
- * rows lean_tracer and lean_replay).
+/* gibench — the bench's lean tracer: a next-event-estimation path tracer that casts the same kind
+ * of rays as `full` and does as little else as it can, on the path tracer's own world (BVH,
+ * triangle records, lights): a reference point for the throughput ratio on this machine and scene
+ * (gibench bench reference, rows lean_tracer and lean_replay; only for the `full` component).
  *
- * Why it exists: the issue's target is the path tracer's rays/s over Embree's on the same rays,
- * and that ratio depends on the machine as much as on the renderer. A ray's own work (choosing
- * it, shading its hit) costs a roughly fixed time, while Embree's time per ray grows with the
- * scene; and a path's rays depend on each other (a continuation starts where the last ray hit), so
- * the processor cannot overlap one ray's traversal with the next as it does when the same rays
- * are replayed back to back. The lean tracer measures what is left when the renderer's own work is
- * cut to nothing more than the path needs: the same ray structure as `full` (one visible point per
- * pixel, at the pixel centre, with its next-event estimation once; then `spp` paths from it:
- * cosine continuations, next-event estimation to every light at each later vertex, Russian
- * roulette from min_depth, at most max_depth vertices; a sky's rays are left out), but the
- * geometric normal as the shading
- * normal, the material's constant albedo (no texel, no cut-out beyond Embree's own filter), no
- * Phong or mirror lobe, no per-pixel statistics and no image. Its rays are replayed by Embree
- * alone in the same repeat, as the path tracer's are: its paired ratio is the best a path tracer
- * with these rays gets here. It computes a checksum of its radiance only to keep the work
- * observable; its values are not an image of anything and are not checked. */
+ * Why it exists: the issue's target is the path tracer's rays/s over Embree's on the same rays, and
+ * that ratio depends on the machine as much as on the renderer. A ray's own work (choosing it,
+ * shading its hit) costs a roughly fixed time while Embree's time per ray grows with the scene, and
+ * a path's rays depend on each other (a continuation starts where the last ray hit), so the
+ * processor cannot overlap one ray's traversal with the next as it does when the same rays are
+ * replayed back to back. The lean tracer measures what is left when the renderer's own work is cut
+ * down to what a path needs.
+ *
+ * Its rays follow `full`'s structure (reference.c ref_row_task, ref_path.c): one visible point per
+ * pixel at the pixel centre with its next-event estimation once (the back of a one-sided surface
+ * ends there), then spp paths from it: cosine continuations above the geometric surface, a shadow
+ * ray to every delta light that reaches the vertex (same origin offset and tfar as ref_nee_visible),
+ * roulette from min_depth on the throughput after the bounce, at most max_depth vertices, a path
+ * ended at the back of a one-sided surface or at a surface that reflects nothing. So that its paths
+ * are as long as the path tracer's, the throughput uses each material's mean reflectance: its
+ * albedo times the mean of its albedo texture (the mip pyramid's last level) plus its specular
+ * reflectance, all treated as one diffuse lobe. What it leaves out: shading normals, texels,
+ * Phong and mirror lobes, the sky's rays, light tracing, per-pixel statistics and the image. Its
+ * rays are replayed by Embree alone in the same repeats, as the path tracer's are. It sums its
+ * radiance only to keep the work observable; the values are not an image of anything and are not
+ * checked. */
 #include <math.h>
 #include <stdatomic.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ref_internal.h"
@@ -29,44 +35,76 @@ typedef struct ref_lean {
     const ref_world *w;
     const gib_camera *cam;
     int width, height, spp, min_depth, max_depth;
+    const float (*refl)[3];  /* per material: mean reflectance (see above) */
     atomic_llong rays;
     _Atomic double checksum;
 } ref_lean;
 
-/* The hit as the lean tracer shades it: position, unit geometric normal facing the ray's origin,
- * constant albedo. */
-static void ref_lean_hit(const ref_world *w, const ref_pending *pq, float p[3], float n[3],
-                         const float **albedo)
+/* A lean hit: the point, its unit geometric normal facing the ray's origin, its material's mean
+ * reflectance. Returns 0 at the back of a one-sided surface. */
+typedef struct ref_lean_hit {
+    float p[3], ng[3];
+    const float *refl;
+} ref_lean_hit;
+
+static int ref_lean_fill(const ref_lean *c, const ref_pending *pq, ref_lean_hit *h)
 {
+    const ref_world *w = c->w;
+    float *n = h->ng;
     n[0] = pq->rh.hit.Ng_x, n[1] = pq->rh.hit.Ng_y, n[2] = pq->rh.hit.Ng_z;
     float s = 1.0f / sqrtf(ref_dot(n, n));
-    if (ref_dot(n, pq->d) > 0.0f)
+    uint32_t mat = w->tris[pq->prim].mat;
+    if (ref_dot(n, pq->d) > 0.0f) {
+        if (!w->gs->materials[mat].two_sided)
+            return 0;
         s = -s;
+    }
     for (int k = 0; k < 3; k++) {
         n[k] *= s;
-        p[k] = pq->o[k] + pq->rh.ray.tfar * pq->d[k] + w->eps * n[k]; /* offset origin */
+        h->p[k] = pq->o[k] + pq->rh.ray.tfar * pq->d[k];
     }
-    *albedo = w->gs->materials[w->tris[pq->prim].mat].albedo;
+    h->refl = c->refl[mat];
+    return 1;
 }
 
-/* Next-event estimation to every light from p (normal n): adds the unoccluded light's
- * beta * albedo * E * cos to out (the 1/pi of the diffuse lobe left out: no image is made). */
-static void ref_lean_nee(const ref_world *w, const float p[3], const float n[3],
-                         const float beta[3], const float a[3], float out[3], long long *rays)
+/* A ray origin leaving h toward d: offset by eps along the geometric normal, on d's side. */
+static void ref_lean_origin(const ref_world *w, const ref_lean_hit *h, const float d[3],
+                            float o[3])
 {
+    float s = ref_dot(h->ng, d) >= 0.0f ? w->eps : -w->eps;
+    for (int k = 0; k < 3; k++)
+        o[k] = h->p[k] + s * h->ng[k];
+}
+
+/* Next-event estimation to every light from h: adds the unoccluded lights' beta * refl * E * cos
+ * to out (the diffuse lobe's 1/pi left out: no image is made). */
+static void ref_lean_nee(const ref_lean *c, const ref_lean_hit *h, const float beta[3],
+                         float out[3], long long *rays)
+{
+    const ref_world *w = c->w;
     const gib_scene *gs = w->gs;
     for (uint32_t l = 0; l < gs->light_count; l++) {
         float wi[3], dist, E[3];
-        if (!gib_light_eval_cos(&gs->lights[l], w->spot_cos[l], p, wi, &dist, E))
+        if (!gib_light_eval_cos(&gs->lights[l], w->spot_cos[l], h->p, wi, &dist, E))
             continue;
-        float cs = ref_dot(wi, n);
-        if (!(cs > 0.0f))
+        float cs = ref_dot(wi, h->ng);
+        if (!(cs > 0.0f) || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f))
             continue;
-        ++*rays;
-        if (!ref_occluded(w, p, wi, dist))
-            for (int k = 0; k < 3; k++)
-                out[k] += beta[k] * a[k] * E[k] * cs;
+        float o[3], tfar = isinf(dist) ? INFINITY : dist - w->eps;
+        ref_lean_origin(w, h, wi, o);
+        if (tfar > 0.0f) {
+            ++*rays;
+            if (ref_occluded(w, o, wi, tfar))
+                continue;
+        }
+        for (int k = 0; k < 3; k++)
+            out[k] += beta[k] * h->refl[k] * E[k] * cs;
     }
+}
+
+static int ref_lean_dark(const float v[3])
+{
+    return !(v[0] > 0.0f || v[1] > 0.0f || v[2] > 0.0f);
 }
 
 static void ref_lean_row(void *ctx, int y)
@@ -78,21 +116,21 @@ static void ref_lean_row(void *ctx, int y)
     for (int x = 0; x < c->width; x++) {
         ref_pcg32 rng;
         ref_pcg32_seed(&rng, (uint64_t)y * (uint64_t)c->width + (uint64_t)x, 0x1ea9u);
-        float o[3], d[3], p1[3], n1[3];
-        const float *a1, one[3] = {1.0f, 1.0f, 1.0f};
+        float o[3], d[3], one[3] = {1.0f, 1.0f, 1.0f};
         gib_camera_ray(c->cam, c->width, c->height, (float)x + 0.5f, (float)y + 0.5f, o, d);
         ref_pending pq;
+        ref_lean_hit h1;
         ++rays;
-        if (!ref_trace_start(w, o, d, &pq))
+        if (!ref_trace_start(w, o, d, &pq) || !ref_lean_fill(c, &pq, &h1))
             continue;
-        ref_lean_hit(w, &pq, p1, n1, &a1);
-        ref_lean_nee(w, p1, n1, one, a1, sum, &rays);
+        if (ref_lean_dark(h1.refl))
+            continue;
+        ref_lean_nee(c, &h1, one, sum, &rays);
         for (int s = 0; s < c->spp; s++) {
-            float beta[3] = {a1[0], a1[1], a1[2]}, p[3], n[3];
-            memcpy(p, p1, sizeof p);
-            memcpy(n, n1, sizeof n);
+            float beta[3] = {h1.refl[0], h1.refl[1], h1.refl[2]};
+            ref_lean_hit h = h1;
             for (int depth = 1; depth < c->max_depth; depth++) {
-                ref_sample_cosine(n, ref_pcg32_float(&rng), ref_pcg32_float(&rng), d);
+                ref_sample_cosine(h.ng, ref_pcg32_float(&rng), ref_pcg32_float(&rng), d);
                 if (depth >= c->min_depth) {
                     float q = ref_fminf(1.0f, ref_fmaxf(beta[0], ref_fmaxf(beta[1], beta[2])));
                     if (!(ref_pcg32_float(&rng) < q))
@@ -100,14 +138,14 @@ static void ref_lean_row(void *ctx, int y)
                     for (int k = 0; k < 3; k++)
                         beta[k] /= q;
                 }
+                ref_lean_origin(w, &h, d, o);
                 ++rays;
-                if (!ref_trace_start(w, p, d, &pq))
+                if (!ref_trace_start(w, o, d, &pq) || !ref_lean_fill(c, &pq, &h) ||
+                    ref_lean_dark(h.refl))
                     break;
-                const float *a;
-                ref_lean_hit(w, &pq, p, n, &a);
-                ref_lean_nee(w, p, n, beta, a, sum, &rays);
+                ref_lean_nee(c, &h, beta, sum, &rays);
                 for (int k = 0; k < 3; k++)
-                    beta[k] *= a[k];
+                    beta[k] *= h.refl[k];
             }
         }
     }
@@ -119,8 +157,21 @@ static void ref_lean_row(void *ctx, int y)
 
 double ref_lean_render(const ref_world *w, const gib_ref_params *p, int threads, long long *rays)
 {
-    ref_lean c = {.w = w, .cam = &w->gs->cameras[p->camera], .width = p->width,
-                  .height = p->height, .spp = p->spp,
+    const gib_scene *gs = w->gs;
+    float(*refl)[3] = malloc((gs->material_count ? gs->material_count : 1) * sizeof *refl);
+    if (!refl)
+        return -1.0;
+    for (uint32_t m = 0; m < gs->material_count; m++) {
+        const gib_material *g = &gs->materials[m];
+        float t[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        const float huge[4] = {1e30f, 0.0f, 0.0f, 1e30f}; /* the pyramid's last level: the mean */
+        if (g->albedo_tex >= 0 && w->mips && w->mips[g->albedo_tex].levels > 0)
+            ref_mip_sample(&w->mips[g->albedo_tex], 0.5f, 0.5f, huge, t);
+        for (int k = 0; k < 3; k++)
+            refl[m][k] = g->albedo[k] * t[k] + (g->spec_type != GIB_SPEC_NONE ? g->specular[k] : 0.0f);
+    }
+    ref_lean c = {.w = w, .cam = &gs->cameras[p->camera], .width = p->width, .height = p->height,
+                  .spp = p->spp, .refl = (const float(*)[3])refl,
                   .min_depth = p->min_depth > 0 ? p->min_depth : GIB_REF_DEFAULT_MIN_DEPTH,
                   .max_depth = p->max_depth > 0 ? p->max_depth : GIB_REF_DEFAULT_MAX_DEPTH};
     atomic_init(&c.rays, 0);
@@ -129,5 +180,6 @@ double ref_lean_render(const ref_world *w, const gib_ref_params *p, int threads,
     ref_parallel(threads, c.height, ref_lean_row, &c, NULL);
     double t = ref_now() - t0;
     *rays = atomic_load(&c.rays);
+    free(refl);
     return t;
 }

@@ -197,7 +197,7 @@ float gib_reference_ray_eps(const gib_scene *scene);
 
 typedef struct gib_ref_bench_row {
     char measure[48];     /* "path_tracer", "path_tracer_embree", "raw_random", "raw_diffuse",
-                           * "raw_replay" */
+                           * "raw_replay"; for component full "lean_tracer", "lean_replay" */
     char api[32];         /* "rtcIntersect1", "rtcIntersect1M", "rtcIntersect8", ... */
     long long rays;
     double seconds;       /* the best (least) of the repeats; mrays_per_s is rays over it */
@@ -205,7 +205,8 @@ typedef struct gib_ref_bench_row {
     int repeats;
     double seconds_median, seconds_max;
     /* Paired: in each repeat, this row's rays/s over the fastest replay's rays/s of the same
-     * repeat (both ran on the machine as it was then); median, least and greatest over repeats.
+     * repeat (both ran on the machine as it was then; lean_* rows: the fastest replay of the lean
+     * tracer's own rays); median, least and greatest over repeats.
      * The world_build row (once, no rays) has 0. */
     double paired_median, paired_min, paired_max;
 } gib_ref_bench_row;
