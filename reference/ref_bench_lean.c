@@ -67,15 +67,6 @@ static int ref_lean_fill(const ref_lean *c, const ref_pending *pq, ref_lean_hit 
     return 1;
 }
 
-/* A ray origin leaving h toward d: offset by eps along the geometric normal, on d's side. */
-static void ref_lean_origin(const ref_world *w, const ref_lean_hit *h, const float d[3],
-                            float o[3])
-{
-    float s = ref_dot(h->ng, d) >= 0.0f ? w->eps : -w->eps;
-    for (int k = 0; k < 3; k++)
-        o[k] = h->p[k] + s * h->ng[k];
-}
-
 /* Next-event estimation to every light from h: adds the unoccluded lights' beta * refl * E * cos
  * to out (the diffuse lobe's 1/pi left out: no image is made). */
 static void ref_lean_nee(const ref_lean *c, const ref_lean_hit *h, const float beta[3],
@@ -91,7 +82,7 @@ static void ref_lean_nee(const ref_lean *c, const ref_lean_hit *h, const float b
         if (!(cs > 0.0f) || (E[0] == 0.0f && E[1] == 0.0f && E[2] == 0.0f))
             continue;
         float o[3], tfar = isinf(dist) ? INFINITY : dist - w->eps;
-        ref_lean_origin(w, h, wi, o);
+        ref_offset_point(w, h->p, h->ng, wi, o);
         if (tfar > 0.0f) {
             ++*rays;
             if (ref_occluded(w, o, wi, tfar))
@@ -138,7 +129,7 @@ static void ref_lean_row(void *ctx, int y)
                     for (int k = 0; k < 3; k++)
                         beta[k] /= q;
                 }
-                ref_lean_origin(w, &h, d, o);
+                ref_offset_point(w, h.p, h.ng, d, o);
                 ++rays;
                 if (!ref_trace_start(w, o, d, &pq) || !ref_lean_fill(c, &pq, &h) ||
                     ref_lean_dark(h.refl))

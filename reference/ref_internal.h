@@ -362,14 +362,21 @@ static inline float ref_dot(const float a[3], const float b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* Origin for a ray leaving h in direction d: offset along the geometric normal, toward the side d
- * points to, by w->eps. (Inline: it runs for every ray the path tracer casts.) */
+/* Origin for a ray leaving h (point p, unit geometric normal ng) in direction d: offset along the
+ * geometric normal, toward the side d points to, by w->eps. (Inline: it runs for every ray the
+ * path tracer casts.) */
+static inline void ref_offset_point(const ref_world *w, const float p[3], const float ng[3],
+                                    const float d[3], float o[3])
+{
+    float s = ref_dot(ng, d) >= 0.0f ? w->eps : -w->eps;
+    for (int k = 0; k < 3; k++)
+        o[k] = p[k] + s * ng[k];
+}
+
 static inline void ref_offset_origin(const ref_world *w, const ref_hit *h, const float d[3],
                                      float o[3])
 {
-    float s = ref_dot(h->ng, d) >= 0.0f ? w->eps : -w->eps;
-    for (int k = 0; k < 3; k++)
-        o[k] = h->p[k] + s * h->ng[k];
+    ref_offset_point(w, h->p, h->ng, d, o);
 }
 
 #endif
