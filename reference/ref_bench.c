@@ -16,7 +16,7 @@
  *    render with a clock read around each): Embree's speed inside the renderer. Its paired ratio
  *    to the replay (same rays) is how much the renderer's memory traffic slows Embree down; the
  *    path tracer's time less this one is the renderer's own work.
- *  - lean_tracer and lean_replay (component `full` only): the lean tracer (ref_bench_lean.c: the
+ *  - lean_tracer and lean_replay (component `full`, scenes without a sky or mirrors): the lean tracer (ref_bench_lean.c: the
  *    path tracer's kind of rays with as little other work as a path allows) and its own rays
  *    replayed with each API; the lean rows' paired ratios are over the fastest replay of the lean
  *    tracer's rays. The lean tracer's ratio is the reference point for the path tracer's: what
@@ -310,7 +310,8 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;
     w.log = &rec;
     int ok = ref_render_world(&w, scene, &q, &img, NULL, NULL, err);
-    const int lean = p->component == GIB_COMP_FULL; /* it traces `full`'s kind of paths */
+    gib_image_free(&img);
+    const int lean = ref_lean_applies(scene, p->component); /* `full`'s kind of paths */
     long long lean_rays = 0;
     w.log = &lrec; /* the lean tracer's rays, at the same size */
     double lean_t = ok == 0 && lean ? ref_lean_render(&w, &q, 1, &lean_rays) : 0.0;
@@ -321,7 +322,6 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
                  lrec.n, lean_rays);
         goto done;
     }
-    gib_image_free(&img);
     if (ok < 0 || ref_random_log(&w, &rnd, err) < 0 || ref_diffuse_log(&w, p, &dif, err) < 0)
         goto done;
 

@@ -137,6 +137,8 @@ double ref_ticks_overhead(void);
  * can do per ray on w: p's camera, size, spp and depths on `threads` threads (w->log, when set,
  * records its rays). Returns its seconds; *rays is every ray it cast. */
 double ref_lean_render(const ref_world *w, const gib_ref_params *p, int threads, long long *rays);
+/* 1 when the lean tracer's paths are `full`'s kind on s: component full, no sky, no mirror. */
+int ref_lean_applies(const gib_scene *s, int component);
 /* The distance to the first surface on (o, d) within (0, tfar], or INFINITY. */
 float ref_hit_distance(const ref_world *w, const float o[3], const float d[3], float tfar);
 

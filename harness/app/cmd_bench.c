@@ -18,15 +18,16 @@ static const char help[] =
     "(rtcIntersect1; from the bounding box, and Aila and Laine's diffuse rays from the visible\n"
     "surfaces), the path tracer's own rays replayed with each ray API (single rays,\n"
     "rtcIntersect1M streams, 4/8/16-wide packets), and the path tracer's throughput (rays per\n"
-    "second including sampling and shading); for component full also a lean tracer (the same\n"
-    "kind of paths with almost no other work, its own rays replayed with each API: what a\n"
-    "renderer doing little but tracing reaches on this machine and scene). Rows lean_* are\n"
-    "paired with the lean tracer's own replay. A list of scenes runs each in turn into one CSV,\n"
-    "skipping those whose data is absent. Defaults: scene sponza (cornell when its data is\n"
-    "absent), 256x256, component full, 16 spp, all cores. --repeat N rounds (default 3, at\n"
-    "most 100) each run every measure once; each row has the best, median and worst time, and\n"
-    "its paired ratio: its rays/s over the fastest replay's in the same round, whose median\n"
-    "is the figure to quote on a shared machine (both sides of a pair ran under the same load).\n";
+    "second including sampling and shading); for component full on scenes without a sky or\n"
+    "mirrors, also a lean tracer (the same kind of paths with almost no other work, its own\n"
+    "rays replayed with each API: what a renderer doing little but tracing reaches on this\n"
+    "machine and scene; rows lean_* are paired with the lean tracer's own replay). A list of\n"
+    "scenes runs each in turn into one CSV, skipping those whose data is absent. Defaults:\n"
+    "scene sponza (cornell when its data is absent), 256x256, component full, 16 spp, all\n"
+    "cores. --repeat N rounds (default 3, at most 100) each run every measure once; each row\n"
+    "has the best, median and worst time, and its paired ratio: its rays/s over the fastest\n"
+    "replay's in the same round, whose median is the figure to quote on a shared machine\n"
+    "(both sides of a pair ran under the same load).\n";
 
 static void machine_name(char *out, size_t len)
 {
@@ -161,7 +162,8 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
                    "of its own rays: %.3f (paired median); the path tracer reaches %.2f of it\n",
                    lean, rows[i].paired_median / lean);
         else
-            printf("lean tracer: not run (component full only)\n");
+            printf("lean tracer: not run (it traces `full`'s paths on scenes without a sky or "
+                   "mirrors only)\n");
         if (sum) {
             sum->embree_inside = embree_inside;
             sum->lean = lean;
@@ -293,11 +295,15 @@ int gib_cmd_bench(int argc, char **argv)
     if (nsum > 1) {
         printf("path tracer against the fastest replay of its own rays, by scene (paired "
                "median [least, greatest]; Embree's speed inside it; the lean tracer's ratio):\n");
-        for (int i = 0; i < nsum; i++)
+        for (int i = 0; i < nsum; i++) {
+            char lean[16] = "n/a";
+            if (sum[i].lean > 0.0)
+                snprintf(lean, sizeof lean, "%.3f", sum[i].lean);
             printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]  Embree %.3f  "
-                   "lean %.3f\n",
+                   "lean %s\n",
                    sum[i].scene, sum[i].triangles, sum[i].mrays, sum[i].paired_median,
-                   sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside, sum[i].lean);
+                   sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside, lean);
+        }
     }
     if (failed > 0)
         return 1;
