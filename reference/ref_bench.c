@@ -16,9 +16,9 @@
  *    render with a clock read around each): Embree's speed inside the renderer. Its paired ratio
  *    to the replay (same rays) is how much the renderer's memory traffic slows Embree down; the
  *    path tracer's time less this one is the renderer's own work.
- *  - lean_tracer and lean_replay (component `full`, scenes without a sky or mirrors): the lean tracer (ref_bench_lean.c: the
- *    path tracer's kind of rays with as little other work as a path allows) and its own rays
- *    replayed with each API; the lean rows' paired ratios are over the fastest replay of the lean
+ *  - lean_tracer and lean_replay (component `full`, scenes without a sky or mirrors): the lean
+ *    tracer (ref_bench_lean.c: the path tracer's kind of rays with as little other work as a
+ *    path allows) and its own rays replayed with each API; the lean rows' paired ratios are over the fastest replay of the lean
  *    tracer's rays. The lean tracer's ratio is the reference point for the path tracer's: what
  *    a renderer that does almost nothing but trace these paths reaches on this machine and scene.
  * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
@@ -336,7 +336,7 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
                 {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
     enum { NAPI = sizeof apis / sizeof apis[0] };
-    /* the CSV's order; the lean tracer's rows last (component `full` only) */
+    /* the CSV's order; the lean tracer's rows last, where it applies (ref_lean_applies) */
     enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LAPI, NM = M_LAPI + NAPI };
     const int nm = lean ? NM : M_LEAN;
     const int reps = repeats < 1 ? 1 : repeats;
@@ -345,10 +345,10 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     long long nrays[NM];
     nrays[M_RND] = (long long)rnd.n;
     nrays[M_DIF] = (long long)dif.n;
-    for (int i = 0; i < NAPI; i++)
+    for (int i = 0; i < NAPI; i++) {
         nrays[M_API + i] = (long long)rec.n;
-    for (int i = 0; i < NAPI; i++)
         nrays[M_LAPI + i] = (long long)lrec.n;
+    }
     nrays[M_LEAN] = 0;
     q = *p;
     q.quiet = 1;
