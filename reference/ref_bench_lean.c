@@ -181,8 +181,9 @@ double ref_lean_render(const ref_world *w, const gib_ref_params *p, int threads,
         const float huge[4] = {1e30f, 0.0f, 0.0f, 1e30f}; /* the pyramid's last level: the mean */
         if (g->albedo_tex >= 0 && w->mips && w->mips[g->albedo_tex].levels > 0)
             ref_mip_sample(&w->mips[g->albedo_tex], 0.5f, 0.5f, huge, t);
+        int spec = g->spec_type != GIB_SPEC_NONE;
         for (int k = 0; k < 3; k++)
-            refl[m][k] = g->albedo[k] * t[k] + (g->spec_type != GIB_SPEC_NONE ? g->specular[k] : 0.0f);
+            refl[m][k] = g->albedo[k] * t[k] + (spec ? g->specular[k] : 0.0f);
     }
     ref_lean c = {.w = w, .cam = &gs->cameras[p->camera], .width = p->width, .height = p->height,
                   .spp = p->spp, .refl = (const float(*)[3])refl,
