@@ -18,9 +18,10 @@
  *    path tracer's time less this one is the renderer's own work.
  *  - lean_tracer and lean_replay (component `full`, scenes without a sky or mirrors): the lean
  *    tracer (ref_bench_lean.c: the path tracer's kind of rays with as little other work as a
- *    path allows) and its own rays replayed with each API; the lean rows' paired ratios are over the fastest replay of the lean
- *    tracer's rays. The lean tracer's ratio is the reference point for the path tracer's: what
- *    a renderer that does almost nothing but trace these paths reaches on this machine and scene.
+ *    path allows) and its own rays replayed with each API; the lean rows' paired ratios are over
+ *    the fastest replay of the lean tracer's rays. The lean tracer's ratio is the reference point
+ *    for the path tracer's: what a renderer that does almost nothing but trace these paths
+ *    reaches on this machine and scene.
  * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
  * tracer's (in Sponza many start outside the building and leave at once; the path tracer's
  * primary and shadow rays cross the whole atrium); diffuse rays are all closest-hit rays, dearer

@@ -14,7 +14,7 @@
  * Its rays follow `full`'s structure (reference.c ref_row_task, ref_path.c): one visible point per
  * pixel at the pixel centre with its next-event estimation once (the back of a one-sided surface
  * ends there), then spp paths from it: cosine continuations above the geometric surface, a shadow
- * ray to every delta light that reaches the vertex (same origin offset and tfar as ref_nee_visible),
+ * ray to every delta light that reaches the vertex (origin offset and tfar as ref_nee_visible's),
  * roulette from min_depth on the throughput after the bounce, at most max_depth vertices, a path
  * ended at the back of a one-sided surface or at a surface that reflects nothing. So that its paths
  * are as long as the path tracer's, the throughput uses each material's mean reflectance: its
