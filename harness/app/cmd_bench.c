@@ -63,7 +63,7 @@ typedef struct bench_summary {
     unsigned triangles;
     double mrays, paired_median, paired_min, paired_max;
     double embree_inside; /* path_tracer_embree's paired median */
-    double lean;          /* lean_tracer's paired median: the ceiling on this machine */
+    double lean;          /* lean_tracer's paired median (0: not run) */
 } bench_summary;
 
 /* Benchmarks one scene and writes its rows to f (NULL: print only). fallback: an absent sponza

@@ -17,6 +17,7 @@ Usage: ref_bench_csv.py GIBENCH WORKDIR."""
 import csv
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -71,26 +72,22 @@ fastest = max(replays, key=lambda r: float(r["mrays_per_s"]))
 check("fastest replay is 1.0 of itself (best-of)", float(fastest["vs_raw_replay_best"]) == 1.0)
 check("raw rows are 1.0 of themselves",
       float(rows[3]["vs_raw_random"]) == 1.0 and float(rows[4]["vs_raw_diffuse"]) == 1.0)
-check("every replay's paired ratio is at most 1 (the fastest of each repeat is the reference)",
-      all(float(r["vs_replay_paired_max"]) <= 1.0 for r in replays))
-check("some replay is the fastest in some repeat (paired max exactly 1)",
-      any(float(r["vs_replay_paired_max"]) == 1.0 for r in replays))
+# Each group of replays (the path tracer's rays, the lean tracer's) is paired with its own fastest.
+lean_replays = [r for r in rows if r["measure"] == "lean_replay"]
+for group, reps in (("replay", replays), ("lean replay", lean_replays)):
+    check("every %s's paired ratio is at most 1 (the fastest of each repeat is the reference)"
+          % group, all(float(r["vs_replay_paired_max"]) <= 1.0 for r in reps))
+    check("some %s is the fastest in some repeat (paired max exactly 1)" % group,
+          any(float(r["vs_replay_paired_max"]) == 1.0 for r in reps))
 pt = rows[1]
 check("path tracer counts the same rays as the replay at this size (recorded at full size)",
       int(pt["rays"]) == int(replays[0]["rays"]))
-# The lean tracer's rows are paired with the fastest replay of its own rays, as the path
-# tracer's are with theirs: the same checks, on its own group.
-lean_replays = [r for r in rows if r["measure"] == "lean_replay"]
-check("every lean replay's paired ratio is at most 1, and one is the fastest in some repeat",
-      all(float(r["vs_replay_paired_max"]) <= 1.0 for r in lean_replays)
-      and any(float(r["vs_replay_paired_max"]) == 1.0 for r in lean_replays))
 lean = [r for r in rows if r["measure"] == "lean_tracer"][0]
 check("lean tracer counts the same rays as its replay at this size (recorded at full size): "
       "%s and %s" % (lean["rays"], lean_replays[0]["rays"]),
       int(lean["rays"]) == int(lean_replays[0]["rays"]) > 0)
 # The lean tracer's row is paired with its own replay: each repeat's ratio, printed to stderr,
 # is one of the row's least, median and greatest (3 repeats: exactly those three, sorted).
-import re
 per_rep = sorted(float(x) for x in re.findall(r"lean tracer's ([0-9.]+)", run.stderr))
 row_pairs = [float(lean["vs_replay_paired_" + k]) for k in ("min", "median", "max")]
 check("lean tracer's paired ratios %s are its repeats' own %s" % (row_pairs, per_rep),
