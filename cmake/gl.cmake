@@ -27,14 +27,30 @@ add_custom_command(
   COMMENT "Embedding shaders"
   VERBATIM)
 
-# GL runtime: context (EGL, OSMesa), ledger, timers, techniques.
-file(GLOB GIB_GL_SOURCES CONFIGURE_DEPENDS harness/gl/*.c techniques/*.c techniques/*/*.c)
-add_library(gib_gl STATIC ${GIB_GL_SOURCES} ${GIB_SHADER_C})
+# GL runtime: context (EGL, OSMesa), ledger, timers, shaders, view matrices, the GPU scene.
+gib_layer_root(GIB_GL_ROOT gl harness/gl)
+file(GLOB GIB_GL_SOURCES CONFIGURE_DEPENDS harness/gl/*.c)
+add_library(gib_gl STATIC ${GIB_GL_SOURCES})
+target_include_directories(gib_gl PUBLIC ${GIB_GL_ROOT})
 # OSMesa must come before any libOpenGL: linking -lOpenGL first makes every call a silent no-op
-# (DESIGN.md). We link libEGL and libOSMesa only and load every GL function through them.
+# (ARCHITECTURE.md, "Toolchain facts"). We link libEGL and libOSMesa only and load every GL
+# function through them.
 target_link_libraries(gib_gl PUBLIC gib_scene gib_glad PkgConfig::OSMESA PkgConfig::EGL ${CMAKE_DL_LIBS})
 
-# The gibench executable: CLI, matrix runner, CSV, cache, plots.
+# Techniques, their shared passes and embedded shaders; the registry.
+gib_layer_root(GIB_TECH_ROOT techniques techniques)
+file(GLOB GIB_TECH_SOURCES CONFIGURE_DEPENDS techniques/*.c techniques/*/*.c)
+add_library(gib_techniques STATIC ${GIB_TECH_SOURCES} ${GIB_SHADER_C})
+target_include_directories(gib_techniques PUBLIC ${GIB_TECH_ROOT})
+target_link_libraries(gib_techniques PUBLIC gib_gl)
+
+# The app: runner, CLI, matrix runner, CSV, reference cache (a library, so tests can run
+# techniques as the CLI does), and the gibench executable.
+gib_layer_root(GIB_APP_ROOT app harness/app)
 file(GLOB GIB_APP_SOURCES CONFIGURE_DEPENDS harness/app/*.c)
-add_executable(gibench ${GIB_APP_SOURCES})
-target_link_libraries(gibench PRIVATE gib_gl gib_reference)
+list(FILTER GIB_APP_SOURCES EXCLUDE REGEX "/main\\.c$")
+add_library(gib_app STATIC ${GIB_APP_SOURCES})
+target_include_directories(gib_app PUBLIC ${GIB_APP_ROOT})
+target_link_libraries(gib_app PUBLIC gib_techniques gib_reference)
+add_executable(gibench harness/app/main.c)
+target_link_libraries(gibench PRIVATE gib_app)

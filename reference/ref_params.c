@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../harness/base/hash.h"
+#include "harness/base/hash.h"
 #include "ref_internal.h"
 
 static const char *const ref_component_names[GIB_COMP_COUNT] = {

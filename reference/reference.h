@@ -70,8 +70,8 @@
 
 #include <stdatomic.h>
 #include <stdio.h>
-#include "../harness/imaging/image.h"
-#include "../scenes/scene.h"
+#include "harness/imaging/image.h"
+#include "scenes/scene.h"
 
 /* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). */
 #define GIB_REFERENCE_VERSION "gibench-ref-4"

@@ -33,7 +33,7 @@
 #include <sys/stat.h>
 #include <zlib.h>
 
-#include "../harness/base/hash.h"
+#include "harness/base/hash.h"
 #include "scene_internal.h"
 
 /* ------------------------------------------------------------------ file access for assimp */

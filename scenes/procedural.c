@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../harness/base/hash.h"
+#include "harness/base/hash.h"
 #include "scene_internal.h"
 
 /* ------------------------------------------------------------------ keys and generators */

@@ -16,7 +16,7 @@
 
 #include <stdint.h>
 
-#include "../harness/base/error.h"
+#include "harness/base/error.h"
 
 enum gib_spec_type { GIB_SPEC_NONE = 0, GIB_SPEC_MIRROR = 1, GIB_SPEC_PHONG = 2 };
 enum gib_light_type { GIB_LIGHT_POINT = 0, GIB_LIGHT_SPOT = 1, GIB_LIGHT_DIRECTIONAL = 2 };

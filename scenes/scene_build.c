@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../harness/base/hash.h"
+#include "harness/base/hash.h"
 #include "scene_internal.h"
 
 /* ------------------------------------------------------------------ transforms */

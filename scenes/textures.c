@@ -13,8 +13,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../harness/base/hash.h"
-#include "../harness/imaging/oiio_shim.h"
+#include "harness/base/hash.h"
+#include "harness/imaging/oiio_shim.h"
 #include "scene_internal.h"
 
 float gib_srgb_to_linear(float c)

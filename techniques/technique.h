@@ -9,8 +9,12 @@
 
 #include <stdint.h>
 
-#include "../harness/base/error.h"
-#include "../scenes/scene.h"
+#include "harness/base/error.h"
+#include "harness/gl/gpu_scene.h"
+#include "harness/gl/ledger.h"
+#include "harness/gl/timers.h"
+#include "harness/gl/view.h"
+#include "scenes/scene.h"
 
 /* ---- parameters ---- */
 
@@ -42,22 +46,8 @@ enum gib_component_bit {
     GIB_OUT_CAUSTIC = 1u << 4,
 };
 
-/* ---- what the harness hands a technique ---- */
-
-typedef struct gib_ledger gib_ledger;  /* harness/gl/ledger.h */
-typedef struct gib_timers gib_timers;  /* harness/gl/timers.h */
-typedef struct gib_gpu_scene gib_gpu_scene; /* harness/gl/gpu_scene.h */
-
-typedef struct gib_view {
-    const gib_camera *camera;
-    int width, height;
-    float time;           /* seconds, for animated scenes */
-    /* Column-major, GL conventions, RELATIVE to `origin` (the camera's eye): shaders transform
-     * p - origin, a subtraction that is exact near the camera, so a scene far from the world origin
-     * keeps its precision (hard case `hard_far`: 1e5 m away, where view_proj * p loses the depth). */
-    float view[16], proj[16], view_proj[16];
-    float origin[3];
-} gib_view;
+/* ---- what the harness hands a technique: gib_view (harness/gl/view.h), the GPU scene, the
+ * ledger and the timers (harness/gl/) ---- */
 
 /* One RGBA32F colour texture per output component (in the order of the component bits), bound to
  * the FBO the harness made; the technique renders into it with bottom-up GL rows and the harness

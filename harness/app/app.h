@@ -2,11 +2,11 @@
 #ifndef GIB_APP_H
 #define GIB_APP_H
 
-#include "../../reference/reference.h"
-#include "../../scenes/scene.h"
-#include "../../techniques/technique.h"
-#include "../gl/context.h"
-#include "../imaging/metrics.h"
+#include "reference/reference.h"
+#include "scenes/scene.h"
+#include "techniques/technique.h"
+#include "harness/gl/context.h"
+#include "harness/imaging/metrics.h"
 
 int gib_cmd_list(int argc, char **argv);
 int gib_cmd_render(int argc, char **argv);

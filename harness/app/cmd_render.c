@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../gl/runner.h"
+#include "runner.h"
 #include "app.h"
 
 static const char help[] =

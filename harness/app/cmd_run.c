@@ -9,7 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../gl/runner.h"
+#include "runner.h"
 #include "app.h"
 #include "csv.h"
 #include "matrix.h"

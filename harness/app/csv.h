@@ -9,7 +9,7 @@
 
 #include <stdio.h>
 
-#include "../base/error.h"
+#include "harness/base/error.h"
 
 typedef struct gib_csv {
     FILE *f;

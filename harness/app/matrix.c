@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../reference/reference.h"
+#include "reference/reference.h"
 #include "app.h"
 
 /* What the file says, before expansion; profile keys override base keys. */

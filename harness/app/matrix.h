@@ -21,7 +21,7 @@
 #ifndef GIB_MATRIX_H
 #define GIB_MATRIX_H
 
-#include "../../techniques/technique.h"
+#include "techniques/technique.h"
 
 #define GIB_MATRIX_MAX_LIST 32
 #define GIB_MATRIX_MAX_COMPONENTS 16

@@ -15,7 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../base/hash.h"
+#include "harness/base/hash.h"
 #include "app.h"
 
 gib_ref_params gib_ref_request_params(const gib_ref_request *rq)

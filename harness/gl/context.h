@@ -7,7 +7,7 @@
 #ifndef GIB_CONTEXT_H
 #define GIB_CONTEXT_H
 
-#include "../base/error.h"
+#include "harness/base/error.h"
 
 enum gib_backend { GIB_BACKEND_AUTO = 0, GIB_BACKEND_EGL = 1, GIB_BACKEND_OSMESA = 2 };
 

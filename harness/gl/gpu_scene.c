@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../imaging/image.h"
+#include "harness/imaging/image.h"
 #include "context.h"
 
 /* Textures are linear floats in the scene model; on the GPU they are sRGB8 (the 8-bit data they came

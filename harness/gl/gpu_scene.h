@@ -4,7 +4,7 @@
 #ifndef GIB_GPU_SCENE_H
 #define GIB_GPU_SCENE_H
 
-#include "../../scenes/scene.h"
+#include "scenes/scene.h"
 #include "ledger.h"
 
 struct gib_gpu_scene {

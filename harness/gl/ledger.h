@@ -6,7 +6,7 @@
 
 #include <stdint.h>
 
-#include "../base/error.h"
+#include "harness/base/error.h"
 
 #define GIB_LEDGER_MAX 128
 

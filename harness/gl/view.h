@@ -4,8 +4,19 @@
 #ifndef GIB_VIEW_H
 #define GIB_VIEW_H
 
-#include "../../scenes/scene.h"
-#include "../../techniques/technique.h"
+#include "scenes/scene.h"
+
+/* What a technique is told about the frame it renders. */
+typedef struct gib_view {
+    const gib_camera *camera;
+    int width, height;
+    float time;           /* seconds, for animated scenes */
+    /* Column-major, GL conventions, RELATIVE to `origin` (the camera's eye): shaders transform
+     * p - origin, a subtraction that is exact near the camera, so a scene far from the world origin
+     * keeps its precision (hard case `hard_far`: 1e5 m away, where view_proj * p loses the depth). */
+    float view[16], proj[16], view_proj[16];
+    float origin[3];
+} gib_view;
 
 void gib_mat4_mul(const float a[16], const float b[16], float out[16]);
 /* Camera-style view matrix from an orthonormal basis (right, up, forward) and an origin. */

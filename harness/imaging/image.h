@@ -5,7 +5,7 @@
 #ifndef GIB_IMAGE_H
 #define GIB_IMAGE_H
 
-#include "../base/error.h"
+#include "harness/base/error.h"
 
 typedef struct gib_image {
     int width, height, channels;

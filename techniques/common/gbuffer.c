@@ -3,8 +3,8 @@
 #include <glad/gl.h>
 #include <string.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/shader.h"
+#include "harness/gl/context.h"
+#include "techniques/common/shader.h"
 
 int gib_gbuffer_create(gib_gbuffer *g, int w, int h, gib_ledger *ledger, gib_error *err)
 {

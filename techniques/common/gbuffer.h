@@ -5,9 +5,9 @@
 #ifndef GIB_GBUFFER_H
 #define GIB_GBUFFER_H
 
-#include "../../harness/gl/gpu_scene.h"
-#include "../../harness/gl/timers.h"
-#include "../technique.h"
+#include "harness/gl/gpu_scene.h"
+#include "harness/gl/timers.h"
+#include "techniques/technique.h"
 
 typedef struct gib_gbuffer {
     int width, height;

@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/shader.h"
-#include "../../harness/gl/view.h"
+#include "harness/gl/context.h"
+#include "techniques/common/shader.h"
+#include "harness/gl/view.h"
 
 static void bounding_sphere(const gib_scene *s, float c[3], float *r)
 {

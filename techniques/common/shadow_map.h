@@ -8,9 +8,9 @@
 #ifndef GIB_SHADOW_MAP_H
 #define GIB_SHADOW_MAP_H
 
-#include "../../harness/gl/gpu_scene.h"
-#include "../../harness/gl/timers.h"
-#include "../technique.h"
+#include "harness/gl/gpu_scene.h"
+#include "harness/gl/timers.h"
+#include "techniques/technique.h"
 
 typedef struct gib_shadow_maps {
     int res;

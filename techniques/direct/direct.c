@@ -6,11 +6,11 @@
 #include <glad/gl.h>
 #include <stdlib.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/ledger.h"
-#include "../../harness/gl/shader.h"
-#include "../common/gbuffer.h"
-#include "../common/shadow_map.h"
+#include "harness/gl/context.h"
+#include "harness/gl/ledger.h"
+#include "techniques/common/shader.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/common/shadow_map.h"
 
 typedef struct direct {
     const gib_gpu_scene *scene;

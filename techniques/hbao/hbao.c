@@ -17,10 +17,10 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/ledger.h"
-#include "../../harness/gl/shader.h"
-#include "../common/gbuffer.h"
+#include "harness/gl/context.h"
+#include "harness/gl/ledger.h"
+#include "techniques/common/shader.h"
+#include "techniques/common/gbuffer.h"
 
 typedef struct hbao {
     gib_ledger *ledger;

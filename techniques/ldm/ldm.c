@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/ledger.h"
-#include "../../harness/gl/shader.h"
-#include "../../harness/gl/view.h"
+#include "harness/gl/context.h"
+#include "harness/gl/ledger.h"
+#include "techniques/common/shader.h"
+#include "harness/gl/view.h"
 #include "eqsp.h"
 
 /* std430 struct LdmInfo in ldm_common.glsl. */

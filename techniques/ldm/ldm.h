@@ -13,9 +13,9 @@
 #ifndef LDM_H
 #define LDM_H
 
-#include "../../harness/gl/gpu_scene.h"
-#include "../../harness/gl/timers.h"
-#include "../technique.h"
+#include "harness/gl/gpu_scene.h"
+#include "harness/gl/timers.h"
+#include "techniques/technique.h"
 
 #define LDM_MAX_PAGES 64
 

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/ledger.h"
-#include "../../harness/gl/shader.h"
-#include "../common/gbuffer.h"
-#include "../ldm/ldm.h"
+#include "harness/gl/context.h"
+#include "harness/gl/ledger.h"
+#include "techniques/common/shader.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/ldm/ldm.h"
 
 extern const gib_technique gib_technique_ldm_ao;
 

@@ -11,12 +11,12 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../../harness/gl/context.h"
-#include "../../harness/gl/ledger.h"
-#include "../../harness/gl/shader.h"
-#include "../common/gbuffer.h"
-#include "../common/shadow_map.h"
-#include "../ldm/ldm.h"
+#include "harness/gl/context.h"
+#include "harness/gl/ledger.h"
+#include "techniques/common/shader.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/common/shadow_map.h"
+#include "techniques/ldm/ldm.h"
 
 extern const gib_technique gib_technique_ldm_env;
 

@@ -28,7 +28,7 @@
 #include <string.h>
 
 #include "harness/gl/context.h"
-#include "harness/gl/runner.h"
+#include "harness/app/runner.h"
 #include "harness/imaging/metrics.h"
 #include "reference/reference.h"
 

@@ -8,7 +8,7 @@
  *    the sky and the comparison can tell. */
 #include <stdio.h>
 
-#include "harness/gl/runner.h"
+#include "harness/app/runner.h"
 #include "harness/imaging/metrics.h"
 #include "reference/reference.h"
 #include "tests/common/gl_fixture.h"

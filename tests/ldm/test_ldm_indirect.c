@@ -16,7 +16,7 @@
 
 #include "harness/gl/context.h"
 #include "tests/common/gl_fixture.h"
-#include "harness/gl/runner.h"
+#include "harness/app/runner.h"
 
 int main(void)
 {

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "../../reference/ref_internal.h"
+#include "reference/ref_internal.h"
 #include "ref_test_util.h"
 
 static const float EYE[3] = {0.0f, 4.0f, 0.0f}, TGT[3] = {0, 0, 0}, UP[3] = {0, 0, -1};

@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-#include "../../reference/reference.h"
+#include "reference/reference.h"
 
 /* Test bookkeeping: a failed check prints and counts; main returns rt_failures != 0. */
 extern int rt_failures;

@@ -8,7 +8,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "../../reference/ref_internal.h"
+#include "reference/ref_internal.h"
 #include "ref_test_util.h"
 
 static int close_to(float a, float b, float tol)

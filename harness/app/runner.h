@@ -4,10 +4,10 @@
 #ifndef GIB_RUNNER_H
 #define GIB_RUNNER_H
 
-#include "../../techniques/technique.h"
-#include "../imaging/image.h"
-#include "gpu_scene.h"
-#include "timers.h"
+#include "techniques/technique.h"
+#include "harness/imaging/image.h"
+#include "harness/gl/gpu_scene.h"
+#include "harness/gl/timers.h"
 
 #define GIB_MAX_OUTPUTS 5
 

@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context.h"
-#include "ledger.h"
-#include "view.h"
+#include "harness/gl/context.h"
+#include "harness/gl/ledger.h"
+#include "harness/gl/view.h"
 
 const char *gib_output_name(unsigned bit)
 {

@@ -5,7 +5,7 @@
 #ifndef GIB_SHADER_H
 #define GIB_SHADER_H
 
-#include "../base/error.h"
+#include "harness/base/error.h"
 
 /* Returns the embedded source or NULL (generated shaders.c). */
 const char *gib_shader_source(const char *path);
