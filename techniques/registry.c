@@ -1,5 +1,5 @@
 /* gibench — the list of techniques, and the parameter handling every technique shares. */
-#include <assert.h>
+#include <stdio.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -88,16 +88,23 @@ int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const
     return 0;
 }
 
-int gib_param_int(const gib_technique *t, const gib_params *p, const char *name)
+static int declared_index(const gib_technique *t, const char *name)
 {
     int i = gib_param_index(t, name);
-    assert(i >= 0);
-    return (int)p->values[i];
+    if (i < 0) {
+        fprintf(stderr, "gibench: technique '%s' reads parameter '%s', which it does not declare\n",
+                t->name, name);
+        abort();
+    }
+    return i;
+}
+
+int gib_param_int(const gib_technique *t, const gib_params *p, const char *name)
+{
+    return (int)p->values[declared_index(t, name)];
 }
 
 double gib_param_float(const gib_technique *t, const gib_params *p, const char *name)
 {
-    int i = gib_param_index(t, name);
-    assert(i >= 0);
-    return p->values[i];
+    return p->values[declared_index(t, name)];
 }

@@ -46,6 +46,23 @@ enum gib_component_bit {
     GIB_OUT_CAUSTIC = 1u << 4,
 };
 
+/* ---- the reference a technique is scored against ----
+ * Each output component is scored against the reference of the same name (GIB_OUT_AO against the
+ * path tracer's `ao`, ...). Where that reference has settings of its own, the technique says which
+ * of its parameters gives each one; a setting no binding names keeps the reference's default
+ * (ARCHITECTURE.md, "The technique contract"). */
+enum gib_ref_setting {
+    GIB_REF_END = 0,
+    GIB_REF_AO_DMAX,        /* ao: the largest occluder distance (a float parameter; inf: none) */
+    GIB_REF_AO_OBSCURANCE,  /* ao: 1 = Zhukov's obscurance min(d/dmax, 1) instead of visibility */
+};
+
+typedef struct gib_ref_binding {
+    unsigned components;    /* GIB_OUT_* bits whose reference this setting configures */
+    int setting;            /* enum gib_ref_setting */
+    const char *param;      /* the technique's parameter that gives its value */
+} gib_ref_binding;
+
 /* ---- what the harness hands a technique: gib_view (harness/gl/view.h), the GPU scene, the
  * ledger and the timers (harness/gl/) ---- */
 
@@ -63,6 +80,9 @@ typedef struct gib_technique {
     const char *source;          /* "rasterised direct light with PCF shadow maps (Williams 1978)" */
     unsigned components;         /* GIB_OUT_* bits it outputs */
     const gib_param_spec *params;/* terminated by {0} */
+    /* How its parameters set its references (terminated by {0}; NULL: none). A technique that
+     * outputs `ao` must bind GIB_REF_AO_DMAX: AO has no meaning without its range. */
+    const gib_ref_binding *reference;
     unsigned scene_needs;        /* GIB_FEAT_* bits the scene must have (all of them) */
     unsigned scene_needs_any;    /* GIB_FEAT_* bits of which the scene needs at least one (0: none) */
     /* Allocates everything for images of width x height (through the ledger) and builds shaders. */
@@ -89,7 +109,8 @@ void gib_params_default(const gib_technique *t, gib_params *p);
  * parameter, the value and the valid range. */
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
                   gib_error *err);
-/* Integer and float accessors by name (the name must exist: asserted). */
+/* Integer and float accessors by name. A name the technique does not declare is a bug in the
+ * technique: the process stops with a message naming both (in every build, not only with asserts). */
 int gib_param_int(const gib_technique *t, const gib_params *p, const char *name);
 double gib_param_float(const gib_technique *t, const gib_params *p, const char *name);
 

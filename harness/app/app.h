@@ -73,9 +73,11 @@ typedef struct gib_ref_result {
 
 int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err);
 
-/* Sets the reference parameters that a technique's own parameters decide, so the reference models
- * what the technique estimates: `dmax` (unbounded when the technique has none) and `obscurance`. */
-void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p);
+/* Sets the reference settings of output `output` (a GIB_OUT_* bit) from the technique's declared
+ * bindings (technique.h, gib_ref_binding), so the reference models what the technique estimates;
+ * a setting no binding names keeps its default (dmax unbounded, visibility not obscurance). */
+void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p,
+                           unsigned output);
 /* The renderer parameters of a request (seed 1). */
 gib_ref_params gib_ref_request_params(const gib_ref_request *rq);
 /* The seal of a reference EXR: appends a "content_hash" attribute (when max allows) that hashes

@@ -125,7 +125,7 @@ int gib_cmd_render(int argc, char **argv)
             gib_ref_request rq = {.scene = &scene, .camera = (int)camera, .width = w, .height = h,
                                   .component = gib_component_parse(comp), .spp = (int)ref_spp,
                                   .cache_dir = cache};
-            gib_ref_request_match(&rq, t, &p);
+            gib_ref_request_match(&rq, t, &p, r.output_components[i]);
             gib_ref_result ref;
             gib_metrics m;
             if (rq.component < 0 || gib_reference_get(&rq, &ref, &err) < 0 ||

@@ -204,7 +204,7 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
                               .spp = component >= 0 && ctx->m->ref_spp[component]
                                          ? ctx->m->ref_spp[component] : 64,
                               .cache_dir = ctx->cache};
-        gib_ref_request_match(&rq, t, &mr->params);
+        gib_ref_request_match(&rq, t, &mr->params, bit);
         gib_ref_result ref;
         if (component < 0 || gib_reference_get(&rq, &ref, &err) < 0) {
             row_set(&r, C_STATUS, "reference_failed");

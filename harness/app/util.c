@@ -170,10 +170,18 @@ int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposur
     return gib_png_write_error_map(path, ref, img, 0.0f, err);
 }
 
-void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p)
+void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p,
+                           unsigned output)
 {
-    int i = gib_param_index(t, "dmax");
-    rq->dmax = i >= 0 ? (float)p->values[i] : INFINITY;
-    i = gib_param_index(t, "obscurance");
-    rq->obscurance = i >= 0 ? (int)p->values[i] : 0;
+    rq->dmax = INFINITY;
+    rq->obscurance = 0;
+    for (const gib_ref_binding *b = t->reference; b && b->setting != GIB_REF_END; b++) {
+        if (!(b->components & output))
+            continue;
+        double v = gib_param_float(t, p, b->param);
+        switch (b->setting) {
+        case GIB_REF_AO_DMAX: rq->dmax = (float)v; break;
+        case GIB_REF_AO_OBSCURANCE: rq->obscurance = (int)v; break;
+        }
+    }
 }

@@ -206,11 +206,17 @@ static void hbao_destroy(void *self)
     free(h);
 }
 
+static const gib_ref_binding hbao_reference[] = {
+    {GIB_OUT_AO, GIB_REF_AO_DMAX, "dmax"},
+    {0},
+};
+
 const gib_technique gib_technique_hbao = {
     .name = "hbao",
     .source = "image-space horizon-based AO (Bavoil, Sainz and Dimitrov 2008); LDM paper Sec. 5.1",
     .components = GIB_OUT_AO,
     .params = hbao_params,
+    .reference = hbao_reference,
     .scene_needs = 0,
     .scene_needs_any = 0,
     .create = hbao_create,

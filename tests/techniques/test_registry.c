@@ -1,0 +1,135 @@
+/* Every technique's descriptor against the contract of techniques/technique.h: parameter specs
+ * that the CLI and matrices can rely on, reference bindings that name real parameters, and
+ * gib_param_int/float stopping the process on an undeclared name in every build (this test is
+ * compiled with NDEBUG in the release build, where the old assert did nothing). No GL needed. */
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "techniques/technique.h"
+
+static int failures;
+#define CHECK(cond, ...)                                                                           \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
+            printf(__VA_ARGS__);                                                                   \
+            printf("\n");                                                                          \
+            failures++;                                                                            \
+        }                                                                                          \
+    } while (0)
+
+static const unsigned all_outputs =
+    GIB_OUT_AO | GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY | GIB_OUT_CAUSTIC;
+
+static void check_params(const gib_technique *t)
+{
+    int n = 0;
+    for (; t->params && t->params[n].name; n++) {
+        const gib_param_spec *s = &t->params[n];
+        CHECK(s->name[0], "%s: parameter %d has an empty name", t->name, n);
+        CHECK(s->type == GIB_PARAM_INT || s->type == GIB_PARAM_FLOAT, "%s.%s: unknown type %d",
+              t->name, s->name, s->type);
+        CHECK(s->help && s->help[0], "%s.%s: no help text", t->name, s->name);
+        CHECK(s->min <= s->max, "%s.%s: range [%g, %g] is empty", t->name, s->name, s->min, s->max);
+        CHECK(s->def >= s->min && s->def <= s->max, "%s.%s: default %g outside [%g, %g]", t->name,
+              s->name, s->def, s->min, s->max);
+        if (s->type == GIB_PARAM_INT)
+            CHECK(s->def == floor(s->def) && !isinf(s->def), "%s.%s: integer with default %g",
+                  t->name, s->name, s->def);
+        for (int k = 0; k < n; k++)
+            CHECK(strcmp(t->params[k].name, s->name), "%s: parameter '%s' declared twice", t->name,
+                  s->name);
+    }
+    /* gib_params holds GIB_MAX_PARAMS values in spec order. */
+    CHECK(n <= GIB_MAX_PARAMS, "%s: %d parameters, at most %d", t->name, n, GIB_MAX_PARAMS);
+    gib_params p;
+    gib_params_default(t, &p);
+    CHECK(p.count == n, "%s: defaults fill %d values for %d parameters", t->name, p.count, n);
+}
+
+static void check_reference(const gib_technique *t)
+{
+    int binds_dmax = 0;
+    for (const gib_ref_binding *b = t->reference; b && b->setting != GIB_REF_END; b++) {
+        int i = gib_param_index(t, b->param);
+        CHECK(i >= 0, "%s: reference binding names parameter '%s', which it does not declare",
+              t->name, b->param);
+        CHECK(b->components && !(b->components & ~t->components),
+              "%s: binding of '%s' for components 0x%x, technique outputs 0x%x", t->name, b->param,
+              b->components, t->components);
+        CHECK(b->setting == GIB_REF_AO_DMAX || b->setting == GIB_REF_AO_OBSCURANCE,
+              "%s: binding of '%s' to unknown setting %d", t->name, b->param, b->setting);
+        if (b->setting == GIB_REF_AO_DMAX || b->setting == GIB_REF_AO_OBSCURANCE)
+            CHECK(b->components == GIB_OUT_AO, "%s: an ao setting bound for components 0x%x",
+                  t->name, b->components);
+        if (b->setting == GIB_REF_AO_DMAX && i >= 0) {
+            binds_dmax = 1;
+            CHECK(t->params[i].type == GIB_PARAM_FLOAT, "%s: dmax bound to integer '%s'", t->name,
+                  b->param);
+        }
+        if (b->setting == GIB_REF_AO_OBSCURANCE && i >= 0)
+            CHECK(t->params[i].type == GIB_PARAM_INT && t->params[i].min >= 0 &&
+                      t->params[i].max <= 1,
+                  "%s: obscurance bound to '%s', which is not a 0/1 switch", t->name, b->param);
+    }
+    if (t->components & GIB_OUT_AO)
+        CHECK(binds_dmax, "%s outputs ao but binds no parameter to the reference's dmax", t->name);
+}
+
+/* Runs f in a child and reports whether it died of SIGABRT with the expected message. */
+static int aborts_naming(const gib_technique *t, int as_float, const char *name)
+{
+    int fds[2];
+    if (pipe(fds) < 0)
+        return 0;
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(fds[1], 2);
+        gib_params p;
+        gib_params_default(t, &p);
+        volatile double v = as_float ? gib_param_float(t, &p, name) : gib_param_int(t, &p, name);
+        (void)v;
+        _exit(0);
+    }
+    close(fds[1]);
+    char msg[512] = "";
+    ssize_t got = read(fds[0], msg, sizeof msg - 1);
+    msg[got > 0 ? got : 0] = 0;
+    close(fds[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFSIGNALED(status) && WTERMSIG(status) == SIGABRT && strstr(msg, t->name) &&
+           strstr(msg, name);
+}
+
+int main(void)
+{
+    int count = 0;
+    const gib_technique *const *all = gib_techniques(&count);
+    CHECK(count > 0, "empty registry");
+    for (int i = 0; i < count; i++) {
+        const gib_technique *t = all[i];
+        CHECK(t->name && t->name[0] && t->source && t->source[0], "technique %d: no name or source",
+              i);
+        CHECK(t->components && !(t->components & ~all_outputs), "%s: components 0x%x", t->name,
+              t->components);
+        CHECK(t->create && t->render && t->destroy, "%s: missing create/render/destroy", t->name);
+        CHECK(gib_technique_find(t->name) == t, "%s: not found by its name", t->name);
+        for (int k = 0; k < i; k++)
+            CHECK(strcmp(all[k]->name, t->name), "technique '%s' registered twice", t->name);
+        check_params(t);
+        check_reference(t);
+    }
+    /* An undeclared name stops the process (the release build has NDEBUG: no assert). */
+    const gib_technique *t = all[0];
+    CHECK(aborts_naming(t, 0, "no_such_parameter"), "gib_param_int on an unknown name went on");
+    CHECK(aborts_naming(t, 1, "no_such_parameter"), "gib_param_float on an unknown name went on");
+    if (t->params && t->params[0].name)
+        CHECK(!aborts_naming(t, 1, t->params[0].name), "a declared name stopped the process");
+    printf("%d techniques checked: %s\n", count, failures ? "FAILED" : "ok");
+    return failures ? 1 : 0;
+}
