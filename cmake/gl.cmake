@@ -15,7 +15,7 @@ target_compile_options(gib_glad PRIVATE -w)
 file(GLOB_RECURSE GIB_SHADERS CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/techniques/*.glsl ${CMAKE_SOURCE_DIR}/techniques/*.vert
   ${CMAKE_SOURCE_DIR}/techniques/*.frag ${CMAKE_SOURCE_DIR}/techniques/*.geom
-  ${CMAKE_SOURCE_DIR}/techniques/*.comp)
+  ${CMAKE_SOURCE_DIR}/techniques/*.comp ${CMAKE_SOURCE_DIR}/harness/gl/bindings.h)
 set(GIB_SHADER_C ${CMAKE_BINARY_DIR}/generated/shaders.c)
 # A CMake list would be split into several shell words: pass it '|'-separated.
 string(REPLACE ";" "|" GIB_SHADER_LIST "${GIB_SHADERS}")

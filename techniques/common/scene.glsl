@@ -2,20 +2,21 @@
 // gib_light_eval() and gib_spot_falloff() (scenes/camera_light.c, scenes/light_eval.h) are the
 // definitions; these functions must compute the same numbers (tests/gl checks the images agree
 // with the reference).
+#include "gl/bindings.h"
 
 struct Material {
     vec4 albedo;    // rgb = rho_d, w = albedo texture bound (1) or not (0)
     vec4 specular;  // rgb = rho_s, w = Phong exponent n
     ivec4 flags;    // x = spec type (0 none, 1 mirror, 2 Phong), y = two-sided, z = alpha mask bound
 };
-layout(std430, binding = 0) readonly buffer Materials { Material materials[]; };
+layout(std430, binding = GIB_SSBO_MATERIALS) readonly buffer Materials { Material materials[]; };
 
 struct Light {
     vec4 position_type;      // xyz position, w = type (0 point, 1 spot, 2 directional)
     vec4 direction_exponent; // xyz unit axis / travel direction, w = spot exponent e
     vec4 intensity_outer;    // rgb intensity (W/sr) or irradiance, w = cos(outer half-angle)
 };
-layout(std430, binding = 1) readonly buffer Lights { Light lights[]; };
+layout(std430, binding = GIB_SSBO_LIGHTS) readonly buffer Lights { Light lights[]; };
 
 const float PI = 3.14159265358979;
 

@@ -1,5 +1,5 @@
 /* gibench — GLSL programs from the shaders embedded at build time (cmake/embed_shaders.cmake).
- * Shader files live next to their technique; paths are relative to techniques/ ("direct/direct.frag").
+ * Shader files live next to their technique; paths are relative to techniques/ ("common/gbuffer.frag").
  * `#include "common/scene.glsl"` lines are expanded (one level deep is all gibench uses, but nested
  * includes work), and `#version 450 core` is prepended. */
 #ifndef GIB_SHADER_H

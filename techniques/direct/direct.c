@@ -3,23 +3,16 @@
  * direct-light baseline that indirect techniques add to, and the first check that the GL side and the
  * path tracer see the same world: without shadows it is exact up to float precision, so its error
  * against the reference `direct` is the shadow maps' error (resolution, PCF blur, bias). */
-#include <glad/gl.h>
 #include <stdlib.h>
 
 #include "harness/gl/context.h"
-#include "harness/gl/ledger.h"
-#include "techniques/common/shader.h"
-#include "techniques/common/gbuffer.h"
-#include "techniques/common/shadow_map.h"
+#include "techniques/common/direct_light.h"
 
 typedef struct direct {
     const gib_gpu_scene *scene;
     gib_ledger *ledger;
     gib_gbuffer gbuffer;
-    gib_shadow_maps shadows;
-    unsigned program, vao;
-    int pcf_radius;
-    float normal_offset;
+    gib_direct_light light;
 } direct;
 
 static const gib_param_spec direct_params[] = {
@@ -43,17 +36,13 @@ static void *direct_create(const gib_gpu_scene *scene, const gib_params *p, int 
     d->scene = scene;
     d->ledger = ledger;
     const gib_technique *t = &gib_technique_direct;
-    d->pcf_radius = gib_param_int(t, p, "pcf");
-    d->normal_offset = (float)gib_param_float(t, p, "normal_offset");
-    const char *files[] = {"common/fullscreen.vert", "direct/direct.frag"};
     if (gib_gbuffer_create(&d->gbuffer, width, height, ledger, err) < 0 ||
-        gib_shadow_maps_create(&d->shadows, scene, gib_param_int(t, p, "shadow_res"), ledger,
-                               err) < 0 ||
-        !(d->program = gib_program(files, 2, NULL, err))) {
+        gib_direct_light_create(&d->light, scene, gib_param_int(t, p, "shadow_res"),
+                                gib_param_int(t, p, "pcf"),
+                                (float)gib_param_float(t, p, "normal_offset"), ledger, err) < 0) {
         direct_destroy(d);
         return NULL;
     }
-    glCreateVertexArrays(1, &d->vao);
     return d;
 }
 
@@ -63,24 +52,9 @@ static int direct_render(void *self, const gib_view *view, gib_timers *timers,
     direct *d = self;
     if (target_count != 1)
         return gib_fail(err, "direct renders one component, was given %d targets", target_count);
-    gib_shadow_maps_render(&d->shadows, d->scene, timers);
+    gib_direct_light_shadows(&d->light, d->scene, timers);
     gib_gbuffer_render(&d->gbuffer, d->scene, view, timers, "gbuffer");
-
-    gib_timer_begin(timers, "shade");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);
-    glViewport(0, 0, view->width, view->height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glUseProgram(d->program);
-    gib_gpu_scene_bind(d->scene);
-    gib_gbuffer_bind(&d->gbuffer);
-    gib_shadow_maps_bind(&d->shadows, d->pcf_radius, d->normal_offset);
-    glUniform3fv(2, 1, view->camera->eye);
-    glUniform1i(3, (int)d->scene->scene->light_count);
-    glBindVertexArray(d->vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-    gib_timer_end(timers);
+    gib_direct_light_shade(&d->light, d->scene, &d->gbuffer, view, targets[0].fbo, timers);
     return gib_gl_check("direct", err);
 }
 
@@ -90,11 +64,7 @@ static void direct_destroy(void *self)
     if (!d)
         return;
     gib_gbuffer_destroy(&d->gbuffer, d->ledger);
-    gib_shadow_maps_destroy(&d->shadows, d->ledger);
-    if (d->program)
-        glDeleteProgram(d->program);
-    if (d->vao)
-        glDeleteVertexArrays(1, &d->vao);
+    gib_direct_light_destroy(&d->light, d->ledger);
     free(d);
 }
 

@@ -19,14 +19,15 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
-#include "techniques/common/shader.h"
+#include "harness/gl/bindings.h"
+#include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 
 typedef struct hbao {
     gib_ledger *ledger;
     const gib_gpu_scene *scene;
     gib_gbuffer gbuffer;
-    unsigned program, blur_program, vao;
+    gib_fullscreen ao, blur;
     unsigned ao_tex[2], ao_fbo[2]; /* raw AO and the blur's intermediate (blur_radius > 0 only) */
     float radius, bias_rad, max_radius_px;
     int dirs, steps, falloff, blur_radius;
@@ -83,14 +84,12 @@ static void *hbao_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     h->falloff = gib_param_int(t, p, "falloff");
     h->max_radius_px = (float)gib_param_float(t, p, "max_radius_px");
     h->blur_radius = gib_param_int(t, p, "blur_radius");
-    const char *files[] = {"common/fullscreen.vert", "hbao/hbao.frag"};
-    const char *blur_files[] = {"common/fullscreen.vert", "hbao/hbao_blur.frag"};
     if (gib_gbuffer_create(&h->gbuffer, width, height, ledger, err) < 0 ||
-        !(h->program = gib_program(files, 2, NULL, err)))
+        gib_fullscreen_create(&h->ao, "hbao/hbao.frag", NULL, err) < 0)
         goto fail;
     if (h->blur_radius > 0) {
         static const char *labels[2] = {"hbao.ao", "hbao.blur"};
-        if (!(h->blur_program = gib_program(blur_files, 2, NULL, err)))
+        if (gib_fullscreen_create(&h->blur, "hbao/hbao_blur.frag", NULL, err) < 0)
             goto fail;
         for (int i = 0; i < 2; i++) {
             if (!(h->ao_tex[i] = gib_gpu_texture(ledger, labels[i], GL_TEXTURE_2D, width, height,
@@ -105,7 +104,6 @@ static void *hbao_create(const gib_gpu_scene *scene, const gib_params *p, int wi
             }
         }
     }
-    glCreateVertexArrays(1, &h->vao);
     if (gib_gl_check("hbao create", err) < 0)
         goto fail;
     return h;
@@ -124,15 +122,6 @@ static void view_axes(const gib_view *v, float right[3], float up[3], float forw
     }
 }
 
-static void draw_fullscreen(const hbao *h, unsigned fbo, const gib_view *view)
-{
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, view->width, view->height);
-    glBindVertexArray(h->vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
-}
-
 static int hbao_render(void *self, const gib_view *view, gib_timers *timers,
                        const gib_image_target *targets, int target_count, gib_error *err)
 {
@@ -144,12 +133,11 @@ static int hbao_render(void *self, const gib_view *view, gib_timers *timers,
     float right[3], up[3], forward[3];
     view_axes(view, right, up, forward);
     const int blur = h->blur_radius > 0;
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
     gib_gbuffer_bind(&h->gbuffer);
 
     gib_timer_begin(timers, "hbao");
-    glUseProgram(h->program);
+    gib_fullscreen_begin(&h->ao, blur ? h->ao_fbo[0] : targets[0].fbo, view->width, view->height,
+                         0);
     glUniform3fv(0, 1, view->camera->eye);
     glUniform3fv(1, 1, right);
     glUniform3fv(2, 1, up);
@@ -164,22 +152,27 @@ static int hbao_render(void *self, const gib_view *view, gib_timers *timers,
     glUniform1i(9, h->falloff);
     glUniform1f(10, h->max_radius_px);
     glUniform1i(11, !blur);
-    draw_fullscreen(h, blur ? h->ao_fbo[0] : targets[0].fbo, view);
+    gib_fullscreen_draw(&h->ao);
+    gib_fullscreen_end();
     gib_timer_end(timers);
 
     if (blur) {
         gib_timer_begin(timers, "blur");
-        glUseProgram(h->blur_program);
-        glUniform3fv(0, 1, view->camera->eye);
-        glUniform3fv(1, 1, forward);
-        glUniform1i(3, h->blur_radius);
-        glUniform1f(4, HBAO_BLUR_TOLERANCE);
         for (int pass = 0; pass < 2; pass++) {
-            glBindTextureUnit(4, h->ao_tex[pass]);
+            gib_fullscreen_begin(&h->blur, pass == 0 ? h->ao_fbo[1] : targets[0].fbo, view->width,
+                                 view->height, 0);
+            if (pass == 0) {
+                glUniform3fv(0, 1, view->camera->eye);
+                glUniform3fv(1, 1, forward);
+                glUniform1i(3, h->blur_radius);
+                glUniform1f(4, HBAO_BLUR_TOLERANCE);
+            }
+            glBindTextureUnit(GIB_UNIT_OWN_FIRST, h->ao_tex[pass]);
             glUniform2i(2, pass == 0, pass == 1);
             glUniform1i(5, pass == 1);
-            draw_fullscreen(h, pass == 0 ? h->ao_fbo[1] : targets[0].fbo, view);
+            gib_fullscreen_draw(&h->blur);
         }
+        gib_fullscreen_end();
         gib_timer_end(timers);
     }
     return gib_gl_check("hbao", err);
@@ -197,12 +190,8 @@ static void hbao_destroy(void *self)
         if (h->ao_tex[i])
             gib_gpu_free(h->ledger, h->ao_tex[i], 1);
     }
-    if (h->program)
-        glDeleteProgram(h->program);
-    if (h->blur_program)
-        glDeleteProgram(h->blur_program);
-    if (h->vao)
-        glDeleteVertexArrays(1, &h->vao);
+    gib_fullscreen_destroy(&h->ao);
+    gib_fullscreen_destroy(&h->blur);
     free(h);
 }
 

@@ -3,9 +3,10 @@
 // across depth edges. Weights: a spatial Gaussian times a range term on the distance of the
 // neighbour's surface point from the centre pixel's tangent plane, relative to the centre's depth
 // (scale-free, so the same setting serves scenes in metres and in centimetres).
+#include "gl/bindings.h"
 layout(binding = 0) uniform sampler2D g_position;
 layout(binding = 1) uniform sampler2D g_normal;
-layout(binding = 4) uniform sampler2D u_ao;
+layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler2D u_ao;
 layout(location = 0) uniform vec3 u_eye;
 layout(location = 1) uniform vec3 u_forward;
 layout(location = 2) uniform ivec2 u_axis;

@@ -9,7 +9,7 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
-#include "techniques/common/shader.h"
+#include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/ldm/ldm.h"
 
@@ -20,7 +20,7 @@ typedef struct ldm_ao {
     gib_ledger *ledger;
     gib_gbuffer gbuffer;
     ldm_set ldms;
-    unsigned program, vao;
+    gib_fullscreen trace;
     float dmax, offset;
     int obscurance;
 } ldm_ao;
@@ -44,10 +44,7 @@ static void ldm_ao_destroy(void *self)
         return;
     gib_gbuffer_destroy(&a->gbuffer, a->ledger);
     ldm_destroy(&a->ldms, a->ledger);
-    if (a->program)
-        glDeleteProgram(a->program);
-    if (a->vao)
-        glDeleteVertexArrays(1, &a->vao);
+    gib_fullscreen_destroy(&a->trace);
     free(a);
 }
 
@@ -70,15 +67,13 @@ static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int 
         free(a);
         return NULL;
     }
-    const char *files[] = {"common/fullscreen.vert", "ldm_ao/ldm_ao.frag"};
     if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
                    gib_param_float(t, p, "node_budget"), ledger, err) < 0 ||
-        !(a->program = gib_program(files, 2, NULL, err))) {
+        gib_fullscreen_create(&a->trace, "ldm_ao/ldm_ao.frag", NULL, err) < 0) {
         ldm_ao_destroy(a);
         return NULL;
     }
-    glCreateVertexArrays(1, &a->vao);
     return a;
 }
 
@@ -92,28 +87,22 @@ static int ldm_ao_render(void *self, const gib_view *view, gib_timers *timers,
     gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
 
     gib_timer_begin(timers, "ldm_trace");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);
-    glViewport(0, 0, view->width, view->height);
+    /* Additive: pages add their LDMs' share of Eq. 2. */
+    gib_fullscreen_begin(&a->trace, targets[0].fbo, view->width, view->height, 1);
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE); /* pages add their LDMs' share of Eq. 2 */
-    glUseProgram(a->program);
     gib_gbuffer_bind(&a->gbuffer);
     glUniform1f(7, 2.0f / (float)a->ldms.count);
     glUniform1f(8, a->dmax);
     glUniform1i(9, a->obscurance);
     glUniform1f(10, a->offset);
-    glBindVertexArray(a->vao);
     for (int p = 0; p < a->ldms.page_count; p++) {
         ldm_bind_page(&a->ldms, p);
         glUniform1i(5, a->ldms.pages[p].first);
         glUniform1i(6, a->ldms.pages[p].count);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gib_fullscreen_draw(&a->trace);
     }
-    glBindVertexArray(0);
-    glDisable(GL_BLEND);
+    gib_fullscreen_end();
     gib_timer_end(timers);
     return gib_gl_check("ldm_ao", err);
 }

@@ -12,10 +12,7 @@
 #include <stdlib.h>
 
 #include "harness/gl/context.h"
-#include "harness/gl/ledger.h"
-#include "techniques/common/shader.h"
-#include "techniques/common/gbuffer.h"
-#include "techniques/common/shadow_map.h"
+#include "techniques/common/direct_light.h"
 #include "techniques/ldm/ldm.h"
 
 extern const gib_technique gib_technique_ldm_env;
@@ -24,11 +21,10 @@ typedef struct ldm_env {
     const gib_gpu_scene *scene;
     gib_ledger *ledger;
     gib_gbuffer gbuffer;
-    gib_shadow_maps shadows;
+    gib_direct_light light;
     ldm_set ldms;
-    unsigned shade_program, sky_program, vao;
-    int pcf;
-    float normal_offset, ldm_offset;
+    gib_fullscreen sky;
+    float ldm_offset;
 } ldm_env;
 
 static const gib_param_spec ldm_env_params[] = {
@@ -47,14 +43,9 @@ static void ldm_env_destroy(void *self)
     if (!e)
         return;
     gib_gbuffer_destroy(&e->gbuffer, e->ledger);
-    gib_shadow_maps_destroy(&e->shadows, e->ledger);
+    gib_direct_light_destroy(&e->light, e->ledger);
     ldm_destroy(&e->ldms, e->ledger);
-    if (e->shade_program)
-        glDeleteProgram(e->shade_program);
-    if (e->sky_program)
-        glDeleteProgram(e->sky_program);
-    if (e->vao)
-        glDeleteVertexArrays(1, &e->vao);
+    gib_fullscreen_destroy(&e->sky);
     free(e);
 }
 
@@ -69,21 +60,17 @@ static void *ldm_env_create(const gib_gpu_scene *scene, const gib_params *p, int
     }
     e->scene = scene;
     e->ledger = ledger;
-    e->pcf = gib_param_int(t, p, "pcf");
-    e->normal_offset = (float)gib_param_float(t, p, "normal_offset");
     e->ldm_offset = (float)gib_param_float(t, p, "ldm_offset");
-    const char *shade[] = {"common/fullscreen.vert", "direct/direct.frag"};
-    const char *sky[] = {"common/fullscreen.vert", "ldm_ao/ldm_ao.frag"};
     if (gib_gbuffer_create(&e->gbuffer, w, h, ledger, err) < 0 ||
-        gib_shadow_maps_create(&e->shadows, scene, gib_param_int(t, p, "shadow_res"), ledger, err) < 0 ||
+        gib_direct_light_create(&e->light, scene, gib_param_int(t, p, "shadow_res"),
+                                gib_param_int(t, p, "pcf"),
+                                (float)gib_param_float(t, p, "normal_offset"), ledger, err) < 0 ||
         ldm_create(&e->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
                    1.0, ledger, err) < 0 ||
-        !(e->shade_program = gib_program(shade, 2, NULL, err)) ||
-        !(e->sky_program = gib_program(sky, 2, "#define LDM_SKY 1\n", err))) {
+        gib_fullscreen_create(&e->sky, "ldm_ao/ldm_ao.frag", "#define LDM_SKY 1\n", err) < 0) {
         ldm_env_destroy(e);
         return NULL;
     }
-    glCreateVertexArrays(1, &e->vao);
     return e;
 }
 
@@ -93,29 +80,13 @@ static int ldm_env_render(void *self, const gib_view *view, gib_timers *timers,
     ldm_env *e = self;
     if (target_count != 1)
         return gib_fail(err, "ldm_env renders one component, was given %d targets", target_count);
-    gib_shadow_maps_render(&e->shadows, e->scene, timers);
+    gib_direct_light_shadows(&e->light, e->scene, timers);
     ldm_build(&e->ldms, e->scene, timers);
     gib_gbuffer_render(&e->gbuffer, e->scene, view, timers, "gbuffer");
-
-    gib_timer_begin(timers, "shade");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);
-    glViewport(0, 0, view->width, view->height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glUseProgram(e->shade_program);
-    gib_gpu_scene_bind(e->scene);
-    gib_gbuffer_bind(&e->gbuffer);
-    gib_shadow_maps_bind(&e->shadows, e->pcf, e->normal_offset);
-    glUniform3fv(2, 1, view->camera->eye);
-    glUniform1i(3, (int)e->scene->scene->light_count);
-    glBindVertexArray(e->vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    gib_timer_end(timers);
+    gib_direct_light_shade(&e->light, e->scene, &e->gbuffer, view, targets[0].fbo, timers);
 
     gib_timer_begin(timers, "ldm_sky");
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(e->sky_program);
+    gib_fullscreen_begin(&e->sky, targets[0].fbo, view->width, view->height, 1);
     gib_gbuffer_bind(&e->gbuffer);
     glUniform1f(7, 2.0f / (float)e->ldms.count);
     glUniform1f(8, INFINITY); /* unbounded: the sky is seen wherever nothing is hit */
@@ -126,10 +97,9 @@ static int ldm_env_render(void *self, const gib_view *view, gib_timers *timers,
         ldm_bind_page(&e->ldms, p);
         glUniform1i(5, e->ldms.pages[p].first);
         glUniform1i(6, e->ldms.pages[p].count);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gib_fullscreen_draw(&e->sky);
     }
-    glDisable(GL_BLEND);
-    glBindVertexArray(0);
+    gib_fullscreen_end();
     gib_timer_end(timers);
     return gib_gl_check("ldm_env", err);
 }

@@ -2,10 +2,10 @@
 #include "common/shadow_lookup.glsl"
 // Direct light (L D E and L S E) from every light of the scene, with PCF shadow maps, evaluated on
 // the G-buffer: the same BRDF and light falloff as the reference's `direct` estimator.
-layout(binding = 0) uniform sampler2D g_position;
-layout(binding = 1) uniform sampler2D g_normal;
-layout(binding = 2) uniform sampler2D g_albedo;
-layout(binding = 3) uniform sampler2D g_specular;
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
+layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
+layout(binding = GIB_UNIT_GBUF_SPECULAR) uniform sampler2D g_specular;
 layout(location = 2) uniform vec3 u_eye;
 layout(location = 3) uniform int u_light_count;
 in vec2 v_texcoord;

@@ -1,0 +1,39 @@
+// gibench — the GL binding points every pass shares, one table for C and GLSL (both include this
+// file: only #define lines and // comments, valid in both languages). A shared slot has a name
+// here; a pass's own resources use the ranges marked "own" (ARCHITECTURE.md, "GL bindings").
+#ifndef GIB_BINDINGS_H
+#define GIB_BINDINGS_H
+
+// Shader storage buffers.
+#define GIB_SSBO_MATERIALS 0      // struct Material[] (techniques/common/scene.glsl)
+#define GIB_SSBO_LIGHTS 1         // struct Light[]
+#define GIB_SSBO_LIGHT_VIEWS 2    // the light views' table (techniques/common/light_view.glsl)
+#define GIB_SSBO_LDM_INFO 3       // the LDMs (techniques/ldm/): directions and views
+#define GIB_SSBO_LDM_HEADS 4      //   per-pixel list heads of the bound page
+#define GIB_SSBO_LDM_NODES 5      //   list nodes of the bound page
+#define GIB_SSBO_LDM_STATUS 6     //   overflow and contention flags
+#define GIB_SSBO_LDM_COUNTERS 7   //   fragment counters
+#define GIB_SSBO_OWN_FIRST 8      // 8..15: a pass's own buffers
+
+// Texture units.
+#define GIB_UNIT_ALBEDO_TEX 0     // during scene draws: the material's albedo texture
+#define GIB_UNIT_ALPHA_TEX 1      //                     and its alpha mask
+#define GIB_UNIT_GBUF_POSITION 0  // during full-screen passes: the G-buffer (gbuffer.h)
+#define GIB_UNIT_GBUF_NORMAL 1
+#define GIB_UNIT_GBUF_ALBEDO 2
+#define GIB_UNIT_GBUF_SPECULAR 3
+#define GIB_UNIT_LV_DEPTH 4       // the light views' depth (shadow lookups)
+#define GIB_UNIT_LV_POSITION 5    // the light views' reflective shadow map
+#define GIB_UNIT_LV_NORMAL 6
+#define GIB_UNIT_LV_FLUX 7
+#define GIB_UNIT_LV_SPECULAR 8
+#define GIB_UNIT_OWN_FIRST 9      // 9..15: a pass's own textures
+
+// Uniform locations (per program).
+#define GIB_LOC_MATERIAL 0        // int: material of the range being drawn (gib_gpu_scene_draw)
+#define GIB_LOC_VIEW_PROJ 1       // mat4: view-projection relative to GIB_LOC_ORIGIN
+#define GIB_LOC_ORIGIN 6          // vec3: the view's origin (positions are sent as p - origin)
+#define GIB_LOC_OWN_FIRST 2       // 2..5 and 7..19: a pass's own uniforms
+#define GIB_LOC_LV_FIRST 20       // 20..23: the light-view lookup (light_view.glsl)
+
+#endif

@@ -1,0 +1,64 @@
+#include "common/scene.glsl"
+// One face of a light's view (techniques/common/light_view.c): what the light sees at each texel,
+// as a reflective shadow map. Flux per texel: a point or spot light of intensity I sends
+// I(w) dw into the texel's solid angle dw = s^2 cos^3(theta) (s: the texel's side on the plane at
+// unit distance, theta: the angle from the view axis); a directional light of irradiance E sends
+// E s^2 through a texel of side s. The surface there reflects rho_d times that flux diffusely.
+layout(location = GIB_LOC_MATERIAL) uniform int u_material;
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
+layout(location = 2) uniform vec3 u_forward;
+layout(location = 3) uniform int u_kind;      // enum gib_lv_kind: 0 cube, 1 perspective, 2 ortho
+layout(location = 4) uniform int u_light;
+layout(location = 5) uniform float u_texel;
+layout(binding = GIB_UNIT_ALBEDO_TEX) uniform sampler2D u_albedo_tex;
+layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+layout(location = 0) out float o_depth;
+layout(location = 1) out vec4 o_position;
+layout(location = 2) out vec4 o_normal;
+layout(location = 3) out vec4 o_flux;
+layout(location = 4) out vec4 o_specular;
+void main()
+{
+    Material m = materials[u_material];
+    vec2 st = vec2(v_uv.x, 1.0 - v_uv.y); // texture rows top first, OBJ's v bottom up
+    if (m.flags.z != 0 && texture(u_alpha_tex, st).r < 0.5)
+        discard;
+    vec3 rel = v_position - u_origin;
+    vec3 flux_in;
+    vec3 to_light;
+    if (u_kind == 2) {
+        o_depth = dot(rel, u_forward);
+        to_light = -u_forward;
+        flux_in = lights[u_light].intensity_outer.rgb * (u_texel * u_texel);
+    } else {
+        float dist = length(rel);
+        o_depth = dist;
+        to_light = -rel / max(dist, 1e-30);
+        float c = dot(rel, u_forward) / max(dist, 1e-30);
+        vec3 wi;
+        float d;
+        vec3 E = light_eval(lights[u_light], v_position, wi, d); // I(w) / d^2
+        flux_in = E * (d * d) * (u_texel * u_texel * c * c * c);
+    }
+    // Facing as in the G-buffer with the light as the viewer: two-sided materials turn the normal
+    // toward it, one-sided ones seen from behind reflect nothing.
+    vec3 n = normalize(v_normal);
+    bool back = dot(n, to_light) < 0.0;
+    if (back && m.flags.y != 0)
+        n = -n;
+    vec3 albedo = m.albedo.rgb;
+    if (m.albedo.w > 0.5)
+        albedo *= texture(u_albedo_tex, st).rgb;
+    vec3 spec = m.specular.rgb;
+    if (back && m.flags.y == 0) {
+        albedo = vec3(0.0);
+        spec = vec3(0.0);
+    }
+    o_position = vec4(v_position, 1.0);
+    o_normal = vec4(n, float(m.flags.x));
+    o_flux = vec4(albedo * flux_in, 1.0);
+    o_specular = vec4(spec, m.specular.w);
+}
