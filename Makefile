@@ -8,7 +8,7 @@ RESULTS    ?= results
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-# Debian 12 packages gibench builds and runs with (DESIGN.md, toolchain facts).
+# Debian 12 packages gibench builds and runs with (ARCHITECTURE.md, "Toolchain facts").
 PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""gibench plots, drawn with gnuplot from the result CSVs (DESIGN.md, "Matrices, CSV and reproduction"):
+"""gibench plots, drawn with gnuplot from the result CSVs (ARCHITECTURE.md, "Matrices, CSV and reproduction"):
 
 - speed against error, one plot per (matrix, scene, component): each point is one run (technique +
   parameters) at its median GPU frame time and relative RMSE against the reference; the line joins

@@ -43,7 +43,7 @@ void ref_material(const ref_world *w, const ref_hit *h, ref_mat *m)
 }
 
 /* The shadow ray stops eps short of the light: a light resting on a surface is not shadowed by
- * that surface (DESIGN.md, "Hard cases": a light touching a surface). */
+ * that surface (ARCHITECTURE.md, "Hard cases": a light touching a surface). */
 void ref_nee_visible(const ref_world *w, const ref_hit *h, const float wo[3], int want_d,
                      int want_s, float phong_n, uint32_t first, ref_nee_vis *v, long long *rays)
 {

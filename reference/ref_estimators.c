@@ -1,4 +1,4 @@
-/* gibench — the reference renderer's per-pixel estimators of the short path classes (DESIGN.md,
+/* gibench — the reference renderer's per-pixel estimators of the short path classes (ARCHITECTURE.md,
  * "Light-transport components"): direct, ao / obscurance, indirect, glossy, and the auxiliary
  * images. Each evaluates one sample at the visible point the render loop found through a pixel
  * centre; ref_path.c has full/higher and the camera part of caustic, ref_light.c the light-traced

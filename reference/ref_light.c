@@ -5,7 +5,7 @@
  * position or direction. A camera path that meets a mirror (a delta lobe) continues in exactly one
  * direction, which hits a point light with probability zero, and next-event estimation cannot
  * aim through a mirror either: a delta light seen through a delta lobe is invisible to camera
- * paths (DESIGN.md, "Light-transport components"). Particles leaving the light follow the mirror
+ * paths (ARCHITECTURE.md, "Light-transport components"). Particles leaving the light follow the mirror
  * (and then glossy) lobes naturally, and the diffuse surface they land on is connected to the
  * pinhole camera by a visibility ray: the particle is splatted into the pixel its point projects
  * to. Paths whose light-side vertex is Phong are left to camera paths (next-event estimation

@@ -1,5 +1,5 @@
 /* gibench — the reference renderer's parameters: component names, normalisation, the hash the
- * cache keys on, and the EXR header attributes (DESIGN.md, "Reference renderer": cached under a key
+ * cache keys on, and the EXR header attributes (ARCHITECTURE.md, "Reference renderer": cached under a key
  * that hashes everything that changes the image). */
 #include <math.h>
 #include <stdarg.h>

@@ -1,4 +1,4 @@
-/* gibench — `full` and `higher`: camera paths with next-event estimation (DESIGN.md,
+/* gibench — `full` and `higher`: camera paths with next-event estimation (ARCHITECTURE.md,
  * "Light-transport components": full is everything up to a maximum depth).
  *
  * A path of k surface vertices x1 (visible) .. xk (next to the light). At every vertex the light

@@ -1,5 +1,5 @@
 /* gibench — the reference renderer's Embree scene: one triangle geometry over the flattened
- * gib_scene (DESIGN.md, "One scene model for both sides": the path tracer sees exactly the
+ * gib_scene (ARCHITECTURE.md, "One scene model for both sides": the path tracer sees exactly the
  * triangles, normals, uvs and cut-out masks the GL techniques rasterise), plus ray casting,
  * surface points, robust ray offsets and ray differentials.
  *
@@ -121,7 +121,7 @@ static void ref_embree_error(void *user, enum RTCError code, const char *str)
  * error of a hit point on any triangle of the scene, small next to any feature a scene is built
  * to show. Floored at 2^-17 of the largest coordinate magnitude (64 float ulps of it), because
  * a hit point's rounding error grows with its distance from the origin, not with the scene's size
- * (DESIGN.md, "Hard cases": a scene far from the origin). */
+ * (ARCHITECTURE.md, "Hard cases": a scene far from the origin). */
 float gib_reference_ray_eps(const gib_scene *gs)
 {
     if (!gs || !gs->positions || gs->vertex_count == 0)
@@ -294,7 +294,7 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
         return -1;
     }
     if (gs->triangle_count == 0)
-        return 0; /* an empty view: every ray misses (DESIGN.md, "Hard cases") */
+        return 0; /* an empty view: every ray misses (ARCHITECTURE.md, "Hard cases") */
 
     w->device = rtcNewDevice(NULL);
     if (!w->device)

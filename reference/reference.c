@@ -1,6 +1,6 @@
 /* gibench — the reference renderer's render loop: primary rays through pixel centres, per-pixel
  * sampling and statistics, light-tracing passes, sampling rounds toward a target noise, and the
- * threads (DESIGN.md, "Reference renderer").
+ * threads (ARCHITECTURE.md, "Reference renderer").
  *
  * Two parts, each with its own per-pixel statistics, added at the end:
  *  - camera part: at each pixel, the primary hit is found once per round and every sample of the

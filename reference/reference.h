@@ -1,5 +1,5 @@
 /* gibench — the reference renderer: an Embree 3 path tracer with one estimator per
- * light-transport component (DESIGN.md, "Light-transport components").
+ * light-transport component (ARCHITECTURE.md, "Light-transport components").
  *
  * Paths in Heckbert notation, vertices counted from the eye: x1 is the visible point, x2 the next
  * surface toward the light, ...; a vertex is D when light leaves it through the diffuse lobe and S
@@ -53,7 +53,7 @@
  * component), and each pixel's statistics are accumulated in sample order, so the same build,
  * scene, size, component and parameters give the same pixels bit for bit, whatever the thread
  * count — and a --target-noise run that stopped at N samples gives the pixels of a plain N-sample
- * run. An EXR written twice differs only in its `seconds` attribute (DESIGN.md wants the time in
+ * run. An EXR written twice differs only in its `seconds` attribute (the time belongs in
  * the header); pixels and every other attribute are identical.
  *
  * Noise: each pixel's sample variance (n - 1) gives its standard error; the image's noise RMSE is

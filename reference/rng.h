@@ -2,7 +2,7 @@
  * per SAMPLE from a hash of (stream, sample index, seed, component); a stream is a pixel, or a
  * chunk of a light-tracing pass.
  *
- * Why per sample: DESIGN.md, "Reference renderer" asks for a rerun to give the same image bit for
+ * Why per sample: ARCHITECTURE.md, "Reference renderer" asks for a rerun to give the same image bit for
  * bit. Each sample owns its generator, so which thread renders which row cannot change a single
  * bit, and sample N is the same number whether it is drawn in one go or in a later round of a
  * --target-noise run. */

@@ -1,4 +1,4 @@
-/* gibench — THE camera and light definitions (DESIGN.md, "One scene model for both sides").
+/* gibench — THE camera and light definitions (ARCHITECTURE.md, "One scene model for both sides").
  *
  * The path tracer calls these functions and the GL shaders mirror them line by line
  * (techniques/common/scene.glsl), so they are kept as plain as possible: every formula here is one

@@ -1,4 +1,4 @@
-/* gibench — the light evaluation of THE light definitions (camera_light.c; DESIGN.md, "One scene
+/* gibench — the light evaluation of THE light definitions (camera_light.c; ARCHITECTURE.md, "One scene
  * model for both sides"), defined here, static inline, so that it inlines into the path tracer's
  * next-event estimation, which runs it at every path vertex for every light: as a call into the
  * base library, compiled without the reference's -march=native, it was ~3% of a Sponza render;

@@ -12,7 +12,7 @@
  *    is nearly single-threaded on llvmpipe.
  *  - PreTransformVertices: bakes node transforms into the vertices and merges meshes that share a
  *    material, so what we read is already in the file's coordinates.
- * Not used: FindDegenerates (degenerate triangles are kept, DESIGN.md hard cases), FlipUVs (we keep
+ * Not used: FindDegenerates (degenerate triangles are kept, ARCHITECTURE.md hard cases), FlipUVs (we keep
  * OBJ's v-up convention; gib_texture documents t = 1 - v), FixInfacingNormals (guesses wrong on
  * open architecture).
  *
@@ -223,7 +223,7 @@ static int texture_path(const struct aiMaterial *am, enum aiTextureType type, co
 
 /* MTL to the scene model: Kd -> rho_d, Ks/Ns -> normalised Phong. MTL's Phong is not normalised
  * and exporters rarely keep Kd + Ks <= 1, so both are scaled down together when a channel's sum
- * exceeds 1 (energy conservation, DESIGN.md). Ks = 0 stays purely diffuse whatever Ns says
+ * exceeds 1 (energy conservation, ARCHITECTURE.md). Ks = 0 stays purely diffuse whatever Ns says
  * (Sponza's MTL has Ns 7.8 with Ks 0 everywhere). map_Kd multiplies Kd; a zero Kd with a texture is
  * read as 1, since an exporter that wrote 0 did not mean a black surface. */
 static int read_material(const struct aiMaterial *am, const char *dir, const char *mesh_path,

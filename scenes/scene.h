@@ -1,4 +1,4 @@
-/* gibench — the one scene model seen by the GL techniques and by the path tracer (DESIGN.md,
+/* gibench — the one scene model seen by the GL techniques and by the path tracer (ARCHITECTURE.md,
  * "One scene model for both sides"). Everything is flattened to world space at load time.
  *
  * Conventions shared by both sides (and mirrored in techniques/common/scene.glsl):

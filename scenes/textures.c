@@ -1,5 +1,5 @@
 /* gibench — texture files for materials: read through the OpenImageIO shim, colour textures
- * decoded from sRGB to linear (DESIGN.md: albedo textures are linear in the scene model), alpha
+ * decoded from sRGB to linear (ARCHITECTURE.md: albedo textures are linear in the scene model), alpha
  * masks kept as stored. Each (file, decoding) pair is loaded once per scene however many
  * materials use it.
  *

@@ -1,4 +1,4 @@
-/* gibench — the uniform technique interface (DESIGN.md, "The technique interface").
+/* gibench — the uniform technique interface (ARCHITECTURE.md, "The technique contract").
  *
  * A technique is a module in techniques/<name>/ that fills one gib_technique, listed in
  * techniques/registry.c. It never creates a GL context, opens files or prints: the harness gives it

@@ -1,6 +1,6 @@
 /* gibench run — runs matrix files: every (scene, technique, parameters, size) of the chosen
  * profile, each scored against its cached reference, one CSV row per output component appended as
- * it finishes (DESIGN.md, "Data flow" and "Matrices, CSV and reproduction"). */
+ * it finishes (ARCHITECTURE.md, "Data flow of a matrix row" and "Matrices, CSV and reproduction"). */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>

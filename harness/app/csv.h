@@ -1,4 +1,4 @@
-/* gibench — tidy CSV results (DESIGN.md, "Matrices, CSV and reproduction").
+/* gibench — tidy CSV results (ARCHITECTURE.md, "Matrices, CSV and reproduction").
  *
  * One row per (run, output component), appended and flushed as each run finishes, so an
  * interrupted matrix keeps what it did; a rerun skips runs whose rows are all present. The

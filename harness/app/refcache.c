@@ -1,4 +1,4 @@
-/* gibench — the reference cache (DESIGN.md, "Reference renderer").
+/* gibench — the reference cache (ARCHITECTURE.md, "Reference renderer").
  *
  * An entry is an EXR named by gib_reference_cache_key(): a hash of everything that changes the
  * image — the scene's content hash (scene file, meshes, textures), the camera, size, component and

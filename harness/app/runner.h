@@ -1,5 +1,5 @@
 /* gibench — one run: a technique with validated parameters on an uploaded scene at one size.
- * create → W warm-up frames → F timed frames → read back each component image (DESIGN.md, data
+ * create → W warm-up frames → F timed frames → read back each component image (ARCHITECTURE.md, data
  * flow). The result carries everything a CSV row needs except the metrics. */
 #ifndef GIB_RUNNER_H
 #define GIB_RUNNER_H

@@ -1,6 +1,6 @@
 /* OSMesa backend, kept in its own file: GL/osmesa.h pulls in GL/gl.h, which must not meet glad's
  * header. libOSMesa does not export the DSA entry points, so every GL function is loaded through
- * OSMesaGetProcAddress (DESIGN.md, toolchain facts). */
+ * OSMesaGetProcAddress (ARCHITECTURE.md, "Toolchain facts"). */
 #include <GL/osmesa.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* gibench — the scene on the GPU, uploaded once per scene and shared by every technique run on it
- * (DESIGN.md, "Data flow"). Its memory is counted in its own ledger (the CSV's scene_bytes), apart
+ * (ARCHITECTURE.md, "Data flow of a matrix row"). Its memory is counted in its own ledger (the CSV's scene_bytes), apart
  * from each technique's. Layout seen by shaders: techniques/common/scene.glsl. */
 #ifndef GIB_GPU_SCENE_H
 #define GIB_GPU_SCENE_H

@@ -1,6 +1,6 @@
 /* gibench — the GPU memory ledger. Every buffer and texture a technique (or a shared pass)
  * allocates goes through these helpers, so the memory column of a result row is the sum of what was
- * really allocated, by label, with exact mip-chain sizes (DESIGN.md, "The technique interface"). */
+ * really allocated, by label, with exact mip-chain sizes (ARCHITECTURE.md, "The technique contract"). */
 #ifndef GIB_LEDGER_H
 #define GIB_LEDGER_H
 

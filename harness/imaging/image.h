@@ -1,6 +1,6 @@
 /* gibench — linear float images, EXR I/O with metadata, PNG previews and error maps.
  *
- * Images are linear RGB radiance, row 0 is the TOP row (as the camera model in DESIGN.md), pixels
+ * Images are linear RGB radiance, row 0 is the TOP row (as the camera model in ARCHITECTURE.md), pixels
  * interleaved, `channels` floats per pixel (1, 3 or 4). */
 #ifndef GIB_IMAGE_H
 #define GIB_IMAGE_H

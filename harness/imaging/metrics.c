@@ -1,4 +1,4 @@
-/* gibench — RMSE, relative RMSE, PSNR and SSIM as DESIGN.md "Metrics" defines them.
+/* gibench — RMSE, relative RMSE, PSNR and SSIM as ARCHITECTURE.md "Metrics" defines them.
  *
  * SSIM replicates scikit-image 0.19's structural_similarity(gaussian_weights=True, sigma=1.5,
  * use_sample_covariance=False, data_range=1): scipy.ndimage.gaussian_filter with truncate 3.5

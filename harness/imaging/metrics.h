@@ -1,4 +1,4 @@
-/* gibench — image metrics, as DESIGN.md "Metrics" defines them.
+/* gibench — image metrics, as ARCHITECTURE.md "Metrics" defines them.
  *
  * RMSE over all linear RGB samples; relative RMSE = RMSE / mean of the reference's samples;
  * PSNR = 20 log10(peak / RMSE) with peak = max reference sample (linear data have no fixed range);

@@ -6,7 +6,7 @@
  * Passes: the shared G-buffer ("gbuffer"), the horizon search ("hbao", techniques/hbao/hbao.frag),
  * and, when blur_radius > 0, the talk's cross-bilateral blur as two separable passes ("blur").
  *
- * What it estimates, and how that differs from the reference `ao` (DESIGN.md): the reference is
+ * What it estimates, and how that differs from the reference `ao` (ARCHITECTURE.md): the reference is
  * the cosine-weighted visible fraction (1/pi) int V cos, with V = 0 when a hit lies within d_max.
  * HBAO integrates the occluded SOLID ANGLE between the tangent plane and the horizon found in the
  * depth buffer, uniformly weighted (no cosine) and, by default, attenuated by W(r) = 1 - r^2/R^2;

@@ -62,7 +62,7 @@ void main()
     ivec2 px = ivec2(gl_FragCoord.xy);
     ivec2 size = textureSize(g_position, 0);
     vec4 pos = texelFetch(g_position, px, 0);
-    if (pos.w < 0.5) { // nothing hit: AO is defined as 0 there (DESIGN.md)
+    if (pos.w < 0.5) { // nothing hit: AO is defined as 0 there (ARCHITECTURE.md)
         emit(0.0);
         return;
     }

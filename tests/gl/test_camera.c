@@ -1,4 +1,4 @@
-/* The GL camera agrees with the path tracer's camera (DESIGN.md, "One scene model for both sides"):
+/* The GL camera agrees with the path tracer's camera (ARCHITECTURE.md, "One scene model for both sides"):
  * the G-buffer's world-position image of the Cornell box against Embree primary hits through the
  * same pixel centres (gib_camera_ray).
  *

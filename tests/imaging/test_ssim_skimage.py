@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks gib_ssim_gray against scikit-image on the pairs ssim_dump writes (DESIGN.md "Metrics":
+"""Checks gib_ssim_gray against scikit-image on the pairs ssim_dump writes (ARCHITECTURE.md "Metrics":
 equal to structural_similarity(a, b, gaussian_weights=True, sigma=1.5,
 use_sample_covariance=False, data_range=1) to 1e-4).
 
@@ -9,7 +9,7 @@ import os
 import subprocess
 import sys
 
-TOL = 1e-4  # DESIGN.md's agreement bound; both sides use float64, so real gaps are ~1e-15
+TOL = 1e-4  # ARCHITECTURE.md's agreement bound; both sides use float64, so real gaps are ~1e-15
 MIN_PAIRS = 5
 
 

@@ -1,4 +1,4 @@
-/* Reference renderer, `ao` next to a large wall, against analytic values (DESIGN.md, "Reference
+/* Reference renderer, `ao` next to a large wall, against analytic values (ARCHITECTURE.md, "Reference
  * renderer": AO of simple configurations).
  *
  * Setup: floor y = 0; a wall in the plane x = 1 spanning y in [0, 60], z in [-60, 60]; the camera

@@ -1,4 +1,4 @@
-/* Reference renderer, determinism (DESIGN.md, "Reference renderer": a rerun gives the same image
+/* Reference renderer, determinism (ARCHITECTURE.md, "Reference renderer": a rerun gives the same image
  * bit for bit) and sampling toward a target noise.
  *
  * Expected:

@@ -1,4 +1,4 @@
-/* Reference renderer, `direct` from a point light over a diffuse plane (DESIGN.md, "Reference
+/* Reference renderer, `direct` from a point light over a diffuse plane (ARCHITECTURE.md, "Reference
  * renderer": validated against a point light over a plane).
  *
  * Expected, at every pixel: L = (rho / pi) * I * cos(theta) / r^2, with the visible point found by

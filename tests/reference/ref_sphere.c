@@ -1,6 +1,6 @@
 /* Reference renderer, a closed diffuse sphere seen from inside with a point light at its centre
  * (and, last, a spot and a texture: rt_spot_sphere):
- * `direct`, `indirect` and `full` against their closed forms (the furnace-like case of DESIGN.md,
+ * `direct`, `indirect` and `full` against their closed forms (the furnace-like case of ARCHITECTURE.md,
  * "Reference renderer": validated against cases with known answers).
  *
  * For an ideal sphere of radius R, albedo a, point light of intensity I at the centre, every wall
