@@ -11,7 +11,7 @@ static const char help[] =
     "usage: gibench compare REF.exr TEST.exr [--exposure E] [--json] [--map ERR.png]\n"
     "                       [--fail-rmse X] [--fail-rel-rmse X] [--fail-ssim X]\n"
     "\n"
-    "Prints RMSE, relative RMSE, PSNR and SSIM (ARCHITECTURE.md, "Metrics") of TEST against REF.\n"
+    "Prints RMSE, relative RMSE, PSNR and SSIM (Wang et al. 2004 for SSIM) of TEST against REF.\n"
     "--exposure scales the linear images before the SSIM channel (default: the reference's\n"
     "`exposure` header attribute, else 1). --json prints one JSON object.\n"
     "Exit status: 0 within thresholds, 1 above a threshold or any non-finite pixel, 2 on error.\n";
