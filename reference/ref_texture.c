@@ -79,9 +79,8 @@ void ref_tex_sample(const gib_texture *t, float u, float v, float out[4])
  * memory: one byte a texel instead of sixteen, in 8x8 tiles. The bytes index the first channel's
  * distinct values (at most 256 in a texture read from an 8-bit file), found by their bit
  * patterns, so the lookup interpolates exactly the floats ref_bilinear would. Sponza's three
- * masks (1024x1024 twice and 256x1024: 256, 256 and 26 distinct values) shrink from 16 MB of
- * floats each to 1 MB; the filter's profile share of a `full` render falls from 3.2% to 2.3%
- * (images bit-identical; tests/reference/ref_texture.c checks the lookup against the floats). */
+ * masks shrink from 16 MB of floats each to 1 MB (reference/PERFORMANCE.md has the measurement;
+ * images bit-identical; tests/reference/ref_texture.c checks the lookup against the floats). */
 #define REF_MASK_SLOTS 1024
 
 static size_t ref_mask_index(int tw, int x, int y)
@@ -444,10 +443,8 @@ void ref_mip_sample(const ref_mip *m, float u, float v, const float *duv, float 
 
 /* All the lines of the level-0 bilinear footprint, not only the one holding the texel under (u, v):
  * a 2x2 footprint leaves its 4x4 tile in x or in y for 7 lookups in 16, and the line missed then
- * cost the whole miss at the load. Sponza `full`, one thread: the lookups' profile share 4.0% ->
- * 2.1%, the prefetch's 3.5% -> 4.2% (its first line's page walk: a TLB miss nearly every bounce in
- * this VM); paired runs 1-6% faster (two runs of 8-10 pairs, pair medians 0.94 and 0.99); images
- * bit-identical. A line prefetched twice costs next to nothing, so all four texels go as they are. */
+ * cost the whole miss at the load (reference/PERFORMANCE.md, "Texture prefetch"). A line
+ * prefetched twice costs next to nothing, so all four texels go as they are. */
 void ref_mip_prefetch(const ref_mip *m, float u, float v)
 {
     if (m->levels == 0)

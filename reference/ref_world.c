@@ -3,17 +3,9 @@
  * triangles, normals, uvs and cut-out masks the GL techniques rasterise), plus ray casting,
  * surface points, robust ray offsets and ray differentials.
  *
- * Ray API: single rays (rtcIntersect1 / rtcOccluded1). `gibench bench reference` replays the path
- * tracer's own recorded rays with each API; on the development machine (2 cores of an AMD EPYC
- * with AVX2, Embree 3.13.5, Crytek Sponza, `full` at 256x256, 2.9M rays, best of 3, shared and
- * noisy machine) single rays ran at 3.3-3.6 Mrays/s, streams (rtcIntersect1M, 256 per call) at
- * 2.5-3.0, 4- and 8-wide packets of consecutive rays at 2.2-3.2 (never beyond single rays by more
- * than the noise), 16-wide packets at 0.7-1.1 (emulated on AVX2). Later runs: 256-ray streams and
- * single rays trade places on Sponza (within 2%) and streams lead on the Cornell box (~15%), but
- * streams as long as a pixel's path batch (16 rays, the most the estimators could gather without
- * holding paths of several pixels) were 7% slower than single rays in the replay on both scenes.
- * So the estimators trace one ray at a time, which also keeps every sample's work in a fixed
- * order. */
+ * Ray API: single rays (rtcIntersect1 / rtcOccluded1): streams and packets were measured no faster
+ * on the path tracer's own rays (reference/PERFORMANCE.md, "The ray API"), and one ray at a time
+ * keeps every sample's work in a fixed order. */
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -310,8 +302,8 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
     rtcSetSceneBuildQuality(w->scene, RTC_BUILD_QUALITY_HIGH);
 
     /* Two geometries: opaque triangles, and those whose material has a cut-out mask, so that only
-     * the latter pay for the filter callback. Sponza's plants hold 3% of its triangles; with the
-     * filter on every triangle, Embree ran at a third of its speed. */
+     * the latter pay for the filter callback. Sponza's plants hold 3% of its triangles; a filter on
+     * every triangle cost Embree two thirds of its speed (reference/PERFORMANCE.md). */
     uint32_t count[2] = {0, 0};
     for (uint32_t t = 0; t < gs->triangle_count; t++)
         count[gs->materials[gs->tri_material[t]].alpha_tex >= 0]++;

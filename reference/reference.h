@@ -1,70 +1,8 @@
 /* gibench — the reference renderer: an Embree 3 path tracer with one estimator per
- * light-transport component (ARCHITECTURE.md, "Light-transport components").
- *
- * Paths in Heckbert notation, vertices counted from the eye: x1 is the visible point, x2 the next
- * surface toward the light, ...; a vertex is D when light leaves it through the diffuse lobe and S
- * when through the specular lobe (normalised Phong, or a mirror). Components:
- *
- *   ao        (1/pi) integral V(x,w) cos dw; V = 0 if a hit lies within dmax. With `obscurance`,
- *             V = rho(d) = min(d / dmax, 1), d the distance to the first occluder (Zhukov et al.
- *             1998, as the LDM paper, Aalund et al. 2015 Sec. 3.3, generalises AO).
- *   direct    L D E and L S E (Phong), with shadows                  1 vertex
- *   indirect  L D D E                                                2 vertices
- *   glossy    L D S E (S at the visible point: Phong or mirror)      2 vertices
- *   caustic   L S+ D E with at most max_specular S vertices          2 .. max_specular+1 vertices
- *   full      every path of 1 .. max_depth vertices
- *   higher    the paths of `full` that none of direct, indirect, glossy, caustic (with the same
- *             max_specular) counts: full = direct + indirect + glossy + caustic + higher. For
- *             max_depth 2 it is exactly L S S E.
- *   albedo, normal, depth   auxiliary images of the visible point (enum gib_component).
- *
- * Paths made only of delta events from a delta light to the eye (a point light seen directly or
- * in mirrors: L E, L S_mirror+ E) have zero measure at a pixel centre and are counted by no
- * component. Paths whose light-side vertex is a mirror AND whose eye-side vertex is a mirror
- * (e.g. a mirror caustic seen in a mirror, L S_mirror D S_mirror E, 3 vertices) can be sampled
- * by neither camera paths with next-event estimation nor light tracing; `full` and `higher` miss
- * them, and say so in the EXR header (`missing`). Up to max_depth 2 no nonzero class is missed.
- *
- * The sky (gib_scene.sky, scenes with GIB_FEAT_SKY): a uniform light at infinity of radiance
- * L_sky, seen by every ray that escapes the scene. It is an L like the scene's lights, so it
- * joins each component at the same vertex: `direct` gains L_sky D E and L_sky S E (the sky over
- * the visible point, Phong lobe and mirror included: rho_d L_sky V for a Lambertian point with
- * cosine-weighted unoccluded fraction V), `indirect` L_sky D D E, `glossy` L_sky D S E, `caustic`
- * L_sky S+ D E (the sky through Phong lobes and mirrors), full and higher the rest. Every sky path
- * is found by next-event estimation toward the sky at its light-side vertex (one importance-
- * sampled direction per lobe, tested for escaping), in every component, and a sampled ray that
- * escapes adds nothing: each path is counted once, by the same strategy everywhere, so the sum
- * rule below holds with a sky. The sky is not a delta, so no sky path needs light tracing and
- * none is missing (the sky through a mirror is seen from the camera). `ao` is unchanged
- * (visibility only). A pixel whose PRIMARY ray escapes is 0 in every component (L_sky E is not
- * counted: misses are 0). Scenes without a sky draw no extra random numbers and cast no extra
- * rays: their images are bit-identical to the renderer's before the sky existed.
- *
- * Strategies and pixel footprint: every path class is estimated by camera paths with next-event
- * estimation at the pixel CENTRE (the GL techniques rasterise there), except the classes whose
- * vertex next to the light is a MIRROR: a delta light seen through a delta lobe cannot be found
- * from the camera, so those come from light tracing (particles from the light, splatted into the
- * pixel a point projects to), which averages over the pixel's AREA. That split is the same in
- * every component (caustic: Phong-first paths from the camera, mirror-first paths by light
- * tracing; full and higher alike), so the components add up exactly, footprints included. On
- * smooth images the two footprints agree; at edges they differ by the pixel's variation.
- *
- * Determinism: each sample's generator is seeded from (pixel or light pass, sample index, seed,
- * component), and each pixel's statistics are accumulated in sample order, so the same build,
- * scene, size, component and parameters give the same pixels bit for bit, whatever the thread
- * count — and a --target-noise run that stopped at N samples gives the pixels of a plain N-sample
- * run. An EXR written twice differs only in its `seconds` attribute (the time belongs in
- * the header); pixels and every other attribute are identical.
- *
- * Noise: each pixel's sample variance (n - 1) gives its standard error; the image's noise RMSE is
- * sqrt(mean over pixels and channels of variance / spp). With one sample the variance is unknown,
- * so random estimators refuse spp < 2; deterministic ones (direct with the scene's delta lights and
- * no sky, the auxiliary images, components identically 0 in the scene) take one sample whatever
- * spp asks and report a standard error of exactly 0, which is their true error.
- *
- * Textures: at primary hits albedo is filtered as GL filters it (mip maps, trilinear, the LOD of
- * the pixel's footprint from ray differentials); at secondary hits level 0, bilinear
- * (ref_texture.c). */
+ * light-transport component (ao, direct, indirect, glossy, caustic, full, higher, and the auxiliary
+ * albedo, normal and depth images), deterministic, reporting its own noise. What each component
+ * counts, the strategies and pixel footprints, the sky, determinism, noise and texture filtering:
+ * ARCHITECTURE.md, "Reference renderer". */
 #ifndef GIB_REFERENCE_H
 #define GIB_REFERENCE_H
 

@@ -1,8 +1,7 @@
 /* gibench — the light evaluation of THE light definitions (camera_light.c; ARCHITECTURE.md, "One scene
  * model for both sides"), defined here, static inline, so that it inlines into the path tracer's
- * next-event estimation, which runs it at every path vertex for every light: as a call into the
- * base library, compiled without the reference's -march=native, it was ~3% of a Sponza render;
- * inlined, ~2% (the same IEEE operations in the same order, so the images are bit-identical).
+ * next-event estimation, which runs it at every path vertex for every light (the same IEEE
+ * operations in the same order as a call would, so the images are bit-identical).
  * Plain single-precision formulas, mirrored line by line in techniques/common/scene.glsl.
  * Included by scene.h; do not include it directly. */
 #ifndef GIB_LIGHT_EVAL_H
@@ -28,8 +27,8 @@ static inline float gib_spot_falloff_cos(const gib_light *l, float cos_outer,
         return 0.0f;
     /* Clamped so an outer angle beyond 90 degrees never takes pow() of a negative number. */
     float c = fmaxf(cos_theta, 0.0f);
-    /* Cosine falloff (e = 1, the Cornell and Sponza spots) is common and powf is ~5% of the path
-     * tracer's time on Sponza: the shortcut gives the identical value. */
+    /* Cosine falloff (e = 1, the Cornell and Sponza spots) is common and powf costly at every path
+     * vertex: the shortcut gives the identical value. */
     return l->spot_exponent == 1.0f ? c : powf(c, l->spot_exponent);
 }
 

@@ -158,7 +158,7 @@ int gib_light_eval(const gib_light *l, const float p[3], float wi[3], float *dis
 /* cos^e(theta) inside the outer angle, 0 outside (theta from the spot axis). */
 float gib_spot_falloff(const gib_light *l, const float dir_from_light[3]);
 /* The same two with the spot's cos(outer angle) given, as gib_spot_cos_outer(l) computes it once
- * per light (the path tracer evaluates lights at every vertex; the cosine was ~2% of its time). */
+ * per light (the path tracer evaluates lights at every vertex). */
 float gib_spot_cos_outer(const gib_light *l);
 /* gib_spot_falloff_cos(l, cos_outer, dir_from_light) and
  * gib_light_eval_cos(l, cos_outer, p, wi, dist, E): static inline, in light_eval.h. */
