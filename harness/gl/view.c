@@ -105,3 +105,14 @@ void gib_view_make(const gib_scene *s, const gib_camera *cam, int w, int h, floa
                          far, v->proj);
     gib_mat4_mul(v->proj, v->view, v->view_proj);
 }
+
+void gib_view_bounding_sphere(const gib_scene *s, float c[3], float *r)
+{
+    float d2 = 0;
+    for (int i = 0; i < 3; i++) {
+        c[i] = 0.5f * (s->bounds_min[i] + s->bounds_max[i]);
+        float e = s->bounds_max[i] - s->bounds_min[i];
+        d2 += e * e;
+    }
+    *r = 0.5f * sqrtf(d2) * 1.01f + 1e-6f;
+}

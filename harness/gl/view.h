@@ -28,6 +28,11 @@ void gib_ortho_basis(const float d[3], float t[3], float b[3]);
 void gib_mat4_perspective(float vfov_rad, float aspect, float znear, float zfar, float out[16]);
 void gib_mat4_ortho(float l, float r, float b, float t, float n, float f, float out[16]);
 
+/* The sphere that orthographic views of the scene are fitted to (light views, LDMs): centre of
+ * the bounding box, radius half its diagonal with a 1% margin, so that geometry on the sphere still
+ * rasterises inside the map. */
+void gib_view_bounding_sphere(const gib_scene *scene, float centre[3], float *radius);
+
 /* Fills view->view, proj, view_proj (relative to view->origin = the eye) for a scene camera; near
  * and far planes from the scene bounds. */
 void gib_view_make(const gib_scene *scene, const gib_camera *cam, int width, int height, float time,

@@ -39,22 +39,11 @@ static void cross3(const float a[3], const float b[3], float o[3])
     o[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-static void bounding_sphere(const gib_scene *s, float c[3], float *r)
-{
-    float d2 = 0;
-    for (int i = 0; i < 3; i++) {
-        c[i] = 0.5f * (s->bounds_min[i] + s->bounds_max[i]);
-        float e = s->bounds_max[i] - s->bounds_min[i];
-        d2 += e * e;
-    }
-    *r = 0.5f * sqrtf(d2) * 1.01f + 1e-6f;
-}
-
 /* Sets every face's view and each light's texel size from the lights and the scene's bounds. */
 static void set_up_views(gib_light_views *lv, const gib_scene *s)
 {
     float c[3], r;
-    bounding_sphere(s, c, &r);
+    gib_view_bounding_sphere(s, c, &r);
     int f = 0;
     for (uint32_t i = 0; i < s->light_count; i++) {
         const gib_light *l = &s->lights[i];

@@ -19,18 +19,6 @@ typedef struct ldm_info_gpu {
     uint32_t offsets[4];
 } ldm_info_gpu;
 
-static void bounding_sphere(const gib_scene *s, float c[3], float *r)
-{
-    float d2 = 0;
-    for (int i = 0; i < 3; i++) {
-        c[i] = 0.5f * (s->bounds_min[i] + s->bounds_max[i]);
-        float e = s->bounds_max[i] - s->bounds_min[i];
-        d2 += e * e;
-    }
-    /* A little margin so that geometry on the sphere still rasterises inside the map. */
-    *r = 0.5f * sqrtf(d2) * 1.01f + 1e-6f;
-}
-
 static void draw_all(const gib_gpu_scene *scene, unsigned program, int first, int count)
 {
     glUseProgram(program);
@@ -97,7 +85,7 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     l->count = ldm_directions(directions, l->dirs, max);
     if (l->count <= 0)
         return gib_fail(err, "ldm: no direction set for %d directions", directions);
-    bounding_sphere(scene->scene, l->center, &l->radius);
+    gib_view_bounding_sphere(scene->scene, l->center, &l->radius);
 
     const char *build[] = {"ldm/ldm_build.vert", "ldm/ldm_build.frag"};
     const char *count[] = {"ldm/ldm_build.vert", "ldm/ldm_count.frag"};

@@ -101,6 +101,20 @@ static void check_case(const char *dir, const char *name, const char *light, int
     gib_fixture_close(&fx);
 }
 
+/* A spot of intensity (1, 2, 3) with cos^e falloff inside `deg` degrees. */
+static void check_spot(const char *dir, const char *name, const char *placement, int e, double deg)
+{
+    const double I[3] = {1, 2, 3}, a = deg * M_PI / 180;
+    double expected[3];
+    for (int c = 0; c < 3; c++)
+        expected[c] = 0.5 * 2 * M_PI * I[c] * (1 - pow(cos(a), e + 1)) / (e + 1);
+    char light[256];
+    snprintf(light, sizeof light,
+             "type = spot\n%sintensity = 1 2 3\nexponent = %d\nouter_angle = %g\n", placement, e,
+             deg);
+    check_case(dir, name, light, 128, expected, cos(a));
+}
+
 int main(void)
 {
     char dir[] = "/tmp/gib_light_view_XXXXXX";
@@ -118,22 +132,9 @@ int main(void)
     /* Off centre: the walls are nearer on one side, the total the same. */
     check_case(dir, "point_off_centre", "type = point\nposition = 0.3 0.2 -0.4\nintensity = 1 2 3\n",
                64, e, -3);
-    /* A narrow spot: one perspective view over its cone. */
-    double a = 30 * pi / 180;
-    for (int c = 0; c < 3; c++)
-        e[c] = rho * 2 * pi * I[c] * (1 - pow(cos(a), 2)) / 2;
-    check_case(dir, "spot_30",
-               "type = spot\nposition = 0.1 0 0\ndirection = 0 1 0\nintensity = 1 2 3\n"
-               "exponent = 1\nouter_angle = 30\n",
-               128, e, cos(a));
-    /* A wide spot: the cube. */
-    a = 70 * pi / 180;
-    for (int c = 0; c < 3; c++)
-        e[c] = rho * 2 * pi * I[c] * (1 - pow(cos(a), 3)) / 3;
-    check_case(dir, "spot_70",
-               "type = spot\nposition = 0 -0.2 0\ndirection = 0.6 0.8 0\nintensity = 1 2 3\n"
-               "exponent = 2\nouter_angle = 70\n",
-               128, e, cos(a));
+    /* A narrow spot: one perspective view over its cone; a wide one: the cube. */
+    check_spot(dir, "spot_30", "position = 0.1 0 0\ndirection = 0 1 0\n", 1, 30);
+    check_spot(dir, "spot_70", "position = 0 -0.2 0\ndirection = 0.6 0.8 0\n", 2, 70);
     /* Directional, from outside: the sphere's cross-section pi R^2. */
     for (int c = 0; c < 3; c++)
         e[c] = rho * I[c] * pi;
