@@ -68,7 +68,8 @@ typedef struct ref_raylog {
 typedef struct ref_world {
     RTCDevice device;
     RTCScene scene;          /* NULL when the scene has no triangles: every ray misses */
-    const gib_scene *gs;
+    const gib_scene *gs;     /* the scene in its frame: &frame->scene (gib_scene_frame) */
+    gib_scene_frame *frame;  /* owned */
     float eps;               /* ray offset, gib_reference_ray_eps() */
     ref_mip *mips;           /* one per scene texture */
     ref_mask *masks;         /* one per scene texture (code set for the cut-out masks) */

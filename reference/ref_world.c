@@ -109,20 +109,26 @@ static void ref_embree_error(void *user, enum RTCError code, const char *str)
              str ? str : "(no message)");
 }
 
-/* Ray offset. 1e-4 of the bounding-box diagonal of the vertices: large enough to clear the float
+/* Ray offset, in the renderer's frame (gib_scene_frame: a scene far from the origin is moved next
+ * to it first). 1e-4 of the bounding-box diagonal of the vertices: large enough to clear the float
  * error of a hit point on any triangle of the scene, small next to any feature a scene is built
- * to show. Floored at 2^-17 of the largest coordinate magnitude (64 float ulps of it), because
- * a hit point's rounding error grows with its distance from the origin, not with the scene's size
- * (ARCHITECTURE.md, "Hard cases": a scene far from the origin). */
+ * to show. Floored at 2^-17 of the largest coordinate magnitude in that frame (64 float ulps of
+ * it), because a hit point's rounding error grows with its distance from the frame's origin; in
+ * the frame that magnitude is at most GIB_FRAME_FAR diagonals, so the floor (6.1e-5 diagonals at
+ * most) never exceeds the 1e-4 and the offset does not grow with the distance to the world's
+ * origin (ARCHITECTURE.md, "Hard cases": hard_far). */
 float gib_reference_ray_eps(const gib_scene *gs)
 {
     if (!gs || !gs->positions || gs->vertex_count == 0)
         return 0.0f;
+    float org[3];
+    gib_scene_frame_origin(gs, org);
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     double amax = 0.0;
     for (uint32_t i = 0; i < gs->vertex_count; i++) {
         for (int k = 0; k < 3; k++) {
-            double c = gs->positions[3 * (size_t)i + k];
+            /* the frame's coordinate, rounded as gib_scene_frame_make rounds it */
+            double c = (float)((double)gs->positions[3 * (size_t)i + k] - (double)org[k]);
             lo[k] = c < lo[k] ? c : lo[k];
             hi[k] = c > hi[k] ? c : hi[k];
             amax = fabs(c) > amax ? fabs(c) : amax;
@@ -274,13 +280,21 @@ static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
     return 0;
 }
 
-int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
+int ref_world_build(ref_world *w, const gib_scene *scene, gib_error *err)
 {
     memset(w, 0, sizeof *w);
-    w->gs = gs;
-    if (ref_validate(gs, err) < 0)
+    if (ref_validate(scene, err) < 0)
         return -1;
-    w->eps = gib_reference_ray_eps(gs);
+    /* Everything from here on works in the scene's frame (gib_scene_frame): w->gs is the scene
+     * moved next to the origin when it lies far from it, else the scene's own coordinates. */
+    if (!(w->frame = gib_calloc(1, sizeof *w->frame, err)) ||
+        gib_scene_frame_make(scene, w->frame, err) < 0) {
+        free(w->frame);
+        w->frame = NULL;
+        return -1;
+    }
+    const gib_scene *gs = w->gs = &w->frame->scene;
+    w->eps = gib_reference_ray_eps(scene);
     if (ref_world_extras(w, gs, err) < 0) {
         ref_world_free(w);
         return -1;
@@ -289,9 +303,11 @@ int ref_world_build(ref_world *w, const gib_scene *gs, gib_error *err)
         return 0; /* an empty view: every ray misses (ARCHITECTURE.md, "Hard cases") */
 
     w->device = rtcNewDevice(NULL);
-    if (!w->device)
-        return gib_fail(err, "cannot create an Embree device (error %d)",
-                        (int)rtcGetDeviceError(NULL));
+    if (!w->device) {
+        gib_fail(err, "cannot create an Embree device (error %d)", (int)rtcGetDeviceError(NULL));
+        ref_world_free(w);
+        return -1;
+    }
     rtcSetDeviceErrorFunction(w->device, ref_embree_error, w);
 
     w->scene = rtcNewScene(w->device);
@@ -343,6 +359,12 @@ void ref_world_free(ref_world *w)
     w->tris = NULL;
     free(w->rec_tri);
     w->rec_tri = NULL;
+    if (w->frame) {
+        gib_scene_frame_free(w->frame);
+        free(w->frame);
+        w->frame = NULL;
+        w->gs = NULL;
+    }
     if (w->scene)
         rtcReleaseScene(w->scene);
     if (w->device)

@@ -299,7 +299,7 @@ static void ref_ctx_init(ref_ctx *c, const ref_world *w, const gib_scene *scene,
 {
     memset(c, 0, sizeof *c);
     c->w = w;
-    c->cam = &scene->cameras[p->camera];
+    c->cam = &w->gs->cameras[p->camera]; /* the camera in the world's frame */
     gib_reference_normalize(scene, p, &c->p);
     gib_camera_basis(c->cam, c->right, c->up, c->fwd);
     c->tan_half = tanf(0.5f * c->cam->vfov_deg * (REF_PI / 180.0f));

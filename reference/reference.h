@@ -12,7 +12,7 @@
 #include "scenes/scene.h"
 
 /* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). */
-#define GIB_REFERENCE_VERSION "gibench-ref-4"
+#define GIB_REFERENCE_VERSION "gibench-ref-5" /* 5: scenes far from the origin in their own frame */
 
 enum gib_component {
     GIB_COMP_AO = 0,
@@ -128,7 +128,9 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
 /* The ray offset the renderer uses for the scene: secondary rays leave a surface point moved by
  * this along the geometric normal, toward the side the ray goes to, with tnear = 0. It is
  * 1e-4 x the diagonal of the vertices' bounding box, floored at 2^-17 x the largest coordinate
- * magnitude (float precision far from the origin). Tests use it to state exact expected values. */
+ * magnitude in the renderer's frame (gib_scene_frame: a scene far from the origin is rendered
+ * moved next to it, so neither the offset nor the hit points' precision depends on where the scene
+ * lies). Tests use it to state exact expected values. */
 float gib_reference_ray_eps(const gib_scene *scene);
 
 /* ---- throughput benchmark (gibench bench reference) ---- */

@@ -139,6 +139,31 @@ int gib_scene_list(gib_scene_info **out, int *count, gib_error *err);
 /* Comma-separated feature names ("textures,spot_light"), for `gibench list` and CSV. */
 void gib_features_str(unsigned features, char *out, int out_len);
 
+/* --- the frame both renderers work in (scene_frame.c) ---
+ * Float coordinates 1e5 m from the origin are 7.8 mm apart: a renderer that adds ray offsets,
+ * subtracts light positions or stores depths there loses the scene (hard_far). So a scene whose
+ * largest vertex coordinate exceeds GIB_FRAME_FAR times its diagonal is moved next to the origin
+ * first, by `origin` (its bounding box's centre on a power-of-two grid, so that moving a vertex is
+ * exact), positions, lights and cameras alike; the path tracer and the GL side render that copy,
+ * whose images are the scene's (every image is translation-invariant). A scene nearer the origin
+ * keeps its own coordinates bit for bit (origin 0): there, floats already resolve the scene to
+ * 2^-24 x GIB_FRAME_FAR of its diagonal. The frame depends on the scene alone, not on a camera,
+ * so one BVH or GPU upload serves every camera. */
+#define GIB_FRAME_FAR 8.0
+typedef struct gib_scene_frame {
+    gib_scene scene;       /* the copy: positions, lights, cameras, bounds moved; the rest shared */
+    float origin[3];       /* world = frame + origin; 0 when not moved */
+    int moved;
+    float *positions;      /* owned when moved */
+    gib_light *lights;
+    gib_camera *cameras;
+} gib_scene_frame;
+void gib_scene_frame_origin(const gib_scene *scene, float origin[3]);
+/* Fills f: f->scene is a shallow copy of scene, with its own moved positions, lights and cameras
+ * when f->moved (nothing is allocated otherwise). */
+int gib_scene_frame_make(const gib_scene *scene, gib_scene_frame *f, gib_error *err);
+void gib_scene_frame_free(gib_scene_frame *f);
+
 /* --- camera and light definitions shared with the path tracer --- */
 
 /* Orthonormal camera basis: right, up, and forward (unit vectors). */
