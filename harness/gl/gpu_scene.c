@@ -46,11 +46,20 @@ static unsigned upload_array(gib_gpu_scene *gpu, const char *label, const void *
     return gib_gpu_buffer(&gpu->ledger, label, bytes, data, 0, err);
 }
 
-int gib_gpu_scene_upload(const gib_scene *s, gib_gpu_scene *gpu, gib_error *err)
+int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *err)
 {
     memset(gpu, 0, sizeof *gpu);
-    gpu->scene = s;
     gib_ledger_init(&gpu->ledger);
+    /* The techniques see the scene in its frame (gib_scene_frame), as the path tracer does: a
+     * scene far from the origin is moved next to it, so G-buffer positions, shadow-map distances,
+     * LDM depths and photon positions keep the precision of the scene's size. */
+    if (!(gpu->frame = gib_calloc(1, sizeof *gpu->frame, err)) ||
+        gib_scene_frame_make(scene, gpu->frame, err) < 0) {
+        free(gpu->frame);
+        gpu->frame = NULL;
+        return gib_error_prefix(err, "scene '%s' upload", scene->name);
+    }
+    const gib_scene *s = gpu->scene = &gpu->frame->scene;
     size_t nv = s->vertex_count;
     if (!(gpu->positions = upload_array(gpu, "scene.positions", s->positions, nv * 12, err)) ||
         !(gpu->normals = upload_array(gpu, "scene.normals", s->normals, nv * 12, err)) ||
@@ -145,6 +154,9 @@ void gib_gpu_scene_free(gib_gpu_scene *gpu)
         glDeleteVertexArrays(1, &gpu->vao);
     gib_ledger_release_all(&gpu->ledger);
     free(gpu->textures);
+    if (gpu->frame)
+        gib_scene_frame_free(gpu->frame);
+    free(gpu->frame);
     memset(gpu, 0, sizeof *gpu);
 }
 

@@ -8,7 +8,10 @@
 #include "ledger.h"
 
 struct gib_gpu_scene {
-    const gib_scene *scene;
+    const gib_scene *scene;  /* the scene in its frame (scene.h, gib_scene_frame): &frame->scene.
+                              * Positions, lights and cameras are moved next to the origin when
+                              * the scene lies far from it; images are the same. */
+    gib_scene_frame *frame;  /* owned */
     unsigned vao;
     unsigned positions, normals, uvs, indices;
     unsigned materials;      /* SSBO, binding 0 (struct Material in scene.glsl) */
