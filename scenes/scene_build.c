@@ -327,6 +327,26 @@ static unsigned room_encloses(const gib_scene_spec *s)
 
 /* ------------------------------------------------------------------ the build */
 
+/* [scene] shift: every vertex, light and camera position moved by t once the scene is built in
+ * floats (each sum rounded to float), so a scene built far from the origin can be brought back
+ * with the rounding it had there (cornell_far_rounded: hard_far's box at the origin). */
+static void scene_shift(gib_scene *sc, const float t[3])
+{
+    if (t[0] == 0.0f && t[1] == 0.0f && t[2] == 0.0f)
+        return;
+    for (size_t i = 0; i < 3 * (size_t)sc->vertex_count; i++)
+        sc->positions[i] = (float)((double)sc->positions[i] + t[i % 3]);
+    for (uint32_t i = 0; i < sc->light_count; i++)
+        for (int k = 0; k < 3; k++)
+            if (sc->lights[i].type != GIB_LIGHT_DIRECTIONAL)
+                sc->lights[i].position[k] = (float)((double)sc->lights[i].position[k] + t[k]);
+    for (uint32_t i = 0; i < sc->camera_count; i++)
+        for (int k = 0; k < 3; k++) {
+            sc->cameras[i].eye[k] = (float)((double)sc->cameras[i].eye[k] + t[k]);
+            sc->cameras[i].target[k] = (float)((double)sc->cameras[i].target[k] + t[k]);
+        }
+}
+
 int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
 {
     memset(sc, 0, sizeof *sc);
@@ -471,6 +491,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         for (int i = 0; i < s->camera_count; i++)
             sc->cameras[i] = s->cameras[i].c;
         sc->camera_count = (uint32_t)s->camera_count;
+        scene_shift(sc, s->shift);
 
         for (int k = 0; k < 3; k++) {
             sc->bounds_min[k] = INFINITY;

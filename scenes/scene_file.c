@@ -22,7 +22,8 @@
 
 enum section_kind { SEC_NONE, SEC_SCENE, SEC_MESH, SEC_MATERIAL, SEC_LIGHT, SEC_CAMERA };
 
-static const char *const scene_keys[] = {"description", "exposure", "data", "closed", "sky", NULL};
+static const char *const scene_keys[] = {"description", "exposure", "data", "closed", "sky",
+                                         "shift", NULL};
 /* The first 7 are the mesh's own; the rest are generator keys (gib_proc_key_parse). */
 static const char *const mesh_keys[] = {
     "file",     "procedural", "scale", "rotate", "translate", "material", "smooth_angle",
@@ -388,6 +389,10 @@ static int handler(void *user, const char *section, const char *name, const char
             if (!rc && !(s->sky[0] >= 0 && s->sky[1] >= 0 && s->sky[2] >= 0 &&
                          isfinite(s->sky[0] + s->sky[1] + s->sky[2])))
                 rc = ctx_fail(c, "%s: 'sky' must be 3 finite radiances >= 0, got '%s'", label, value);
+        } else if (k == 5) {
+            rc = FLOATS(s->shift, 3, 3, NULL);
+            if (!rc && !isfinite(s->shift[0] + s->shift[1] + s->shift[2]))
+                rc = ctx_fail(c, "%s: 'shift' must be 3 finite numbers, got '%s'", label, value);
         } else if (parse_bool(value, &s->closed))
             rc = ctx_fail(c, "%s: 'closed' expects 0 or 1, got '%s'", label, value);
         break;

@@ -239,6 +239,7 @@ typedef struct gib_scene_spec {
     int data_line;
     int closed;                    /* [scene] closed = 1: geometry encloses camera and lights */
     float sky[3];                  /* [scene] sky = r g b: uniform environment radiance */
+    float shift[3];                /* [scene] shift = x y z: every position moved after the build */
     int scene_line;
     gib_mesh_spec *meshes;
     int mesh_count;

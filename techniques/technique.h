@@ -18,7 +18,9 @@
 
 /* ---- parameters ---- */
 
-enum gib_param_type { GIB_PARAM_INT = 0, GIB_PARAM_FLOAT = 1 };
+/* GIB_PARAM_LENGTH: a float in scene units (dmax); a matrix's [scene_scale] scales it with the
+ * scene, so a scaled twin of a scene runs the same test. */
+enum gib_param_type { GIB_PARAM_INT = 0, GIB_PARAM_FLOAT = 1, GIB_PARAM_LENGTH = 2 };
 
 typedef struct gib_param_spec {
     const char *name;     /* "shadow_res" — the CLI (--param name=value), matrix and CSV name */

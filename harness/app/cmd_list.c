@@ -35,7 +35,10 @@ int gib_cmd_list(int argc, char **argv)
         for (int k = 0; t->params && t->params[k].name; k++) {
             const gib_param_spec *p = &t->params[k];
             printf("      %-16s %-5s default %-8g [%g, %g]  %s\n", p->name,
-                   p->type == GIB_PARAM_INT ? "int" : "float", p->def, p->min, p->max, p->help);
+                   p->type == GIB_PARAM_INT      ? "int"
+                   : p->type == GIB_PARAM_LENGTH ? "len"
+                                                 : "float",
+                   p->def, p->min, p->max, p->help);
         }
     }
     gib_scene_info *infos = NULL;

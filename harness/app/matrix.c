@@ -162,6 +162,8 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
                          v->section);
                 goto out;
             }
+        } else if (!strcmp(v->section, "scene_scale")) {
+            continue; /* checked against the scene list below */
         } else if (!strncmp(v->section, "params.", 7)) {
             const gib_technique *t = gib_technique_find(v->section + 7);
             if (!t) {
@@ -170,8 +172,8 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
                 goto out;
             }
         } else {
-            gib_fail(err, "%s:%d: unknown section [%s] (expected [matrix], [params.TECHNIQUE] or "
-                     "[profile.NAME])", path, v->line, v->section);
+            gib_fail(err, "%s:%d: unknown section [%s] (expected [matrix], [params.TECHNIQUE], "
+                     "[scene_scale] or [profile.NAME])", path, v->line, v->section);
             goto out;
         }
     }
@@ -234,6 +236,37 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
             goto out;
         }
         fclose(f);
+    }
+    /* [scene_scale]: scene = factor; the length parameters (GIB_PARAM_LENGTH) of that
+     * scene's runs are multiplied by it. */
+    double scale[GIB_MATRIX_MAX_LIST];
+    int scale_line[GIB_MATRIX_MAX_LIST];
+    for (int i = 0; i < ns; i++) {
+        scale[i] = 1.0;
+        scale_line[i] = 0;
+    }
+    for (int k = 0; k < s.count; k++) {
+        const raw_value *rv = &s.vals[k];
+        if (strcmp(rv->section, "scene_scale"))
+            continue;
+        int si = -1;
+        for (int i = 0; i < ns; i++)
+            if (!strcmp(scenes[i], rv->key))
+                si = i;
+        if (si < 0) {
+            gib_fail(err, "%s:%d: [scene_scale]: '%s' is not one of the matrix's scenes", path,
+                     rv->line, rv->key);
+            goto out;
+        }
+        char *end;
+        double x = strtod(rv->value, &end);
+        if (end == rv->value || *trim(end) || !(x > 0.0) || !isfinite(x)) {
+            gib_fail(err, "%s:%d: [scene_scale]: %s expects a finite number > 0, got '%s'", path,
+                     rv->line, rv->key, rv->value);
+            goto out;
+        }
+        scale[si] = x;
+        scale_line[si] = rv->line;
     }
     for (int ti = 0; ti < nt; ti++) {
         const gib_technique *t = gib_technique_find(techs[ti]);
@@ -317,8 +350,19 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
                     gib_params_default(t, &r->params);
                     int rest = c;
                     for (int pi = 0; pi < np; pi++) {
-                        r->params.values[pi] = values[pi][rest % counts[pi]];
+                        const gib_param_spec *ps = &t->params[pi];
+                        double x = values[pi][rest % counts[pi]];
                         rest /= counts[pi];
+                        if (ps->type == GIB_PARAM_LENGTH && scale[si] != 1.0) {
+                            x *= scale[si];
+                            if (!(x >= ps->min && x <= ps->max)) {
+                                gib_fail(err, "%s:%d: [scene_scale] %s = %g makes %s.%s %g, "
+                                         "outside [%g, %g]", path, scale_line[si], scenes[si],
+                                         scale[si], t->name, ps->name, x, ps->min, ps->max);
+                                goto out;
+                            }
+                        }
+                        r->params.values[pi] = x;
                     }
                     gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
                     r->width = ws[zi];

@@ -12,6 +12,8 @@
  *   ref_spp_ao = 256
  *   [params.direct]        ; comma-separated lists; the cross product is run
  *   shadow_res = 512, 1024
+ *   [scene_scale]          ; optional: a scene's length parameters (dmax: GIB_PARAM_LENGTH)
+ *   hard_tiny = 0.0018     ; are the lists' values times this, so a scaled twin runs the same test
  *   [profile.quick]        ; overrides for --profile quick: any [matrix] key, and TECH.PARAM lists
  *   sizes = 128x128
  *   direct.shadow_res = 256

@@ -47,7 +47,7 @@ typedef struct hbao {
  * gave the lowest error on the Cornell box at 256x256 (rel_rmse 0.113 against 0.114, 0.115, 0.121
  * for r = 0, 4, 8); on Sponza the blur costs a little detail (SSIM 0.71 against 0.74 unblurred). */
 static const gib_param_spec hbao_params[] = {
-    {"dmax", GIB_PARAM_FLOAT, 1.0, 1e-6, 1e9,
+    {"dmax", GIB_PARAM_LENGTH, 1.0, 1e-6, 1e9,
      "occlusion radius R = d_max in scene units (Crytek Sponza is in cm); must be finite: "
      "screen-space AO marches the projection of R, so an unbounded d_max (inf) is not possible"},
     {"directions", GIB_PARAM_INT, 8, 1, 64, "N_d: screen directions per pixel (rotated per pixel)"},

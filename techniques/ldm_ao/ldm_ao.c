@@ -28,7 +28,7 @@ typedef struct ldm_ao {
 static const gib_param_spec ldm_ao_params[] = {
     {"directions", GIB_PARAM_INT, 128, 1, 4096, "number of LDM directions N (Sec. 3.2)"},
     {"ldm_res", GIB_PARAM_INT, 128, 8, 2048, "LDM resolution (pixels per side)"},
-    {"dmax", GIB_PARAM_FLOAT, INFINITY, 0, INFINITY,
+    {"dmax", GIB_PARAM_LENGTH, INFINITY, 0, INFINITY,
      "maximum occluder distance, world units (inf: unattenuated AO)"},
     {"obscurance", GIB_PARAM_INT, 0, 0, 1, "1: obscurance rho(d) = min(d/dmax, 1) (needs finite dmax)"},
     {"normal_offset", GIB_PARAM_FLOAT, 1.0, 0, 16, "ray origin offset along the normal, LDM texels"},
