@@ -55,7 +55,7 @@ enum gib_component_bit {
  * (ARCHITECTURE.md, "The technique contract"). */
 enum gib_ref_setting {
     GIB_REF_END = 0,
-    GIB_REF_AO_DMAX,        /* ao: the largest occluder distance (a float parameter; inf: none) */
+    GIB_REF_AO_DMAX,        /* ao: the largest occluder distance (a GIB_PARAM_LENGTH; inf: none) */
     GIB_REF_AO_OBSCURANCE,  /* ao: 1 = Zhukov's obscurance min(d/dmax, 1) instead of visibility */
 };
 

@@ -31,8 +31,8 @@ static void check_params(const gib_technique *t)
     for (; t->params && t->params[n].name; n++) {
         const gib_param_spec *s = &t->params[n];
         CHECK(s->name[0], "%s: parameter %d has an empty name", t->name, n);
-        CHECK(s->type == GIB_PARAM_INT || s->type == GIB_PARAM_FLOAT, "%s.%s: unknown type %d",
-              t->name, s->name, s->type);
+        CHECK(s->type == GIB_PARAM_INT || s->type == GIB_PARAM_FLOAT || s->type == GIB_PARAM_LENGTH,
+              "%s.%s: unknown type %d", t->name, s->name, s->type);
         CHECK(s->help && s->help[0], "%s.%s: no help text", t->name, s->name);
         CHECK(s->min <= s->max, "%s.%s: range [%g, %g] is empty", t->name, s->name, s->min, s->max);
         CHECK(s->def >= s->min && s->def <= s->max, "%s.%s: default %g outside [%g, %g]", t->name,
@@ -68,8 +68,9 @@ static void check_reference(const gib_technique *t)
                   t->name, b->components);
         if (b->setting == GIB_REF_AO_DMAX && i >= 0) {
             binds_dmax = 1;
-            CHECK(t->params[i].type == GIB_PARAM_FLOAT, "%s: dmax bound to integer '%s'", t->name,
-                  b->param);
+            /* a distance in scene units: a matrix's [scene_scale] must scale it with the scene */
+            CHECK(t->params[i].type == GIB_PARAM_LENGTH, "%s: dmax bound to '%s', not a length",
+                  t->name, b->param);
         }
         if (b->setting == GIB_REF_AO_OBSCURANCE && i >= 0)
             CHECK(t->params[i].type == GIB_PARAM_INT && t->params[i].min >= 0 &&
