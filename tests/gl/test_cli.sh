@@ -61,6 +61,20 @@ M
 expect_rc 2 "matrix with an out-of-range value" $G run "$W/bad.matrix" --profile default --out "$W/badrun"
 grep -q "bad.matrix:7" "$W/out.txt" && pass "matrix error names file and line 7" || fail "$(cat "$W/out.txt")"
 [ ! -e "$W/badrun/bad.csv" ] && pass "nothing was rendered for the bad matrix" || fail "bad matrix wrote a CSV"
+# [scene_scale] names one of the matrix's scenes, and a scaled length must stay in its range.
+cat >"$W/scale.matrix" <<'M'
+[matrix]
+scenes = cornell
+techniques = hbao
+sizes = 32x32
+[scene_scale]
+hard_tiny = 0.0018
+M
+expect_rc 2 "scene_scale naming a scene not in the matrix" $G run "$W/scale.matrix" --profile default --out "$W/badrun"
+grep -q "scale.matrix:6.*hard_tiny" "$W/out.txt" && pass "scene_scale error names file, line and scene" || fail "$(cat "$W/out.txt")"
+printf '[matrix]\nscenes = cornell\ntechniques = hbao\nsizes = 32x32\n[scene_scale]\ncornell = 1e-9\n' >"$W/scale.matrix"
+expect_rc 2 "scene_scale taking dmax out of its range" $G run "$W/scale.matrix" --profile default --out "$W/badrun"
+grep -q "scale.matrix:6.*hbao.dmax" "$W/out.txt" && pass "the error names the scaled parameter" || fail "$(cat "$W/out.txt")"
 
 # Resume: a rerun adds no rows; a truncated last row is redone, the others are kept.
 cat >"$W/tiny.matrix" <<'M'

@@ -101,6 +101,8 @@ int main(void)
     /* further errors the format promises */
     expect("unknown generator", "[scene]\n[mesh.pot]\nprocedural = teapot\n" CAMERA, -1, 3,
            "unknown procedural generator 'teapot'", "cornell_box");
+    expect("shift needs 3 numbers", "[scene]\nshift = 1 2\n[mesh.box]\nprocedural = cornell_box\n" CAMERA,
+           -1, 2, "shift", NULL);
     expect("unknown light type",
            "[scene]\n[mesh.box]\nprocedural = cornell_box\n[light.sky]\ntype = area\n"
            "intensity = 1 1 1\n" CAMERA,
