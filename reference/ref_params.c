@@ -82,6 +82,8 @@ void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gi
     o->threads = 0;
     o->quiet = 0;
     o->interrupt = NULL;
+    if (!scene || !scene->motion_count)
+        o->time = 0.0f; /* a static scene is the same at every instant */
     int bounded = p->dmax > 0.0f && isfinite(p->dmax);
     if (c == GIB_COMP_AO) {
         o->dmax = bounded ? p->dmax : INFINITY; /* <= 0 and inf: the same unbounded image */
@@ -139,6 +141,8 @@ uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params 
      * whatever the builder set. Scenes without a sky hash nothing more. */
     if (ref_has_sky(scene))
         h = gib_hash_bytes(h, scene->sky, sizeof scene->sky);
+    if (scene && scene->motion_count)
+        h = gib_hash_f32(gib_hash_str(h, "time"), n.time);
     return h;
 }
 
@@ -221,5 +225,7 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
              : !(q.target_noise > 0.0) ? "spp"
              : s && s->target_reached  ? "target"
                                        : "max_spp");
+    if (scene && scene->motion_count)
+        ref_attr(attrs, max_attrs, &n, "time", "%.9g", (double)q.time);
     return n;
 }

@@ -205,6 +205,8 @@ int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error 
         return gib_fail(err, "reference: target_noise must be >= 0, got %g", p->target_noise);
     if (p->target_noise > 0.0 && p->max_spp > 0 && p->max_spp < p->spp)
         return gib_fail(err, "reference: max_spp %d is below spp %d", p->max_spp, p->spp);
+    if (!isfinite(p->time))
+        return gib_fail(err, "reference: time must be finite, got %g", (double)p->time);
     if (p->camera < 0 || (uint32_t)p->camera >= scene->camera_count || !scene->cameras)
         return gib_fail(err, "reference: scene '%s' has %u camera(s), camera %d asked for",
                         scene->name, scene->camera_count, p->camera);
@@ -440,11 +442,19 @@ int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_im
     if (ref_check_params(scene, p, err) < 0)
         return -1;
     double t0 = ref_now();
-    ref_world w;
-    if (ref_world_build(&w, scene, err) < 0)
+    /* A moving scene is rendered as it is at p->time: the world is built from its posed vertex
+     * arrays (a static scene's are its own). */
+    gib_scene posed;
+    if (gib_scene_posed(scene, p->time, &posed, err) < 0)
         return gib_error_prefix(err, "reference");
-    int rc = ref_render_world(&w, scene, p, out, stderr_img, stats, err);
+    ref_world w;
+    if (ref_world_build(&w, &posed, err) < 0) {
+        gib_scene_posed_free(&posed);
+        return gib_error_prefix(err, "reference");
+    }
+    int rc = ref_render_world(&w, &posed, p, out, stderr_img, stats, err);
     ref_world_free(&w);
+    gib_scene_posed_free(&posed);
     if (rc == 0 && stats)
         stats->seconds = ref_now() - t0; /* the BVH build included */
     return rc;

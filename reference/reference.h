@@ -71,6 +71,8 @@ typedef struct gib_ref_params {
     uint64_t seed;        /* default 1 */
     int threads;          /* 0 = all cores */
     int camera;           /* index into scene->cameras */
+    float time;           /* seconds: the instant a moving scene is rendered at (gib_motion_pose);
+                           * ignored (normalised to 0) for a static scene */
     int quiet;            /* no progress output */
     gib_ref_interrupt *interrupt; /* NULL: none; never changes the image */
 } gib_ref_params;
@@ -105,7 +107,8 @@ void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gi
 /* A hash of everything in p that changes the image (after gib_reference_normalize), of the
  * renderer version, of the camera p->camera names (eye, target, up, fov) and of the scene's sky
  * where it has one (a scene file's bytes already change the content hash when its sky changes;
- * this covers scenes built in C too). */
+ * this covers scenes built in C too), and of p->time for a scene that moves (a static scene's
+ * hash is what it was before scenes could move). */
 uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params *p);
 
 /* The cache key of a reference image: the params hash plus the scene's content hash (scene file,
@@ -119,9 +122,9 @@ uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p
  * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key,
  * sky (the sky's radiance, three numbers, "0 0 0" without one), stop (why sampling ended: "spp"
  * the fixed count, "target" the target noise, "max_spp" the cap before the target, "interrupted").
- * Parameters are written normalised. Returns the count written, at most max_attrs;
- * GIB_REF_ATTR_COUNT is how many there are. */
-#define GIB_REF_ATTR_COUNT 25
+ * A moving scene's also get `time` (seconds). Parameters are written normalised. Returns the
+ * count written, at most max_attrs; GIB_REF_ATTR_COUNT is the most there are. */
+#define GIB_REF_ATTR_COUNT 26
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
 

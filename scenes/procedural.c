@@ -47,6 +47,7 @@ static const struct generator {
     {"hairball", K(GIB_PK_RADIUS) | K(GIB_PK_THICKNESS) | K(GIB_PK_TUBES) | K(GIB_PK_SEGMENTS) |
                      K(GIB_PK_SIDES) | K(GIB_PK_SEED),
      0},
+    {"water", K(GIB_PK_SIZE) | K(GIB_PK_SEGMENTS), 2},
 };
 #define NGEN (sizeof generators / sizeof generators[0])
 
@@ -142,7 +143,7 @@ int gib_procedural_known(const char *name)
 
 const char *gib_procedural_names(void)
 {
-    return "cornell_box, plane_box, room, box, quad, slivers, sphere_interior, hairball";
+    return "cornell_box, plane_box, room, box, quad, slivers, sphere_interior, hairball, water";
 }
 
 /* "room, box" : the generators that take key k. */
@@ -216,6 +217,15 @@ int gib_procedural_check(const char *name, const gib_proc_params *p, int *key, c
             *key = GIB_PK_SEGMENTS;
             snprintf(msg, msg_len, "slivers: 'segments' must be from 2 to %u, got %.0f",
                      MAX_GENERATED_TRIANGLES / 2, n);
+            return -1;
+        }
+    }
+    if (strcmp(name, "water") == 0 && (p->set & K(GIB_PK_SEGMENTS))) {
+        const double n = p->v[GIB_PK_SEGMENTS][0];
+        if (2 * n * n > MAX_GENERATED_TRIANGLES) {
+            *key = GIB_PK_SEGMENTS;
+            snprintf(msg, msg_len, "water: 'segments' must be from 1 to 2896 (2 x segments^2 "
+                     "triangles, at most %u), got %.0f", MAX_GENERATED_TRIANGLES, n);
             return -1;
         }
     }
@@ -372,6 +382,8 @@ int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *o
         return gib_gen_sphere_interior(out, p, err);
     if (strcmp(name, "hairball") == 0)
         return gib_gen_hairball(out, p, err);
+    if (strcmp(name, "water") == 0)
+        return gib_gen_water(out, p, err);
     return gib_fail(err, "unknown procedural generator '%s' (known: %s)", name,
                     gib_procedural_names());
 }

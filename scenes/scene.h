@@ -77,6 +77,34 @@ typedef struct gib_draw_range {
     uint32_t material;
 } gib_draw_range;
 
+/* A mesh that moves (FORMAT.md, "Motion"): its vertices [first_vertex, first_vertex +
+ * vertex_count) are posed at time t by gib_motion_pose. Rigid: keyframes of rotation (Euler
+ * degrees, R = Rz Ry Rx) about `pivot` and translation, interpolated linearly (USD's
+ * xformOp time samples); p(t) = R(t) (p_rest - pivot) + pivot + T(t), p_rest the placed mesh.
+ * Water: a height field y = sum_i a_i sin(k_i . (x, z) - w_i t) in the mesh's own frame, then
+ * the mesh's placement (m, nm, translate). */
+enum gib_motion_kind { GIB_MOTION_RIGID = 0, GIB_MOTION_WATER = 1 };
+#define GIB_MOTION_MAX_KEYS 16
+#define GIB_MOTION_MAX_WAVES 8
+typedef struct gib_wave {
+    float amplitude, k[2], omega; /* a, wave vector (rad/unit) in x and z, angular speed (rad/s) */
+} gib_wave;
+typedef struct gib_motion {
+    char mesh[64];
+    int kind;                      /* enum gib_motion_kind */
+    uint32_t first_vertex, vertex_count;
+    float *rest_positions;         /* rigid: placed, world space; water: the grid in the mesh's
+                                    * own frame at height 0 */
+    float *rest_normals;           /* rigid only */
+    int key_count, loop;           /* loop: time wraps over [key 0, last key]; else clamps */
+    float key_time[GIB_MOTION_MAX_KEYS];
+    float key_rotate[GIB_MOTION_MAX_KEYS][3], key_translate[GIB_MOTION_MAX_KEYS][3];
+    float pivot[3];
+    int wave_count;
+    gib_wave waves[GIB_MOTION_MAX_WAVES];
+    float m[3][3], nm[3][3], translate[3]; /* water: the mesh's placement (R S, R S^-1, t) */
+} gib_motion;
+
 typedef struct gib_scene {
     char name[64];
     char file[512];        /* the .scene file, or "" for a scene built purely in C */
@@ -106,8 +134,13 @@ typedef struct gib_scene {
     gib_camera *cameras;
     uint32_t camera_count; /* >= 1; cameras[0] is the default view */
 
+    gib_motion *motions;   /* meshes that move; none: the scene is static */
+    uint32_t motion_count;
+    float time;            /* the instant positions/normals hold (0 as loaded) */
+
     unsigned features;     /* enum gib_feature bits */
-    float bounds_min[3], bounds_max[3];
+    float bounds_min[3], bounds_max[3]; /* with motion: cover every instant (conservative), so
+                                           structures sized from them at create stay valid */
     uint64_t content_hash; /* hash of the scene file, every mesh and texture file's bytes and of
                               everything built procedurally: changes whenever the image could */
 } gib_scene;
@@ -126,6 +159,18 @@ const char *gib_scene_dir(void);
 #define GIB_SCENE_UNAVAILABLE (-2)
 int gib_scene_load(const char *name_or_path, gib_scene *scene, gib_error *err);
 void gib_scene_free(gib_scene *scene);
+
+/* Positions and normals of motion m's vertices at time t (seconds), 3 floats per vertex of its
+ * range each, written to pos and nrm (indexed from the range's first vertex). */
+void gib_motion_pose(const gib_motion *m, double t, float *pos, float *nrm);
+/* Poses every moving mesh of the scene at time t in place (positions, normals, scene->time);
+ * a static scene is left as it is. */
+void gib_scene_set_time(gib_scene *scene, double t);
+/* A scene at time t for a renderer that reads the arrays: *posed shares everything with scene
+ * but positions and normals, which it owns (static scenes: shares those too). Free with
+ * gib_scene_posed_free, never gib_scene_free. */
+int gib_scene_posed(const gib_scene *scene, double t, gib_scene *posed, gib_error *err);
+void gib_scene_posed_free(gib_scene *posed);
 
 /* One line per scene file found in gib_scene_dir(): name, availability and features. */
 typedef struct gib_scene_info {

@@ -29,7 +29,7 @@ static void mat_mul(const float a[3][3], const float b[3][3], float out[3][3])
 }
 
 /* Rotation about x, then y, then z (the order FORMAT.md states): R = Rz * Ry * Rx. */
-static void rotation(const float deg[3], float r[3][3])
+void gib_euler_rotation(const float deg[3], float r[3][3])
 {
     const double k = M_PI / 180.0;
     const float cx = (float)cos(deg[0] * k), sx = (float)sin(deg[0] * k);
@@ -46,7 +46,7 @@ static void rotation(const float deg[3], float r[3][3])
 static void make_xform(const gib_mesh_spec *m, xform *x)
 {
     float r[3][3];
-    rotation(m->rotate_deg, r);
+    gib_euler_rotation(m->rotate_deg, r);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             x->m[i][j] = r[i][j] * m->scale[j];
@@ -68,7 +68,7 @@ static void apply3(const float m[3][3], const float *v, float *out)
 static void to_local(const gib_mesh_spec *m, const float p[3], float out[3])
 {
     float r[3][3], d[3] = {p[0] - m->translate[0], p[1] - m->translate[1], p[2] - m->translate[2]};
-    rotation(m->rotate_deg, r);
+    gib_euler_rotation(m->rotate_deg, r);
     for (int j = 0; j < 3; j++)
         out[j] = (r[0][j] * d[0] + r[1][j] * d[1] + r[2][j] * d[2]) / m->scale[j];
 }
@@ -355,8 +355,9 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
     gib_tex_cache cache;
     memset(&cache, 0, sizeof cache);
     uint32_t *tri_mesh_begin = gib_calloc((size_t)s->mesh_count + 1, sizeof(uint32_t), err);
+    uint32_t *vert_mesh_begin = gib_calloc((size_t)s->mesh_count + 1, sizeof(uint32_t), err);
     int *remap = NULL;
-    int rc = tri_mesh_begin ? 0 : -1;
+    int rc = tri_mesh_begin && vert_mesh_begin ? 0 : -1;
 
     uint64_t hash = gib_hash_str(GIB_HASH_INIT, GIB_SCENE_LOADER_VERSION);
     if (rc == 0 && gib_hash_file(&hash, s->path) != 0)
@@ -368,6 +369,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         gib_geom local;
         memset(&local, 0, sizeof local);
         tri_mesh_begin[i] = g.tcount;
+        vert_mesh_begin[i] = g.vcount;
         if (m->procedural[0]) {
             if (gib_procedural_build(m->procedural, &m->params, &local, &hash, err))
                 rc =
@@ -395,8 +397,10 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         }
         gib_geom_free(&local);
     }
-    if (rc == 0)
+    if (rc == 0) {
         tri_mesh_begin[s->mesh_count] = g.tcount;
+        vert_mesh_begin[s->mesh_count] = g.vcount;
+    }
 
     /* [material.NAME] sections override every material of that name, or create one. */
     for (int i = 0; i < s->material_count && rc == 0; i++) {
@@ -527,6 +531,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
         f |= room_encloses(s);
         sc->features = f;
         sc->content_hash = hash;
+        rc = gib_scene_build_motion(s, vert_mesh_begin, sc, err);
     }
 
     for (uint32_t k = 0; k < cache.count; k++)
@@ -535,6 +540,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
     gib_tex_cache_release(&cache);
     gib_geom_free(&g);
     free(tri_mesh_begin);
+    free(vert_mesh_begin);
     free(remap);
     if (rc != 0) {
         gib_scene_free(sc);

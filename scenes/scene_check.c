@@ -22,6 +22,61 @@ static float len3(const float v[3])
     return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
+/* A mesh's motion keys (FORMAT.md, "Motion"): keyframes need times and one value per time;
+ * waves belong to a `water` mesh, which needs them and takes no keyframes. */
+static int check_motion(const gib_scene_spec *s, gib_mesh_spec *m, gib_error *err)
+{
+    const int water = strcmp(m->procedural, "water") == 0;
+    const int any_key = m->keys_line || m->key_rotate_line || m->key_translate_line ||
+                        m->pivot_line || m->loop_line;
+    if (m->waves_line && !water)
+        return gib_scene_fail_at(s, m->waves_line, err,
+                                 "mesh '%s': 'waves' applies only to 'procedural = water'",
+                                 m->name);
+    if (water && !m->waves_line)
+        return gib_scene_fail_at(s, m->procedural_line, err,
+                                 "mesh '%s': a water surface needs 'waves = amplitude wavelength "
+                                 "direction_deg speed' (one to %d waves)",
+                                 m->name, GIB_MOTION_MAX_WAVES);
+    if (!any_key)
+        return 0;
+    const int first = m->keys_line ? m->keys_line
+                      : m->key_rotate_line ? m->key_rotate_line
+                      : m->key_translate_line ? m->key_translate_line
+                      : m->pivot_line ? m->pivot_line
+                                      : m->loop_line;
+    if (water)
+        return gib_scene_fail_at(s, first, err,
+                                 "mesh '%s': a water surface moves by its waves; keyframes apply "
+                                 "to other meshes",
+                                 m->name);
+    if (!m->keys_line)
+        return gib_scene_fail_at(s, first, err,
+                                 "mesh '%s': keyframes need 'keys = t0 t1 ...' (times in seconds)",
+                                 m->name);
+    if (!m->key_rotate_line && !m->key_translate_line)
+        return gib_scene_fail_at(s, m->keys_line, err,
+                                 "mesh '%s': 'keys' needs 'key_rotate' and/or 'key_translate' "
+                                 "(3 numbers per key)",
+                                 m->name);
+    for (int k = 0; k < 2; k++) {
+        const int line = k ? m->key_translate_line : m->key_rotate_line;
+        const int n = k ? m->key_translate_n : m->key_rotate_n;
+        if (line && n != 3 * m->key_count)
+            return gib_scene_fail_at(s, line, err,
+                                     "mesh '%s': '%s' has %d numbers; 'keys' gives %d times, so "
+                                     "%d are needed (3 per key)",
+                                     m->name, k ? "key_translate" : "key_rotate", n, m->key_count,
+                                     3 * m->key_count);
+    }
+    if (m->loop && m->key_count < 2)
+        return gib_scene_fail_at(s, m->loop_line, err,
+                                 "mesh '%s': 'loop = 1' needs at least 2 keys", m->name);
+    if (!m->pivot_line)
+        memcpy(m->pivot, m->translate, sizeof m->pivot); /* about the mesh's own origin */
+    return 0;
+}
+
 int gib_scene_validate(gib_scene_spec *s, gib_error *err)
 {
     if (!s->scene_line)
@@ -58,6 +113,9 @@ int gib_scene_validate(gib_scene_spec *s, gib_error *err)
                                          err, "mesh '%s': %s", m->name, msg);
         }
     }
+    for (int i = 0; i < s->mesh_count; i++)
+        if (check_motion(s, &s->meshes[i], err))
+            return -1;
     if (s->mesh_count == 0)
         return gib_scene_fail_at(s, s->scene_line, err, "the scene has no [mesh.NAME] section");
     for (int i = 0; i < s->material_count; i++) {

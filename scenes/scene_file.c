@@ -24,9 +24,11 @@ enum section_kind { SEC_NONE, SEC_SCENE, SEC_MESH, SEC_MATERIAL, SEC_LIGHT, SEC_
 
 static const char *const scene_keys[] = {"description", "exposure", "data", "closed", "sky",
                                          "shift", NULL};
-/* The first 7 are the mesh's own; the rest are generator keys (gib_proc_key_parse). */
+/* The first 13 are the mesh's own (7 placement, 6 motion); the rest are generator keys
+ * (gib_proc_key_parse). */
 static const char *const mesh_keys[] = {
     "file",     "procedural", "scale", "rotate", "translate", "material", "smooth_angle",
+    "keys",     "key_rotate", "key_translate", "pivot", "loop", "waves",
     "size",     "radius",     "thickness", "tubes", "segments",  "sides",    "seed",
     "subdivisions", NULL};
 static const char *const material_keys[] = {"albedo",    "specular", "phong_n", "mirror",
@@ -426,6 +428,59 @@ static int handler(void *user, const char *section, const char *name, const char
                 rc = ctx_fail(c, "%s: 'smooth_angle' must be 0..180 degrees, got '%s'", label,
                               value);
             break;
+        case 7: {
+            rc = FLOATS(m->key_time, 1, GIB_MOTION_MAX_KEYS, &m->key_count);
+            m->keys_line = c->lineno;
+            for (int i = 1; !rc && i < m->key_count; i++)
+                if (!(m->key_time[i] > m->key_time[i - 1]))
+                    rc = ctx_fail(c, "%s: 'keys' (times in seconds) must increase, got '%s'", label,
+                                  value);
+            break;
+        }
+        case 8:
+        case 9: {
+            float tmp[3 * GIB_MOTION_MAX_KEYS];
+            rc = FLOATS(tmp, 3, 3 * GIB_MOTION_MAX_KEYS, &got);
+            if (!rc && got % 3)
+                rc = ctx_fail(c, "%s: '%s' takes 3 numbers per key, got %d numbers", label, name,
+                              got);
+            float(*dst)[3] = k == 8 ? m->key_rotate : m->key_translate;
+            for (int i = 0; !rc && i < got; i++)
+                dst[i / 3][i % 3] = tmp[i];
+            *(k == 8 ? &m->key_rotate_n : &m->key_translate_n) = got;
+            *(k == 8 ? &m->key_rotate_line : &m->key_translate_line) = c->lineno;
+            break;
+        }
+        case 10:
+            rc = FLOATS(m->pivot, 3, 3, NULL);
+            m->pivot_line = c->lineno;
+            break;
+        case 11:
+            m->loop_line = c->lineno;
+            if (parse_bool(value, &m->loop))
+                rc = ctx_fail(c, "%s: 'loop' expects 0 or 1, got '%s'", label, value);
+            break;
+        case 12: {
+            float tmp[4 * GIB_MOTION_MAX_WAVES];
+            rc = FLOATS(tmp, 4, 4 * GIB_MOTION_MAX_WAVES, &got);
+            if (!rc && got % 4)
+                rc = ctx_fail(c,
+                              "%s: 'waves' takes 4 numbers per wave (amplitude wavelength "
+                              "direction_deg speed), got %d numbers",
+                              label, got);
+            for (int i = 0; !rc && i < got / 4; i++) {
+                const float *w = tmp + 4 * i;
+                if (!(w[0] >= 0.0f) || !(w[1] > 0.0f))
+                    rc = ctx_fail(c,
+                                  "%s: wave %d: amplitude must be >= 0 and wavelength > 0, got "
+                                  "%g and %g",
+                                  label, i + 1, (double)w[0], (double)w[1]);
+                memcpy(m->waves[i], w, sizeof m->waves[i]);
+            }
+            m->wave_count = got / 4;
+            m->waves_line = c->lineno;
+            break;
+        }
         default:
             if (gib_proc_key_parse(&m->params, name, value, c->lineno, msg, sizeof msg))
                 rc = ctx_fail(c, "%s: %s", label, msg);

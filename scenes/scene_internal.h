@@ -129,6 +129,15 @@ int gib_gen_box(gib_geom *g, const gib_proc_params *p, gib_error *err);
 int gib_gen_slivers(gib_geom *g, const gib_proc_params *p, gib_error *err);
 int gib_gen_sphere_interior(gib_geom *g, const gib_proc_params *p, gib_error *err);
 int gib_gen_hairball(gib_geom *g, const gib_proc_params *p, gib_error *err);
+int gib_gen_water(gib_geom *g, const gib_proc_params *p, gib_error *err);
+/* The water grid's defaults (FORMAT.md). */
+#define GIB_WATER_SIZE 4.0
+#define GIB_WATER_SEGMENTS 64
+
+/* Rotation about x, then y, then z by deg (degrees): r = Rz Ry Rx (scene_build.c). */
+void gib_euler_rotation(const float deg[3], float r[3][3]);
+/* Frees the motions' arrays (gib_scene_free). */
+void gib_scene_free_motion(gib_scene *sc);
 
 /* Building blocks for flat faces (geom.c): each triangle gets its own vertices carrying its
  * geometric normal. add_quad: corners in order around the face, any winding; the normal is made
@@ -205,6 +214,16 @@ typedef struct gib_mesh_spec {
     int material_line;
     gib_proc_params params;        /* generator keys (size, radius, tubes, ...) with lines */
     float smooth_angle_deg;
+    /* Motion (FORMAT.md, "Motion"): keyframes of a rigid mesh, waves of a `water` mesh. */
+    int key_count, keys_line;      /* keys = t0 t1 ...: times in seconds, increasing */
+    float key_time[GIB_MOTION_MAX_KEYS];
+    int key_rotate_line, key_translate_line; /* 0: not given (all zero) */
+    float key_rotate[GIB_MOTION_MAX_KEYS][3], key_translate[GIB_MOTION_MAX_KEYS][3];
+    int key_rotate_n, key_translate_n;        /* numbers given, for the count check */
+    int pivot_line, loop, loop_line;
+    float pivot[3];
+    int wave_count, waves_line;    /* waves = a wavelength direction speed, ... */
+    float waves[GIB_MOTION_MAX_WAVES][4];
 } gib_mesh_spec;
 
 typedef struct gib_material_spec {
@@ -267,6 +286,11 @@ int gib_scene_fail_at(const gib_scene_spec *spec, int line, gib_error *err, cons
  * GIB_SCENE_UNAVAILABLE with a message saying where to get it. */
 int gib_scene_check_data(const gib_scene_spec *spec, gib_error *err);
 
+/* motion.c: the scene's motions from the spec, after the vertex arrays are final (mesh_vbegin[i]:
+ * mesh i's first vertex, [mesh_count] = the end); poses the scene at t = 0 and sets bounds that
+ * cover every instant. */
+int gib_scene_build_motion(const gib_scene_spec *s, const uint32_t *mesh_vbegin, gib_scene *sc,
+                           gib_error *err);
 /* Builds the flattened scene from a parsed spec (loads meshes and textures). */
 int gib_scene_build(const gib_scene_spec *spec, gib_scene *scene, gib_error *err);
 

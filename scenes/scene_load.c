@@ -69,6 +69,7 @@ void gib_scene_free(gib_scene *scene)
     free(scene->textures);
     free(scene->lights);
     free(scene->cameras);
+    gib_scene_free_motion(scene);
     memset(scene, 0, sizeof *scene);
 }
 

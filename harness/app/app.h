@@ -41,6 +41,7 @@ typedef struct gib_ref_request {
     const gib_scene *scene;
     int camera;
     int width, height;
+    float time;          /* seconds: the instant of a moving scene (ignored for a static one) */
     int component;       /* enum gib_component */
     int spp;
     float dmax;          /* ao */

@@ -19,6 +19,7 @@ static const char help[] =
     "                         [--dmax D] [--obscurance 0|1] [--max-depth N] [--min-depth N]\n"
     "                         [--max-specular N] [--target-noise X] [--max-spp N]\n"
     "                         [--camera I] [--seed N] [--threads N] [--stderr F.exr] [--quiet]\n"
+    "                         [--time T]\n"
     "\n"
     "Components (paths in Heckbert notation, reference/reference.h):\n"
     "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
@@ -44,7 +45,9 @@ static const char help[] =
     "the cache key, the image's noise RMSE (standard error from the per-pixel variance), why\n"
     "sampling stopped, and a seal of pixels and header (a changed cache entry is rendered again).\n"
     "--stderr writes the standard error of each pixel, its header marked image: standard_error.\n"
-    "--out and --stderr are EXR files, checked to be writable before rendering.\n";
+    "--out and --stderr are EXR files, checked to be writable before rendering.\n"
+    "--time T (seconds, default 0) renders a moving scene (scenes/FORMAT.md, Motion) as it is at\n"
+    "T; the cache key and header include it. A static scene is the same at every T.\n";
 
 /* Ctrl-C: once a round is done, the first one asks the renderer to stop and keep the rounds
  * finished (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
@@ -129,7 +132,7 @@ int gib_cmd_reference(int argc, char **argv)
     long spp = 16, camera = 0, seed = 1, threads = 0, obsc = 0, max_depth = 0, min_depth = 0;
     long max_spec = 0, max_spp = 0;
     int force = 0, quiet = 0;
-    double dmax = INFINITY, target = 0.0;
+    double dmax = INFINITY, target = 0.0, time = 0.0;
     gib_error err = {{0}};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -167,6 +170,7 @@ int gib_cmd_reference(int argc, char **argv)
         else if (!strcmp(a, "--max-specular")) rc = gib_parse_int(a, v, 1, 64, &max_spec, &err);
         else if (!strcmp(a, "--max-spp")) rc = gib_parse_int(a, v, 2, 1 << 24, &max_spp, &err);
         else if (!strcmp(a, "--target-noise")) rc = gib_parse_float(a, v, 1e-9, 10, &target, &err);
+        else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &time, &err);
         else if (!strcmp(a, "--dmax")) {
             if (!strcmp(v, "inf") || !strcmp(v, "unbounded"))
                 dmax = INFINITY;
@@ -234,7 +238,8 @@ int gib_cmd_reference(int argc, char **argv)
                         .dmax = (float)dmax, .obscurance = (int)obsc, .max_depth = (int)max_depth,
                         .min_depth = (int)min_depth, .max_specular = (int)max_spec,
                         .target_noise = target, .max_spp = (int)max_spp, .seed = (uint64_t)seed,
-                        .threads = (int)threads, .camera = (int)camera, .quiet = quiet};
+                        .threads = (int)threads, .camera = (int)camera, .time = (float)time,
+                        .quiet = quiet};
     gib_image img = {0}, se = {0};
     gib_ref_stats st = {0};
     int status = 0;
@@ -253,7 +258,8 @@ int gib_cmd_reference(int argc, char **argv)
                               .min_depth = (int)min_depth, .max_specular = (int)max_spec,
                               .target_noise = target, .max_spp = (int)max_spp,
                               .cache_dir = cache, .force = force, .quiet = quiet,
-                              .threads = (int)threads, .interrupt = p.interrupt};
+                              .threads = (int)threads, .interrupt = p.interrupt,
+                              .time = (float)time};
         int grc = gib_reference_get(&rq, &res, &err);
         interrupt_restore();
         if (grc < 0) {

@@ -67,6 +67,20 @@ static long long nvx_available_bytes(void)
 void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
                        int camera, int w, int h, int warmup, int frames, gib_run_result *r)
 {
+    gib_run_technique_at(scene, t, params, camera, w, h, warmup, frames, 0.0, 0.0, r);
+}
+
+/* The instant frame f of n is rendered at: the last at `time`, each earlier one dt before. */
+static double frame_time(double time, double dt, int f, int n)
+{
+    return time - (double)(n - 1 - f) * dt;
+}
+
+void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
+                          const gib_params *params, int camera, int w, int h, int warmup,
+                          int frames, double time, double dt, gib_run_result *r)
+{
+    const int moves = scene->scene->motion_count > 0, nf = warmup + frames;
     memset(r, 0, sizeof *r);
     set_status(r, "ok");
     gib_ledger ledger;
@@ -106,6 +120,11 @@ void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const
 
     long long avail_before = nvx_available_bytes();
     r->driver_bytes = -1;
+    /* create() sees the scene as the first frame will (a technique may measure it there). */
+    if (moves && gib_gpu_scene_set_time(scene, frame_time(time, dt, 0, nf), &r->err) < 0) {
+        set_status(r, "scene_update_failed");
+        goto done;
+    }
     self = t->create(scene, params, w, h, &ledger, &r->err);
     if (!self) {
         set_status(r, strstr(r->err.msg, "shader") || strstr(r->err.msg, "program")
@@ -113,9 +132,21 @@ void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const
         goto done;
     }
     gib_view view;
-    gib_view_make(scene->scene, &scene->scene->cameras[camera], w, h, 0.0f, &view);
-    for (int f = 0; f < warmup + frames; f++) {
+    for (int f = 0; f < nf; f++) {
+        const double tf = frame_time(time, dt, f, nf);
+        gib_view_make(scene->scene, &scene->scene->cameras[camera], w, h, (float)tf, &view);
         gib_timers_frame_begin(&timers, f >= warmup);
+        /* A moving scene's vertices for this frame, in a pass of their own (static: no pass). */
+        if (moves) {
+            gib_timer_begin(&timers, "scene_update");
+            int urc = gib_gpu_scene_set_time(scene, tf, &r->err);
+            gib_timer_end(&timers);
+            if (urc < 0) {
+                gib_timers_frame_end(&timers);
+                set_status(r, "scene_update_failed");
+                goto done;
+            }
+        }
         int rc = t->render(self, &view, &timers, targets, nt, &r->err);
         gib_timers_frame_end(&timers);
         if (rc < 0) {

@@ -33,6 +33,13 @@ typedef struct gib_run_result {
 void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
                        int camera, int width, int height, int warmup, int frames,
                        gib_run_result *result);
+/* The same on a scene that may move: the last frame (the image read back) shows instant `time`
+ * (seconds), each frame before it dt earlier (dt = 0: all at `time`). For a moving scene every
+ * frame first uploads its vertices in a timed pass "scene_update"; gib_run_technique is this at
+ * time 0, dt 0. */
+void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
+                          const gib_params *params, int camera, int width, int height, int warmup,
+                          int frames, double time, double dt, gib_run_result *result);
 void gib_run_result_free(gib_run_result *r);
 
 /* Name of a GIB_OUT_* bit: "ao", "direct", ... (matching the reference's component names). */

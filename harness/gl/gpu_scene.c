@@ -61,8 +61,12 @@ int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *
     }
     const gib_scene *s = gpu->scene = &gpu->frame->scene;
     size_t nv = s->vertex_count;
-    if (!(gpu->positions = upload_array(gpu, "scene.positions", s->positions, nv * 12, err)) ||
-        !(gpu->normals = upload_array(gpu, "scene.normals", s->normals, nv * 12, err)) ||
+    /* A moving scene rewrites positions and normals every frame (gib_gpu_scene_set_time). */
+    const unsigned vflags = s->motion_count ? GL_DYNAMIC_STORAGE_BIT : 0;
+    if (!(gpu->positions = gib_gpu_buffer(&gpu->ledger, "scene.positions", nv * 12, s->positions,
+                                          vflags, err)) ||
+        !(gpu->normals = gib_gpu_buffer(&gpu->ledger, "scene.normals", nv * 12, s->normals, vflags,
+                                        err)) ||
         !(gpu->uvs = upload_array(gpu, "scene.uvs", s->uvs, nv * 8, err)) ||
         !(gpu->indices = upload_array(gpu, "scene.indices", s->indices,
                                       (size_t)s->triangle_count * 12, err)))
@@ -146,6 +150,30 @@ fail:
     gib_error_prefix(err, "scene '%s' upload", s->name);
     gib_gpu_scene_free(gpu);
     return -1;
+}
+
+int gib_gpu_scene_set_time(const gib_gpu_scene *gpu, double t, gib_error *err)
+{
+    const gib_scene *s = gpu->scene;
+    uint32_t most = 0;
+    for (uint32_t i = 0; i < s->motion_count; i++)
+        most = s->motions[i].vertex_count > most ? s->motions[i].vertex_count : most;
+    if (!most)
+        return 0;
+    float *pos = malloc((size_t)most * 24);
+    if (!pos)
+        return gib_fail(err, "out of memory posing scene '%s' at t = %g", s->name, t);
+    float *nrm = pos + 3 * (size_t)most;
+    for (uint32_t i = 0; i < s->motion_count; i++) {
+        const gib_motion *m = &s->motions[i];
+        gib_motion_pose(m, t, pos, nrm);
+        const GLintptr at = (GLintptr)m->first_vertex * 12;
+        const GLsizeiptr bytes = (GLsizeiptr)m->vertex_count * 12;
+        glNamedBufferSubData(gpu->positions, at, bytes, pos);
+        glNamedBufferSubData(gpu->normals, at, bytes, nrm);
+    }
+    free(pos);
+    return gib_gl_check("uploading the scene's vertices for the frame", err);
 }
 
 void gib_gpu_scene_free(gib_gpu_scene *gpu)

@@ -24,6 +24,9 @@ typedef struct gib_gpu_scene gib_gpu_scene;
 
 int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *err);
 void gib_gpu_scene_free(gib_gpu_scene *gpu);
+/* Uploads the positions and normals of the scene's moving meshes at time t (gib_motion_pose);
+ * nothing for a static scene. The CPU-side scene is not changed. */
+int gib_gpu_scene_set_time(const gib_gpu_scene *gpu, double t, gib_error *err);
 
 /* Binds the material and light SSBOs (bindings 0 and 1). */
 void gib_gpu_scene_bind(const gib_gpu_scene *gpu);
