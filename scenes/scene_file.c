@@ -302,8 +302,10 @@ static int parse_floats(const char *v, float *out, int min_n, int max_n, int *go
     }
     if (min_n == max_n)
         snprintf(msg, msg_len, "expects %d number%s, got '%s'", min_n, min_n == 1 ? "" : "s", v);
-    else
+    else if (max_n == min_n + 1)
         snprintf(msg, msg_len, "expects %d or %d numbers, got '%s'", min_n, max_n, v);
+    else
+        snprintf(msg, msg_len, "expects %d to %d numbers, got '%s'", min_n, max_n, v);
     return -1;
 }
 
