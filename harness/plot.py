@@ -41,7 +41,8 @@ def plot_group(key, rows, out_dir, renderer):
     by_tech = {}
     for r in rows:
         by_tech.setdefault(r["technique"], []).append(
-            (float(r["gpu_ms_median"]), float(r["rel_rmse"]), r["params"], r["width"] + "x" + r["height"]))
+            (float(r["gpu_ms_median"]), float(r["rel_rmse"]), r["params"],
+             r["width"] + "x" + r["height"] + (f" t={r['time']}" if r.get("time", "0") != "0" else "")))
     data_path = base + ".dat"
     with open(data_path, "w") as f:
         blocks = []

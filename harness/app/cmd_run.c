@@ -26,22 +26,22 @@ static const char help[] =
     "skipped with a message. Exit status 1 when any row is not `ok`.\n";
 
 enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
-       C_HEIGHT, C_WARMUP, C_FRAMES, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU, C_MEM, C_SCENE_MEM,
+       C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU, C_MEM, C_SCENE_MEM,
        C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_NONFINITE, C_REF_SPP, C_REF_NOISE, C_REF_NOISY,
        C_STATUS, C_MESSAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
 
 static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
-    "warmup", "frames", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms", "mem_bytes",
+    "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms", "mem_bytes",
     "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "nonfinite", "ref_spp",
     "ref_noise_rmse", "ref_noisy", "status", "message", "backend", "renderer", "gl_version",
     "git_revision", "timestamp"};
 static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
-                                  C_WIDTH, C_HEIGHT};
+                                  C_WIDTH, C_HEIGHT, C_INSTANT};
 #define NKEY ((int)(sizeof key_columns / sizeof key_columns[0]))
 
 static const char *const pass_columns[] = {"matrix", "profile", "scene", "technique", "params",
-                                           "width", "height", "pass", "ms_median", "ms_min",
+                                           "width", "height", "time", "pass", "ms_median", "ms_min",
                                            "ms_max", "renderer", "git_revision"};
 
 #define MAX_COLS 96
@@ -125,6 +125,8 @@ static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, u
     row_set(r, C_PARAMS, "%s", mr->params_key);
     row_set(r, C_WIDTH, "%d", mr->width);
     row_set(r, C_HEIGHT, "%d", mr->height);
+    row_set(r, C_INSTANT, "%.9g", mr->time);
+    row_set(r, C_DT, "%.9g", ctx->m->dt);
     row_set(r, C_WARMUP, "%d", ctx->m->warmup);
     row_set(r, C_FRAMES, "%d", ctx->m->frames);
     row_set(r, C_BACKEND, "%s", ctx->info.backend);
@@ -200,7 +202,8 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         const char *comp = gib_output_name(bit);
         int component = gib_component_parse(comp);
         gib_ref_request rq = {.scene = scene, .camera = ctx->m->camera, .width = mr->width,
-                              .height = mr->height, .component = component,
+                              .height = mr->height, .time = (float)mr->time,
+                              .component = component,
                               .spp = component >= 0 && ctx->m->ref_spp[component]
                                          ? ctx->m->ref_spp[component] : 64,
                               .cache_dir = ctx->cache};
@@ -214,8 +217,11 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
             continue;
         }
         char name[512];
-        snprintf(name, sizeof name, "%s_%s_%s_%dx%d_%s", mr->scene, t->name, mr->params_key,
-                 mr->width, mr->height, comp);
+        char at[48] = "";
+        if (mr->time != 0.0) /* names of runs at t = 0 stay what they were */
+            snprintf(at, sizeof at, "_t%g", mr->time);
+        snprintf(name, sizeof name, "%s_%s_%s_%dx%d%s_%s", mr->scene, t->name, mr->params_key,
+                 mr->width, mr->height, at, comp);
         for (char *p = name; *p; p++)
             if (*p == ';' || *p == '=')
                 *p = *p == ';' ? '_' : '-';
@@ -250,14 +256,14 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         row_set(&r, C_REF_SPP, "%d", ref.spp);
         fmt_num(&r, C_REF_NOISE, ref.noise_rmse);
         append_row(ctx, &r);
-        printf("  %-10s %-8s %-36s %4dx%-4d gpu %8.3f ms  rmse %.4g  ssim %.4f  %s\n", mr->scene,
-               t->name, mr->params_key, mr->width, mr->height, res->gpu_total.median_ms, m.rmse,
-               m.ssim, r.v[C_STATUS]);
+        printf("  %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  %s\n",
+               mr->scene, t->name, mr->params_key, mr->width, mr->height, mr->time,
+               res->gpu_total.median_ms, m.rmse, m.ssim, r.v[C_STATUS]);
         gib_image_free(&ref.image);
     }
     for (int p = 0; res->ok && p < res->pass_count; p++) {
-        char v[13][256];
-        const char *ptr[13];
+        char v[14][256];
+        const char *ptr[14];
         snprintf(v[0], 256, "%s", ctx->m->name);
         snprintf(v[1], 256, "%s", ctx->m->profile);
         snprintf(v[2], 256, "%s", mr->scene);
@@ -265,13 +271,14 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         snprintf(v[4], 256, "%s", mr->params_key);
         snprintf(v[5], 256, "%d", mr->width);
         snprintf(v[6], 256, "%d", mr->height);
-        snprintf(v[7], 256, "%s", res->passes[p].name);
-        snprintf(v[8], 256, "%.6g", res->passes[p].median_ms);
-        snprintf(v[9], 256, "%.6g", res->passes[p].min_ms);
-        snprintf(v[10], 256, "%.6g", res->passes[p].max_ms);
-        snprintf(v[11], 256, "%s", ctx->info.renderer);
-        snprintf(v[12], 256, "%s", gib_git_revision());
-        for (int k = 0; k < 13; k++)
+        snprintf(v[7], 256, "%.9g", mr->time);
+        snprintf(v[8], 256, "%s", res->passes[p].name);
+        snprintf(v[9], 256, "%.6g", res->passes[p].median_ms);
+        snprintf(v[10], 256, "%.6g", res->passes[p].min_ms);
+        snprintf(v[11], 256, "%.6g", res->passes[p].max_ms);
+        snprintf(v[12], 256, "%s", ctx->info.renderer);
+        snprintf(v[13], 256, "%s", gib_git_revision());
+        for (int k = 0; k < 14; k++)
             ptr[k] = v[k];
         if (gib_csv_append(ctx->passes, ptr, &err) < 0)
             fprintf(stderr, "gibench run: %s\n", err.msg);
@@ -342,8 +349,8 @@ static void run_matrix(run_ctx *ctx)
                 continue;
             }
             gib_run_result res;
-            gib_run_technique(&gpu, mr->technique, &mr->params, m->camera, mr->width, mr->height,
-                              m->warmup, m->frames, &res);
+            gib_run_technique_at(&gpu, mr->technique, &mr->params, m->camera, mr->width,
+                                 mr->height, m->warmup, m->frames, mr->time, m->dt, &res);
             if (!res.ok)
                 fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
                         mr->params_key, res.status, res.err.msg);
@@ -433,7 +440,7 @@ int gib_cmd_run(int argc, char **argv)
         snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
         snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
         if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
-            gib_csv_open(&passes, ppath, pass_columns, 13, key_columns, 0, &err) < 0) {
+            gib_csv_open(&passes, ppath, pass_columns, 14, key_columns, 0, &err) < 0) {
             fprintf(stderr, "gibench run: %s\n", err.msg);
             status = 1;
             continue;

@@ -107,7 +107,7 @@ static const raw_value *lookup(const parse_state *s, const char *profile_section
 }
 
 static const char *const matrix_keys[] = {"description", "scenes", "techniques", "sizes", "camera",
-                                          "frames", "warmup", NULL};
+                                          "frames", "warmup", "times", "dt", NULL};
 
 /* ref_spp_<component>: samples per pixel of that component's reference. */
 static int ref_spp_component(const char *k)
@@ -206,6 +206,28 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
     }
     if ((v = lookup(&s, psec, "description")))
         snprintf(m->description, sizeof m->description, "%s", v->value);
+    /* Instants and frame spacing for moving scenes (a static scene looks the same at each). */
+    double times[GIB_MATRIX_MAX_LIST] = {0.0};
+    int ntimes = 1;
+    if ((v = lookup(&s, psec, "times"))) {
+        char times_buf[512], *items[GIB_MATRIX_MAX_LIST];
+        snprintf(times_buf, sizeof times_buf, "%s", v->value);
+        ntimes = split_list(times_buf, items, GIB_MATRIX_MAX_LIST);
+        if (!ntimes) {
+            gib_fail(err, "%s:%d: empty list for times", path, v->line);
+            goto out;
+        }
+        for (int i = 0; i < ntimes; i++)
+            if (gib_parse_float("times", items[i], -1e6, 1e6, &times[i], err) < 0) {
+                gib_error_prefix(err, "%s:%d", path, v->line);
+                goto out;
+            }
+    }
+    if ((v = lookup(&s, psec, "dt")) &&
+        gib_parse_float("dt", trim((char *)v->value), 0.0, 1e4, &m->dt, err) < 0) {
+        gib_error_prefix(err, "%s:%d", path, v->line);
+        goto out;
+    }
 
     char scenes_buf[512], techs_buf[512], sizes_buf[512];
     char *scenes[GIB_MATRIX_MAX_LIST], *techs[GIB_MATRIX_MAX_LIST], *sizes[GIB_MATRIX_MAX_LIST];
@@ -336,7 +358,7 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
             combos *= counts[pi];
         for (int si = 0; si < ns; si++)
             for (int c = 0; c < combos; c++)
-                for (int zi = 0; zi < nz; zi++) {
+                for (int zi = 0; zi < nz * ntimes; zi++) {
                     gib_matrix_run *nr = realloc(m->runs, sizeof *nr * (m->run_count + 1));
                     if (!nr) {
                         gib_fail(err, "out of memory");
@@ -365,8 +387,9 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
                         r->params.values[pi] = x;
                     }
                     gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
-                    r->width = ws[zi];
-                    r->height = hs[zi];
+                    r->width = ws[zi % nz];
+                    r->height = hs[zi % nz];
+                    r->time = times[zi / nz];
                 }
     }
     status = 0;

@@ -8,6 +8,8 @@
  *   camera = 0
  *   frames = 10            ; timed frames per run
  *   warmup = 3
+ *   times = 0, 0.5         ; instants (s) the images show, for scenes that move (default 0)
+ *   dt = 0.0167            ; frames before the last are dt apart (default 0: all at the instant)
  *   ref_spp_direct = 4     ; reference samples per pixel, per component (ref_spp_<component>)
  *   ref_spp_ao = 256
  *   [params.direct]        ; comma-separated lists; the cross product is run
@@ -34,6 +36,7 @@ typedef struct gib_matrix_run {
     gib_params params;
     char params_key[256];   /* "pcf=1;shadow_res=512" in spec order: identifies the run in CSV */
     int width, height;
+    double time;            /* the instant the image shows (seconds) */
 } gib_matrix_run;
 
 typedef struct gib_matrix {
@@ -42,6 +45,7 @@ typedef struct gib_matrix {
     char profile[32];
     char description[512];
     int camera, frames, warmup;
+    double dt;              /* seconds between frames (the last at the run's time) */
     int ref_spp[GIB_MATRIX_MAX_COMPONENTS]; /* by enum gib_component; 0 = not set */
     gib_matrix_run *runs;
     int run_count;

@@ -72,12 +72,75 @@ static void begin_pass(ldm_set *l)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, l->counters);
 }
 
+/* Counting pass: fragments per LDM of the geometry as the GPU scene holds it now, into counts. */
+static void count_fragments(ldm_set *l, const gib_gpu_scene *scene, uint32_t *counts)
+{
+    const uint32_t zero = 0;
+    glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    begin_pass(l);
+    draw_all(scene, l->count_program, 0, l->count);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts);
+}
+
+/* Pages: consecutive LDMs while heads and nodes (capacity[i] nodes for LDM i) both fit one SSBO;
+ * allocates them and uploads the per-LDM info. */
+static int lay_out_pages(ldm_set *l, const uint64_t *capacity, gib_ledger *ledger, gib_error *err)
+{
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    uint64_t limit = (uint64_t)max_block;
+    uint64_t heads_per_ldm = 4ull * l->res * l->res;
+    l->page_count = 0;
+    for (int i = 0; i < l->count;) {
+        if (l->page_count == LDM_MAX_PAGES)
+            return gib_fail(err, "ldm: %d LDMs of %dx%d need more than %d buffers of %llu bytes",
+                            l->count, l->res, l->res, LDM_MAX_PAGES, (unsigned long long)limit);
+        ldm_page *pg = &l->pages[l->page_count++];
+        memset(pg, 0, sizeof *pg); /* page 0 was borrowed by the counting pass */
+        pg->first = i;
+        uint64_t nodes = 0;
+        while (i < l->count && (pg->count + 1) * heads_per_ldm <= limit &&
+               (nodes + capacity[i]) * 8 <= limit) {
+            nodes += capacity[i];
+            pg->count++;
+            i++;
+        }
+        if (!pg->count)
+            return gib_fail(err, "ldm: one %dx%d LDM needs %llu nodes, more than one buffer of "
+                            "%llu bytes holds", l->res, l->res,
+                            (unsigned long long)capacity[i], (unsigned long long)limit);
+        pg->node_capacity = nodes;
+        if (!(pg->heads = gib_gpu_buffer(ledger, "ldm.heads", heads_per_ldm * pg->count, NULL,
+                                         GL_DYNAMIC_STORAGE_BIT, err)) ||
+            !(pg->nodes = gib_gpu_buffer(ledger, "ldm.nodes", 8 * (nodes ? nodes : 1), NULL, 0,
+                                         err)))
+            return -1;
+    }
+    memcpy(l->capacity, capacity, sizeof *capacity * (size_t)l->count);
+    return upload_info(l, ledger, capacity, err);
+}
+
+static void free_pages(ldm_set *l, gib_ledger *ledger)
+{
+    for (int p = 0; p < l->page_count; p++) {
+        if (l->pages[p].heads)
+            gib_gpu_free(ledger, l->pages[p].heads, 0);
+        if (l->pages[p].nodes)
+            gib_gpu_free(ledger, l->pages[p].nodes, 0);
+    }
+    l->page_count = 0;
+}
+
 int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, double node_budget,
                gib_ledger *ledger, gib_error *err)
 {
     memset(l, 0, sizeof *l);
     snprintf(l->status_word, sizeof l->status_word, "ok");
     l->res = res;
+    l->node_budget = node_budget;
+    l->ledger = ledger;
+    l->moving = scene->scene->motion_count > 0;
     int max = directions * 2 + 8;
     l->dirs = calloc((size_t)max * 3, sizeof(float));
     if (!l->dirs)
@@ -85,6 +148,7 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     l->count = ldm_directions(directions, l->dirs, max);
     if (l->count <= 0)
         return gib_fail(err, "ldm: no direction set for %d directions", directions);
+    /* A moving scene's bounds cover every instant (scene.h), so the sphere holds at every frame. */
     gib_view_bounding_sphere(scene->scene, l->center, &l->radius);
 
     const char *build[] = {"ldm/ldm_build.vert", "ldm/ldm_build.frag"};
@@ -108,71 +172,62 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     if (upload_info(l, ledger, NULL, err) < 0)
         return -1;
 
-    /* Counting pass: fragments per LDM. */
-    const uint32_t zero = 0;
-    glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    begin_pass(l);
-    draw_all(scene, l->count_program, 0, l->count);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t *counts32 = calloc(l->count, sizeof *counts32);
     uint64_t *counts = calloc(l->count, sizeof *counts);
-    if (!counts32 || !counts) {
+    l->capacity = calloc(l->count, sizeof *l->capacity);
+    if (!counts32 || !counts || !l->capacity) {
         free(counts32);
         free(counts);
         return gib_fail(err, "out of memory");
     }
-    glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts32);
+    count_fragments(l, scene, counts32);
     for (int i = 0; i < l->count; i++) {
         l->fragments += counts32[i];
         counts[i] = (uint64_t)((double)counts32[i] * node_budget);
     }
     free(counts32);
     l->mean_depth_complexity = (double)l->fragments / ((double)l->count * res * res);
-
-    /* Pages: consecutive LDMs while heads and nodes both fit one SSBO. */
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    uint64_t limit = (uint64_t)max_block;
-    uint64_t heads_per_ldm = 4ull * res * res;
-    l->page_count = 0;
-    for (int i = 0; i < l->count;) {
-        if (l->page_count == LDM_MAX_PAGES) {
-            free(counts);
-            return gib_fail(err, "ldm: %d LDMs of %dx%d need more than %d buffers of %llu bytes",
-                            l->count, res, res, LDM_MAX_PAGES, (unsigned long long)limit);
-        }
-        ldm_page *pg = &l->pages[l->page_count++];
-        memset(pg, 0, sizeof *pg); /* page 0 was borrowed by the counting pass */
-        pg->first = i;
-        uint64_t nodes = 0;
-        while (i < l->count && (pg->count + 1) * heads_per_ldm <= limit &&
-               (nodes + counts[i]) * 8 <= limit) {
-            nodes += counts[i];
-            pg->count++;
-            i++;
-        }
-        if (!pg->count) {
-            unsigned long long need = counts[i];
-            free(counts);
-            return gib_fail(err, "ldm: one %dx%d LDM needs %llu nodes, more than one buffer of %llu "
-                            "bytes holds", res, res, need, (unsigned long long)limit);
-        }
-        pg->node_capacity = nodes;
-        if (!(pg->heads = gib_gpu_buffer(ledger, "ldm.heads", heads_per_ldm * pg->count, NULL,
-                                         GL_DYNAMIC_STORAGE_BIT, err)) ||
-            !(pg->nodes = gib_gpu_buffer(ledger, "ldm.nodes", 8 * (nodes ? nodes : 1), NULL, 0,
-                                         err))) {
-            free(counts);
-            return -1;
-        }
-    }
-    int rc = upload_info(l, ledger, counts, err);
+    int rc = lay_out_pages(l, counts, ledger, err);
     free(counts);
     return rc < 0 ? rc : gib_gl_check("ldm create", err);
 }
 
+/* A moving scene's fragment counts change every frame: they are counted again (pass
+ * "ldm_count"), and when an LDM would need more nodes than it has, the pages are laid out anew
+ * with a quarter more room than this frame needs (capacities never shrink, so a periodic motion
+ * settles). An allocation that fails leaves status "alloc_failed". */
+static void recount(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
+{
+    gib_timer_begin(timers, "ldm_count");
+    uint32_t *counts32 = calloc(l->count, sizeof *counts32);
+    uint64_t *cap = calloc(l->count, sizeof *cap);
+    int grow = 0;
+    if (counts32 && cap) {
+        count_fragments(l, scene, counts32);
+        for (int i = 0; i < l->count; i++) {
+            const uint64_t need = (uint64_t)((double)counts32[i] * l->node_budget);
+            cap[i] = l->capacity[i];
+            if (need > cap[i]) {
+                cap[i] = need + need / 4;
+                grow = 1;
+            }
+        }
+    }
+    gib_error err;
+    if (!counts32 || !cap || (grow && (free_pages(l, l->ledger),
+                                       lay_out_pages(l, cap, l->ledger, &err) < 0)))
+        snprintf(l->status_word, sizeof l->status_word, "alloc_failed");
+    free(counts32);
+    free(cap);
+    gib_timer_end(timers);
+}
+
 void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
 {
+    if (l->moving)
+        recount(l, scene, timers);
+    if (!l->page_count)
+        return; /* alloc_failed: nothing to build into */
     gib_timer_begin(timers, "ldm_build");
     const uint32_t zero = 0, end = 0xffffffffu;
     glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -206,12 +261,8 @@ const char *ldm_status(ldm_set *l)
 
 void ldm_destroy(ldm_set *l, gib_ledger *ledger)
 {
-    for (int p = 0; p < l->page_count; p++) {
-        if (l->pages[p].heads)
-            gib_gpu_free(ledger, l->pages[p].heads, 0);
-        if (l->pages[p].nodes)
-            gib_gpu_free(ledger, l->pages[p].nodes, 0);
-    }
+    free_pages(l, ledger);
+    free(l->capacity);
     const unsigned bufs[3] = {l->info, l->status, l->counters};
     for (int i = 0; i < 3; i++)
         if (bufs[i])

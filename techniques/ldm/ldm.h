@@ -5,8 +5,9 @@
  * ldm_indirect; the trace of Sec. 3.1 is techniques/ldm/ldm_trace.glsl.
  *
  * Memory: per LDM, res^2 heads (uint) and one node (depth, next: 8 bytes) per fragment. The node
- * counts are measured once at create by a counting pass over the same geometry (the scenes are
- * static); each frame's construction checks every allocation against that capacity, and an
+ * counts are measured at create by a counting pass over the same geometry (and again every frame
+ * when the scene moves, growing the pages when needed: ldm_build's pass "ldm_count"); each
+ * frame's construction checks every allocation against that capacity, and an
  * overflow is reported through ldm_status() — the row's status — never rendered silently wrong.
  * Nodes are split over "pages" (SSBOs) no larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB on
  * llvmpipe); a pass that traces LDMs runs once per page. */
@@ -36,6 +37,10 @@ typedef struct ldm_set {
     unsigned fbo, build_program, count_program;
     int page_count;
     ldm_page pages[LDM_MAX_PAGES];
+    uint64_t *capacity;      /* nodes per LDM the pages hold */
+    int moving;              /* the scene moves: counts are measured again every frame */
+    double node_budget;
+    gib_ledger *ledger;      /* where pages are reallocated when a moving scene needs more */
     uint64_t fragments;      /* total nodes (measured at create) */
     double mean_depth_complexity;
     char status_word[32];

@@ -76,6 +76,39 @@ printf '[matrix]\nscenes = cornell\ntechniques = hbao\nsizes = 32x32\n[scene_sca
 expect_rc 2 "scene_scale taking dmax out of its range" $G run "$W/scale.matrix" --profile default --out "$W/badrun"
 grep -q "scale.matrix:6.*hbao.dmax" "$W/out.txt" && pass "the error names the scaled parameter" || fail "$(cat "$W/out.txt")"
 
+# Moving scenes: --time changes a moving scene's reference and its cache key, not a static one's;
+# a matrix's `times` gives a CSV column `time` and is checked like any value.
+expect_rc 0 "reference of a moving scene at t = 0" $G reference --scene cornell_moving --component depth --size 32x32 --cache "$W/tcache" --quiet
+expect_rc 0 "reference of a moving scene at t = 1" $G reference --scene cornell_moving --component depth --size 32x32 --cache "$W/tcache" --quiet --time 1
+[ "$(ls "$W/tcache"/cornell_moving_depth_32x32_*.exr | wc -l)" = 2 ] && pass "two instants, two cache entries" || fail "$(ls "$W/tcache")"
+expect_rc 1 "the two instants differ" $G compare "$W/tcache"/cornell_moving_depth_32x32_*.exr --fail-rmse 0
+expect_rc 0 "reference of a static scene at t = 1" $G reference --scene cornell --component depth --size 32x32 --cache "$W/tcache" --quiet --time 1
+expect_rc 0 "... and at t = 0" $G reference --scene cornell --component depth --size 32x32 --cache "$W/tcache" --quiet
+[ "$(ls "$W/tcache"/cornell_depth_32x32_*.exr | wc -l)" = 1 ] && pass "a static scene has one entry for every instant" || fail "$(ls "$W/tcache")"
+cat >"$W/badtime.matrix" <<'M'
+[matrix]
+scenes = cornell_moving
+techniques = direct
+sizes = 32x32
+times = 0, soon
+M
+expect_rc 2 "matrix with a bad time" $G run "$W/badtime.matrix" --profile default --out "$W/badrun"
+grep -q "badtime.matrix:5" "$W/out.txt" && pass "the error names times' line 5" || fail "$(cat "$W/out.txt")"
+cat >"$W/times.matrix" <<'M'
+[matrix]
+scenes = cornell_moving
+techniques = direct
+sizes = 32x32
+frames = 1
+warmup = 1
+times = 0, 2
+dt = 0.5
+ref_spp_direct = 1
+M
+expect_rc 0 "matrix at two instants" $G run "$W/times.matrix" --profile default --out "$W/trun" --cache "$W/tcache"
+[ "$(cut -d, -f10 "$W/trun/times.csv" | sort | tr '\n' ' ')" = "0 2 time " ] && pass "CSV column time holds 0 and 2" || fail "$(cut -d, -f10 "$W/trun/times.csv")"
+grep -q ",scene_update," "$W/trun/times_passes.csv" && pass "the vertex upload is a pass of its own" || fail "no scene_update pass"
+
 # Resume: a rerun adds no rows; a truncated last row is redone, the others are kept.
 cat >"$W/tiny.matrix" <<'M'
 [matrix]
