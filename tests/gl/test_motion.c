@@ -22,7 +22,7 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/gpu_scene.h"
-#include "harness/gl/runner.h"
+#include "harness/app/runner.h"
 #include "harness/gl/view.h"
 #include "harness/imaging/metrics.h"
 #include "reference/reference.h"
