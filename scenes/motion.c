@@ -276,7 +276,8 @@ int gib_scene_build_motion(const gib_scene_spec *s, const uint32_t *vbegin, gib_
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     uint32_t next = 0;
     for (uint32_t mi = 0; mi <= sc->motion_count; mi++) {
-        const uint32_t end = mi < sc->motion_count ? sc->motions[mi].first_vertex : sc->vertex_count;
+        const uint32_t end =
+            mi < sc->motion_count ? sc->motions[mi].first_vertex : sc->vertex_count;
         for (uint32_t v = next; v < end; v++)
             grow_box(lo, hi, sc->positions + 3 * (size_t)v);
         if (mi < sc->motion_count) {

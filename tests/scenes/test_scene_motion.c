@@ -36,11 +36,13 @@ static void expect_error(const char *what, const char *text, int line, const cha
 
 static void errors(void)
 {
-    expect_error("keys not increasing", HEAD "procedural = box\nkeys = 0 2 1\n", 7, "must increase");
+    expect_error("keys not increasing", HEAD "procedural = box\nkeys = 0 2 1\n", 7,
+                 "must increase");
     expect_error("key_rotate count",
                  HEAD "procedural = box\nkeys = 0 1\nkey_rotate = 0 0 0, 0 90 0, 0 0 1\n", 8,
                  "3 per key");
-    expect_error("key_translate not by 3", HEAD "procedural = box\nkeys = 0 1\nkey_translate = 0 0 0 1\n",
+    expect_error("key_translate not by 3",
+                 HEAD "procedural = box\nkeys = 0 1\nkey_translate = 0 0 0 1\n",
                  8, "3 numbers per key");
     expect_error("values without keys", HEAD "procedural = box\nkey_rotate = 0 0 0\n", 7,
                  "keyframes need 'keys");
@@ -58,7 +60,8 @@ static void errors(void)
     expect_error("zero wavelength", HEAD "procedural = water\nwaves = 0.1 1 0 1, 0.1 0 0 1\n", 7,
                  "wave 2");
     expect_error("keys on water",
-                 HEAD "procedural = water\nwaves = 0.1 1 0 1\nkeys = 0 1\nkey_translate = 0 0 0, 1 0 0\n",
+                 HEAD "procedural = water\nwaves = 0.1 1 0 1\nkeys = 0 1\n"
+                      "key_translate = 0 0 0, 1 0 0\n",
                  8, "moves by its waves");
     expect_error("water too fine", HEAD "procedural = water\nwaves = 0.1 1 0 1\nsegments = 5000\n",
                  8, "'segments' must be from 1 to 2896");
@@ -149,7 +152,8 @@ static void looping(void)
 {
     char path[512];
     write_file("loop.scene",
-               HEAD "procedural = box\nkeys = 1 2 3\nkey_translate = 0 0 0, 0 2 0, 0 0 0\nloop = 1\n",
+               HEAD "procedural = box\nkeys = 1 2 3\n"
+                    "key_translate = 0 0 0, 0 2 0, 0 0 0\nloop = 1\n",
                path, sizeof path);
     gib_scene s;
     gib_error err;
@@ -209,7 +213,8 @@ static void water(void)
                     h += wv[w][0] * sin(kk * cos(d) * x + kk * sin(d) * z - kk * wv[w][3] * t);
                 }
                 worst_h = fmax(worst_h, fabs(pos[3 * v + 1] - (h + 2.0)));
-                worst_xz = fmax(worst_xz, fmax(fabs(pos[3 * v] - (x + 1)), fabs(pos[3 * v + 2] - (z + 3))));
+                worst_xz = fmax(worst_xz, fmax(fabs(pos[3 * v] - (x + 1)),
+                                               fabs(pos[3 * v + 2] - (z + 3))));
                 for (int c = 0; c < 3; c++)
                     outside += pos[3 * v + c] < s.bounds_min[c] || pos[3 * v + c] > s.bounds_max[c];
                 if (i == 0 || j == 0 || i == 200 || j == 200)
