@@ -241,11 +241,13 @@ int gib_scene_build_motion(const gib_scene_spec *s, const uint32_t *vbegin, gib_
                     m->m[a][b] = r[a][b] * ms->scale[b];
                     m->nm[a][b] = r[a][b] / ms->scale[b];
                 }
-            memcpy(m->translate, ms->translate, sizeof m->translate);
+            /* [scene] shift moved the placed grid: the placement's translation includes it. */
+            for (int k = 0; k < 3; k++)
+                m->translate[k] = (float)((double)ms->translate[k] + s->shift[k]);
             for (uint32_t v = 0; v < m->vertex_count; v++) {
                 float *p = m->rest_positions + 3 * (size_t)v;
-                const float d[3] = {p[0] - ms->translate[0], p[1] - ms->translate[1],
-                                    p[2] - ms->translate[2]};
+                const float d[3] = {p[0] - m->translate[0], p[1] - m->translate[1],
+                                    p[2] - m->translate[2]};
                 for (int b = 0; b < 3; b++)
                     p[b] = (r[0][b] * d[0] + r[1][b] * d[1] + r[2][b] * d[2]) / ms->scale[b];
                 p[1] = 0.0f;
@@ -268,7 +270,8 @@ int gib_scene_build_motion(const gib_scene_spec *s, const uint32_t *vbegin, gib_
             memcpy(m->key_time, ms->key_time, sizeof m->key_time);
             memcpy(m->key_rotate, ms->key_rotate, sizeof m->key_rotate);
             memcpy(m->key_translate, ms->key_translate, sizeof m->key_translate);
-            memcpy(m->pivot, ms->pivot, sizeof m->pivot);
+            for (int k = 0; k < 3; k++) /* a world point: [scene] shift moves it too */
+                m->pivot[k] = (float)((double)ms->pivot[k] + s->shift[k]);
         }
     }
     gib_scene_set_time(sc, 0.0);

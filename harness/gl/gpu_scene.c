@@ -167,6 +167,9 @@ int gib_gpu_scene_set_time(const gib_gpu_scene *gpu, double t, gib_error *err)
     for (uint32_t i = 0; i < s->motion_count; i++) {
         const gib_motion *m = &s->motions[i];
         gib_motion_pose(m, t, pos, nrm);
+        if (gpu->frame && gpu->frame->moved) /* into the frame the upload used, as it rounds */
+            for (size_t i = 0; i < 3 * (size_t)m->vertex_count; i++)
+                pos[i] = (float)((double)pos[i] - (double)gpu->frame->origin[i % 3]);
         const GLintptr at = (GLintptr)m->first_vertex * 12;
         const GLsizeiptr bytes = (GLsizeiptr)m->vertex_count * 12;
         glNamedBufferSubData(gpu->positions, at, bytes, pos);

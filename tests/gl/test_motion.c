@@ -61,9 +61,10 @@ static int gl_depth(gib_gl_fixture *fx, double t, float *depth)
         fprintf(stderr, "FAIL: %s\n", err.msg);
         return -1;
     }
-    const gib_camera *cam = &fx->scene.cameras[0];
+    /* The GL side works in the scene's frame (scene.h, gib_scene_frame): its camera there. */
+    const gib_camera *cam = &fx->gpu.scene->cameras[0];
     gib_view view;
-    gib_view_make(&fx->scene, cam, W, H, (float)t, &view);
+    gib_view_make(fx->gpu.scene, cam, W, H, (float)t, &view);
     gib_timers_frame_begin(&timers, 0);
     gib_gbuffer_render(&g, &fx->gpu, &view, &timers, "gbuffer");
     gib_timers_frame_end(&timers);
