@@ -63,6 +63,8 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
             for (int k = 0; k < 3; k++) {
                 face->origin[k] = c[k] - l->direction[k] * r;
                 face->forward[k] = l->direction[k];
+                face->right[k] = t[k];
+                face->up[k] = b[k];
             }
             lv->texel[i] = 2 * r / (float)lv->res;
             continue;
@@ -91,9 +93,11 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
             gib_mat4_mul(proj, view, face->view_proj);
             memcpy(face->origin, l->position, sizeof face->origin);
             memcpy(face->forward, d, sizeof face->forward);
+            memcpy(face->right, right, sizeof face->right);
+            memcpy(face->up, up, sizeof face->up);
         }
     }
-    /* The table light_view.glsl reads: a header, 2 vec4 per light, 5 vec4 per face. */
+    /* The table light_view.glsl reads: a header, 2 vec4 per light, 7 vec4 per face. */
     float *t = lv->table_data;
     int n = (int)s->light_count;
     t[0] = (float)n;
@@ -111,10 +115,12 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
         e[7] = 0;
     }
     for (int k = 0; k < lv->face_count; k++) {
-        float *e = t + 4 + 8 * n + 20 * k;
+        float *e = t + 4 + 8 * n + 28 * k;
         memcpy(e, lv->faces[k].view_proj, 16 * sizeof(float));
         memcpy(e + 16, lv->faces[k].forward, 3 * sizeof(float));
-        e[19] = 0;
+        memcpy(e + 20, lv->faces[k].right, 3 * sizeof(float));
+        memcpy(e + 24, lv->faces[k].up, 3 * sizeof(float));
+        e[19] = e[23] = e[27] = 0;
     }
 }
 
@@ -129,7 +135,7 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     uint32_t n = s->light_count;
     for (uint32_t i = 0; i < n; i++)
         lv->face_count += gib_light_view_kind(&s->lights[i]) == GIB_LV_CUBE ? 6 : 1;
-    lv->table_floats = 4 + 8 * (int)n + 20 * lv->face_count;
+    lv->table_floats = 4 + 8 * (int)n + 28 * lv->face_count;
     lv->faces = calloc(lv->face_count ? lv->face_count : 1, sizeof *lv->faces);
     lv->first_face = calloc(n ? n : 1, sizeof *lv->first_face);
     lv->texel = calloc(n ? n : 1, sizeof *lv->texel);

@@ -4,7 +4,8 @@
 //   lv_data[1 + 2i]        x = first face, y = kind (0 cube, 1 perspective, 2 ortho), z = texel
 //                          (side on the unit-distance plane; ortho: world units)
 //   lv_data[2 + 2i]        xyz = origin (the light; ortho: the plane behind the scene)
-//   lv_data[1 + 2L + 5f]   4 columns of face f's view-projection (of p - origin), then its axis
+//   lv_data[1 + 2L + 7f]   4 columns of face f's view-projection (of p - origin), then its axis,
+//                          right and up vectors (a texel's steps in x and y)
 #include "gl/bindings.h"
 layout(std430, binding = GIB_SSBO_LIGHT_VIEWS) readonly buffer LightViews { vec4 lv_data[]; };
 
@@ -13,13 +14,13 @@ int lv_first_face(int i) { return int(lv_data[1 + 2 * i].x); }
 int lv_kind(int i) { return int(lv_data[1 + 2 * i].y); }
 float lv_texel(int i) { return lv_data[1 + 2 * i].z; }
 vec3 lv_origin(int i) { return lv_data[2 + 2 * i].xyz; }
-vec3 lv_axis(int face)
-{
-    return lv_data[1 + 2 * int(lv_data[0].x) + 5 * face + 4].xyz;
-}
+int lv_face_base(int face) { return 1 + 2 * int(lv_data[0].x) + 7 * face; }
+vec3 lv_axis(int face) { return lv_data[lv_face_base(face) + 4].xyz; }
+vec3 lv_right(int face) { return lv_data[lv_face_base(face) + 5].xyz; }
+vec3 lv_up(int face) { return lv_data[lv_face_base(face) + 6].xyz; }
 mat4 lv_view_proj(int face)
 {
-    int b = 1 + 2 * int(lv_data[0].x) + 5 * face;
+    int b = lv_face_base(face);
     return mat4(lv_data[b], lv_data[b + 1], lv_data[b + 2], lv_data[b + 3]);
 }
 

@@ -31,6 +31,7 @@ typedef struct gib_lv_face {
     int light, kind;
     float origin[3];     /* the light's position; ortho: the centre of the plane behind the scene */
     float forward[3];    /* view axis */
+    float right[3], up[3]; /* the view's other axes: a texel's step in x and in y */
     float view_proj[16]; /* maps p - origin to clip space */
 } gib_lv_face;
 
