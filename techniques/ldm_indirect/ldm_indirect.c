@@ -11,9 +11,14 @@
  *     counter), expanded to the footprint's screen rectangle, Eq. 5 with additive blending.
  * Directional lights are not traced (the paper's emission is from point lights, Sec. 3.4/6).
  * Photon storage is bounded (a photon is 64 bytes; the buffer is capped at one SSBO); more photons
- * than fit is reported as status `overflow`, never dropped silently. */
+ * than fit is reported as status `overflow`, never dropped silently.
+ * The flux audit (ldm_indirect.h) counts, per frame, where the light's flux goes: emitted, reflected,
+ * carried by the secondary photons, discarded (by reason), stored and splatted. */
+#include "techniques/ldm_indirect/ldm_indirect.h"
+
 #include <glad/gl.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,13 +36,63 @@ typedef struct ldm_indirect {
     gib_ledger *ledger;
     gib_gbuffer gbuffer, rsm;
     ldm_set ldms;
-    unsigned trace_program, splat_program;
+    unsigned trace_program, splat_program, audit_splat_program;
     unsigned photons, command, vao;
     uint32_t capacity;
     int photon_res;
     float offset, topo_bias;
     char status[32];
+    /* Flux audit (ldm_indirect.h): its own trace and splat programs, one slot of AUDIT_SHADER_FATES
+     * vec4 per trace work group, and a float target the audit splat sums into. */
+    int audit, audit_log;
+    unsigned audit_buffer, audit_texture, audit_fbo;
+    uint32_t audit_groups;
+    int width, height;
+    ldm_indirect_audit last;
 } ldm_indirect;
+
+#define AUDIT_SHADER_FATES LDM_AUDIT_SPLATTED /* the fates audit.glsl counts */
+
+static int audit_requested;
+static ldm_indirect_audit audit_last;
+
+void ldm_indirect_audit_enable(int on)
+{
+    audit_requested = on;
+}
+
+int ldm_indirect_audit_last(ldm_indirect_audit *out)
+{
+    if (!audit_last.valid)
+        return -1;
+    *out = audit_last;
+    return 0;
+}
+
+const char *ldm_indirect_audit_name(int fate)
+{
+    static const char *const names[LDM_AUDIT_FATES] = {
+        "emitted", "no_surface", "back_facing", "reflected", "carried", "grazing", "miss",
+        "behind_camera", "off_screen", "on_sky", "occluded", "in_front", "back_side", "degenerate",
+        "overflow",
+        "stored", "splatted"};
+    return fate >= 0 && fate < LDM_AUDIT_FATES ? names[fate] : "?";
+}
+
+void ldm_indirect_audit_format(const ldm_indirect_audit *a, char *buf, size_t size)
+{
+    size_t n = 0;
+    double e = (a->flux[LDM_AUDIT_EMITTED][0] + a->flux[LDM_AUDIT_EMITTED][1] +
+                a->flux[LDM_AUDIT_EMITTED][2]) / 3;
+    for (int k = 0; k < LDM_AUDIT_FATES && n < size; k++) {
+        double v = (a->flux[k][0] + a->flux[k][1] + a->flux[k][2]) / 3;
+        int w = snprintf(buf + n, size - n, "%s%s=%.6g W (%.4g%%)", k ? " " : "",
+                         ldm_indirect_audit_name(k), v, e > 0 ? 100 * v / e : 0.0);
+        if (w < 0)
+            break;
+        n += (size_t)w;
+    }
+}
 
 static const gib_param_spec ldm_indirect_params[] = {
     {"directions", GIB_PARAM_INT, 128, 1, 4096, "number of LDM directions N (Sec. 3.2)"},
@@ -71,8 +126,12 @@ static void ldm_indirect_destroy(void *self)
         glDeleteProgram(a->trace_program);
     if (a->splat_program)
         glDeleteProgram(a->splat_program);
+    if (a->audit_splat_program)
+        glDeleteProgram(a->audit_splat_program);
     if (a->vao)
         glDeleteVertexArrays(1, &a->vao);
+    if (a->audit_fbo)
+        glDeleteFramebuffers(1, &a->audit_fbo);
     free(a);
 }
 
@@ -90,6 +149,11 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
     a->photon_res = gib_param_int(t, p, "photon_res");
     a->offset = (float)gib_param_float(t, p, "normal_offset");
     a->topo_bias = (float)gib_param_float(t, p, "topo_bias");
+    a->width = w;
+    a->height = h;
+    const char *env = getenv("GIBENCH_LDM_AUDIT");
+    a->audit_log = env && *env && strcmp(env, "0");
+    a->audit = audit_requested || a->audit_log;
     strcpy(a->status, "ok");
     const char *trace[] = {"ldm_indirect/photon_trace.comp"};
     const char *splat[] = {"ldm_indirect/splat.vert", "ldm_indirect/splat.geom",
@@ -98,9 +162,21 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
     if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         gib_gbuffer_create(&a->rsm, a->photon_res, a->photon_res, ledger, err) < 0 ||
         ldm_create(&a->ldms, scene, directions, gib_param_int(t, p, "ldm_res"), 1.0, ledger, err) < 0 ||
-        !(a->trace_program = gib_program(trace, 1, NULL, err)) ||
+        !(a->trace_program = gib_program(trace, 1, a->audit ? "#define AUDIT 1\n" : NULL, err)) ||
         !(a->splat_program = gib_program(splat, 3, NULL, err)))
         goto fail;
+    if (a->audit) {
+        a->audit_groups = (uint32_t)((a->photon_res + 7) / 8) * (uint32_t)((a->photon_res + 7) / 8);
+        if (!(a->audit_buffer = gib_gpu_buffer(ledger, "ldm_indirect.audit",
+                                               16ull * AUDIT_SHADER_FATES * a->audit_groups, NULL,
+                                               GL_DYNAMIC_STORAGE_BIT, err)) ||
+            !(a->audit_texture = gib_gpu_texture(ledger, "ldm_indirect.audit_splat", GL_TEXTURE_2D,
+                                                 w, h, 1, GL_RGBA32F, 1, err)) ||
+            !(a->audit_splat_program = gib_program(splat, 3, "#define AUDIT 1\n", err)))
+            goto fail;
+        glCreateFramebuffers(1, &a->audit_fbo);
+        glNamedFramebufferTexture(a->audit_fbo, GL_COLOR_ATTACHMENT0, a->audit_texture, 0);
+    }
     /* At most one secondary photon per LDM per primary photon (one of +-v per LDM). */
     uint32_t lights = 0;
     for (uint32_t i = 0; i < scene->scene->light_count; i++)
@@ -167,16 +243,79 @@ static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timer
         glUniform2i(9, view->width, view->height);
         glUniform1f(10, a->offset);
         glUniform1ui(11, a->capacity);
+        if (a->audit)
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, a->audit_buffer);
         int groups = (a->photon_res + 7) / 8;
         for (int p = 0; p < a->ldms.page_count; p++) {
             ldm_bind_page(&a->ldms, p);
             glUniform1i(5, a->ldms.pages[p].first);
             glUniform1i(6, a->ldms.pages[p].count);
+            if (a->audit) {
+                glUniform1i(13, p == 0);
+                /* Each work group adds to its audit slot: the previous dispatch's sums first. */
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            }
             glDispatchCompute(groups, groups, 1);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
         gib_timer_end(timers);
     }
+}
+
+/* The audit's splat pass (the photons drawn again, each fragment writing the flux it deposits),
+ * then both sums read back and added up in double. */
+static void audit_frame(ldm_indirect *a, const gib_view *view, gib_timers *timers)
+{
+    gib_timer_begin(timers, "audit");
+    glBindFramebuffer(GL_FRAMEBUFFER, a->audit_fbo);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(a->audit_splat_program);
+    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(6, 1, view->origin);
+    glUniform1f(2, a->topo_bias);
+    glUniform3fv(3, 1, view->origin);
+    /* proj[0] = 1/tan(half horizontal angle), proj[5] = 1/tan(half vertical angle). */
+    glUniform4f(4, 1.0f / view->proj[0], 1.0f / view->proj[5], (float)view->width,
+                (float)view->height);
+    glBindTextureUnit(0, a->gbuffer.position);
+    glBindTextureUnit(1, a->gbuffer.normal);
+    glBindTextureUnit(2, a->gbuffer.albedo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, a->photons);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, a->command);
+    glBindVertexArray(a->vao);
+    glDrawArraysIndirect(GL_POINTS, NULL);
+    glBindVertexArray(0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_BLEND);
+    gib_timer_end(timers);
+
+    ldm_indirect_audit au = {.valid = 1};
+    size_t nslot = (size_t)AUDIT_SHADER_FATES * a->audit_groups;
+    float *slots = malloc(16 * nslot);
+    size_t npx = (size_t)a->width * a->height;
+    float *px = malloc(16 * npx);
+    if (!slots || !px) {
+        free(slots);
+        free(px);
+        return;
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(a->audit_buffer, 0, (GLsizeiptr)(16 * nslot), slots);
+    for (size_t g = 0; g < a->audit_groups; g++)
+        for (int k = 0; k < AUDIT_SHADER_FATES; k++)
+            for (int c = 0; c < 3; c++)
+                au.flux[k][c] += slots[(g * AUDIT_SHADER_FATES + k) * 4 + c];
+    glGetTextureImage(a->audit_texture, 0, GL_RGBA, GL_FLOAT, (GLsizei)(16 * npx), px);
+    for (size_t i = 0; i < npx; i++)
+        for (int c = 0; c < 3; c++)
+            au.flux[LDM_AUDIT_SPLATTED][c] += px[4 * i + c];
+    free(slots);
+    free(px);
+    a->last = au;
+    audit_last = au;
 }
 
 static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *timers,
@@ -188,6 +327,8 @@ static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *tim
                         target_count);
     const uint32_t init[6] = {0, 1, 0, 0, 0, 0};
     glNamedBufferSubData(a->command, 0, sizeof init, init);
+    if (a->audit)
+        glClearNamedBufferData(a->audit_buffer, GL_RGBA32F, GL_RGBA, GL_FLOAT, NULL);
     ldm_build(&a->ldms, a->scene, timers);
     gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
     for (uint32_t li = 0; li < a->scene->scene->light_count; li++)
@@ -217,6 +358,8 @@ static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *tim
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glDisable(GL_BLEND);
     gib_timer_end(timers);
+    if (a->audit)
+        audit_frame(a, view, timers);
     return gib_gl_check("ldm_indirect", err);
 }
 
@@ -226,6 +369,11 @@ static const char *ldm_indirect_status(void *self)
     const char *s = ldm_status(&a->ldms);
     if (strcmp(s, "ok"))
         return s;
+    if (a->audit_log && a->last.valid) {
+        char line[1024];
+        ldm_indirect_audit_format(&a->last, line, sizeof line);
+        fprintf(stderr, "ldm_indirect audit, last frame: %s\n", line);
+    }
     uint32_t cmd[5];
     glGetNamedBufferSubData(a->command, 0, sizeof cmd, cmd);
     if (cmd[4])

@@ -13,6 +13,13 @@ flat in vec3 f_du;
 flat in vec3 f_dv;
 flat in vec3 f_irradiance;
 layout(location = 0) out vec4 o_color;
+#ifdef AUDIT
+// Audit (ldm_indirect.h): the flux the splat deposits on this pixel's patch of surface, irradiance
+// times the patch's area: the pixel's solid angle (from the frustum's half-extents at distance 1
+// and the image size) times dist^2 / cos.
+layout(location = 3) uniform vec3 u_eye;
+layout(location = 4) uniform vec4 u_tan_size; // xy: tan of the half-angles, zw: image size
+#endif
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -35,6 +42,17 @@ void main()
     if (l2 >= 1.0)
         discard;
     float k = (3.0 / 3.14159265358979) * (1.0 - l2) * (1.0 - l2);
+#ifdef AUDIT
+    vec2 ndc = gl_FragCoord.xy / u_tan_size.zw * 2.0 - 1.0;
+    vec3 dv = vec3(ndc * u_tan_size.xy, -1.0);
+    float domega = (4.0 * u_tan_size.x * u_tan_size.y / (u_tan_size.z * u_tan_size.w)) /
+                   pow(length(dv), 3.0);
+    vec3 to_eye = u_eye - pos.xyz;
+    float dist = length(to_eye);
+    float area = domega * dist * dist / max(abs(dot(n, to_eye / dist)), 1e-3);
+    o_color = vec4(f_irradiance * 3.14159265358979 * k * area, 0.0);
+#else
     vec3 albedo = texelFetch(g_albedo, px, 0).rgb;
     o_color = vec4((albedo / 3.14159265358979) * f_irradiance * 3.14159265358979 * k, 0.0);
+#endif
 }
