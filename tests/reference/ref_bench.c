@@ -1,4 +1,4 @@
-/* Reference renderer throughput (not a unit test: ctest label `bench`).
+/* Reference renderer throughput: a benchmark, not in ctest (target bench_ref_throughput).
  *
  * Usage: ref_bench [scene-name-or-path]. Without an argument it builds a ~100k-triangle scene
  * procedurally: an open box (floor, back and left walls) holding a 10 x 10 grid of UV spheres of
