@@ -23,8 +23,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "harness/app/runner.h"
 #include "harness/gl/context.h"
-#include "harness/gl/runner.h"
 #include "reference/reference.h"
 #include "techniques/ldm_indirect/ldm_indirect.h"
 #include "tests/common/gl_fixture.h"
