@@ -49,6 +49,8 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
         const gib_light *l = &s->lights[i];
         int kind = gib_light_view_kind(l);
         lv->first_face[i] = f;
+        if (!lv->faces_of[i])
+            continue;
         float view[16], proj[16];
         if (kind == GIB_LV_ORTHO) {
             gib_lv_face *face = &lv->faces[f++];
@@ -106,13 +108,15 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
     t[3] = 0;
     for (int i = 0; i < n; i++) {
         float *e = t + 4 + 8 * i;
-        const gib_lv_face *first = &lv->faces[lv->first_face[i]];
+        memset(e, 0, 8 * sizeof(float));
         e[0] = (float)lv->first_face[i];
+        e[1] = -1; /* not viewed */
+        if (!lv->faces_of[i])
+            continue;
+        const gib_lv_face *first = &lv->faces[lv->first_face[i]];
         e[1] = (float)first->kind;
         e[2] = lv->texel[i];
-        e[3] = 0;
         memcpy(e + 4, first->origin, 3 * sizeof(float));
-        e[7] = 0;
     }
     for (int k = 0; k < lv->face_count; k++) {
         float *e = t + 4 + 8 * n + 28 * k;
@@ -131,16 +135,24 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     memset(lv, 0, sizeof *lv);
     const gib_scene *s = gpu->scene;
     lv->res = res;
-    lv->attributes = attributes | GIB_LV_DEPTH;
+    lv->attributes = (attributes | GIB_LV_DEPTH) & ((1u << GIB_LV_ATTRIBUTE_COUNT) - 1);
     uint32_t n = s->light_count;
-    for (uint32_t i = 0; i < n; i++)
-        lv->face_count += gib_light_view_kind(&s->lights[i]) == GIB_LV_CUBE ? 6 : 1;
+    lv->first_face = calloc(n ? n : 1, sizeof *lv->first_face);
+    lv->faces_of = calloc(n ? n : 1, sizeof *lv->faces_of);
+    if (!lv->first_face || !lv->faces_of)
+        return gib_fail(err, "out of memory");
+    for (uint32_t i = 0; i < n; i++) {
+        int kind = gib_light_view_kind(&s->lights[i]);
+        if (kind == GIB_LV_ORTHO && (attributes & GIB_LV_LOCAL_LIGHTS_ONLY))
+            continue;
+        lv->faces_of[i] = kind == GIB_LV_CUBE ? 6 : 1;
+        lv->face_count += lv->faces_of[i];
+    }
     lv->table_floats = 4 + 8 * (int)n + 28 * lv->face_count;
     lv->faces = calloc(lv->face_count ? lv->face_count : 1, sizeof *lv->faces);
-    lv->first_face = calloc(n ? n : 1, sizeof *lv->first_face);
     lv->texel = calloc(n ? n : 1, sizeof *lv->texel);
     lv->table_data = calloc((size_t)lv->table_floats, sizeof(float));
-    if (!lv->faces || !lv->first_face || !lv->texel || !lv->table_data)
+    if (!lv->faces || !lv->texel || !lv->table_data)
         return gib_fail(err, "out of memory");
     const char *files[] = {"common/gbuffer.vert", "common/light_view.frag"};
     if (!(lv->program = gib_program(files, 2, NULL, err)))
@@ -240,6 +252,7 @@ void gib_light_views_destroy(gib_light_views *lv, gib_ledger *ledger)
         gib_gpu_free(ledger, lv->table, 0);
     free(lv->faces);
     free(lv->first_face);
+    free(lv->faces_of);
     free(lv->texel);
     free(lv->table_data);
     memset(lv, 0, sizeof *lv);

@@ -24,6 +24,9 @@ enum gib_lv_attribute {
     GIB_LV_SPECULAR = 1u << 4, /* RGBA32F: rgb = rho_s, w = Phong exponent */
 };
 #define GIB_LV_ATTRIBUTE_COUNT 5
+/* Not an attribute: views of point and spot lights only (techniques that emit photons from local
+ * lights allocate and render nothing for directional ones). */
+#define GIB_LV_LOCAL_LIGHTS_ONLY (1u << 8)
 
 enum gib_lv_kind { GIB_LV_CUBE = 0, GIB_LV_PERSPECTIVE = 1, GIB_LV_ORTHO = 2 };
 
@@ -41,6 +44,7 @@ typedef struct gib_light_views {
     int face_count;
     gib_lv_face *faces;
     int *first_face;               /* per light */
+    int *faces_of;                 /* per light: 6 (cube), 1, or 0 (not viewed) */
     float *texel;                  /* per light: a texel's side on the plane at unit distance
                                       (perspective, cube) or in world units (ortho) */
     unsigned textures[GIB_LV_ATTRIBUTE_COUNT]; /* 2D arrays, one layer per face; 0 if not asked */
@@ -49,7 +53,7 @@ typedef struct gib_light_views {
     int table_floats;
 } gib_light_views;
 
-/* The kind of view light l gets. */
+/* The kind of view light l gets (whether or not a light view set includes it). */
 int gib_light_view_kind(const gib_light *l);
 /* Allocates res x res views of every light with the given attributes (GIB_LV_DEPTH always) through
  * the ledger, labelled "<label>.<attribute>". */

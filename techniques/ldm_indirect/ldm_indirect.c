@@ -3,9 +3,10 @@
  * (Aalund, Frisvad, Bærentzen 2015, Sec. 3.4 Eq. 4-7 and 4.2).
  *
  *  1. LDMs for N directions (techniques/ldm, Sec. 3 and 3.2).
- *  2. Photon tracing (photon_trace.comp): each point or spot light renders its view (six cube faces:
- *     a spot's cone may be a hemisphere wide) at the photon resolution with the shared G-buffer pass,
- *     so every texel is a primary photon with its differentials; each is split over the N LDM
+ *  2. Photon tracing (photon_trace.comp): the shared light views (techniques/common/light_view.h:
+ *     a cube for point lights and wide spots, one perspective view for a spot of at most 45
+ *     degrees) at the photon resolution are a reflective shadow map whose texels are primary
+ *     photons with their reflected flux and differentials; each is split over the N LDM
  *     directions of its hemisphere, traced, kept when the camera sees where it lands, and stored.
  *  3. Splatting (splat.*): the photon buffer drawn as points (glDrawArraysIndirect on the photon
  *     counter), expanded to the footprint's screen rectangle, Eq. 5 with additive blending.
@@ -22,11 +23,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
-#include "harness/gl/ledger.h"
-#include "techniques/common/shader.h"
-#include "harness/gl/view.h"
 #include "techniques/common/gbuffer.h"
+#include "techniques/common/light_view.h"
+#include "techniques/common/shader.h"
 #include "techniques/ldm/ldm.h"
 
 extern const gib_technique gib_technique_ldm_indirect;
@@ -34,7 +35,8 @@ extern const gib_technique gib_technique_ldm_indirect;
 typedef struct ldm_indirect {
     const gib_gpu_scene *scene;
     gib_ledger *ledger;
-    gib_gbuffer gbuffer, rsm;
+    gib_gbuffer gbuffer;
+    gib_light_views views;   /* the RSM of the point and spot lights: one primary photon a texel */
     ldm_set ldms;
     unsigned trace_program, splat_program, audit_splat_program;
     unsigned photons, command, vao;
@@ -97,22 +99,12 @@ void ldm_indirect_audit_format(const ldm_indirect_audit *a, char *buf, size_t si
 static const gib_param_spec ldm_indirect_params[] = {
     {"directions", GIB_PARAM_INT, 128, 1, 4096, "number of LDM directions N (Sec. 3.2)"},
     {"ldm_res", GIB_PARAM_INT, 128, 8, 2048, "LDM resolution (pixels per side)"},
-    {"photon_res", GIB_PARAM_INT, 64, 4, 2048, "light-view photon resolution per cube face"},
+    {"photon_res", GIB_PARAM_INT, 64, 4, 2048, "photon resolution per light-view face (a cube face, or a narrow spot's view)"},
     {"topo_bias", GIB_PARAM_FLOAT, 1.0, 0, 100,
      "topological-bias parameter a of Eq. 7 (in units of the footprint size)"},
     {"normal_offset", GIB_PARAM_FLOAT, 1.0, 0, 16, "ray origin offset along the normal, LDM texels"},
     {0},
 };
-
-static const float face_dir[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-static const float face_up[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-
-static void cross3(const float a[3], const float b[3], float o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 static void ldm_indirect_destroy(void *self)
 {
@@ -120,7 +112,7 @@ static void ldm_indirect_destroy(void *self)
     if (!a)
         return;
     gib_gbuffer_destroy(&a->gbuffer, a->ledger);
-    gib_gbuffer_destroy(&a->rsm, a->ledger);
+    gib_light_views_destroy(&a->views, a->ledger);
     ldm_destroy(&a->ldms, a->ledger);
     if (a->trace_program)
         glDeleteProgram(a->trace_program);
@@ -160,7 +152,10 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
                            "ldm_indirect/splat.frag"};
     int directions = gib_param_int(t, p, "directions");
     if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
-        gib_gbuffer_create(&a->rsm, a->photon_res, a->photon_res, ledger, err) < 0 ||
+        gib_light_views_create(&a->views, scene, a->photon_res,
+                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX |
+                                   GIB_LV_LOCAL_LIGHTS_ONLY,
+                               "ldm_indirect.rsm", ledger, err) < 0 ||
         ldm_create(&a->ldms, scene, directions, gib_param_int(t, p, "ldm_res"), 1.0, ledger, err) < 0 ||
         !(a->trace_program = gib_program(trace, 1, a->audit ? "#define AUDIT 1\n" : NULL, err)) ||
         !(a->splat_program = gib_program(splat, 3, NULL, err)))
@@ -178,12 +173,9 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
         glNamedFramebufferTexture(a->audit_fbo, GL_COLOR_ATTACHMENT0, a->audit_texture, 0);
     }
     /* At most one secondary photon per LDM per primary photon (one of +-v per LDM). */
-    uint32_t lights = 0;
-    for (uint32_t i = 0; i < scene->scene->light_count; i++)
-        lights += scene->scene->lights[i].type != GIB_LIGHT_DIRECTIONAL;
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    double want = 6.0 * a->photon_res * a->photon_res * (double)a->ldms.count * lights;
+    double want = (double)a->views.face_count * a->photon_res * a->photon_res * (double)a->ldms.count;
     double fit = (double)max_block / 64.0;
     a->capacity = (uint32_t)(want < fit ? (want > 1 ? want : 1) : fit);
     const uint32_t init[6] = {0, 1, 0, 0, 0, 0};
@@ -199,43 +191,21 @@ fail:
     return NULL;
 }
 
+/* Traces the primary photons of light li's faces in the light views (rendered this frame). */
 static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timers *timers)
 {
-    const gib_light *l = &a->scene->scene->lights[li];
-    gib_camera light_cam = {.vfov_deg = 90};
-    memcpy(light_cam.eye, l->position, sizeof light_cam.eye);
-    for (int f = 0; f < 6; f++) {
-        float right[3], up[3], vmat[16], proj[16];
-        cross3(face_dir[f], face_up[f], right);
-        cross3(right, face_dir[f], up);
-        gib_view fv = {.camera = &light_cam, .width = a->photon_res, .height = a->photon_res};
-        const float zero[3] = {0, 0, 0};
-        gib_mat4_view(right, up, face_dir[f], zero, vmat);
-        memcpy(fv.origin, l->position, sizeof fv.origin);
-        float far = 0;
-        for (int k = 0; k < 3; k++)
-            far += (l->position[k] - a->ldms.center[k]) * (l->position[k] - a->ldms.center[k]);
-        far = sqrtf(far) + a->ldms.radius;
-        gib_mat4_perspective((float)M_PI / 2, 1.0f, far * 1e-5f, far, proj);
-        gib_mat4_mul(proj, vmat, fv.view_proj);
-        /* The light's view through the shared G-buffer pass: a reflective shadow map face whose
-         * normals face the light. */
-        gib_gbuffer_render(&a->rsm, a->scene, &fv, timers, "rsm");
-
+    for (int f = a->views.first_face[li]; f < a->views.first_face[li] + a->views.faces_of[li];
+         f++) {
         gib_timer_begin(timers, "photon_trace");
         glUseProgram(a->trace_program);
         gib_gpu_scene_bind(a->scene);
-        glBindTextureUnit(0, a->rsm.position);
-        glBindTextureUnit(1, a->rsm.normal);
-        glBindTextureUnit(2, a->rsm.albedo);
-        glBindTextureUnit(3, a->gbuffer.position);
-        glBindTextureUnit(4, a->gbuffer.normal);
+        gib_light_views_bind(&a->views);
+        glBindTextureUnit(GIB_UNIT_GBUF_POSITION, a->gbuffer.position);
+        glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, a->gbuffer.normal);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, a->photons);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, a->command);
         glUniform1i(0, li);
-        glUniform3fv(1, 1, face_dir[f]);
-        glUniform3fv(2, 1, right);
-        glUniform3fv(3, 1, up);
+        glUniform1i(1, f);
         glUniform1i(4, a->photon_res);
         glUniform1f(7, 2.0f / (float)a->ldms.count);
         glUniformMatrix4fv(8, 1, GL_FALSE, view->view_proj);
@@ -331,9 +301,9 @@ static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *tim
         glClearNamedBufferData(a->audit_buffer, GL_RGBA32F, GL_RGBA, GL_FLOAT, NULL);
     ldm_build(&a->ldms, a->scene, timers);
     gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
+    gib_light_views_render(&a->views, a->scene, timers, "rsm");
     for (uint32_t li = 0; li < a->scene->scene->light_count; li++)
-        if (a->scene->scene->lights[li].type != GIB_LIGHT_DIRECTIONAL)
-            trace_light(a, (int)li, view, timers);
+        trace_light(a, (int)li, view, timers);
 
     gib_timer_begin(timers, "splat");
     glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);

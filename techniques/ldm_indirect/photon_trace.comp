@@ -1,25 +1,25 @@
 // Photon tracing with photon differentials through LDMs (Aalund et al. 2015, Sec. 3.4 and 4.2):
-// every texel of the light's view (a reflective-shadow-map face rendered by the shared G-buffer pass)
-// is a primary photon from the point light, hitting x1. It is split into one secondary photon per
+// every texel of a face of the light's view (the shared light views, techniques/common/light_view.*,
+// a reflective shadow map with the flux each texel's surface reflects) is a primary photon from the
+// point or spot light, hitting x1. It is split into one secondary photon per
 // LDM direction in the hemisphere of n1 (photon splitting instead of Russian roulette), each traced
 // with the LDM (Sec. 3.1), discarded unless the camera sees where it lands, diffusely reflected (the
 // directional differentials rotated by the quaternion taking d1 to d2), transferred to x2 (Igehy
 // 1999), and stored for splatting. LDDE paths only: photons are absorbed after this bounce.
 #include "common/scene.glsl"
+#include "common/light_view.glsl"
 #include "ldm/ldm_trace.glsl"
 #include "ldm_indirect/photon.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D rsm_position;
-layout(binding = 1) uniform sampler2D rsm_normal;
-layout(binding = 2) uniform sampler2D rsm_albedo;
-layout(binding = 3) uniform sampler2D g_position;
-layout(binding = 4) uniform sampler2D g_normal;
+layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
+layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
+layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(std430, binding = 8) writeonly buffer Photons { Photon photons[]; };
 layout(std430, binding = 9) buffer Command { DrawCommand command; uint overflow; };
 layout(location = 0) uniform int u_light;
-layout(location = 1) uniform vec3 u_face_forward;
-layout(location = 2) uniform vec3 u_face_right;
-layout(location = 3) uniform vec3 u_face_up;
+layout(location = 1) uniform int u_face;            // the light-view layer traced
 layout(location = 4) uniform int u_res;             // light-view photon resolution
 layout(location = 5) uniform int u_first;           // LDMs of the bound page
 layout(location = 6) uniform int u_count;
@@ -133,10 +133,12 @@ void trace_texel(ivec2 px)
 {
     Light light = lights[u_light];
     vec3 lp = light.position_type.xyz;
-    // Primary photon: direction through the texel centre and its flux I(d) * solid angle.
-    float s = 2.0 / float(u_res);
-    vec2 uv = (vec2(px) + 0.5) * s - 1.0;
-    vec3 D = u_face_forward + uv.x * u_face_right + uv.y * u_face_up;
+    // Primary photon: direction through the texel centre (texel side s on the plane at unit
+    // distance) and its flux I(d) * solid angle.
+    vec3 face_forward = lv_axis(u_face), face_right = lv_right(u_face), face_up = lv_up(u_face);
+    float s = lv_texel(u_light);
+    vec2 uv = (vec2(px) + 0.5 - 0.5 * float(u_res)) * s;
+    vec3 D = face_forward + uv.x * face_right + uv.y * face_up;
     float len = length(D);
     vec3 d1 = D / len;
     float domega = s * s / (len * len * len);
@@ -147,7 +149,7 @@ void trace_texel(ivec2 px)
     if (primary)
         TALLY(AUDIT_EMITTED, light_eval(light, lp + d1, wi, r1) * domega); // I(d1) at r = 1
 #endif
-    vec4 p1 = texelFetch(rsm_position, px, 0);
+    vec4 p1 = texelFetch(lv_position, ivec3(px, u_face), 0);
     if (p1.w < 0.5) {
 #ifdef AUDIT
         if (primary)
@@ -156,8 +158,8 @@ void trace_texel(ivec2 px)
         return;
     }
     vec3 x1 = p1.xyz;
-    vec3 n1 = texelFetch(rsm_normal, px, 0).xyz;   // faces the light
-    vec3 rho1 = texelFetch(rsm_albedo, px, 0).rgb;
+    vec3 n1 = texelFetch(lv_normal, ivec3(px, u_face), 0).xyz;   // faces the light
+    vec3 reflected = texelFetch(lv_flux, ivec3(px, u_face), 0).rgb; // rho1 * flux1
     vec3 E = light_eval(light, x1, wi, r1);     // I * falloff / r^2
     vec3 flux1 = E * r1 * r1 * domega;
     if (max(flux1.r, max(flux1.g, flux1.b)) <= 0.0 || dot(n1, -d1) <= 0.0) {
@@ -169,12 +171,12 @@ void trace_texel(ivec2 px)
     }
 #ifdef AUDIT
     if (primary)
-        TALLY(AUDIT_REFLECTED, flux1 * rho1);
+        TALLY(AUDIT_REFLECTED, reflected);
 #endif
     // Directional differentials of d = D/|D| with D_u D = s * right (Igehy 1999, Eq. for normalised
     // directions), positional differentials at the point light are 0, then transfer to x1.
-    vec3 ddu = (dot(D, D) * (s * u_face_right) - dot(D, s * u_face_right) * D) / (len * len * len);
-    vec3 ddv = (dot(D, D) * (s * u_face_up) - dot(D, s * u_face_up) * D) / (len * len * len);
+    vec3 ddu = (dot(D, D) * (s * face_right) - dot(D, s * face_right) * D) / (len * len * len);
+    vec3 ddv = (dot(D, D) * (s * face_up) - dot(D, s * face_up) * D) / (len * len * len);
     float t1 = dot(x1 - lp, d1);
     vec3 dxu = transfer(vec3(0.0), ddu, d1, t1, n1);
     vec3 dxv = transfer(vec3(0.0), ddv, d1, t1, n1);
@@ -183,7 +185,7 @@ void trace_texel(ivec2 px)
         vec3 v = ldm_info[i].dir_extent.xyz;
         float c = dot(n1, v);
         // Split flux: Phi1 * (rho1/pi) * cos * (2 pi / N).
-        vec3 flux2 = flux1 * rho1 * (abs(c) * u_split_weight);
+        vec3 flux2 = reflected * (abs(c) * u_split_weight);
         TALLY(AUDIT_CARRIED, flux2);
         if (abs(c) < 1e-4) {
             TALLY(AUDIT_GRAZING, flux2);
