@@ -232,24 +232,28 @@ static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timer
     }
 }
 
-/* The audit's splat pass (the photons drawn again, each fragment writing the flux it deposits),
- * then both sums read back and added up in double. */
-static void audit_frame(ldm_indirect *a, const gib_view *view, gib_timers *timers)
+/* The splat pass (splat.*): the photon buffer drawn as points into fbo, cleared first, added
+ * with blending. The audit's program also gets what it needs to turn irradiance into flux. */
+static void draw_splats(ldm_indirect *a, unsigned program, unsigned fbo, const gib_view *view,
+                        int audit)
 {
-    gib_timer_begin(timers, "audit");
-    glBindFramebuffer(GL_FRAMEBUFFER, a->audit_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, view->width, view->height);
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
+    glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(a->audit_splat_program);
+    glUseProgram(program);
     glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
     glUniform3fv(6, 1, view->origin);
     glUniform1f(2, a->topo_bias);
-    glUniform3fv(3, 1, view->origin);
-    /* proj[0] = 1/tan(half horizontal angle), proj[5] = 1/tan(half vertical angle). */
-    glUniform4f(4, 1.0f / view->proj[0], 1.0f / view->proj[5], (float)view->width,
-                (float)view->height);
+    if (audit) {
+        glUniform3fv(3, 1, view->origin);
+        /* proj[0] = 1/tan(half horizontal angle), proj[5] = 1/tan(half vertical angle). */
+        glUniform4f(4, 1.0f / view->proj[0], 1.0f / view->proj[5], (float)view->width,
+                    (float)view->height);
+    }
     glBindTextureUnit(0, a->gbuffer.position);
     glBindTextureUnit(1, a->gbuffer.normal);
     glBindTextureUnit(2, a->gbuffer.albedo);
@@ -260,6 +264,14 @@ static void audit_frame(ldm_indirect *a, const gib_view *view, gib_timers *timer
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glDisable(GL_BLEND);
+}
+
+/* The audit's splat pass (the photons drawn again, each fragment writing the flux it deposits),
+ * then both sums read back and added up in double. */
+static void audit_frame(ldm_indirect *a, const gib_view *view, gib_timers *timers)
+{
+    gib_timer_begin(timers, "audit");
+    draw_splats(a, a->audit_splat_program, a->audit_fbo, view, 1);
     gib_timer_end(timers);
 
     ldm_indirect_audit au = {.valid = 1};
@@ -306,27 +318,7 @@ static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *tim
         trace_light(a, (int)li, view, timers);
 
     gib_timer_begin(timers, "splat");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets[0].fbo);
-    glViewport(0, 0, view->width, view->height);
-    const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(a->splat_program);
-    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
-    glUniform3fv(6, 1, view->origin);
-    glUniform1f(2, a->topo_bias);
-    glBindTextureUnit(0, a->gbuffer.position);
-    glBindTextureUnit(1, a->gbuffer.normal);
-    glBindTextureUnit(2, a->gbuffer.albedo);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, a->photons);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, a->command);
-    glBindVertexArray(a->vao);
-    glDrawArraysIndirect(GL_POINTS, NULL);
-    glBindVertexArray(0);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    glDisable(GL_BLEND);
+    draw_splats(a, a->splat_program, targets[0].fbo, view, 0);
     gib_timer_end(timers);
     if (a->audit)
         audit_frame(a, view, timers);
