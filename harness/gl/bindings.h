@@ -29,11 +29,12 @@
 #define GIB_UNIT_LV_SPECULAR 8
 #define GIB_UNIT_OWN_FIRST 9      // 9..15: a pass's own textures
 
-// Uniform locations (per program).
+// Uniform locations (per program). 0, 1 and 6 are taken in programs that draw the scene
+// (gib_gpu_scene_draw, common/gbuffer.vert); full-screen and compute passes may use 0..19.
 #define GIB_LOC_MATERIAL 0        // int: material of the range being drawn (gib_gpu_scene_draw)
 #define GIB_LOC_VIEW_PROJ 1       // mat4: view-projection relative to GIB_LOC_ORIGIN
 #define GIB_LOC_ORIGIN 6          // vec3: the view's origin (positions are sent as p - origin)
 #define GIB_LOC_OWN_FIRST 2       // 2..5 and 7..19: a pass's own uniforms
-#define GIB_LOC_LV_FIRST 20       // 20..23: the light-view lookup (light_view.glsl)
+#define GIB_LOC_LV_FIRST 20       // 20..23: the shadow lookup (common/shadow_lookup.glsl)
 
 #endif
