@@ -22,13 +22,9 @@
  *    the fastest replay of the lean tracer's rays. The lean tracer's ratio is the reference point
  *    for the path tracer's: what a renderer that does almost nothing but trace these paths
  *    reaches on this machine and scene.
- * Why three raw figures: random rays from anywhere in the bounding box are cheaper than a path
- * tracer's (in Sponza many start outside the building and leave at once; the path tracer's
- * primary and shadow rays cross the whole atrium); diffuse rays are all closest-hit rays, dearer
- * than the path tracer's mix, a fifth of which (Sponza `full`) are shadow rays that stop at the
- * first occluder.
- * So the yardstick for the path tracer is the replay, the same rays with nothing else done; the
- * other two place the scene among published figures.
+ * The yardstick for the path tracer is the replay, the same rays with nothing else done; the other
+ * two raw figures place the scene among published figures (reference/PERFORMANCE.md, "The
+ * yardsticks").
  * Nothing here is asserted: performance is measured, reported and written to CSV, never a test's
  * pass/fail condition. */
 #include <math.h>

@@ -11,12 +11,8 @@
  * mirrors). Camera paths through mirrors are followed (a mirror seen from the camera shows the
  * diffuse surfaces behind it, lit by next-event estimation there).
  *
- * The sky (scenes with one) is not a delta: a continuation can escape and see it. Such escapes
- * add nothing; the sky is reached only by next-event estimation at every vertex, one sampled
- * direction per lobe (ref_nee_sky: diffuse, Phong, and the mirror direction of a mirror), so
- * again one strategy per path class and no MIS. Sky paths through mirrors are all found this way
- * (the sky seen through a mirror is not a delta light seen through a delta lobe), so no sky path
- * needs light tracing and none is missing.
+ * The sky is reached only by next-event estimation at every vertex (escapes add nothing), so again
+ * one strategy per path class (ARCHITECTURE.md, "Reference renderer").
  *
  * Russian roulette from min_depth on: a path that has reached vertex d >= min_depth continues
  * with probability q = min(1, max channel of its throughput after this bounce, estimated from the
@@ -27,12 +23,8 @@
  * `higher` runs the same paths and keeps only the contributions whose class none of direct,
  * indirect, glossy and caustic counts (ref_basic_class).
  *
- * The camera part of `caustic` is here too: L S+ D E whose vertex next to the light is Phong,
- * found like full's paths (diffuse bounce from the visible point, specular continuations,
- * next-event estimation through the Phong lobe). Its mirror-first paths come from light tracing
- * (ref_light.c), as full's do — except those whose light is the sky: L_sky S+ D E, Phong or
- * mirror next to the sky, comes from these camera paths by the sky's next-event estimation
- * through the specular lobe (mirror: its one direction). */
+ * The camera part of `caustic` is here too: L S+ D E whose vertex next to the light is Phong (or
+ * whose light is the sky); its mirror-first paths come from light tracing (ref_light.c). */
 #include <math.h>
 #include <string.h>
 
