@@ -30,6 +30,10 @@ extern char tmpdir[256]; /* a fresh directory under /tmp, removed by scene_test_
 int scene_test_begin(const char *name);
 /* Writes text to tmpdir/name and returns the path in out (exits on failure: nothing can follow). */
 void write_file(const char *name, const char *text, char *out, size_t n);
+/* Loads `text` as a scene file and expects return code `want_rc`, and a message that names the
+ * file, `:line:` and contains `phrase` (and `phrase2` when non-NULL). */
+void scene_expect_load(const char *what, const char *text, int want_rc, int line,
+                       const char *phrase, const char *phrase2);
 /* Removes tmpdir and its files, prints "passed"/"FAILED" with the failure count; the exit status. */
 int scene_test_end(void);
 

@@ -10,26 +10,10 @@
 #include "scenes/scene.h"
 #include "tests/scenes/scene_test.h"
 
+/* A scene file that must fail at `line` with `phrase` in its message. */
 static void expect_error(const char *what, const char *text, int line, const char *phrase)
 {
-    static int n;
-    char name[64], path[512];
-    snprintf(name, sizeof name, "motion%02d.scene", n++);
-    write_file(name, text, path, sizeof path);
-    gib_scene s;
-    gib_error err;
-    err.msg[0] = '\0';
-    int rc = gib_scene_load(path, &s, &err);
-    CHECK(rc == -1, "%s: rc = %d, want -1 (message: %s)", what, rc, err.msg);
-    if (rc == 0) {
-        gib_scene_free(&s);
-        return;
-    }
-    char at[600];
-    snprintf(at, sizeof at, "%s:%d:", path, line);
-    CHECK(strstr(err.msg, at) != NULL, "%s: message does not name %s: %s", what, at, err.msg);
-    CHECK(strstr(err.msg, phrase) != NULL, "%s: message lacks '%s': %s", what, phrase, err.msg);
-    printf("ok   %-26s %s\n", what, err.msg);
+    scene_expect_load(what, text, -1, line, phrase, NULL);
 }
 
 #define HEAD "[scene]\n[camera.c]\neye = 0 1 5\ntarget = 0 0 0\n[mesh.m]\n" /* mesh at line 5 */
