@@ -46,6 +46,16 @@ static unsigned upload_array(gib_gpu_scene *gpu, const char *label, const void *
     return gib_gpu_buffer(&gpu->ledger, label, bytes, data, 0, err);
 }
 
+/* Vertices of the largest moving mesh, twice (positions, normals); a 1-float placeholder for a
+ * static scene. */
+static float *pose_room(const gib_scene *s, gib_error *err)
+{
+    size_t most = 0;
+    for (uint32_t i = 0; i < s->motion_count; i++)
+        most = s->motions[i].vertex_count > most ? s->motions[i].vertex_count : most;
+    return gib_calloc(most ? 6 * most : 1, sizeof(float), err);
+}
+
 int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *err)
 {
     memset(gpu, 0, sizeof *gpu);
@@ -68,6 +78,7 @@ int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *
         !(gpu->normals = gib_gpu_buffer(&gpu->ledger, "scene.normals", nv * 12, s->normals, vflags,
                                         err)) ||
         !(gpu->uvs = upload_array(gpu, "scene.uvs", s->uvs, nv * 8, err)) ||
+        !(gpu->pose = pose_room(s, err)) ||
         !(gpu->indices = upload_array(gpu, "scene.indices", s->indices,
                                       (size_t)s->triangle_count * 12, err)))
         goto fail;
@@ -155,17 +166,9 @@ fail:
 int gib_gpu_scene_set_time(const gib_gpu_scene *gpu, double t, gib_error *err)
 {
     const gib_scene *s = gpu->scene;
-    uint32_t most = 0;
-    for (uint32_t i = 0; i < s->motion_count; i++)
-        most = s->motions[i].vertex_count > most ? s->motions[i].vertex_count : most;
-    if (!most)
-        return 0;
-    float *pos = malloc((size_t)most * 24);
-    if (!pos)
-        return gib_fail(err, "out of memory posing scene '%s' at t = %g", s->name, t);
-    float *nrm = pos + 3 * (size_t)most;
     for (uint32_t i = 0; i < s->motion_count; i++) {
         const gib_motion *m = &s->motions[i];
+        float *pos = gpu->pose, *nrm = gpu->pose + 3 * (size_t)m->vertex_count;
         gib_motion_pose(m, t, pos, nrm);
         if (gpu->frame && gpu->frame->moved) /* into the frame the upload used, as it rounds */
             for (size_t i = 0; i < 3 * (size_t)m->vertex_count; i++)
@@ -175,7 +178,6 @@ int gib_gpu_scene_set_time(const gib_gpu_scene *gpu, double t, gib_error *err)
         glNamedBufferSubData(gpu->positions, at, bytes, pos);
         glNamedBufferSubData(gpu->normals, at, bytes, nrm);
     }
-    free(pos);
     return gib_gl_check("uploading the scene's vertices for the frame", err);
 }
 
@@ -185,6 +187,7 @@ void gib_gpu_scene_free(gib_gpu_scene *gpu)
         glDeleteVertexArrays(1, &gpu->vao);
     gib_ledger_release_all(&gpu->ledger);
     free(gpu->textures);
+    free(gpu->pose);
     if (gpu->frame)
         gib_scene_frame_free(gpu->frame);
     free(gpu->frame);

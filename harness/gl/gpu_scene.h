@@ -12,6 +12,8 @@ struct gib_gpu_scene {
                               * Positions, lights and cameras are moved next to the origin when
                               * the scene lies far from it; images are the same. */
     gib_scene_frame *frame;  /* owned */
+    float *pose;             /* moving scenes: room for the largest moving mesh's positions and
+                                normals, allocated once at upload (gib_gpu_scene_set_time) */
     unsigned vao;
     unsigned positions, normals, uvs, indices;
     unsigned materials;      /* SSBO, binding 0 (struct Material in scene.glsl) */
