@@ -27,7 +27,8 @@
 #define GIB_UNIT_LV_NORMAL 6
 #define GIB_UNIT_LV_FLUX 7
 #define GIB_UNIT_LV_SPECULAR 8
-#define GIB_UNIT_OWN_FIRST 9      // 9..15: a pass's own textures
+#define GIB_UNIT_VOXELS 9         // occlusion voxels, R8 3D with mips (common/voxels.h)
+#define GIB_UNIT_OWN_FIRST 10     // 10..15: a pass's own textures
 
 // Uniform locations (per program). 0, 1 and 6 are taken in programs that draw the scene
 // (gib_gpu_scene_draw, common/gbuffer.vert); full-screen and compute passes may use 0..19.
@@ -36,5 +37,6 @@
 #define GIB_LOC_ORIGIN 6          // vec3: the view's origin (positions are sent as p - origin)
 #define GIB_LOC_OWN_FIRST 2       // 2..5 and 7..19: a pass's own uniforms
 #define GIB_LOC_LV_FIRST 20       // 20..23: the shadow lookup (common/shadow_lookup.glsl)
+#define GIB_LOC_VOXEL_FIRST 24    // 24..27: the occlusion voxels' grid (common/voxel_cone.glsl)
 
 #endif
