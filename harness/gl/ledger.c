@@ -66,6 +66,22 @@ unsigned gib_gpu_buffer(gib_ledger *l, const char *label, uint64_t bytes, const 
     return b;
 }
 
+uint64_t gib_texture_bytes(unsigned target, int w, int h, int layers, unsigned fmt, int levels)
+{
+    if (levels <= 0)
+        levels = gib_mip_levels(w, h, target == GL_TEXTURE_3D ? layers : 1);
+    uint64_t bytes = 0, bpt = gib_format_bytes(fmt);
+    int faces = target == GL_TEXTURE_CUBE_MAP ? 6 : 1;
+    for (int i = 0; i < levels; i++) {
+        uint64_t lw = (uint64_t)(w >> i ? w >> i : 1), lh = (uint64_t)(h >> i ? h >> i : 1);
+        uint64_t ld = target == GL_TEXTURE_3D ? (uint64_t)(layers >> i ? layers >> i : 1)
+                      : target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_CUBE_MAP_ARRAY
+                          ? (uint64_t)layers : 1;
+        bytes += lw * lh * ld * bpt * (uint64_t)faces;
+    }
+    return bytes;
+}
+
 unsigned gib_gpu_texture(gib_ledger *l, const char *label, unsigned target, int w, int h,
                          int layers, unsigned fmt, int levels, gib_error *err)
 {
@@ -78,15 +94,7 @@ unsigned gib_gpu_texture(gib_ledger *l, const char *label, unsigned target, int 
         glTextureStorage2D(t, levels, fmt, w, h);
     else
         glTextureStorage3D(t, levels, fmt, w, h, layers);
-    uint64_t bytes = 0, bpt = gib_format_bytes(fmt);
-    int faces = target == GL_TEXTURE_CUBE_MAP ? 6 : 1;
-    for (int i = 0; i < levels; i++) {
-        uint64_t lw = (uint64_t)(w >> i ? w >> i : 1), lh = (uint64_t)(h >> i ? h >> i : 1);
-        uint64_t ld = target == GL_TEXTURE_3D ? (uint64_t)(layers >> i ? layers >> i : 1)
-                      : target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_CUBE_MAP_ARRAY
-                          ? (uint64_t)layers : 1;
-        bytes += lw * lh * ld * bpt * (uint64_t)faces;
-    }
+    uint64_t bytes = gib_texture_bytes(target, w, h, layers, fmt, levels);
     if (gib_gl_check(label, err) < 0 || add_entry(l, label, t, 1, bytes, err) < 0) {
         glDeleteTextures(1, &t);
         gib_error_prefix(err, "allocating texture '%s' %dx%dx%d", label, w, h, layers);

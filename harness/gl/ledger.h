@@ -35,6 +35,10 @@ unsigned gib_gpu_buffer(gib_ledger *l, const char *label, uint64_t bytes, const 
  * ledger counts every level's exact size. */
 unsigned gib_gpu_texture(gib_ledger *l, const char *label, unsigned target, int width, int height,
                          int layers, unsigned internal_format, int levels, gib_error *err);
+/* The bytes gib_gpu_texture counts for these arguments, without allocating anything: the plan a
+ * technique checks against a memory budget before it allocates (and Table 2's exact figures). */
+uint64_t gib_texture_bytes(unsigned target, int width, int height, int layers,
+                           unsigned internal_format, int levels);
 /* A renderbuffer (depth attachments). */
 unsigned gib_gpu_renderbuffer(gib_ledger *l, const char *label, unsigned internal_format, int width,
                               int height, gib_error *err);

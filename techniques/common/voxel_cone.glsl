@@ -1,0 +1,78 @@
+// Cone tracing through the occlusion voxels (techniques/common/voxels.h), LRSM paper Sec. 3.1: a
+// cone is a sequence of sphere samples; a sample of diameter d (in voxels) reads its integrated
+// occlusion alpha from the voxel mip level log2(d), trilinearly (quadrilinear over the chain), and
+// samples are accumulated front to back (Eq. 1). The techniques write their own radiance cones with
+// these pieces; shadow_cone is Eq. 1 with L = 0 (only the transmittance). Apertures are full apex
+// angles (a 60-degree cone has a 30-degree half-angle).
+#include "gl/bindings.h"
+#include "common/basis.glsl"
+
+layout(binding = GIB_UNIT_VOXELS) uniform sampler3D u_voxels;
+layout(location = GIB_LOC_VOXEL_FIRST + 0) uniform vec3 u_voxel_origin;
+layout(location = GIB_LOC_VOXEL_FIRST + 1) uniform float u_voxel_size;  // grid side
+layout(location = GIB_LOC_VOXEL_FIRST + 2) uniform int u_voxel_res;
+
+float voxel_size_world() { return u_voxel_size / float(u_voxel_res); }
+
+// Alpha of a sphere sample of `diameter` (world units) centred at p (scene frame): the mean
+// occupancy of the mip level log2(diameter in voxels) (Sec. 3.1), clamped to [0, top of the chain];
+// samples smaller than a voxel read level 0. Outside the grid: 0 (the border).
+float voxel_occlusion(vec3 p, float diameter)
+{
+    float top = float(textureQueryLevels(u_voxels) - 1);
+    float mip = clamp(log2(max(diameter / voxel_size_world(), 1.0)), 0.0, top);
+    return textureLod(u_voxels, (p - u_voxel_origin) / u_voxel_size, mip).r;
+}
+
+// The 6 diffuse cones of 60 degrees (the set of Crassin et al. 2011 and most VCT code): one along n
+// and five around it at a tilt of 60 degrees from n, every 72 degrees in azimuth. A cone of
+// half-angle a around an axis at angle t from n collects the cosine-weighted solid angle
+// cos(t) pi sin^2(a) (the integral of n.w over the cap): pi/4 for the central cone, pi/8 for each
+// tilted one. The caps cover 80% of the hemisphere; the weights are these shares normalised to sum
+// to 1 (2/7 and 1/7), i.e. the gaps between caps are given to the cones in proportion. (The
+// common 0.25 / 0.15 split normalises the central cone by pi instead, overweighting the ring.)
+const int DIFFUSE_CONES = 6;
+const float DIFFUSE_TILT = 1.0471976;   // 60 degrees
+int diffuse_cone_count() { return DIFFUSE_CONES; }
+float diffuse_cone_weight(int i) { return i == 0 ? 2.0 / 7.0 : 1.0 / 7.0; }
+vec3 diffuse_cone_dir(int i, vec3 n)
+{
+    if (i == 0)
+        return n;
+    vec3 t, b;
+    ortho_basis(n, t, b);
+    float phi = float(i - 1) * 1.2566371;   // 72 degrees
+    return normalize(cos(DIFFUSE_TILT) * n + sin(DIFFUSE_TILT) * (cos(phi) * t + sin(phi) * b));
+}
+
+// Visibility (0..1) along a cone from the surface point p (normal n) in direction dir over a
+// distance dist: transmittance prod (1 - alpha_i) of Eq. 1 with L = 0. The start is offset
+// `start_offset` voxels along n (the surface's own voxels would occlude it). Samples: diameter
+// d = max(voxel, 2 t tan(aperture / 2)) at distance t, stepping by step_factor x d (1 = spheres that
+// touch, as in Fig. 4); alpha is corrected for the step, 1 - (1 - alpha)^step_factor, so that a
+// smaller step does not count the same occluder more often. Stops when visibility < 1/256 or the
+// sample leaves the grid.
+float shadow_cone_ex(vec3 p, vec3 n, vec3 dir, float dist, float aperture_rad, float step_factor,
+                     float start_offset)
+{
+    float voxel = voxel_size_world();
+    vec3 o = p + n * (start_offset * voxel);
+    float tan_half = tan(0.5 * aperture_rad);
+    float visibility = 1.0;
+    float t = voxel;
+    for (int i = 0; i < 512 && t < dist && visibility > 1.0 / 256.0; i++) {
+        float d = max(voxel, 2.0 * t * tan_half);
+        vec3 q = o + dir * t;
+        if (any(lessThan(q, u_voxel_origin - d)) || any(greaterThan(q, u_voxel_origin + u_voxel_size + d)))
+            break; // left the grid: nothing further occludes
+        float alpha = voxel_occlusion(q, d);
+        visibility *= pow(1.0 - alpha, step_factor);
+        t += step_factor * d;
+    }
+    return visibility;
+}
+
+float shadow_cone(vec3 p, vec3 n, vec3 dir, float dist, float aperture_rad)
+{
+    return shadow_cone_ex(p, n, dir, dist, aperture_rad, 1.0, 1.5);
+}

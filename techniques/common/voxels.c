@@ -1,0 +1,138 @@
+#include "voxels.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "harness/gl/bindings.h"
+#include "harness/gl/context.h"
+#include "techniques/common/shader.h"
+
+uint64_t gib_voxels_bytes(int res)
+{
+    return gib_texture_bytes(GL_TEXTURE_3D, res, res, res, GL_R8, 0);
+}
+
+/* A cube centred on the scene's bounds with 1.5 voxels of margin on each side (side = extent +
+ * 3 side / res): geometry on the bounds never lies on the grid's outer faces, and faces on the
+ * bounds along the longest axis (Sponza's floor, a room's walls) lie in the middle of a voxel
+ * layer rather than on the boundary between two, which would set both. A scene with no extent
+ * (no triangles, or one point) gets a unit cube. */
+static void fit_grid(gib_voxels *v, const gib_scene *s)
+{
+    float ext = 0, c[3];
+    for (int k = 0; k < 3; k++) {
+        float lo = s->bounds_min[k], hi = s->bounds_max[k];
+        int ok = isfinite(lo) && isfinite(hi) && hi >= lo;
+        c[k] = ok ? 0.5f * (lo + hi) : 0.0f;
+        if (ok && hi - lo > ext)
+            ext = hi - lo;
+    }
+    if (!(ext > 0))
+        ext = 1;
+    v->size = ext * (float)v->res / (float)(v->res - 3);
+    for (int k = 0; k < 3; k++)
+        v->origin[k] = c[k] - 0.5f * v->size;
+}
+
+int gib_voxels_create(gib_voxels *v, const gib_gpu_scene *scene, int res, const char *label,
+                      gib_ledger *ledger, gib_error *err)
+{
+    memset(v, 0, sizeof *v);
+    if (res < GIB_VOXELS_MIN_RES || res > GIB_VOXELS_MAX_RES)
+        return gib_fail(err, "voxel_res = %d is out of range (%d..%d)", res, GIB_VOXELS_MIN_RES,
+                        GIB_VOXELS_MAX_RES);
+    v->res = res;
+    v->triangle_count = scene->scene->triangle_count;
+    fit_grid(v, scene->scene);
+    const char *file[1] = {"common/voxelize.comp"};
+    char name[96];
+    snprintf(name, sizeof name, "%s.occupancy", label);
+    if (!(v->program_small = gib_program(file, 1, "#define SMALL 1\n", err)) ||
+        !(v->program_large = gib_program(file, 1, NULL, err)) ||
+        !(v->texture = gib_gpu_texture(ledger, name, GL_TEXTURE_3D, res, res, res, GL_R8, 0, err)))
+        goto fail;
+    snprintf(name, sizeof name, "%s.work", label);
+    if (!(v->work = gib_gpu_buffer(ledger, name, 16 + 4 * (uint64_t)v->triangle_count, NULL,
+                                   GL_DYNAMIC_STORAGE_BIT, err)))
+        goto fail;
+    /* Outside the grid is empty: cones leaving it see no occlusion. */
+    glTextureParameteri(v->texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(v->texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    const GLenum wraps[3] = {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R};
+    for (int k = 0; k < 3; k++)
+        glTextureParameteri(v->texture, wraps[k], GL_CLAMP_TO_BORDER);
+    const float border[4] = {0, 0, 0, 0};
+    glTextureParameterfv(v->texture, GL_TEXTURE_BORDER_COLOR, border);
+    if (gib_gl_check("creating the occlusion voxels", err) < 0)
+        goto fail;
+    return 0;
+fail:
+    gib_error_prefix(err, "occlusion voxels '%s' at %d^3", label, res);
+    gib_voxels_destroy(v, ledger);
+    return -1;
+}
+
+void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *timers,
+                      const char *pass)
+{
+    if (timers)
+        gib_timer_begin(timers, pass);
+    const unsigned char zero = 0;
+    glClearTexImage(v->texture, 0, GL_RED, GL_UNSIGNED_BYTE, &zero);
+    if (v->triangle_count) {
+        const uint32_t reset[4] = {0, 1, 1, 0};
+        glNamedBufferSubData(v->work, 0, sizeof reset, reset);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 0, scene->positions);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, scene->indices);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, v->work);
+        glBindImageTexture(0, v->texture, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        const unsigned programs[2] = {v->program_small, v->program_large};
+        for (int i = 0; i < 2; i++) {
+            glUseProgram(programs[i]);
+            glUniform3fv(GIB_LOC_OWN_FIRST + 0, 1, v->origin);
+            glUniform1f(GIB_LOC_OWN_FIRST + 1, (float)v->res / v->size);
+            glUniform1i(GIB_LOC_OWN_FIRST + 2, v->res);
+            glUniform1ui(GIB_LOC_OWN_FIRST + 3, v->triangle_count);
+            if (i == 0) {
+                glDispatchCompute((v->triangle_count + 63) / 64, 1, 1);
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+            } else {
+                glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, v->work);
+                glDispatchComputeIndirect(0);
+                glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+            }
+        }
+        glUseProgram(0);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
+    }
+    /* Box-filtered averages of the 1/0 occupancy (R8 UNORM: Mesa cannot mipmap integer formats). */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_FRAMEBUFFER_BARRIER_BIT);
+    glGenerateTextureMipmap(v->texture);
+    if (timers)
+        gib_timer_end(timers);
+}
+
+void gib_voxels_bind(const gib_voxels *v)
+{
+    glBindTextureUnit(GIB_UNIT_VOXELS, v->texture);
+    glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, v->origin);
+    glUniform1f(GIB_LOC_VOXEL_FIRST + 1, v->size);
+    glUniform1i(GIB_LOC_VOXEL_FIRST + 2, v->res);
+}
+
+void gib_voxels_destroy(gib_voxels *v, gib_ledger *ledger)
+{
+    if (v->texture)
+        gib_gpu_free(ledger, v->texture, 1);
+    if (v->work)
+        gib_gpu_free(ledger, v->work, 0);
+    if (v->program_small)
+        glDeleteProgram(v->program_small);
+    if (v->program_large)
+        glDeleteProgram(v->program_large);
+    memset(v, 0, sizeof *v);
+}

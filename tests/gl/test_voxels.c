@@ -1,0 +1,674 @@
+/* Occlusion voxels (techniques/common/voxels.*): the GPU voxelisation against an exact CPU
+ * triangle/box overlap (Akenine-Moller's separating-axis test, in double), voxel by voxel, on
+ * procedural scenes: a thin slanted wall, a diagonal plane (one voxel thin), a tessellated sphere
+ * (small triangles) and the moving Cornell box at a later instant (positions read back from the
+ * GPU, so the posed triangles are the ones checked).
+ *
+ * Checks, per case:
+ *  - zero misses: every voxel the CPU says a triangle touches (closed boxes, exact) is set;
+ *  - no false positive beyond rounding: every set voxel is touched by a triangle when the box is
+ *    dilated by 2e-3 voxel (the shader dilates by 1e-3 voxel so that float rounding of voxel
+ *    coordinates, ~1e-4 voxel at 512, can only add voxels); the false-positive rate against the
+ *    exact test is printed;
+ *  - a plane and a wall voxelise without holes: their set voxels are one 6-connected component;
+ *  - the mip chain: every texel of level k is the mean of its 8 children at level k - 1 within
+ *    1.5/255 (Mesa's glGenerateMipmap on R8 filters with three linear interpolations in 8-bit
+ *    fixed point, each rounded to 1/255: up to 3 x 0.5/255; llvmpipe shows up to 1.4/255), and
+ *    each level's mean is the base level's occupancy within k x 0.5/255 (the roundings are
+ *    unbiased: llvmpipe drifts at most 0.35/255 a level).
+ *
+ * `test_voxels --bench SCENE RES...` times gib_voxels_build (median of 5 after one warm-up) and
+ * `test_voxels --png DIR SCENE RES` writes slices and projections of the voxels, for looking. */
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "harness/gl/bindings.h"
+#include "harness/gl/timers.h"
+#include "harness/imaging/image.h"
+#include "techniques/common/shader.h"
+#include "techniques/common/voxels.h"
+#include "tests/common/gl_fixture.h"
+
+static int failures;
+
+/* ---- exact CPU triangle/box overlap (Akenine-Moller 2001), box centred at c, half side h ---- */
+
+static void sub3(const double a[3], const double b[3], double o[3])
+{
+    for (int k = 0; k < 3; k++)
+        o[k] = a[k] - b[k];
+}
+
+static void cross3(const double a[3], const double b[3], double o[3])
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Not separated along axis a: the triangle's projection meets the box's [-r, r]. */
+static int axis_overlaps(const double a[3], const double v[3][3], double h)
+{
+    double p0 = dot3(a, v[0]), p1 = dot3(a, v[1]), p2 = dot3(a, v[2]);
+    double lo = fmin(p0, fmin(p1, p2)), hi = fmax(p0, fmax(p1, p2));
+    double r = h * (fabs(a[0]) + fabs(a[1]) + fabs(a[2]));
+    return lo <= r && hi >= -r;
+}
+
+static int tri_box_overlap(const double c[3], double h, const double tri[3][3])
+{
+    double v[3][3], e[3][3], n[3];
+    for (int i = 0; i < 3; i++)
+        sub3(tri[i], c, v[i]);
+    for (int i = 0; i < 3; i++)
+        sub3(v[(i + 1) % 3], v[i], e[i]);
+    cross3(e[0], e[1], n);
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0)
+        return 0; /* zero area: covers nothing (the shader skips it too) */
+    for (int i = 0; i < 3; i++) /* the box's normals */
+        for (int k = 0; k < 3; k++) {
+            double a[3] = {0, 0, 0};
+            a[k] = 1;
+            if (!axis_overlaps(a, v, h))
+                return 0;
+        }
+    if (!axis_overlaps(n, v, h)) /* the triangle's normal */
+        return 0;
+    for (int i = 0; i < 3; i++) /* the 9 edge x box-normal axes */
+        for (int k = 0; k < 3; k++) {
+            double u[3] = {0, 0, 0}, a[3];
+            u[k] = 1;
+            cross3(u, e[i], a);
+            if (!axis_overlaps(a, v, h))
+                return 0;
+        }
+    return 1;
+}
+
+/* ---- reading the voxels back ---- */
+
+static unsigned char *read_level(const gib_voxels *v, int level, int *r)
+{
+    *r = v->res >> level;
+    size_t n = (size_t)*r * *r * *r;
+    unsigned char *b = malloc(n);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(v->texture, level, GL_RED, GL_UNSIGNED_BYTE, (GLsizei)n, b);
+    return b;
+}
+
+/* The triangles as the GPU has them (a moving scene's posed positions), in voxel units. */
+static float *read_positions(const gib_gpu_scene *g, size_t *count)
+{
+    GLint64 bytes = 0;
+    glGetNamedBufferParameteri64v(g->positions, GL_BUFFER_SIZE, &bytes);
+    float *p = malloc((size_t)bytes);
+    glGetNamedBufferSubData(g->positions, 0, (GLsizeiptr)bytes, p);
+    *count = (size_t)bytes / 12;
+    return p;
+}
+
+/* Marks (bit 1) the voxels each triangle touches exactly and (bit 2) those it touches dilated by
+ * `dilate` voxel. */
+static void cpu_voxelise(const gib_voxels *v, const gib_gpu_scene *g, unsigned char *mark,
+                         double dilate)
+{
+    size_t nv;
+    float *pos = read_positions(g, &nv);
+    const gib_scene *s = g->scene;
+    const float inv = (float)v->res / v->size; /* the shader's uniform */
+    const int R = v->res;
+    for (uint32_t t = 0; t < s->triangle_count; t++) {
+        double tri[3][3], lo[3], hi[3];
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                tri[i][k] = ((double)pos[3 * s->indices[3 * t + i] + k] - v->origin[k]) * inv;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(tri[0][k], fmin(tri[1][k], tri[2][k]));
+            hi[k] = fmax(tri[0][k], fmax(tri[1][k], tri[2][k]));
+        }
+        int a[3], b[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = (int)floor(lo[k] - 1 - dilate);
+            b[k] = (int)floor(hi[k] + dilate);
+            a[k] = a[k] < 0 ? 0 : a[k];
+            b[k] = b[k] > R - 1 ? R - 1 : b[k];
+        }
+        for (int z = a[2]; z <= b[2]; z++)
+            for (int y = a[1]; y <= b[1]; y++)
+                for (int x = a[0]; x <= b[0]; x++) {
+                    size_t i = ((size_t)z * R + y) * R + x;
+                    const double c[3] = {x + 0.5, y + 0.5, z + 0.5};
+                    if (!(mark[i] & 1) && tri_box_overlap(c, 0.5, tri))
+                        mark[i] |= 1;
+                    if (!(mark[i] & 2) && tri_box_overlap(c, 0.5 + dilate, tri))
+                        mark[i] |= 2;
+                }
+    }
+    free(pos);
+}
+
+/* Number of 6-connected components of the set voxels. */
+static int components6(const unsigned char *vox, int R)
+{
+    size_t n = (size_t)R * R * R;
+    unsigned char *seen = calloc(n, 1);
+    size_t *stack = malloc(n * sizeof *stack);
+    int count = 0;
+    for (size_t s = 0; s < n; s++) {
+        if (!vox[s] || seen[s])
+            continue;
+        count++;
+        size_t top = 0;
+        stack[top++] = s;
+        seen[s] = 1;
+        while (top) {
+            size_t i = stack[--top];
+            int x = (int)(i % R), y = (int)(i / R % R), z = (int)(i / R / R);
+            const int d[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+            for (int k = 0; k < 6; k++) {
+                int X = x + d[k][0], Y = y + d[k][1], Z = z + d[k][2];
+                if (X < 0 || Y < 0 || Z < 0 || X >= R || Y >= R || Z >= R)
+                    continue;
+                size_t j = ((size_t)Z * R + Y) * R + X;
+                if (vox[j] && !seen[j]) {
+                    seen[j] = 1;
+                    stack[top++] = j;
+                }
+            }
+        }
+    }
+    free(seen);
+    free(stack);
+    return count;
+}
+
+/* Each texel of every level above 0 against the mean of its 8 children, and each level's mean
+ * against the base level's. */
+static void check_mips(const char *name, const gib_voxels *v)
+{
+    int r0;
+    unsigned char *prev = read_level(v, 0, &r0);
+    double base = 0;
+    for (size_t i = 0; i < (size_t)r0 * r0 * r0; i++)
+        base += prev[i] / 255.0;
+    base /= (double)r0 * r0 * r0;
+    int levels = gib_mip_levels(v->res, v->res, v->res), bad = 0, rp = r0;
+    double worst_texel = 0, worst_mean = 0;
+    for (int l = 1; l < levels; l++) {
+        int r;
+        unsigned char *cur = read_level(v, l, &r);
+        double mean = 0;
+        for (int z = 0; z < r; z++)
+            for (int y = 0; y < r; y++)
+                for (int x = 0; x < r; x++) {
+                    double sum = 0;
+                    for (int c = 0; c < 8; c++)
+                        sum += prev[((size_t)(2 * z + (c >> 2)) * rp + 2 * y + (c >> 1 & 1)) * rp +
+                                    2 * x + (c & 1)];
+                    double got = cur[((size_t)z * r + y) * r + x] / 255.0;
+                    double err = fabs(got - sum / 8 / 255.0);
+                    worst_texel = fmax(worst_texel, err);
+                    bad += err > 1.5 / 255 + 1e-6;
+                    mean += got;
+                }
+        mean /= (double)r * r * r;
+        double dm = fabs(mean - base);
+        worst_mean = fmax(worst_mean, dm / l);
+        if (dm > l * 0.5 / 255 + 1e-9) {
+            printf("FAIL %s: mip %d mean %.6f, base occupancy %.6f (tolerance %d x 0.5/255)\n", name,
+                   l, mean, base, l);
+            failures++;
+        }
+        free(prev);
+        prev = cur;
+        rp = r;
+    }
+    free(prev);
+    if (bad) {
+        printf("FAIL %s: %d mip texels differ from their 8 children's mean by more than 1.5/255 "
+               "(worst %.5f)\n", name, bad, worst_texel);
+        failures++;
+    }
+    printf("  %s: mips: base occupancy %.5f, worst texel error %.2f/255, worst mean drift %.2f/255 "
+           "per level\n", name, base, worst_texel * 255, worst_mean * 255);
+}
+
+static int open_scene(gib_gl_fixture *fx, const char *dir, const char *name, const char *text)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s.scene", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        printf("FAIL %s: cannot write %s\n", name, path);
+        failures++;
+        return -1;
+    }
+    fputs(text, f);
+    fclose(f);
+    if (gib_fixture_open(fx, path) < 0) {
+        failures++;
+        return -1;
+    }
+    return 0;
+}
+
+static void check_case(const char *dir, const char *name, const char *text, int res,
+                       double time, int connected)
+{
+    gib_gl_fixture fx;
+    if (text ? open_scene(&fx, dir, name, text) < 0 : gib_fixture_open(&fx, name) < 0) {
+        failures += !text;
+        return;
+    }
+    gib_error err;
+    if (time > 0 && gib_gpu_scene_set_time(&fx.gpu, time, &err) < 0) {
+        printf("FAIL %s: %s\n", name, err.msg);
+        failures++;
+        gib_fixture_close(&fx);
+        return;
+    }
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_voxels v;
+    if (gib_voxels_create(&v, &fx.gpu, res, "voxels", &ledger, &err) < 0) {
+        printf("FAIL %s: %s\n", name, err.msg);
+        failures++;
+        gib_fixture_close(&fx);
+        return;
+    }
+    if (ledger.entries[0].bytes != gib_voxels_bytes(res)) {
+        printf("FAIL %s: the ledger counts %llu bytes, the plan %llu\n", name,
+               (unsigned long long)ledger.entries[0].bytes,
+               (unsigned long long)gib_voxels_bytes(res));
+        failures++;
+    }
+    gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+    int R;
+    unsigned char *gpu = read_level(&v, 0, &R);
+    size_t n = (size_t)R * R * R;
+    unsigned char *mark = calloc(n, 1);
+    cpu_voxelise(&v, &fx.gpu, mark, 2e-3);
+    size_t set = 0, touched = 0, misses = 0, extras = 0, loose = 0;
+    for (size_t i = 0; i < n; i++) {
+        int g = gpu[i] != 0;
+        if (gpu[i] != 0 && gpu[i] != 255) {
+            printf("FAIL %s: voxel %zu holds %d, not 0 or 255\n", name, i, gpu[i]);
+            failures++;
+            break;
+        }
+        set += g;
+        touched += mark[i] & 1;
+        misses += (mark[i] & 1) && !g;
+        extras += g && !(mark[i] & 2);
+        loose += g && !(mark[i] & 1);
+    }
+    printf("  %s (%u triangles, %d^3): %zu voxels set, %zu touched exactly, %zu missed, "
+           "%zu beyond 2e-3 voxel, false positives %.3f%%\n", name, fx.scene.triangle_count, R,
+           set, touched, misses, extras, set ? 100.0 * loose / set : 0.0);
+    if (!touched || misses || extras) {
+        printf("FAIL %s: %zu voxels missed, %zu set beyond the dilated overlap (or none touched)\n",
+               name, misses, extras);
+        failures++;
+    }
+    if (connected) {
+        int c = components6(gpu, R);
+        if (c != 1) {
+            printf("FAIL %s: the set voxels form %d 6-connected components, not 1\n", name, c);
+            failures++;
+        }
+    }
+    check_mips(name, &v);
+    free(gpu);
+    free(mark);
+    gib_voxels_destroy(&v, &ledger);
+    if (ledger.count) {
+        printf("FAIL %s: %d ledger entries left after destroy\n", name, ledger.count);
+        failures++;
+    }
+    gib_fixture_close(&fx);
+}
+
+/* ---- voxel_cone.glsl, compiled into a probe compute shader ---- */
+
+/* Each query is 3 vec4: (p, mode), (n, dist or diameter or cone index), (dir, aperture); the
+ * result replaces the first vec4. Modes: 0 voxel_occlusion(p, diameter), 1 shadow_cone,
+ * 2 diffuse cone i: (dir, weight). */
+static const char *probe_main =
+    "layout(local_size_x = 1) in;\n"
+    "layout(std430, binding = GIB_SSBO_OWN_FIRST) buffer Q { vec4 q[]; };\n"
+    "void main() {\n"
+    "  uint i = 3u * gl_WorkGroupID.x;\n"
+    "  vec4 a = q[i], b = q[i + 1u], c = q[i + 2u];\n"
+    "  if (a.w == 0.0) q[i] = vec4(voxel_occlusion(a.xyz, b.w));\n"
+    "  else if (a.w == 1.0) q[i] = vec4(shadow_cone(a.xyz, b.xyz, c.xyz, b.w, c.w));\n"
+    "  else { int k = int(b.w); q[i] = vec4(diffuse_cone_dir(k, b.xyz), diffuse_cone_weight(k));\n"
+    "         if (k == 0) q[i + 1u].w = float(diffuse_cone_count()); }\n"
+    "}\n";
+
+/* The embedded files in order, their #include lines commented out (each is included once). */
+static unsigned probe_program(void)
+{
+    const char *files[3] = {"gl/bindings.h", "common/basis.glsl", "common/voxel_cone.glsl"};
+    size_t cap = 1 << 16, len = 0;
+    char *src = calloc(cap, 1);
+    len += (size_t)snprintf(src, cap, "#version 450 core\n");
+    for (int f = 0; f < 3; f++) {
+        const char *t = gib_shader_source(files[f]);
+        if (!t) {
+            printf("FAIL: %s is not embedded\n", files[f]);
+            free(src);
+            return 0;
+        }
+        for (const char *l = t; *l;) {
+            const char *e = strchr(l, '\n');
+            size_t n = e ? (size_t)(e - l + 1) : strlen(l);
+            if (!strncmp(l, "#include", 8))
+                len += (size_t)snprintf(src + len, cap - len, "//");
+            len += (size_t)snprintf(src + len, cap - len, "%.*s", (int)n, l);
+            l += n;
+        }
+        len += (size_t)snprintf(src + len, cap - len, "\n");
+    }
+    snprintf(src + len, cap - len, "%s", probe_main);
+    GLuint sh = glCreateShader(GL_COMPUTE_SHADER), prog = glCreateProgram();
+    const char *cs = src;
+    glShaderSource(sh, 1, &cs, NULL);
+    glCompileShader(sh);
+    free(src);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048];
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        printf("FAIL: voxel_cone.glsl does not compile: %s\n", log);
+        glDeleteShader(sh);
+        glDeleteProgram(prog);
+        return 0;
+    }
+    glAttachShader(prog, sh);
+    glLinkProgram(prog);
+    glDeleteShader(sh);
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        printf("FAIL: the voxel_cone.glsl probe does not link\n");
+        glDeleteProgram(prog);
+        return 0;
+    }
+    return prog;
+}
+
+static void run_probe(unsigned prog, const gib_voxels *v, float (*q)[4], int count)
+{
+    GLuint buf = 0;
+    glCreateBuffers(1, &buf);
+    glNamedBufferStorage(buf, (GLsizeiptr)count * 48, q, GL_DYNAMIC_STORAGE_BIT);
+    glUseProgram(prog);
+    gib_voxels_bind(v);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST, buf);
+    glDispatchCompute((GLuint)count, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buf, 0, (GLsizeiptr)count * 48, q);
+    glUseProgram(0);
+    glDeleteBuffers(1, &buf);
+}
+
+/* A 2 m floor (y = 0) under a 0.6 x 0.2 x 0.6 m box at y = 0.4..0.6 (the roof):
+ *  - voxel_occlusion at the centre of a set roof voxel is 1 (level 0, any diameter up to a voxel),
+ *    0 in empty space and outside the grid (the border); tolerance 1/255 (R8);
+ *  - a shadow cone straight up from under the roof is blocked (visibility < 0.5: a box's shell is
+ *    two layers one voxel thin, and a layer one voxel thin read at mip level m lets 1 - 2^-m
+ *    through, the leak of voxel cone tracing), from the floor beside it open (> 0.95: the start
+ *    offset keeps the floor's own voxels out);
+ *  - the 6 diffuse cones: one along n, five at 60 degrees from n, 72 degrees apart in azimuth,
+ *    weights summing to 1 and proportional to cos(tilt) (the cosine-weighted share of equal caps),
+ *    for several normals. */
+static void check_cones(const char *dir)
+{
+    const char *text = "[scene]\ndescription = voxels: roof over a floor\n"
+                       "[mesh.floor]\nprocedural = quad\nsize = 2 2\n"
+                       "[mesh.roof]\nprocedural = box\nsize = 0.6 0.2 0.6\ntranslate = 0 0.4 0\n"
+                       "[camera.c]\neye = 0 1 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n"
+                       "[light.l]\ntype = point\nposition = 0 2 2\nintensity = 1 1 1\n";
+    gib_gl_fixture fx;
+    if (open_scene(&fx, dir, "roof", text) < 0)
+        return;
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_voxels v;
+    gib_error err;
+    unsigned prog = probe_program();
+    if (!prog || gib_voxels_create(&v, &fx.gpu, 64, "voxels", &ledger, &err) < 0) {
+        if (prog)
+            printf("FAIL cones: %s\n", err.msg);
+        failures++;
+        gib_fixture_close(&fx);
+        return;
+    }
+    gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+    const float vs = v.size / (float)v.res;
+    /* The roof voxel under (0, 0.5, 0): its centre. */
+    float c[3];
+    for (int k = 0; k < 3; k++) {
+        float x = k == 1 ? 0.6f : 0.0f;
+        c[k] = v.origin[k] + (floorf((x - v.origin[k]) / vs) + 0.5f) * vs;
+    }
+    const float deg = (float)M_PI / 180;
+    float q[][3][4] = {
+        {{c[0], c[1], c[2], 0}, {0, 0, 0, vs}, {0}},             /* set voxel, 1 voxel */
+        {{c[0], c[1], c[2], 0}, {0, 0, 0, 0.3f * vs}, {0}},      /* set voxel, below 1 voxel */
+        {{0.0f, 0.25f, 0.0f, 0}, {0, 0, 0, vs}, {0}},            /* empty */
+        {{0.0f, 5.0f, 0.0f, 0}, {0, 0, 0, vs}, {0}},             /* outside the grid */
+        {{0, 0, 0, 1}, {0, 1, 0, 1.0f}, {0, 1, 0, 10 * deg}},    /* under the roof, up */
+        {{0.8f, 0, 0.8f, 1}, {0, 1, 0, 1.0f}, {0, 1, 0, 10 * deg}}, /* beside it, up */
+    };
+    const int nfix = (int)(sizeof q / sizeof q[0]);
+    const float normals[4][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0.48f, 0.6f, 0.64f}};
+    float (*all)[4] = calloc((size_t)(nfix + 24) * 3, sizeof *all);
+    memcpy(all, q, sizeof q);
+    for (int m = 0; m < 4; m++)
+        for (int i = 0; i < 6; i++) {
+            float (*e)[4] = all + 3 * (nfix + 6 * m + i);
+            e[0][3] = 2;
+            memcpy(e[1], normals[m], 12);
+            e[1][3] = (float)i;
+        }
+    run_probe(prog, &v, all, nfix + 24);
+    const float want[4] = {1, 1, 0, 0};
+    for (int i = 0; i < 4; i++)
+        if (fabsf(all[3 * i][0] - want[i]) > 1.0f / 255) {
+            printf("FAIL cones: voxel_occlusion query %d = %.4f, expected %.0f\n", i,
+                   all[3 * i][0], want[i]);
+            failures++;
+        }
+    float blocked = all[3 * 4][0], open = all[3 * 5][0];
+    printf("  cones: occlusion %.3f %.3f %.3f %.3f; shadow cone under the roof %.3f, beside %.3f\n",
+           all[0][0], all[3][0], all[6][0], all[9][0], blocked, open);
+    if (!(blocked < 0.5f) || !(open > 0.95f)) {
+        printf("FAIL cones: shadow cone visibility %.3f under the roof (< 0.5), %.3f beside "
+               "(> 0.95)\n", blocked, open);
+        failures++;
+    }
+    for (int m = 0; m < 4; m++) {
+        const float *n = normals[m];
+        double wsum = 0, tsum[3] = {0, 0, 0};
+        int bad = (int)all[3 * (nfix + 6 * m) + 1][3] != 6;
+        for (int i = 0; i < 6; i++) {
+            const float *r = all[3 * (nfix + 6 * m + i)];
+            double cosn = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
+            double len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            double want_cos = i == 0 ? 1.0 : 0.5, want_w = want_cos / 3.5; /* cos / sum of cos */
+            bad += fabs(len - 1) > 1e-5 || fabs(cosn - want_cos) > 1e-5 ||
+                   fabs(r[3] - want_w) > 1e-6;
+            wsum += r[3];
+            for (int k = 0; k < 3 && i; k++)
+                tsum[k] += r[k] - cosn * n[k];
+            /* Neighbours in azimuth 72 degrees apart: tangent parts at cos 72 x sin^2 60. */
+            if (i) {
+                const float *s = all[3 * (nfix + 6 * m + (i % 5) + 1)];
+                double d = 0;
+                for (int k = 0; k < 3; k++)
+                    d += (r[k] - 0.5 * n[k]) * (s[k] - 0.5 * n[k]);
+                bad += fabs(d - cos(72 * M_PI / 180) * 0.75) > 1e-5;
+            }
+        }
+        bad += fabs(wsum - 1) > 1e-6 ||
+               sqrt(tsum[0] * tsum[0] + tsum[1] * tsum[1] + tsum[2] * tsum[2]) > 1e-5;
+        if (bad) {
+            printf("FAIL cones: the diffuse cone set for normal (%g %g %g) (%d errors)\n", n[0],
+                   n[1], n[2], bad);
+            failures++;
+        }
+    }
+    free(all);
+    glDeleteProgram(prog);
+    gib_voxels_destroy(&v, &ledger);
+    gib_fixture_close(&fx);
+}
+
+/* Times gib_voxels_build: median of 5 builds after one warm-up, wall time with glFinish. */
+static int bench(const char *scene, char **res, int count)
+{
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, scene) < 0) {
+        printf("SKIP: scene '%s' not available\n", scene);
+        return 0;
+    }
+    printf("GL_RENDERER: %s; %s: %u triangles\n", fx.info.renderer, scene, fx.scene.triangle_count);
+    for (int i = 0; i < count; i++) {
+        gib_ledger ledger;
+        gib_ledger_init(&ledger);
+        gib_voxels v;
+        gib_error err;
+        if (gib_voxels_create(&v, &fx.gpu, atoi(res[i]), "voxels", &ledger, &err) < 0) {
+            printf("FAIL: %s\n", err.msg);
+            gib_fixture_close(&fx);
+            return 1;
+        }
+        double ms[5], clear_ms = 0, mip_ms = 0;
+        for (int k = -1; k < 5; k++) {
+            glFinish();
+            double t0 = gib_now_ms();
+            gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+            glFinish();
+            if (k >= 0)
+                ms[k] = gib_now_ms() - t0;
+        }
+        /* The parts: clear alone, and mips alone. */
+        glFinish();
+        double t0 = gib_now_ms();
+        const unsigned char zero = 0;
+        glClearTexImage(v.texture, 0, GL_RED, GL_UNSIGNED_BYTE, &zero);
+        glFinish();
+        clear_ms = gib_now_ms() - t0;
+        t0 = gib_now_ms();
+        glGenerateTextureMipmap(v.texture);
+        glFinish();
+        mip_ms = gib_now_ms() - t0;
+        uint32_t large = 0;
+        glGetNamedBufferSubData(v.work, 12, 4, &large);
+        double med, lo, hi;
+        gib_stats_median(ms, 5, &med, &lo, &hi);
+        printf("  %d^3: build %.1f ms (min %.1f, max %.1f); clear %.1f ms, mips %.1f ms; %u large "
+               "triangles; %llu bytes\n", v.res, med, lo, hi, clear_ms, mip_ms, large,
+               (unsigned long long)gib_voxels_bytes(v.res));
+        gib_voxels_destroy(&v, &ledger);
+    }
+    gib_fixture_close(&fx);
+    return 0;
+}
+
+/* Slices through the middle and max projections along each axis, as PNGs. */
+static int dump_png(const char *dir, const char *scene, int res)
+{
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, scene) < 0)
+        return 1;
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_voxels v;
+    gib_error err;
+    if (gib_voxels_create(&v, &fx.gpu, res, "voxels", &ledger, &err) < 0) {
+        printf("FAIL: %s\n", err.msg);
+        return 1;
+    }
+    gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+    int R;
+    unsigned char *vox = read_level(&v, 0, &R);
+    gib_image img;
+    for (int axis = 0; axis < 3; axis++)
+        for (int proj = 0; proj < 2; proj++) {
+            gib_image_alloc(&img, R, R, 1, &err);
+            for (int a = 0; a < R; a++)
+                for (int b = 0; b < R; b++) {
+                    float val = 0;
+                    for (int c = proj ? 0 : R / 2; c < (proj ? R : R / 2 + 1); c++) {
+                        int p[3];
+                        p[axis] = c;
+                        p[(axis + 1) % 3] = a;
+                        p[(axis + 2) % 3] = b;
+                        val += vox[((size_t)p[2] * R + p[1]) * R + p[0]] / 255.0f;
+                    }
+                    img.px[(size_t)(R - 1 - b) * R + a] = proj ? val / (float)R * 4 : val;
+                }
+            char path[600];
+            snprintf(path, sizeof path, "%s/voxels_%c_%s.png", dir, "xyz"[axis],
+                     proj ? "sum" : "slice");
+            gib_png_write_preview(path, &img, 1.0f, &err);
+            gib_image_free(&img);
+        }
+    free(vox);
+    gib_voxels_destroy(&v, &ledger);
+    gib_fixture_close(&fx);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 4 && !strcmp(argv[1], "--bench"))
+        return bench(argv[2], argv + 3, argc - 3);
+    if (argc == 5 && !strcmp(argv[1], "--png"))
+        return dump_png(argv[2], argv[3], atoi(argv[4]));
+    char dir[] = "/tmp/gib_voxels_XXXXXX";
+    if (!mkdtemp(dir)) {
+        printf("FAIL: cannot make a temporary folder\n");
+        return 1;
+    }
+    const char *cam = "[camera.c]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n"
+                      "[light.l]\ntype = point\nposition = 0 2 2\nintensity = 1 1 1\n";
+    char text[1024];
+    /* A wall 2 mm thick (a tenth of a voxel at 64^3), tilted about two axes. */
+    snprintf(text, sizeof text, "[scene]\ndescription = voxels: thin slanted wall\n"
+             "[mesh.wall]\nprocedural = box\nsize = 0.002 1 1.2\nrotate = 10 30 20\n%s", cam);
+    check_case(dir, "thin_wall", text, 64, 0, 1);
+    /* A plane along no axis: every voxel column crosses it at a different height. */
+    snprintf(text, sizeof text, "[scene]\ndescription = voxels: diagonal plane\n"
+             "[mesh.plane]\nprocedural = quad\nsize = 1 1.3\nrotate = 37 0 29\n%s", cam);
+    check_case(dir, "diagonal_plane", text, 128, 0, 1);
+    /* Many small triangles (the first pass alone) inside a box with large faces. */
+    snprintf(text, sizeof text, "[scene]\ndescription = voxels: sphere\n"
+             "[mesh.sphere]\nprocedural = sphere_interior\nradius = 0.5\nsubdivisions = 4\n"
+             "rotate = 5 7 11\n[mesh.box]\nprocedural = box\nsize = 1.4 1.3 1.2\n%s", cam);
+    check_case(dir, "sphere_box", text, 64, 0, 0);
+    /* A moving scene at a later instant: the posed positions are voxelised. */
+    check_case(dir, "cornell_moving", NULL, 64, 1.0, 0);
+    check_cones(dir);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0)
+        printf("note: could not remove %s\n", dir);
+    if (failures)
+        printf("%d failure(s)\n", failures);
+    else
+        printf("PASS\n");
+    return failures ? 1 : 0;
+}
