@@ -25,9 +25,10 @@ typedef struct gib_voxels {
     float origin[3];    /* min corner of the cubic grid, scene frame (gib_gpu_scene.scene) */
     float size;         /* side of the cube in world units; one voxel is size / res */
     unsigned texture;   /* GL_TEXTURE_3D, GL_R8, full mip chain: 1/0 occupancy at level 0,
-                           box-filtered averages above (glGenerateMipmap) */
+                           box-filtered averages above (voxel_mip.comp) */
     /* private */
     unsigned program_small, program_large; /* voxelize.comp: per triangle / per large triangle */
+    unsigned program_mip; /* voxel_mip.comp */
     unsigned work;      /* SSBO: [0..2] indirect dispatch (count, 1, 1), then large triangles */
     uint32_t triangle_count;
 } gib_voxels;
@@ -43,6 +44,8 @@ int gib_voxels_create(gib_voxels *v, const gib_gpu_scene *scene, int res, const 
  * and generates the mips: one timed pass `pass` (timers may be NULL). */
 void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *timers,
                       const char *pass);
+/* The mip chain from level 0 (the last step of gib_voxels_build; on its own for tests and timing). */
+void gib_voxels_mips(gib_voxels *v);
 /* Binds the texture to GIB_UNIT_VOXELS and sets the grid uniforms of voxel_cone.glsl on the
  * CURRENT program (locations GIB_LOC_VOXEL_FIRST + 0..2). */
 void gib_voxels_bind(const gib_voxels *v);
