@@ -1,8 +1,9 @@
 /* Occlusion voxels (techniques/common/voxels.*): the GPU voxelisation against an exact CPU
  * triangle/box overlap (Akenine-Moller's separating-axis test, in double), voxel by voxel, on
  * procedural scenes: a thin slanted wall, a diagonal plane (one voxel thin), a tessellated sphere
- * (small triangles) and the moving Cornell box at a later instant (positions read back from the
- * GPU, so the posed triangles are the ones checked).
+ * (small triangles), the moving Cornell box at a later instant (positions read back from the
+ * GPU, so the posed triangles are the ones checked) and hard_sliver (slivers and zero-area
+ * triangles).
  *
  * Checks, per case:
  *  - zero misses: every voxel the CPU says a triangle touches (closed boxes, exact) is set;
@@ -426,8 +427,9 @@ static void run_probe(unsigned prog, const gib_voxels *v, float (*q)[4], int cou
  *    0 in empty space and outside the grid (the border); tolerance 1/255 (R8);
  *  - a shadow cone straight up from under the roof is blocked (visibility < 0.5: a box's shell is
  *    two layers one voxel thin, and a layer one voxel thin read at mip level m lets 1 - 2^-m
- *    through, the leak of voxel cone tracing), from the floor beside it open (> 0.95: the start
- *    offset keeps the floor's own voxels out);
+ *    through, the leak of voxel cone tracing), from the floor beside it open (> 0.95), and from
+ *    the roof's top face up open (> 0.95) wherever the face lies in its voxel: the start offset
+ *    keeps a surface's own voxel out;
  *  - the 6 diffuse cones: one along n, five at 60 degrees from n, 72 degrees apart in azimuth,
  *    weights summing to 1 and proportional to cos(tilt) (the cosine-weighted share of equal caps),
  *    for several normals. */
@@ -470,10 +472,21 @@ static void check_cones(const char *dir)
         {{0, 0, 0, 1}, {0, 1, 0, 1.0f}, {0, 1, 0, 10 * deg}},    /* under the roof, up */
         {{0.8f, 0, 0.8f, 1}, {0, 1, 0, 1.0f}, {0, 1, 0, 10 * deg}}, /* beside it, up */
     };
-    const int nfix = (int)(sizeof q / sizeof q[0]);
+    const int nfix = (int)(sizeof q / sizeof q[0]), ntop = 8;
     const float normals[4][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0.48f, 0.6f, 0.64f}};
-    float (*all)[4] = calloc((size_t)(nfix + 24) * 3, sizeof *all);
+    float (*all)[4] = calloc((size_t)(nfix + 24 + ntop) * 3, sizeof *all);
     memcpy(all, q, sizeof q);
+    /* Shadow cones up from the roof's top face, the face placed anywhere in its voxel: points
+     * across the voxel the face (y = 0.6) lies in. */
+    const float top = floorf((0.6f - v.origin[1]) / vs);
+    for (int k = 0; k < ntop; k++) {
+        float (*e)[4] = all + 3 * (nfix + 24 + k);
+        const float p[4] = {0, v.origin[1] + (top + (k + 0.5f) / ntop) * vs, 0, 1};
+        const float n[4] = {0, 1, 0, 1.0f}, d[4] = {0, 1, 0, 10 * deg};
+        memcpy(e[0], p, 16);
+        memcpy(e[1], n, 16);
+        memcpy(e[2], d, 16);
+    }
     for (int m = 0; m < 4; m++)
         for (int i = 0; i < 6; i++) {
             float (*e)[4] = all + 3 * (nfix + 6 * m + i);
@@ -481,7 +494,7 @@ static void check_cones(const char *dir)
             memcpy(e[1], normals[m], 12);
             e[1][3] = (float)i;
         }
-    run_probe(prog, &v, all, nfix + 24);
+    run_probe(prog, &v, all, nfix + 24 + ntop);
     const float want[4] = {1, 1, 0, 0};
     for (int i = 0; i < 4; i++)
         if (fabsf(all[3 * i][0] - want[i]) > 1.0f / 255) {
@@ -495,6 +508,15 @@ static void check_cones(const char *dir)
     if (!(blocked < 0.5f) || !(open > 0.95f)) {
         printf("FAIL cones: shadow cone visibility %.3f under the roof (< 0.5), %.3f beside "
                "(> 0.95)\n", blocked, open);
+        failures++;
+    }
+    float worst_top = 1;
+    for (int k = 0; k < ntop; k++)
+        worst_top = fminf(worst_top, all[3 * (nfix + 24 + k)][0]);
+    printf("  cones: from the roof's top face, up: visibility >= %.3f\n", worst_top);
+    if (!(worst_top > 0.95f)) {
+        printf("FAIL cones: a shadow cone up from the roof's top face sees its own voxel "
+               "(visibility %.3f, expected > 0.95)\n", worst_top);
         failures++;
     }
     for (int m = 0; m < 4; m++) {
@@ -655,6 +677,20 @@ int main(int argc, char **argv)
     /* A wall 2 mm thick (a tenth of a voxel at 64^3), tilted about two axes. */
     snprintf(text, sizeof text, "[scene]\ndescription = voxels: thin slanted wall\n"
              "[mesh.wall]\nprocedural = box\nsize = 0.002 1 1.2\nrotate = 10 30 20\n%s", cam);
+    /* The plan (Table 2's figures: 19.17 MB at 256^3, 153.39 MB at 512^3, decimal, full chain):
+     * the sum of (res / 2^i)^3 bytes, counted without a context. */
+    for (int res = 64; res <= 512; res *= 2) {
+        uint64_t want = 0;
+        for (int r = res; r >= 1; r /= 2)
+            want += (uint64_t)r * r * r;
+        if (gib_voxels_bytes(res) != want) {
+            printf("FAIL plan: gib_voxels_bytes(%d) = %llu, expected %llu\n", res,
+                   (unsigned long long)gib_voxels_bytes(res), (unsigned long long)want);
+            failures++;
+        }
+    }
+    printf("  plan: %.2f MB at 256^3, %.2f MB at 512^3\n", gib_voxels_bytes(256) / 1e6,
+           gib_voxels_bytes(512) / 1e6);
     check_case(dir, "thin_wall", text, 64, 0, 1);
     /* A plane along no axis: every voxel column crosses it at a different height. */
     snprintf(text, sizeof text, "[scene]\ndescription = voxels: diagonal plane\n"
@@ -667,6 +703,8 @@ int main(int argc, char **argv)
     check_case(dir, "sphere_box", text, 64, 0, 0);
     /* A moving scene at a later instant: the posed positions are voxelised. */
     check_case(dir, "cornell_moving", NULL, 64, 1.0, 0);
+    /* Sliver and zero-area triangles (a fan of 1024 slivers making a quad): no holes. */
+    check_case(dir, "hard_sliver", NULL, 64, 0, 1);
     check_cones(dir);
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
