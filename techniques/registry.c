@@ -12,6 +12,7 @@ extern const gib_technique gib_technique_hbao;
 extern const gib_technique gib_technique_ldm_ao;
 extern const gib_technique gib_technique_ldm_indirect;
 extern const gib_technique gib_technique_ldm_env;
+extern const gib_technique gib_technique_lrsm;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
@@ -19,6 +20,7 @@ static const gib_technique *const registry[] = {
     &gib_technique_ldm_ao,
     &gib_technique_ldm_indirect,
     &gib_technique_ldm_env,
+    &gib_technique_lrsm,
 };
 
 const gib_technique *const *gib_techniques(int *count)

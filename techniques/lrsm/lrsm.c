@@ -1,0 +1,222 @@
+/* gibench technique `lrsm` — layered reflective shadow maps for voxel-based indirect illumination
+ * (Sugihara, Rauwendaal, Salvi 2014, Sec. 3-6, Eq. 1, 5-15, Table 1, Algorithm 1).
+ *
+ * Per frame (timer passes as Table 3):
+ *  gbuffer            the shared G-buffer (techniques/common/gbuffer.h);
+ *  voxelization       binary occlusion voxels with box-filtered mips (techniques/common/voxels.h);
+ *  lrsm_construction  the shared light views (DEPTH, NORMAL, FLUX; label "rsm") at rsm_res, the
+ *                     layers at rsm_res / 2 (lrsm_layers.c, lrsm_build.comp) and their mips;
+ *  shadow_cone        `direct`: every light's direct light times a shadow cone's visibility;
+ *  diffuse_cones      `indirect`: 6 cones over the hemisphere, Eq. 1 with the LRSM's radiance;
+ *  specular_cone      `glossy`: one cone along the mirror direction on pixels with a specular lobe.
+ * Spot lights (perspective view), directional lights (orthographic) and point lights and spots
+ * wider than 45 degrees (the light views' cube: 6 faces, each with its own D x N layers, so such a
+ * light costs 6 times the layers' memory; a cone sample is looked up in the face its centre falls
+ * in). Status "nan" when an output holds a NaN (read back once, when the harness asks). */
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness/gl/bindings.h"
+#include "harness/gl/context.h"
+#include "techniques/common/fullscreen.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/common/voxels.h"
+#include "techniques/lrsm/lrsm.h"
+
+extern const gib_technique gib_technique_lrsm;
+
+enum { PASS_SHADOW, PASS_DIFFUSE, PASS_SPECULAR, PASSES };
+
+typedef struct lrsm {
+    const gib_gpu_scene *scene;
+    gib_ledger *ledger;
+    gib_gbuffer gbuffer;
+    gib_voxels voxels;
+    int voxels_up;
+    gib_light_views views;
+    lrsm_layers layers;
+    gib_fullscreen pass[PASSES];
+    float aperture[PASSES];      /* radians */
+    float start_offset, step_factor, max_distance, mip_clamp;
+    int width, height;
+    unsigned targets[PASSES];    /* the last frame's output textures (NaN check) */
+    int target_count;
+    char status[16];
+} lrsm;
+
+static const gib_param_spec lrsm_params[] = {
+    {"voxel_res", GIB_PARAM_INT, 128, 64, 512, "occlusion voxels per side of the cubic grid"},
+    {"diffuse_aperture", GIB_PARAM_FLOAT, 60, 1, 120, "diffuse cones' full aperture, degrees"},
+    {"specular_aperture", GIB_PARAM_FLOAT, 10, 0.5, 90, "specular cone's full aperture, degrees"},
+    {"shadow_aperture", GIB_PARAM_FLOAT, 4, 0.1, 60, "shadow cones' full aperture, degrees"},
+    {"step_factor", GIB_PARAM_FLOAT, 1, 0.1, 4, "cone step = step_factor x the sample's diameter"},
+    {"start_offset", GIB_PARAM_FLOAT, 1.5, 0, 8, "cone start along the normal, voxels"},
+    {"max_distance", GIB_PARAM_FLOAT, 1, 0.05, 2, "cone length, fraction of the voxel grid's side"},
+    {"rsm_res", GIB_PARAM_INT, 512, 64, 2048, "light view side, texels (layers at half); even"},
+    {"layers_depth", GIB_PARAM_INT, 2, 1, 4, "depth partitions D"},
+    {"layers_normal", GIB_PARAM_INT, 2, 1, 4, "<n.l> partitions N"},
+    {"overlap", GIB_PARAM_FLOAT, 0.1, 0, 0.5, "depth layers' overlap delta, fraction of a partition"},
+    {"mip_clamp", GIB_PARAM_FLOAT, 0, 0, 12, "lowest LRSM mip level a cone sample reads"},
+    {0},
+};
+
+static void lrsm_destroy(void *self);
+
+static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int width, int height,
+                         gib_ledger *ledger, gib_error *err)
+{
+    const gib_technique *t = &gib_technique_lrsm;
+    int rsm_res = gib_param_int(t, p, "rsm_res");
+    if (rsm_res % 2) {
+        gib_fail(err, "technique 'lrsm': parameter 'rsm_res' = %d must be even (the layers are at "
+                 "half its side, one texel per 2x2 block)", rsm_res);
+        return NULL;
+    }
+    lrsm *s = calloc(1, sizeof *s);
+    if (!s) {
+        gib_fail(err, "out of memory");
+        return NULL;
+    }
+    s->scene = scene;
+    s->ledger = ledger;
+    s->width = width;
+    s->height = height;
+    const double deg = M_PI / 180;
+    s->aperture[PASS_SHADOW] = (float)(gib_param_float(t, p, "shadow_aperture") * deg);
+    s->aperture[PASS_DIFFUSE] = (float)(gib_param_float(t, p, "diffuse_aperture") * deg);
+    s->aperture[PASS_SPECULAR] = (float)(gib_param_float(t, p, "specular_aperture") * deg);
+    s->start_offset = (float)gib_param_float(t, p, "start_offset");
+    s->step_factor = (float)gib_param_float(t, p, "step_factor");
+    s->max_distance = (float)gib_param_float(t, p, "max_distance");
+    s->mip_clamp = (float)gib_param_float(t, p, "mip_clamp");
+    strcpy(s->status, "");
+    static const char *const define[PASSES] = {"#define SHADOW 1\n", "#define DIFFUSE 1\n",
+                                               "#define SPECULAR 1\n"};
+    if (gib_gbuffer_create(&s->gbuffer, width, height, ledger, err) < 0)
+        goto fail;
+    if (gib_voxels_create(&s->voxels, scene, gib_param_int(t, p, "voxel_res"), "voxels", ledger,
+                          err) < 0)
+        goto fail;
+    s->voxels_up = 1;
+    if (gib_light_views_create(&s->views, scene, rsm_res, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX,
+                               "rsm", ledger, err) < 0)
+        goto fail;
+    if (lrsm_layers_create(&s->layers, &s->views, gib_param_int(t, p, "layers_depth"),
+                           gib_param_int(t, p, "layers_normal"),
+                           (float)gib_param_float(t, p, "overlap"), ledger, err) < 0)
+        goto fail;
+    lrsm_layers_partition(&s->layers, &s->views, scene->scene);
+    for (int i = 0; i < PASSES; i++)
+        if (gib_fullscreen_create(&s->pass[i], "lrsm/lrsm_cone.frag", define[i], err) < 0)
+            goto fail;
+    if (gib_gl_check("lrsm creation", err) < 0)
+        goto fail;
+    return s;
+fail:
+    lrsm_destroy(s);
+    return NULL;
+}
+
+/* One cone pass into `fbo`, timed as `name`. */
+static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view, unsigned fbo,
+                      gib_timers *timers)
+{
+    gib_timer_begin(timers, name);
+    gib_fullscreen_begin(&s->pass[which], fbo, view->width, view->height, 0);
+    gib_gpu_scene_bind(s->scene);
+    gib_gbuffer_bind(&s->gbuffer);
+    gib_light_views_bind(&s->views);
+    lrsm_layers_bind(&s->layers);
+    gib_voxels_bind(&s->voxels);
+    glUniform1f(7, s->mip_clamp);
+    glUniform1i(8, (int)s->scene->scene->light_count);
+    glUniform3fv(9, 1, view->camera->eye);
+    glUniform1f(10, s->aperture[which]);
+    glUniform1f(11, s->start_offset);
+    glUniform1f(12, s->step_factor);
+    glUniform1f(13, s->max_distance);
+    gib_fullscreen_draw(&s->pass[which]);
+    gib_fullscreen_end();
+    gib_timer_end(timers);
+}
+
+static int lrsm_render(void *self, const gib_view *view, gib_timers *timers,
+                       const gib_image_target *targets, int target_count, gib_error *err)
+{
+    lrsm *s = self;
+    gib_gbuffer_render(&s->gbuffer, s->scene, view, timers, "gbuffer");
+    gib_voxels_build(&s->voxels, s->scene, timers, "voxelization");
+    /* Light views, then layers and mips: two brackets of the same pass (timers accumulate). */
+    gib_light_views_render(&s->views, s->scene, timers, "lrsm_construction");
+    gib_timer_begin(timers, "lrsm_construction");
+    lrsm_layers_build(&s->layers, &s->views);
+    gib_timer_end(timers);
+    s->target_count = 0;
+    for (int i = 0; i < target_count; i++) {
+        unsigned c = targets[i].component;
+        if (c == GIB_OUT_DIRECT)
+            cone_pass(s, PASS_SHADOW, "shadow_cone", view, targets[i].fbo, timers);
+        else if (c == GIB_OUT_INDIRECT)
+            cone_pass(s, PASS_DIFFUSE, "diffuse_cones", view, targets[i].fbo, timers);
+        else if (c == GIB_OUT_GLOSSY)
+            cone_pass(s, PASS_SPECULAR, "specular_cone", view, targets[i].fbo, timers);
+        else
+            continue;
+        if (s->target_count < PASSES)
+            s->targets[s->target_count++] = targets[i].texture;
+    }
+    return gib_gl_check("lrsm", err);
+}
+
+/* "nan" when a NaN reached an output: the last frame's targets read back once. */
+static const char *lrsm_status(void *self)
+{
+    lrsm *s = self;
+    size_t n = (size_t)s->width * (size_t)s->height * 4;
+    float *px = malloc(n * sizeof *px);
+    if (!px)
+        return NULL;
+    for (int i = 0; i < s->target_count && !s->status[0]; i++) {
+        glGetTextureImage(s->targets[i], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *px), px);
+        for (size_t k = 0; k < n; k++)
+            if (isnan(px[k])) {
+                strcpy(s->status, "nan");
+                break;
+            }
+    }
+    free(px);
+    return s->status[0] ? s->status : NULL;
+}
+
+static void lrsm_destroy(void *self)
+{
+    lrsm *s = self;
+    if (!s)
+        return;
+    for (int i = 0; i < PASSES; i++)
+        gib_fullscreen_destroy(&s->pass[i]);
+    lrsm_layers_destroy(&s->layers, s->ledger);
+    gib_light_views_destroy(&s->views, s->ledger);
+    if (s->voxels_up)
+        gib_voxels_destroy(&s->voxels, s->ledger);
+    gib_gbuffer_destroy(&s->gbuffer, s->ledger);
+    free(s);
+}
+
+const gib_technique gib_technique_lrsm = {
+    .name = "lrsm",
+    .source = "layered reflective shadow maps with voxel cone tracing (Sugihara, Rauwendaal, Salvi "
+              "2014, Sec. 3-6, Eq. 1, 5-15, Alg. 1)",
+    .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
+    .params = lrsm_params,
+    .reference = NULL,
+    .scene_needs = 0,
+    .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,
+    .create = lrsm_create,
+    .render = lrsm_render,
+    .status = lrsm_status,
+    .destroy = lrsm_destroy,
+};

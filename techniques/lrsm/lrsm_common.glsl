@@ -1,0 +1,76 @@
+// gibench technique `lrsm` — the math of layered reflective shadow maps (Sugihara et al. 2014),
+// line for line the CPU mirror techniques/lrsm/lrsm_math.c (the unit tests check that one), and the
+// per-light partition table both the construction pass and the cone passes read.
+#include "gl/bindings.h"
+
+// Per light i: lrsm_table[i] = (z0, z1, delta, 0): the light view's depth range over the scene
+// bounds and the overlap band's width (lrsm_math.h, "Static depth partitions").
+layout(std430, binding = GIB_SSBO_OWN_FIRST) readonly buffer LrsmTable { vec4 lrsm_table[]; };
+layout(location = GIB_LOC_OWN_FIRST + 0) uniform int u_depth_parts;   // D
+layout(location = GIB_LOC_OWN_FIRST + 1) uniform int u_normal_parts;  // N
+
+const float LRSM_MIN_VARIANCE = 1.0 / 32768.0;
+
+// erf by Abramowitz and Stegun 7.1.26, |error| < 1.5e-7.
+float lrsm_erf(float x)
+{
+    float s = x < 0.0 ? -1.0 : 1.0, a = abs(x);
+    float t = 1.0 / (1.0 + 0.3275911 * a);
+    float y = ((((1.061405429 * t - 1.453152027) * t + 1.421413741) * t - 0.284496736) * t +
+               0.254829592) * t;
+    return s * (1.0 - y * exp(-a * a));
+}
+
+float lrsm_phi(float x) { return 0.5 * (1.0 + lrsm_erf(x * 0.70710678118654752)); }
+
+// Eq. 12 in closed form.
+float lrsm_visibility(float zc, float rc, float mu, float sigma2)
+{
+    float sigma = sqrt(max(sigma2, LRSM_MIN_VARIANCE));
+    return lrsm_phi((zc + rc - mu) / sigma) - lrsm_phi((zc - rc - mu) / sigma);
+}
+
+float lrsm_smooth(float t)
+{
+    t = clamp(t, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+void lrsm_layer_range(int light, int d, out float zmin, out float zmax)
+{
+    vec4 e = lrsm_table[light];
+    float w = (e.y - e.x) / float(u_depth_parts);
+    zmin = e.x + float(d) * w - 0.5 * e.z;
+    zmax = e.x + float(d + 1) * w + 0.5 * e.z;
+}
+
+bool lrsm_in_depth_layer(int light, int d, float z)
+{
+    float lo, hi;
+    lrsm_layer_range(light, d, lo, hi);
+    return (d == 0 || z >= lo) && (d == u_depth_parts - 1 || z <= hi);
+}
+
+// Eq. 15.
+float lrsm_decay(int light, int d, float zc)
+{
+    if (!lrsm_in_depth_layer(light, d, zc))
+        return 0.0;
+    float lo, hi;
+    lrsm_layer_range(light, d, lo, hi);
+    float delta = lrsm_table[light].z;
+    if (delta <= 0.0)
+        return 1.0;
+    if (d > 0 && zc < lo + delta)
+        return lrsm_smooth((zc - lo) / delta);
+    if (d < u_depth_parts - 1 && zc > hi - delta)
+        return lrsm_smooth((hi - zc) / delta);
+    return 1.0;
+}
+
+int lrsm_normal_part(float cosnl, int parts)
+{
+    if (!(cosnl > 0.0))
+        return -1;
+    return min(int(cosnl * float(parts)), parts - 1);
+}

@@ -1,0 +1,106 @@
+#include "common/scene.glsl"
+#include "common/light_view.glsl"
+#include "common/voxel_cone.glsl"
+#include "lrsm/lrsm_common.glsl"
+#include "lrsm/lrsm_sample.glsl"
+// The three cone passes of `lrsm` on the G-buffer (Sec. 3.1, 5, 6), one program each by define:
+//  DIFFUSE:  6 cones over the hemisphere (voxel_cone.glsl's set), Eq. 1 front to back with alpha
+//            from the occlusion voxels and L from the LRSM. L_o = rho/pi int L_in cos dw, and a
+//            cone's integral of cos dw is pi times its cosine-weighted share w_i, so the pixel's
+//            indirect radiance is rho sum_i w_i I_i.
+//  SPECULAR: one cone along the mirror direction r, on pixels with a specular lobe only: a mirror
+//            reflects rho_s I; a normalised Phong lobe rho_s (n+2)/(2 pi) cos^n integrates to
+//            rho_s <n.r> over a narrow lobe, so rho_s <n.r> I. The Phong exponent does not set
+//            the aperture (the paper's 10-degree cone for every specular pixel, Sec. 6).
+//  SHADOW:   direct light of every light (the BRDF and falloff of scene.glsl), each times its
+//            shadow cone's visibility (voxel_cone.glsl's shadow_cone) instead of a shadow map.
+// Cone marching (Eq. 1), as voxel_cone.glsl's shadow_cone: from x + n start_offset voxels, sphere
+// samples of diameter d = max(voxel, 2 t tan(a/2)) at distance t from one voxel on, t advancing by
+// step_factor d (1: spheres that touch, Fig. 4), alpha corrected for the step as 1 - (1 - alpha)^
+// step_factor, until the cone is opaque (A > 255/256), leaves the grid or passes max_distance grid
+// sides. A sample's radiance is the LRSM's (lrsm_sample) at its centre and radius d/2, toward -dir.
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
+layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
+layout(binding = GIB_UNIT_GBUF_SPECULAR) uniform sampler2D g_specular;
+layout(location = 9) uniform vec3 u_eye;
+layout(location = 10) uniform float u_aperture;      // radians, full angle
+layout(location = 11) uniform float u_start_offset;  // voxels
+layout(location = 12) uniform float u_step_factor;
+layout(location = 13) uniform float u_max_distance;  // grid sides
+in vec2 v_texcoord;
+layout(location = 0) out vec4 o_color;
+
+vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
+{
+    float vs = voxel_size_world();
+    float tan_half = tan(0.5 * aperture);
+    vec3 q = x + n * (u_start_offset * vs);
+    float tmax = u_max_distance * u_voxel_size;
+    vec3 I = vec3(0.0);
+    float A = 0.0;
+    float t = vs;
+    for (int i = 0; i < 512 && t < tmax && A < 255.0 / 256.0; i++) {
+        float d = max(vs, 2.0 * t * tan_half);
+        vec3 c = q + dir * t;
+        if (any(lessThan(c, u_voxel_origin - d)) ||
+            any(greaterThan(c, u_voxel_origin + u_voxel_size + d)))
+            break;
+        float a = 1.0 - pow(1.0 - voxel_occlusion(c, d), u_step_factor);
+        if (a > 0.0) {
+            vec3 L = lrsm_sample(c, 0.5 * d, -dir);
+            I += (1.0 - A) * a * L;
+            A += (1.0 - A) * a;
+        }
+        t += u_step_factor * d;
+    }
+    return I;
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    vec4 pos = texelFetch(g_position, px, 0);
+    o_color = vec4(0.0, 0.0, 0.0, 1.0);
+    if (pos.w < 0.5)
+        return;
+    vec3 x = pos.xyz;
+    vec3 n = texelFetch(g_normal, px, 0).xyz;
+    vec4 alb = texelFetch(g_albedo, px, 0);
+#if defined(DIFFUSE)
+    if (max(alb.r, max(alb.g, alb.b)) <= 0.0)
+        return;
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < diffuse_cone_count(); i++)
+        sum += diffuse_cone_weight(i) * trace_cone(x, n, diffuse_cone_dir(i, n), u_aperture);
+    o_color.rgb = alb.rgb * sum;
+#elif defined(SPECULAR)
+    int type = int(alb.w + 0.5);
+    vec4 spec = texelFetch(g_specular, px, 0);
+    if (type == 0 || max(spec.r, max(spec.g, spec.b)) <= 0.0)
+        return;
+    vec3 wo = normalize(u_eye - x);
+    vec3 r = reflect(-wo, n);
+    float cosr = dot(n, r);
+    if (cosr <= 0.0)
+        return;
+    vec3 I = trace_cone(x, n, r, u_aperture);
+    o_color.rgb = spec.rgb * (type == 1 ? 1.0 : cosr) * I;
+#else
+    vec4 spec = texelFetch(g_specular, px, 0);
+    vec3 wo = normalize(u_eye - x);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < u_lrsm_lights; i++) {
+        vec3 wi;
+        float dist;
+        vec3 E = light_eval(lights[i], x, wi, dist);
+        float cosi = dot(n, wi);
+        if (cosi <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0)
+            continue;
+        float v = shadow_cone_ex(x, n, wi, min(dist, u_max_distance * u_voxel_size), u_aperture,
+                                 u_step_factor, u_start_offset);
+        sum += brdf(alb.rgb, spec, int(alb.w + 0.5), n, wo, wi) * E * (cosi * v);
+    }
+    o_color.rgb = sum;
+#endif
+}

@@ -1,0 +1,66 @@
+/* gibench technique `lrsm` — the pure math of layered reflective shadow maps (Sugihara, Rauwendaal,
+ * Salvi 2014), on the CPU. techniques/lrsm/lrsm_common.glsl computes the same numbers line for line
+ * (the GLSL is what renders; this file is what the unit tests check). */
+#ifndef GIB_LRSM_MATH_H
+#define GIB_LRSM_MATH_H
+
+/* erf(x) by Abramowitz and Stegun 7.1.26: |error| < 1.5e-7 for every x (GLSL has no erf). */
+double lrsm_erf(double x);
+/* Standard normal CDF Phi(x) = (1 + erf(x / sqrt 2)) / 2 through lrsm_erf. */
+double lrsm_phi(double x);
+
+/* The smallest depth variance Eq. 12 uses, in warped depth units (z in [0,1] over a layer's range):
+ * sigma^2 is 0 on flat texels and E[z^2] - mu^2 of 16-bit UNORM moments cancels to a few 2^-16
+ * either side of it, so sigma^2 is floored at 2^-15 (sigma >= 0.0055 of the layer's depth range). */
+#define LRSM_MIN_VARIANCE (1.0 / 32768.0)
+
+/* Eq. 12: the share of a Gaussian N(mu, sigma2) of depths inside [zc - rc, zc + rc], in closed form
+ * Phi((zc + rc - mu) / sigma) - Phi((zc - rc - mu) / sigma), sigma2 floored at LRSM_MIN_VARIANCE. */
+double lrsm_visibility(double zc, double rc, double mu, double sigma2);
+
+/* k of Eq. 15: smoothstep 3t^2 - 2t^3 of t clamped to [0,1]; k(t) + k(1 - t) = 1, so two layers'
+ * decays add to 1 across their overlap. */
+double lrsm_smooth(double t);
+
+/* Static depth partitions (Sec. 4.3): the light's depth range [z0, z1] over the scene's bounds is cut
+ * into `parts` equal partitions of width w; layer d covers [z0 + d w - delta/2, z0 + (d+1) w +
+ * delta/2] with delta = overlap * w, so neighbouring layers share a band of width delta around
+ * their boundary. The outer ends of the first and last layers are open (no decay there: nothing
+ * lies beyond the scene's bounds). */
+typedef struct lrsm_partition {
+    double z0, z1;   /* depth range of the light's view over the scene bounds */
+    int parts;       /* D */
+    double overlap;  /* delta as a fraction of w */
+} lrsm_partition;
+/* [zmin, zmax] of layer d (the range depths are warped over). */
+void lrsm_layer_range(const lrsm_partition *p, int d, double *zmin, double *zmax);
+/* Eq. 15: the decay f(zc) of layer d; 0 outside its range (except beyond the open outer ends). */
+double lrsm_decay(const lrsm_partition *p, int d, double zc);
+/* Whether a texel at depth z belongs to depth layer d (inside its range, outer ends open). */
+int lrsm_in_depth_layer(const lrsm_partition *p, int d, double z);
+/* The normal partition of a texel with <n.l> = cosnl among `parts` equal ones over (0, 1]; -1 when
+ * cosnl <= 0 (facing away from the light: no layer). */
+int lrsm_normal_part(double cosnl, int parts);
+
+/* One RSM texel as the construction pass sees it, and one layer texel it writes (Table 1, each
+ * value premultiplied by the layer's opacity alpha = members / 4 of the 2x2 block). */
+typedef struct lrsm_texel {
+    int valid;         /* a surface was seen */
+    double z;          /* depth from the light */
+    double n[3];       /* normal facing the light */
+    double cosnl;      /* <n.l> */
+    double radiance[3];/* rho L_d <n.l> / pi */
+} lrsm_texel;
+typedef struct lrsm_layer_texel {
+    double radiance[3];   /* sum of members' radiance / 4 (= A R) */
+    double normal[4];     /* sum of members' normals / 4, alpha */
+    double depth[3];      /* sum of warped z / 4, of warped z^2 / 4, alpha */
+} lrsm_layer_texel;
+/* Fills out[d * normal_parts + k] for every layer from one 2x2 block of RSM texels. */
+void lrsm_build_block(const lrsm_partition *p, int normal_parts, const lrsm_texel block[4],
+                      lrsm_layer_texel *out);
+
+/* Sec. 5: mip level = log2 of the sample's projected diameter in layer texels, at least clamp. */
+double lrsm_mip(double diameter_texels, double clamp);
+
+#endif

@@ -1,0 +1,126 @@
+/* The pure math of `lrsm` (techniques/lrsm/lrsm_math.c, the CPU mirror of lrsm_common.glsl):
+ *  - the erf approximation (Abramowitz and Stegun 7.1.26) against C's erf: its bound 1.5e-7;
+ *  - Eq. 12 in closed form against Simpson integration of the Gaussian over [zc - rc, zc + rc],
+ *    including sigma -> 0 (the floored variance) and a sample far outside the depth range. The
+ *    closed form is two Phi values, each within 7.5e-8 of the truth, and Simpson's rule on 20000
+ *    intervals over at most 16 sigma is exact to ~1e-12, so VIS_TOL = 2e-7;
+ *  - the static depth partitions: membership with the overlap band, Eq. 15's decays adding up to 1
+ *    across a band (k(t) + k(1 - t) = 1), open outer ends; the <n.l> partitions;
+ *  - the merge of a 2x2 block that straddles a depth discontinuity: each layer gets only its own
+ *    side (variance 0), opacities are the member shares. */
+#include <math.h>
+#include <stdio.h>
+
+#include "techniques/lrsm/lrsm_math.h"
+
+#define ERF_TOL 1.5e-7
+#define VIS_TOL 2e-7
+
+static int failures;
+
+static void check(int ok, const char *what, double got, double want)
+{
+    if (!ok) {
+        printf("FAIL: %s: got %.10g, expected %.10g\n", what, got, want);
+        failures++;
+    }
+}
+
+/* Simpson's rule of the N(mu, sigma2) density over [a, b] (restricted to mu +- 8 sigma). */
+static double gauss_integral(double a, double b, double mu, double sigma2)
+{
+    double s = sqrt(sigma2 > LRSM_MIN_VARIANCE ? sigma2 : LRSM_MIN_VARIANCE);
+    a = fmax(a, mu - 8 * s);
+    b = fmin(b, mu + 8 * s);
+    if (b <= a)
+        return 0;
+    int n = 20000;
+    double h = (b - a) / n, sum = 0;
+    for (int i = 0; i <= n; i++) {
+        double z = a + i * h, w = i == 0 || i == n ? 1 : i % 2 ? 4 : 2;
+        sum += w * exp(-(z - mu) * (z - mu) / (2 * s * s)) / (s * sqrt(2 * M_PI));
+    }
+    return sum * h / 3;
+}
+
+int main(void)
+{
+    double worst = 0;
+    for (double x = -6; x <= 6; x += 1e-3)
+        worst = fmax(worst, fabs(lrsm_erf(x) - erf(x)));
+    check(worst < ERF_TOL, "erf approximation, largest error on [-6, 6]", worst, ERF_TOL);
+    printf("erf (A&S 7.1.26): largest |error| %.3g on [-6, 6] (bound %.2g)\n", worst, ERF_TOL);
+
+    /* Eq. 12: (zc, rc, mu, sigma2). */
+    static const double cases[][4] = {
+        {0.5, 0.05, 0.5, 0.01},    {0.5, 0.05, 0.52, 0.0004}, {0.3, 0.1, 0.6, 0.02},
+        {0.5, 0.2, 0.5, 1e-6},     {0.5, 0.01, 0.5, 0.25},    {0.1, 0.3, 0.9, 0.04},
+        {0.5, 0.05, 0.5, 0.0},     {0.5, 0.05, 0.56, 0.0},    {0.5, 0.05, 0.54, 1e-12},
+        {50.0, 0.05, 0.5, 0.01},   {-40.0, 1.0, 0.3, 0.0},    {0.5, 1e-6, 0.5, 0.01},
+    };
+    double vworst = 0;
+    for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const double *c = cases[i];
+        double got = lrsm_visibility(c[0], c[1], c[2], c[3]);
+        double want = gauss_integral(c[0] - c[1], c[0] + c[1], c[2], c[3]);
+        char what[128];
+        snprintf(what, sizeof what, "Eq. 12 at zc %g rc %g mu %g sigma^2 %g", c[0], c[1], c[2], c[3]);
+        check(fabs(got - want) <= VIS_TOL && got >= -VIS_TOL && got <= 1 + VIS_TOL, what, got, want);
+        vworst = fmax(vworst, fabs(got - want));
+    }
+    printf("Eq. 12 against Simpson: largest |difference| %.3g over %u cases (tolerance %.1g)\n", vworst,
+           (unsigned)(sizeof cases / sizeof cases[0]), VIS_TOL);
+    /* sigma -> 0: the indicator of |mu - zc| < rc, away from the edges by a few floored sigmas. */
+    double smin = sqrt(LRSM_MIN_VARIANCE);
+    check(fabs(lrsm_visibility(0.5, 0.05, 0.5 + 0.05 - 6 * smin, 0) - 1) < 1e-6, "sigma 0 inside", 
+          lrsm_visibility(0.5, 0.05, 0.5 + 0.05 - 6 * smin, 0), 1);
+    check(lrsm_visibility(0.5, 0.05, 0.5 + 0.05 + 6 * smin, 0) < 1e-6, "sigma 0 outside",
+          lrsm_visibility(0.5, 0.05, 0.5 + 0.05 + 6 * smin, 0), 0);
+    check(lrsm_visibility(100.0, 0.5, 0.5, 0.01) == 0.0, "far outside the depth range",
+          lrsm_visibility(100.0, 0.5, 0.5, 0.01), 0);
+    check(isfinite(lrsm_visibility(0.5, 0.05, 0.5, -1e-5)), "negative variance (cancellation)",
+          lrsm_visibility(0.5, 0.05, 0.5, -1e-5), 1);
+
+    /* Partitions: [0, 10] in 2, overlap 0.2: w = 5, delta = 1, layers [-0.5, 5.5] and [4.5, 10.5]. */
+    lrsm_partition p = {.z0 = 0, .z1 = 10, .parts = 2, .overlap = 0.2};
+    double lo, hi;
+    lrsm_layer_range(&p, 1, &lo, &hi);
+    check(fabs(lo - 4.5) < 1e-12 && fabs(hi - 10.5) < 1e-12, "layer 1 range", lo, 4.5);
+    check(lrsm_in_depth_layer(&p, 0, 4.4) && !lrsm_in_depth_layer(&p, 1, 4.4), "4.4 in layer 0 only", 0, 0);
+    check(lrsm_in_depth_layer(&p, 0, 5.0) && lrsm_in_depth_layer(&p, 1, 5.0), "5.0 in both", 0, 0);
+    check(!lrsm_in_depth_layer(&p, 0, 5.6) && lrsm_in_depth_layer(&p, 1, 5.6), "5.6 in layer 1 only", 0, 0);
+    check(lrsm_in_depth_layer(&p, 0, -3) && lrsm_in_depth_layer(&p, 1, 30), "open outer ends", 0, 0);
+    double dworst = 0;
+    for (double z = -1; z <= 11; z += 0.01)
+        dworst = fmax(dworst, fabs(lrsm_decay(&p, 0, z) + lrsm_decay(&p, 1, z) - 1));
+    check(dworst < 1e-12, "Eq. 15 decays add to 1", dworst, 0);
+    check(lrsm_decay(&p, 0, 4.5) == 1.0 && fabs(lrsm_decay(&p, 0, 5.0) - 0.5) < 1e-12 &&
+          lrsm_decay(&p, 0, 5.5) == 0.0, "Eq. 15 across the band", lrsm_decay(&p, 0, 5.0), 0.5);
+    check(lrsm_normal_part(0.0, 2) == -1 && lrsm_normal_part(0.3, 2) == 0 &&
+          lrsm_normal_part(0.7, 2) == 1 && lrsm_normal_part(1.0, 2) == 1, "<n.l> partitions", 0, 0);
+
+    /* A block straddling a discontinuity: z = 2 (left column) and z = 8 (right column). */
+    lrsm_texel block[4];
+    for (int i = 0; i < 4; i++) {
+        lrsm_texel t = {.valid = 1, .z = i & 1 ? 8.0 : 2.0, .n = {0, 0, 1}, .cosnl = 1,
+                        .radiance = {1, 2, 3}};
+        block[i] = t;
+    }
+    lrsm_layer_texel out[4];
+    lrsm_build_block(&p, 2, block, out);
+    for (int d = 0; d < 2; d++) {
+        const lrsm_layer_texel *o = &out[d * 2 + 1];
+        lrsm_layer_range(&p, d, &lo, &hi);
+        double a = o->depth[2], mu = o->depth[0] / a, var = o->depth[1] / a - mu * mu;
+        double want = ((d ? 8.0 : 2.0) - lo) / (hi - lo);
+        check(fabs(a - 0.5) < 1e-12 && fabs(mu - want) < 1e-12 && fabs(var) < 1e-12 &&
+              fabs(o->radiance[1] - 1.0) < 1e-12 && fabs(o->normal[2] - 0.5) < 1e-12 &&
+              out[d * 2].depth[2] == 0, "block across a discontinuity", mu, want);
+    }
+    if (failures) {
+        printf("FAIL: %d check(s)\n", failures);
+        return 1;
+    }
+    printf("PASS: lrsm math\n");
+    return 0;
+}
