@@ -15,15 +15,11 @@ static const unsigned layer_format[3] = {GL_RGBA16F, GL_RGBA16F, GL_RGBA16};
 
 uint64_t lrsm_layers_bytes(int rsm_res, int layers, int faces)
 {
-    uint64_t texel = 0, texels = 0;
+    uint64_t bytes = 0;
     for (int a = 0; a < 3; a++)
-        texel += gib_format_bytes(layer_format[a]);
-    int half = rsm_res / 2;
-    for (int level = 0; level < gib_mip_levels(half, half, 1); level++) {
-        uint64_t side = (uint64_t)(half >> level ? half >> level : 1);
-        texels += side * side;
-    }
-    return texels * texel * (uint64_t)layers * (uint64_t)faces;
+        bytes += gib_texture_bytes(GL_TEXTURE_2D_ARRAY, rsm_res / 2, rsm_res / 2, layers * faces,
+                                   layer_format[a], 0);
+    return bytes;
 }
 
 int lrsm_layers_create(lrsm_layers *L, const gib_light_views *views, int depth_parts,

@@ -1,0 +1,259 @@
+/* The LRSM's layers and their sampling, on the GPU, from a synthetic light view (the real
+ * construction pass lrsm_build.comp and the real lookup lrsm_sample.glsl through a probe):
+ *  1. random texels (depths, <n.l>, flux, a tenth empty): every layer texel of level 0 equals the
+ *     CPU mirror lrsm_build_block() (radiance = FLUX <n.l> / (pi s^2) for an orthographic view),
+ *     within the storage formats' rounding: half floats (relative 2^-11 a value, RAD_TOL 2e-3 for a
+ *     sum of 4) and 16-bit UNORM (2^-16, DEPTH_TOL 3e-5);
+ *  2. a depth discontinuity (z = 2 left of column 37 of 64, z = 8 right of it, partitions [0, 5]
+ *     and [5, 10]): at EVERY mip level each layer texel holds one side only (mean depth within
+ *     0.02 of 2 or 8, variance below 1e-4 of the layer's range squared); the same check run on a
+ *     single layer (D = 1) must find straddling texels, so it can fail;
+ *  3. with the discontinuity in the middle of the view, probes of lrsm_sample (Algorithm 1) with v_c
+ *     toward the light: on a flat lit surface it
+ *     returns R <n.v_c> (Eq. 5 with V = 1: Eq. 12 of a sample 9 floored sigmas wide), within
+ *     PROBE_TOL 1% (half-float radiance and normals); nothing between the two surfaces; a wide
+ *     sample centred on the discontinuity returns half (A = 1/2, Eq. 14); a surface inside the
+ *     overlap band (z = 5.2, in both layers) is counted once: Eq. 15's decays add to 1. */
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "harness/gl/context.h"
+#include "techniques/lrsm/lrsm.h"
+#include "techniques/lrsm/lrsm_math.h"
+#include "tests/common/gl_fixture.h"
+
+#define RES 64
+#define HALF (RES / 2)
+#define RAD_TOL 2e-3
+#define DEPTH_TOL 3e-5
+#define PROBE_TOL 0.01
+
+static int failures;
+
+typedef struct synth {
+    float depth[RES * RES], normal[RES * RES * 4], flux[RES * RES * 4];
+} synth;
+
+static void upload(const gib_light_views *lv, const synth *s)
+{
+    glTextureSubImage3D(lv->textures[0], 0, 0, 0, 0, RES, RES, 1, GL_RED, GL_FLOAT, s->depth);
+    glTextureSubImage3D(lv->textures[2], 0, 0, 0, 0, RES, RES, 1, GL_RGBA, GL_FLOAT, s->normal);
+    glTextureSubImage3D(lv->textures[3], 0, 0, 0, 0, RES, RES, 1, GL_RGBA, GL_FLOAT, s->flux);
+}
+
+/* A texel facing the light at <n.l> = c (l = -forward), flux f, depth z. */
+static void set_texel(synth *s, const gib_lv_face *face, int i, float z, float c, float f)
+{
+    float t[3], b[3], l[3] = {-face->forward[0], -face->forward[1], -face->forward[2]};
+    gib_ortho_basis(l, t, b);
+    float sn = sqrtf(fmaxf(0.0f, 1 - c * c));
+    s->depth[i] = z;
+    for (int k = 0; k < 3; k++)
+        s->normal[4 * i + k] = c * l[k] + sn * t[k];
+    s->normal[4 * i + 3] = 0;
+    for (int k = 0; k < 3; k++)
+        s->flux[4 * i + k] = f * (float)(k + 1) / 3;
+    s->flux[4 * i + 3] = 1;
+}
+
+static void read_level(unsigned tex, int level, float *out, int side, int layers)
+{
+    glGetTextureImage(tex, level, GL_RGBA, GL_FLOAT, (GLsizei)(sizeof(float) * 4 * side * side * layers),
+                      out);
+}
+
+/* Part 2's check over every level; returns the number of texels holding both sides. */
+static int straddling(const lrsm_layers *L, const lrsm_partition *p, int verbose)
+{
+    int bad = 0, layers = L->depth_parts * L->normal_parts;
+    float *buf = malloc(sizeof(float) * 4 * HALF * HALF * layers);
+    for (int level = 0; (HALF >> level) > 0; level++) {
+        int side = HALF >> level;
+        read_level(L->depth, level, buf, side, layers);
+        for (int l = 0; l < layers; l++) {
+            double lo, hi;
+            lrsm_layer_range(p, l / L->normal_parts, &lo, &hi);
+            for (int i = 0; i < side * side; i++) {
+                const float *v = buf + 4 * ((size_t)l * side * side + i);
+                if (v[2] < 1e-3)
+                    continue;
+                double mu = v[0] / v[2], var = v[1] / v[2] - mu * mu, z = lo + mu * (hi - lo);
+                if ((fabs(z - 2) > 0.02 && fabs(z - 8) > 0.02) || var > 1e-4) {
+                    if (verbose && bad < 3)
+                        printf("  level %d layer %d texel %d: mean depth %.4f, variance %.3g\n", level,
+                               l, i, z, var);
+                    bad++;
+                }
+            }
+        }
+    }
+    free(buf);
+    return bad;
+}
+
+static void probe_check(const lrsm_layers *L, const gib_light_views *lv, const float *in, int n,
+                        const double *want, const char *const *what)
+{
+    float out[4 * 8];
+    gib_error err;
+    if (lrsm_layers_probe(L, lv, 0, in, n, out, &err) < 0) {
+        printf("FAIL: probe: %s\n", err.msg);
+        failures++;
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        double got = out[4 * i + 1];  /* green */
+        int ok = want[i] == 0 ? fabs(got) < 1e-6 : fabs(got / want[i] - 1) <= PROBE_TOL;
+        printf("%s probe %s: L %.6g, expected %.6g\n", ok ? "PASS" : "FAIL", what[i], got, want[i]);
+        failures += !ok;
+    }
+}
+
+int main(void)
+{
+    gib_gl_fixture fx;
+    gib_error err;
+    if (gib_fixture_open(&fx, "water") < 0)   /* one directional light: one orthographic face */
+        return 1;
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_light_views lv;
+    lrsm_layers L;
+    if (gib_light_views_create(&lv, &fx.gpu, RES, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm",
+                               &ledger, &err) < 0 ||
+        lrsm_layers_create(&L, &lv, 2, 2, 0.2f, &ledger, &err) < 0) {
+        printf("FAIL: set-up: %s\n", err.msg);
+        return 1;
+    }
+    const gib_lv_face *face = &lv.faces[0];
+    double s = lv.texel[0];
+    lrsm_layers_set_range(&L, 0, 0, 10);
+    lrsm_partition p = {.z0 = 0, .z1 = 10, .parts = 2, .overlap = 0.2};
+    static synth sy;
+
+    /* 1. Random texels against the CPU mirror. */
+    srand(7);
+    lrsm_texel cpu[RES * RES];
+    for (int i = 0; i < RES * RES; i++) {
+        float z = 0.5f + 9 * (float)rand() / RAND_MAX, c = 0.02f + 0.98f * (float)rand() / RAND_MAX;
+        float f = 0.1f + (float)rand() / RAND_MAX;
+        int empty = rand() % 10 == 0;
+        set_texel(&sy, face, i, empty ? INFINITY : z, c, f);
+        if (empty)
+            sy.flux[4 * i + 3] = 0;
+        lrsm_texel t = {.valid = !empty, .z = z, .cosnl = c};
+        for (int k = 0; k < 3; k++) {
+            t.n[k] = sy.normal[4 * i + k];
+            t.radiance[k] = sy.flux[4 * i + k] * c / (M_PI * s * s);
+        }
+        /* the GPU's <n.l> is dot(n, -forward) of the stored (float) normal */
+        t.cosnl = -(sy.normal[4 * i] * face->forward[0] + sy.normal[4 * i + 1] * face->forward[1] +
+                    sy.normal[4 * i + 2] * face->forward[2]);
+        for (int k = 0; k < 3; k++)
+            t.radiance[k] = sy.flux[4 * i + k] * t.cosnl / (M_PI * s * s);
+        cpu[i] = t;
+    }
+    upload(&lv, &sy);
+    lrsm_layers_build(&L, &lv);
+    static float rad[4 * HALF * HALF * 4], nrm[4 * HALF * HALF * 4], dep[4 * HALF * HALF * 4];
+    read_level(L.radiance, 0, rad, HALF, 4);
+    read_level(L.normal, 0, nrm, HALF, 4);
+    read_level(L.depth, 0, dep, HALF, 4);
+    double wr = 0, wn = 0, wd = 0;
+    for (int by = 0; by < HALF; by++)
+        for (int bx = 0; bx < HALF; bx++) {
+            lrsm_texel block[4];
+            for (int i = 0; i < 4; i++)
+                block[i] = cpu[(2 * by + (i >> 1)) * RES + 2 * bx + (i & 1)];
+            lrsm_layer_texel out[4];
+            lrsm_build_block(&p, 2, block, out);
+            for (int l = 0; l < 4; l++) {
+                size_t g = 4 * ((size_t)l * HALF * HALF + by * HALF + bx);
+                for (int k = 0; k < 3; k++) {
+                    double want = out[l].radiance[k];
+                    wr = fmax(wr, fabs(rad[g + k] - want) / fmax(fabs(want), 1e-3));
+                    wn = fmax(wn, fabs(nrm[g + k] - out[l].normal[k]));
+                    wd = fmax(wd, fabs(dep[g + k] - out[l].depth[k]));
+                }
+                wn = fmax(wn, fabs(nrm[g + 3] - out[l].normal[3]));
+            }
+        }
+    int ok1 = wr <= RAD_TOL && wn <= RAD_TOL && wd <= DEPTH_TOL;
+    printf("%s random texels against lrsm_build_block: radiance %.3g (relative, tolerance %.0e), "
+           "normal %.3g (tolerance %.0e), depth %.3g (tolerance %.0e)\n", ok1 ? "PASS" : "FAIL", wr,
+           RAD_TOL, wn, RAD_TOL, wd, DEPTH_TOL);
+    failures += !ok1;
+
+    /* 2. A depth discontinuity, z = 2 left of column 37 and 8 from there (not on a block boundary
+     * of any level, so that the blocks of every level across it mix both sides), <n.l> = 0.9. */
+    const float c = 0.9f, f = 0.5f;
+    for (int y = 0; y < RES; y++)
+        for (int x = 0; x < RES; x++)
+            set_texel(&sy, face, y * RES + x, x < 37 ? 2.0f : 8.0f, c, f);
+    upload(&lv, &sy);
+    lrsm_layers_build(&L, &lv);
+    int bad = straddling(&L, &p, 1);
+    printf("%s discontinuity, 2 x 2 layers: %d filtered texels straddle it (every level)\n",
+           bad ? "FAIL" : "PASS", bad);
+    failures += bad != 0;
+    {
+        lrsm_layers one;
+        lrsm_partition p1 = {.z0 = 0, .z1 = 10, .parts = 1, .overlap = 0.2};
+        if (lrsm_layers_create(&one, &lv, 1, 2, 0.2f, &ledger, &err) < 0) {
+            printf("FAIL: set-up: %s\n", err.msg);
+            return 1;
+        }
+        lrsm_layers_set_range(&one, 0, 0, 10);
+        lrsm_layers_build(&one, &lv);
+        int b1 = straddling(&one, &p1, 0);
+        printf("%s the check finds %d straddling texels with one depth layer (it must find some)\n",
+               b1 ? "PASS" : "FAIL", b1);
+        failures += b1 == 0;
+        lrsm_layers_destroy(&one, &ledger);
+    }
+    /* Probes (3.): the discontinuity in the middle of the view, world points at (u, v) of the view
+     * and depth z. */
+    for (int y = 0; y < RES; y++)
+        for (int x = 0; x < RES; x++)
+            set_texel(&sy, face, y * RES + x, x < RES / 2 ? 2.0f : 8.0f, c, f);
+    upload(&lv, &sy);
+    lrsm_layers_build(&L, &lv);
+    double r = 0.5 * s * RES, R = f * 2.0 / 3 * c / (M_PI * s * s), want_flat = R * c;
+    float in[8 * 8];
+    int n = 0;
+    float pts[][5] = {{0.25f, 0.5f, 2, 0.3f}, {0.75f, 0.5f, 8, 0.3f}, {0.25f, 0.5f, 5, 0.3f},
+                      {0.5f, 0.5f, 2, (float)(8 * 2 * s)}};
+    for (int i = 0; i < 4; i++, n++) {
+        float a = (2 * pts[i][0] - 1) * (float)r, b = (2 * pts[i][1] - 1) * (float)r;
+        for (int k = 0; k < 3; k++) {
+            in[8 * n + k] = face->origin[k] + face->forward[k] * pts[i][2] + face->right[k] * a +
+                            face->up[k] * b;
+            in[8 * n + 4 + k] = -face->forward[k];
+        }
+        in[8 * n + 3] = pts[i][3];
+        in[8 * n + 7] = 0;
+    }
+    const double want[4] = {want_flat, want_flat, 0, 0.5 * want_flat};
+    const char *const what[4] = {"on the near surface", "on the far surface", "between them",
+                                 "16 layer texels wide on the discontinuity"};
+    probe_check(&L, &lv, in, 4, want, what);
+    /* A surface inside the overlap band: right half at z = 5.2. */
+    for (int y = 0; y < RES; y++)
+        for (int x = RES / 2; x < RES; x++)
+            set_texel(&sy, face, y * RES + x, 5.2f, c, f);
+    upload(&lv, &sy);
+    lrsm_layers_build(&L, &lv);
+    for (int k = 0; k < 3; k++)
+        in[8 * 1 + k] += face->forward[k] * (5.2f - 8.0f);
+    const double want_band[1] = {want_flat};
+    const char *const what_band[1] = {"on a surface in the overlap band (z = 5.2)"};
+    probe_check(&L, &lv, in + 8, 1, want_band, what_band);
+
+    lrsm_layers_destroy(&L, &ledger);
+    gib_light_views_destroy(&lv, &ledger);
+    gib_fixture_close(&fx);
+    printf("%s: lrsm layers\n", failures ? "FAIL" : "PASS");
+    return failures ? 1 : 0;
+}
