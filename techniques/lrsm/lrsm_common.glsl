@@ -51,6 +51,14 @@ bool lrsm_in_depth_layer(int light, int d, float z)
     return (d == 0 || z >= lo) && (d == u_depth_parts - 1 || z <= hi);
 }
 
+// Whether layer d's depth range meets [a, b] (outer ends open).
+bool lrsm_layer_overlaps(int light, int d, float a, float b)
+{
+    float lo, hi;
+    lrsm_layer_range(light, d, lo, hi);
+    return (d == 0 || b >= lo) && (d == u_depth_parts - 1 || a <= hi);
+}
+
 // Eq. 15.
 float lrsm_decay(int light, int d, float zc)
 {

@@ -44,6 +44,13 @@ int lrsm_in_depth_layer(const lrsm_partition *p, int d, double z)
     return (d == 0 || z >= lo) && (d == p->parts - 1 || z <= hi);
 }
 
+int lrsm_layer_overlaps(const lrsm_partition *p, int d, double a, double b)
+{
+    double lo, hi;
+    lrsm_layer_range(p, d, &lo, &hi);
+    return (d == 0 || b >= lo) && (d == p->parts - 1 || a <= hi);
+}
+
 double lrsm_decay(const lrsm_partition *p, int d, double zc)
 {
     if (!lrsm_in_depth_layer(p, d, zc))

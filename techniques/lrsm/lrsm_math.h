@@ -36,6 +36,9 @@ typedef struct lrsm_partition {
 void lrsm_layer_range(const lrsm_partition *p, int d, double *zmin, double *zmax);
 /* Eq. 15: the decay f(zc) of layer d; 0 outside its range (except beyond the open outer ends). */
 double lrsm_decay(const lrsm_partition *p, int d, double zc);
+/* Whether layer d's range meets [a, b] (outer ends open): the layers a cone sample of depth
+ * interval [zc - rc, zc + rc] reads (lrsm_sample.glsl says why not only those holding zc). */
+int lrsm_layer_overlaps(const lrsm_partition *p, int d, double a, double b);
 /* Whether a texel at depth z belongs to depth layer d (inside its range, outer ends open). */
 int lrsm_in_depth_layer(const lrsm_partition *p, int d, double z);
 /* The normal partition of a texel with <n.l> = cosnl among `parts` equal ones over (0, 1]; -1 when

@@ -1,6 +1,20 @@
 // gibench technique `lrsm` — sampling the layered reflective shadow maps (Algorithm 1, Eq. 5-15):
 // the outgoing radiance toward v_c of the surfaces inside the cone sample (x_c, r_c), from every
 // light's LRSM. Needs common/light_view.glsl and lrsm/lrsm_common.glsl.
+// Choices the paper leaves open (or where it was changed), each with its reason:
+//  - Layer selection: the paper samples the layers whose depth range holds z_c (as LVSM). A cone's
+//    samples grow to a fraction of the scene (a 60-degree cone's diameter is 1.15 t), and a sphere
+//    centred in empty space then reaches surfaces of the next layer only: in the furnace the
+//    central cone's last sample (z_c = 0.6 m, r_c = 0.9 m, walls at 1 m) read nothing. Layers
+//    whose range meets [z_c - r_c, z_c + r_c] are sampled instead (for r_c -> 0 the paper's rule).
+//  - Eq. 15's decay is evaluated at the layer's filtered mean depth mu rather than at z_c: with the
+//    wider selection a sample can read two layers that both hold a surface of the overlap band, and
+//    the decays at that surface's depth add to 1 (k(t) + k(1 - t) = 1), so it counts once.
+//  - Eq. 8's N = <n_mean . v_c> with the opacity-normalised, not renormalised, mean normal, as
+//    Algorithm 1 (it also dims a surface seen obliquely by that cosine).
+//  - The footprint's mip is log2 of the projected diameter in layer texels at the sample centre's
+//    distance along the view axis, clamped below by u_mip_clamp (Sec. 7); a sample is looked up in
+//    the face of a cube light view its centre falls in (spheres across a cube seam read one face).
 layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler2DArray u_lrsm_radiance;
 layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2DArray u_lrsm_normal;
 layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2DArray u_lrsm_depth;
@@ -37,11 +51,10 @@ vec3 lrsm_sample(vec3 xc, float rc, vec3 vc)
             continue;
         float mip = max(log2(max(diameter, 1e-30)), u_mip_clamp);
         for (int d = 0; d < u_depth_parts; d++) {
-            if (!lrsm_in_depth_layer(i, d, zc))   // only the layers whose range holds z_c
-                continue;
-            float f = lrsm_decay(i, d, zc);        // Eq. 15
             float lo, hi;
             lrsm_layer_range(i, d, lo, hi);
+            if (!lrsm_layer_overlaps(i, d, zc - rc, zc + rc))
+                continue;
             float zw = (zc - lo) / (hi - lo), rw = rc / (hi - lo);
             for (int k = 0; k < u_normal_parts; k++) {
                 vec3 at = vec3(uv.xy, float(face * layers + d * u_normal_parts + k));
@@ -60,6 +73,7 @@ vec3 lrsm_sample(vec3 xc, float rc, vec3 vc)
                 if (V <= 0.0)
                     continue;
                 vec3 AR = textureLod(u_lrsm_radiance, at, mip).rgb; // unnormalised: A R (Eq. 14)
+                float f = lrsm_decay(i, d, lo + mu * (hi - lo));    // Eq. 15 at the layer's mean depth
                 L += f * AR * (V * N);
             }
         }

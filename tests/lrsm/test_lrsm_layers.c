@@ -13,7 +13,9 @@
  *     returns R <n.v_c> (Eq. 5 with V = 1: Eq. 12 of a sample 9 floored sigmas wide), within
  *     PROBE_TOL 1% (half-float radiance and normals); nothing between the two surfaces; a wide
  *     sample centred on the discontinuity returns half (A = 1/2, Eq. 14); a surface inside the
- *     overlap band (z = 5.2, in both layers) is counted once: Eq. 15's decays add to 1. */
+ *     overlap band (z = 5.2, in both layers) is counted once: Eq. 15's decays add to 1; a sample
+ *     centred in one layer whose sphere reaches a surface of the next sees it (the layers met by
+ *     [z_c - r_c, z_c + r_c] are read: lrsm_sample.glsl). */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -250,6 +252,19 @@ int main(void)
     const double want_band[1] = {want_flat};
     const char *const what_band[1] = {"on a surface in the overlap band (z = 5.2)"};
     probe_check(&L, &lv, in + 8, 1, want_band, what_band);
+    /* A sample centred in the near layer only whose sphere reaches a surface of the far one: depth
+     * range [0, 1] (layers [-0.025, 0.525] and [0.475, 1.025]), every texel at z = 0.8, the sample
+     * at z_c = 0.35 with r_c = 0.5. The paper's rule (layers holding z_c) reads nothing here. */
+    lrsm_layers_set_range(&L, 0, 0, 1);
+    for (int i = 0; i < RES * RES; i++)
+        set_texel(&sy, face, i, 0.8f, c, f);
+    upload(&lv, &sy);
+    lrsm_layers_build(&L, &lv);
+    for (int k = 0; k < 3; k++)
+        in[8 * 1 + k] += face->forward[k] * (0.35f - 5.2f);
+    in[8 * 1 + 3] = 0.5f;
+    const char *const what_far[1] = {"centred in one layer, reaching a surface of the next"};
+    probe_check(&L, &lv, in + 8, 1, want_band, what_far);
 
     lrsm_layers_destroy(&L, &ledger);
     gib_light_views_destroy(&lv, &ledger);

@@ -90,6 +90,9 @@ int main(void)
     check(lrsm_in_depth_layer(&p, 0, 5.0) && lrsm_in_depth_layer(&p, 1, 5.0), "5.0 in both", 0, 0);
     check(!lrsm_in_depth_layer(&p, 0, 5.6) && lrsm_in_depth_layer(&p, 1, 5.6), "5.6 in layer 1 only", 0, 0);
     check(lrsm_in_depth_layer(&p, 0, -3) && lrsm_in_depth_layer(&p, 1, 30), "open outer ends", 0, 0);
+    check(lrsm_layer_overlaps(&p, 1, 3.0, 4.6) && !lrsm_layer_overlaps(&p, 1, 3.0, 4.4) &&
+          lrsm_layer_overlaps(&p, 0, 5.4, 9) && !lrsm_layer_overlaps(&p, 0, 5.6, 9),
+          "layers met by a sample's depth interval", 0, 0);
     double dworst = 0;
     for (double z = -1; z <= 11; z += 0.01)
         dworst = fmax(dworst, fabs(lrsm_decay(&p, 0, z) + lrsm_decay(&p, 1, z) - 1));
