@@ -28,7 +28,8 @@ typedef struct lrsm_layers {
 uint64_t lrsm_layers_bytes(int rsm_res, int layers, int faces);
 
 /* Allocates the layers for the views' faces through the ledger ("layers.radiance", "layers.normal",
- * "layers.depth", "layers.table") and builds the construction program. */
+ * "layers.depth"; the partition table, 16 bytes a light, as "rsm.partitions" so that the structure
+ * `layers` is exactly Table 2's LRSM) and builds the construction program. */
 int lrsm_layers_create(lrsm_layers *L, const gib_light_views *views, int depth_parts,
                        int normal_parts, float overlap, gib_ledger *ledger, gib_error *err);
 /* The static depth partitions of each light: its view's depth range over the scene's bounds. */
