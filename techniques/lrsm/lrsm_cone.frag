@@ -19,6 +19,10 @@
 // step_factor d (1: spheres that touch, Fig. 4), alpha corrected for the step as 1 - (1 - alpha)^
 // step_factor, until the cone is opaque (A > 255/256), leaves the grid or passes max_distance grid
 // sides. A sample's radiance is the LRSM's (lrsm_sample) at its centre and radius d/2, toward -dir.
+// alpha is the voxel mips' mean occupancy, as the paper (Sec. 3.1, isotropic voxels): a wall one
+// voxel thick inside a sample d voxels wide reads alpha ~ 1/d, so wide cones pass through thin
+// walls nearly unweighted (the paper's light leaking, Sec. 6; the indirect level falls as 1/voxel_res
+// in closed thin-walled scenes: tests/lrsm/test_lrsm_furnace.c).
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
