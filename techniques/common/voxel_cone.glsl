@@ -11,6 +11,9 @@ layout(binding = GIB_UNIT_VOXELS) uniform sampler3D u_voxels;
 layout(location = GIB_LOC_VOXEL_FIRST + 0) uniform vec3 u_voxel_origin;
 layout(location = GIB_LOC_VOXEL_FIRST + 1) uniform float u_voxel_size;  // grid side
 layout(location = GIB_LOC_VOXEL_FIRST + 2) uniform int u_voxel_res;
+// How a sample's mean occupancy becomes the opacity of a cone step (voxel_step_alpha); 0 unless a
+// pass sets it.
+layout(location = GIB_LOC_VOXEL_FIRST + 3) uniform int u_voxel_density;
 
 float voxel_size_world() { return u_voxel_size / float(u_voxel_res); }
 
@@ -22,6 +25,22 @@ float voxel_occlusion(vec3 p, float diameter)
     float top = float(textureQueryLevels(u_voxels) - 1);
     float mip = clamp(log2(max(diameter / voxel_size_world(), 1.0)), 0.0, top);
     return textureLod(u_voxels, (p - u_voxel_origin) / u_voxel_size, mip).r;
+}
+
+// Opacity of one cone step of length step_factor x d through a sphere sample of diameter d at p.
+// u_voxel_density 0, the paper's reading (Sec. 3.1): the sample's alpha is the mip's mean
+//   occupancy, per sample diameter: 1 - (1 - occ)^step_factor. A one-voxel wall inside a sample
+//   d voxels wide reads occ ~ 1/d, so wide cones cross walls nearly unweighted.
+// u_voxel_density 1: the occupancy is a density (filled voxels per voxel of path), so the step
+//   crosses step_factor x d / voxel voxel lengths: 1 - (1 - occ)^(step_factor d / voxel). It is
+//   read one level finer (diameter d/2): a trilinear fetch at level L spans up to two texels,
+//   2^(L+1) voxels, twice the sample. A one-voxel wall then stops ~86% of the cone per sample at
+//   every level (1 - e^-2), where the paper's reading lets ~1 - 1/d through.
+float voxel_step_alpha(vec3 p, float d, float step_factor)
+{
+    float occ = voxel_occlusion(p, u_voxel_density != 0 ? 0.5 * d : d);
+    float lengths = u_voxel_density != 0 ? max(d / voxel_size_world(), 1.0) : 1.0;
+    return 1.0 - pow(max(1.0 - occ, 0.0), step_factor * lengths);
 }
 
 // The 6 diffuse cones of 60 degrees (the set of Crassin et al. 2011 and most VCT code): one along n
@@ -65,8 +84,7 @@ float shadow_cone_ex(vec3 p, vec3 n, vec3 dir, float dist, float aperture_rad, f
         vec3 q = o + dir * t;
         if (any(lessThan(q, u_voxel_origin - d)) || any(greaterThan(q, u_voxel_origin + u_voxel_size + d)))
             break; // left the grid: nothing further occludes
-        float alpha = voxel_occlusion(q, d);
-        visibility *= pow(1.0 - alpha, step_factor);
+        visibility *= 1.0 - voxel_step_alpha(q, d, step_factor);
         t += step_factor * d;
     }
     return visibility;

@@ -41,6 +41,7 @@ typedef struct lrsm {
     gib_fullscreen pass[PASSES];
     float aperture[PASSES];      /* radians */
     float start_offset, step_factor, max_distance, mip_clamp;
+    int opacity, backface;          /* voxel_step_alpha's model; Eq. 8 as cosine or test */
     int width, height;
     unsigned targets[PASSES];    /* the last frame's output textures (NaN check) */
     int target_count;
@@ -60,6 +61,9 @@ static const gib_param_spec lrsm_params[] = {
     {"layers_normal", GIB_PARAM_INT, 2, 1, 4, "<n.l> partitions N"},
     {"overlap", GIB_PARAM_FLOAT, 0.1, 0, 0.5, "depth layers' overlap delta, fraction of a partition"},
     {"mip_clamp", GIB_PARAM_FLOAT, 0, 0, 12, "lowest LRSM mip level a cone sample reads"},
+    {"opacity", GIB_PARAM_INT, 1, 0, 1,
+     "voxel alpha: 0 mean occupancy per sample (paper), 1 occupancy as a density over the step"},
+    {"backface", GIB_PARAM_INT, 1, 0, 1, "Eq. 8: 0 the cosine <n.v> (paper), 1 a backface test only"},
     {0},
 };
 
@@ -92,6 +96,8 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     s->step_factor = (float)gib_param_float(t, p, "step_factor");
     s->max_distance = (float)gib_param_float(t, p, "max_distance");
     s->mip_clamp = (float)gib_param_float(t, p, "mip_clamp");
+    s->opacity = gib_param_int(t, p, "opacity");
+    s->backface = gib_param_int(t, p, "backface");
     strcpy(s->status, "");
     static const char *const define[PASSES] = {"#define SHADOW 1\n", "#define DIFFUSE 1\n",
                                                "#define SPECULAR 1\n"};
@@ -138,6 +144,8 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     glUniform1f(11, s->start_offset);
     glUniform1f(12, s->step_factor);
     glUniform1f(13, s->max_distance);
+    glUniform1i(14, s->backface);
+    glUniform1i(GIB_LOC_VOXEL_FIRST + 3, which == PASS_SHADOW ? 0 : s->opacity);
     gib_fullscreen_draw(&s->pass[which]);
     gib_fullscreen_end();
     gib_timer_end(timers);

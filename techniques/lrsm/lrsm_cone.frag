@@ -19,10 +19,10 @@
 // step_factor d (1: spheres that touch, Fig. 4), alpha corrected for the step as 1 - (1 - alpha)^
 // step_factor, until the cone is opaque (A > 255/256), leaves the grid or passes max_distance grid
 // sides. A sample's radiance is the LRSM's (lrsm_sample) at its centre and radius d/2, toward -dir.
-// alpha is the voxel mips' mean occupancy, as the paper (Sec. 3.1, isotropic voxels): a wall one
-// voxel thick inside a sample d voxels wide reads alpha ~ 1/d, so wide cones pass through thin
-// walls nearly unweighted (the paper's light leaking, Sec. 6; the indirect level falls as 1/voxel_res
-// in closed thin-walled scenes: tests/lrsm/test_lrsm_furnace.c).
+// alpha: voxel_cone.glsl's voxel_step_alpha. Parameter `opacity` 0 is the paper's reading (the
+// mips' mean occupancy as the sample's alpha: a wall one voxel thick inside a sample d voxels wide
+// reads alpha ~ 1/d, so wide cones pass thin walls nearly unweighted and the indirect level falls
+// as 1/voxel_res in closed scenes); 1 (default) reads the occupancy as a density over the step.
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
@@ -50,7 +50,7 @@ vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
         if (any(lessThan(c, u_voxel_origin - d)) ||
             any(greaterThan(c, u_voxel_origin + u_voxel_size + d)))
             break;
-        float a = 1.0 - pow(1.0 - voxel_occlusion(c, d), u_step_factor);
+        float a = voxel_step_alpha(c, d, u_step_factor);
         if (a > 0.0) {
             vec3 L = lrsm_sample(c, 0.5 * d, -dir);
             I += (1.0 - A) * a * L;

@@ -11,7 +11,10 @@
 //    wider selection a sample can read two layers that both hold a surface of the overlap band, and
 //    the decays at that surface's depth add to 1 (k(t) + k(1 - t) = 1), so it counts once.
 //  - Eq. 8's N = <n_mean . v_c> with the opacity-normalised, not renormalised, mean normal, as
-//    Algorithm 1 (it also dims a surface seen obliquely by that cosine).
+//    Algorithm 1 (u_backface 0). It dims a surface seen obliquely by that cosine, although Sec. 4.1
+//    derives L as the mean radiance over the area the cone sees (the <n.v> of Eq. 4 cancels in the
+//    normalisation) and the voxel alpha already holds the coverage: u_backface 1 (the default) keeps
+//    Eq. 8 as the backface test only, N = 1 where <n_mean . v_c> > 0.
 //  - The footprint's mip is log2 of the projected diameter in layer texels at the sample centre's
 //    distance along the view axis, clamped below by u_mip_clamp (Sec. 7); a sample is looked up in
 //    the face of a cube light view its centre falls in (spheres across a cube seam read one face).
@@ -20,6 +23,7 @@ layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2DArray u_lrsm_normal;
 layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2DArray u_lrsm_depth;
 layout(location = 7) uniform float u_mip_clamp;
 layout(location = 8) uniform int u_lrsm_lights;   // lights in the table (the scene's)
+layout(location = 14) uniform int u_backface;     // 0: Eq. 8's cosine; 1: Eq. 8 as a test only
 
 vec3 lrsm_sample(vec3 xc, float rc, vec3 vc)
 {
@@ -64,6 +68,8 @@ vec3 lrsm_sample(vec3 xc, float rc, vec3 vc)
                 float N = dot(nt.xyz / nt.w, vc);  // Eq. 8: mean normal, not renormalised
                 if (N <= 0.0)                      // backface culling
                     continue;
+                if (u_backface != 0)
+                    N = 1.0;
                 vec4 dt = textureLod(u_lrsm_depth, at, mip);
                 if (dt.z < 1e-4)
                     continue;

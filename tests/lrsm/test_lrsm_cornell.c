@@ -5,10 +5,12 @@
  *   each channel's mean within DIRECT_MEAN_TOL = 12% of the reference's (lit surfaces are exact; the
  *   cones soften and leak at shadow edges: measured -7%) and relative RMSE below DIRECT_RMSE = 0.4
  *   (measured 0.27 at 128x128);
- * indirect: the paper's isotropic occlusion voxels make thin walls nearly transparent to wide cones
- *   (alpha ~ 1/d for a sample d voxels wide; tests/lrsm/test_lrsm_furnace.c), so the level is far
- *   below the reference (measured about 2% of it). What is held: every pixel finite; each channel's
- *   mean in (0, 1] of the reference's (no light created); the colour bleeding on the right side:
+ * indirect: the isotropic occlusion voxels let part of each wide cone through thin walls (Eq. 1;
+ *   tests/lrsm/test_lrsm_furnace.c), so the level is below the reference: measured 0.37-0.39 of it
+ *   with the occupancy read as a density (opacity = 1, the default), 0.03 with the paper's reading.
+ *   What is held: every pixel finite; each channel's mean in [INDIRECT_MIN = 0.25, 1] of the
+ *   reference's (no light created; the lower bound fails with the paper's reading);
+ *   the colour bleeding on the right side:
  *   red over green in the image's left quarter (the red wall's side) exceeds that in its right
  *   quarter, as in the reference (fails with the walls' light swapped or absent); and the 8x8-block
  *   means correlate with the reference's (Pearson r >= CORR_MIN = 0.5: the light falls where it
@@ -27,6 +29,7 @@
 #define DIRECT_MEAN_TOL 0.12
 #define DIRECT_RMSE 0.4
 #define CORR_MIN 0.5
+#define INDIRECT_MIN 0.25
 
 static double px(const gib_image *im, int x, int y, int c)
 {
@@ -133,9 +136,9 @@ int main(void)
         } else {
             for (int c = 0; c < 3; c++) {
                 double ratio = mean(im, c, 0, W) / mean(&ref, c, 0, W);
-                int ok = ratio > 0 && ratio <= 1;
-                printf("%s indirect %s: mean %.4f of the reference's (must be in (0, 1])\n",
-                       ok ? "PASS" : "FAIL", channel[c], ratio);
+                int ok = ratio >= INDIRECT_MIN && ratio <= 1;
+                printf("%s indirect %s: mean %.4f of the reference's (must be in [%.2f, 1])\n",
+                       ok ? "PASS" : "FAIL", channel[c], ratio, INDIRECT_MIN);
                 failures += !ok;
             }
             double bleed_ref = (mean(&ref, 0, 0, W / 4) / mean(&ref, 1, 0, W / 4)) /

@@ -11,12 +11,13 @@
  *    tests/lrsm/furnace_spot.scene (a 40-degree spot at the centre: one perspective view).
  * 2. The whole technique at 64x48: `direct` (shadow cones; nothing occludes the wall from the
  *    light) within DIRECT_TOL = 0.2% of 0.159155 everywhere (measured 2e-7); `indirect` finite,
- *    positive and not above the answer (no light created, INDIRECT_MAX = 1.01). It is far below
- *    the answer: the paper's occlusion voxels are isotropic mean occupancies, so a one-voxel-thick
- *    wall seen through a sample d voxels wide has alpha of about 1/d, and the cones pass through
- *    the far wall almost unweighted (Eq. 1): measured 1.2% of the answer at the default settings.
- *    The ratio is printed; the test holds the normalisation (part 1) exactly and the rest to what
- *    the paper's model can give. */
+ *    positive, not above the answer (no light created, INDIRECT_MAX = 1.01) and at least
+ *    INDIRECT_MIN = 0.30 of it. It stays below the answer because the occlusion voxels are
+ *    isotropic mean occupancies: a one-voxel-thick wall seen through a sample d voxels wide is only
+ *    partly opaque, so part of each cone passes the wall (Eq. 1). Read as a density over the step
+ *    (parameter opacity = 1, the default; voxel_cone.glsl) the wall stops ~86% per sample and the
+ *    level is 0.42 of the answer; the paper's reading (opacity = 0: alpha = mean occupancy ~ 1/d)
+ *    gives 0.012, and fails the lower bound. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +29,7 @@
 #define LOOKUP_TOL 0.01
 #define DIRECT_TOL 0.002
 #define INDIRECT_MAX 1.01
+#define INDIRECT_MIN 0.30
 #define PROBES 200
 
 int main(int argc, char **argv)
@@ -142,10 +144,10 @@ int main(int argc, char **argv)
             printf("%s direct: mean %.6f, largest deviation %.4f%% from %.6f (tolerance %.1f%%)\n",
                    ok ? "PASS" : "FAIL", sum, 100 * dev, wall, 100 * DIRECT_TOL);
         } else if (r.output_components[o] == GIB_OUT_INDIRECT) {
-            ok = !nonfinite && sum > 0 && sum <= INDIRECT_MAX * indirect;
-            printf("%s indirect: mean %.6f = %.4f of the one-bounce answer %.6f (must be in (0, %.2f]: "
-                   "the isotropic voxels' alpha keeps it far below, see above)\n", ok ? "PASS" : "FAIL",
-                   sum, sum / indirect, indirect, INDIRECT_MAX);
+            ok = !nonfinite && sum >= INDIRECT_MIN * indirect && sum <= INDIRECT_MAX * indirect;
+            printf("%s indirect: mean %.6f = %.4f of the one-bounce answer %.6f (must be in [%.2f, %.2f]: "
+                   "the isotropic voxels' alpha keeps it below, see above)\n", ok ? "PASS" : "FAIL",
+                   sum, sum / indirect, indirect, INDIRECT_MIN, INDIRECT_MAX);
         } else {
             ok = !nonfinite && sum == 0;
             printf("%s glossy: mean %g (no specular lobe in the furnace)\n", ok ? "PASS" : "FAIL", sum);
