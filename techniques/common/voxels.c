@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "harness/gl/bindings.h"
@@ -36,6 +37,39 @@ static void fit_grid(gib_voxels *v, const gib_scene *s)
         v->origin[k] = c[k] - 0.5f * v->size;
 }
 
+/* The work buffer (voxelize.comp): a header, room for the large-triangle list, and each
+ * triangle's alpha mask as a compact id (1..mask_count, 0 for none; v->mask_tex maps ids to scene
+ * textures). */
+static int make_work(gib_voxels *v, const gib_scene *s, const char *label, gib_ledger *ledger,
+                     gib_error *err)
+{
+    const size_t t = v->triangle_count;
+    uint32_t *data = gib_calloc(4 + 2 * t, sizeof *data, err);
+    if (!data || !(v->mask_tex = gib_calloc(s->texture_count + 1, sizeof *v->mask_tex, err))) {
+        free(data);
+        return -1;
+    }
+    for (uint32_t r = 0; r < s->range_count; r++) {
+        const int tex = s->materials[s->ranges[r].material].alpha_tex;
+        if (tex < 0)
+            continue;
+        int id = 0;
+        while (id < v->mask_count && v->mask_tex[id] != tex)
+            id++;
+        if (id == v->mask_count)
+            v->mask_tex[v->mask_count++] = tex;
+        const uint32_t first = s->ranges[r].first_index / 3, n = s->ranges[r].index_count / 3;
+        for (uint32_t i = first; i < first + n && i < t; i++)
+            data[4 + t + i] = (uint32_t)id + 1;
+    }
+    char name[96];
+    snprintf(name, sizeof name, "%s.work", label);
+    v->work = gib_gpu_buffer(ledger, name, 4 * (4 + 2 * (uint64_t)t), data, GL_DYNAMIC_STORAGE_BIT,
+                             err);
+    free(data);
+    return v->work ? 0 : -1;
+}
+
 int gib_voxels_create(gib_voxels *v, const gib_gpu_scene *scene, int res, const char *label,
                       gib_ledger *ledger, gib_error *err)
 {
@@ -49,14 +83,14 @@ int gib_voxels_create(gib_voxels *v, const gib_gpu_scene *scene, int res, const 
     const char *file[1] = {"common/voxelize.comp"}, *mip_file[1] = {"common/voxel_mip.comp"};
     char name[96];
     snprintf(name, sizeof name, "%s.occupancy", label);
-    if (!(v->program_small = gib_program(file, 1, "#define SMALL 1\n", err)) ||
-        !(v->program_large = gib_program(file, 1, NULL, err)) ||
+    if (!(v->program[0] = gib_program(file, 1, "#define SMALL 1\n", err)) ||
+        !(v->program[1] = gib_program(file, 1, NULL, err)) ||
+        !(v->program[2] = gib_program(file, 1, "#define SMALL 1\n#define ALPHA 1\n", err)) ||
+        !(v->program[3] = gib_program(file, 1, "#define ALPHA 1\n", err)) ||
         !(v->program_mip = gib_program(mip_file, 1, NULL, err)) ||
         !(v->texture = gib_gpu_texture(ledger, name, GL_TEXTURE_3D, res, res, res, GL_R8, 0, err)))
         goto fail;
-    snprintf(name, sizeof name, "%s.work", label);
-    if (!(v->work = gib_gpu_buffer(ledger, name, 16 + 4 * (uint64_t)v->triangle_count, NULL,
-                                   GL_DYNAMIC_STORAGE_BIT, err)))
+    if (make_work(v, scene->scene, label, ledger, err) < 0)
         goto fail;
     /* Outside the grid is empty: cones leaving it see no occlusion. */
     glTextureParameteri(v->texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
@@ -104,30 +138,43 @@ void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *tim
     const unsigned char zero = 0;
     glClearTexImage(v->texture, 0, GL_RED, GL_UNSIGNED_BYTE, &zero);
     if (v->triangle_count) {
-        const uint32_t reset[4] = {0, 1, 1, 0};
-        glNamedBufferSubData(v->work, 0, sizeof reset, reset);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 0, scene->positions);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, scene->indices);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, v->work);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 3, scene->uvs);
         glBindImageTexture(0, v->texture, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        const unsigned programs[2] = {v->program_small, v->program_large};
-        for (int i = 0; i < 2; i++) {
-            glUseProgram(programs[i]);
-            glUniform3fv(GIB_LOC_OWN_FIRST + 0, 1, v->origin);
-            glUniform1f(GIB_LOC_OWN_FIRST + 1, (float)v->res / v->size);
-            glUniform1i(GIB_LOC_OWN_FIRST + 2, v->res);
-            glUniform1ui(GIB_LOC_OWN_FIRST + 3, v->triangle_count);
-            if (i == 0) {
-                glDispatchCompute((v->triangle_count + 63) / 64, 1, 1);
-                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-            } else {
-                glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, v->work);
-                glDispatchComputeIndirect(0);
-                glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        /* A pass for the triangles without a mask, then one per 6 alpha masks (the samplers one
+         * pass binds): separate programs, as sampling code in the loop slows llvmpipe down
+         * even where no triangle takes it. */
+        for (int first = -6; first < v->mask_count; first += 6) {
+            const unsigned *programs = v->program + (first < 0 ? 0 : 2);
+            for (int j = 0; j < 6; j++)
+                glBindTextureUnit(GIB_UNIT_OWN_FIRST + j, first >= 0 && first + j < v->mask_count
+                                  ? scene->textures[v->mask_tex[first + j]] : scene->white);
+            const uint32_t reset[4] = {0, 1, 1, 0};
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                            GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glNamedBufferSubData(v->work, 0, sizeof reset, reset);
+            for (int i = 0; i < 2; i++) {
+                glUseProgram(programs[i]);
+                glUniform3fv(GIB_LOC_OWN_FIRST + 0, 1, v->origin);
+                glUniform1f(GIB_LOC_OWN_FIRST + 1, (float)v->res / v->size);
+                glUniform1i(GIB_LOC_OWN_FIRST + 2, v->res);
+                glUniform1ui(GIB_LOC_OWN_FIRST + 3, v->triangle_count);
+                glUniform1i(GIB_LOC_OWN_FIRST + 7, first);
+                if (i == 0) {
+                    glDispatchCompute((v->triangle_count + 63) / 64, 1, 1);
+                    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+                } else {
+                    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, v->work);
+                    glDispatchComputeIndirect(0);
+                    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+                }
             }
         }
         glUseProgram(0);
+        for (int j = 0; j < 6; j++)
+            glBindTextureUnit(GIB_UNIT_OWN_FIRST + j, 0);
         glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
@@ -150,10 +197,10 @@ void gib_voxels_destroy(gib_voxels *v, gib_ledger *ledger)
         gib_gpu_free(ledger, v->texture, 1);
     if (v->work)
         gib_gpu_free(ledger, v->work, 0);
-    if (v->program_small)
-        glDeleteProgram(v->program_small);
-    if (v->program_large)
-        glDeleteProgram(v->program_large);
+    free(v->mask_tex);
+    for (int i = 0; i < 4; i++)
+        if (v->program[i])
+            glDeleteProgram(v->program[i]);
     if (v->program_mip)
         glDeleteProgram(v->program_mip);
     memset(v, 0, sizeof *v);

@@ -27,17 +27,19 @@ typedef struct gib_voxels {
     unsigned texture;   /* GL_TEXTURE_3D, GL_R8, full mip chain: 1/0 occupancy at level 0,
                            box-filtered averages above (voxel_mip.comp) */
     /* private */
-    unsigned program_small, program_large; /* voxelize.comp: per triangle / per large triangle */
+    unsigned program[4]; /* voxelize.comp: per triangle / per large triangle; with alpha masks */
     unsigned program_mip; /* voxel_mip.comp */
-    unsigned work;      /* SSBO: [0..2] indirect dispatch (count, 1, 1), then large triangles */
+    unsigned work;      /* SSBO (voxelize.comp): dispatch header, large triangles, masks */
     uint32_t triangle_count;
+    int mask_count, *mask_tex; /* the scene's alpha masks: compact id - 1 -> scene texture */
 } gib_voxels;
 
 /* The texture's bytes (R8, res^3 with its full mip chain), exactly as the ledger counts them. */
 uint64_t gib_voxels_bytes(int res);
 /* Sets up res^3 voxels (64..512) over the scene's bounds: a cube centred on them, 1.5 voxels of
  * margin on each side. Allocates "<label>.occupancy" (the texture, gib_voxels_bytes) and
- * "<label>.work" (the large-triangle list, 4 bytes per triangle + 16) through the ledger. */
+ * "<label>.work" (the large-triangle list and each triangle's alpha mask, 8 bytes per triangle
+ * + 16) through the ledger. */
 int gib_voxels_create(gib_voxels *v, const gib_gpu_scene *scene, int res, const char *label,
                       gib_ledger *ledger, gib_error *err);
 /* Clears, voxelises the scene's current positions (moving scenes: after gib_gpu_scene_set_time)

@@ -3,7 +3,7 @@
  * procedural scenes: a thin slanted wall, a diagonal plane (one voxel thin), a tessellated sphere
  * (small triangles), the moving Cornell box at a later instant (positions read back from the
  * GPU, so the posed triangles are the ones checked) and hard_sliver (slivers and zero-area
- * triangles).
+ * triangles); and an alpha-masked quad (check_alpha).
  *
  * Checks, per case:
  *  - zero misses: every voxel the CPU says a triangle touches (closed boxes, exact) is set;
@@ -556,6 +556,106 @@ static void check_cones(const char *dir)
     gib_fixture_close(&fx);
 }
 
+/* An alpha-masked quad (an OBJ whose MTL has map_d): the tilted plane y = 0.3 x + 0.2 z over
+ * x, z in [-0.5, 0.5], uv = (x + 0.5, z + 0.5), solid where u < 0.5 and a hole elsewhere. Voxels
+ * the quad touches (exactly, on the CPU) more than 2 voxels inside the solid half must be set,
+ * and no voxel more than 2 voxels inside the hole (nor from its far edge u = 1, where the
+ * repeating texture's filter reaches the solid texels at u = 0, as in the G-buffer): the shader filters the mask over a voxel's
+ * footprint (about one voxel here) at the point nearest the voxel's centre, which lies within
+ * 0.3 voxel of the centre's x. */
+static void check_alpha(const char *dir)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/quad.obj", dir);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        printf("FAIL alpha: cannot write %s\n", path);
+        failures++;
+        return;
+    }
+    fprintf(f, "mtllib quad.mtl\nusemtl leaf\n");
+    const float xz[4][2] = {{-0.5f, -0.5f}, {0.5f, -0.5f}, {0.5f, 0.5f}, {-0.5f, 0.5f}};
+    for (int i = 0; i < 4; i++)
+        fprintf(f, "v %g %g %g\n", xz[i][0], 0.3f * xz[i][0] + 0.2f * xz[i][1], xz[i][1]);
+    for (int i = 0; i < 4; i++)
+        fprintf(f, "vt %g %g\n", xz[i][0] + 0.5f, xz[i][1] + 0.5f);
+    fprintf(f, "f 1/1 3/3 2/2\nf 1/1 4/4 3/3\n");
+    fclose(f);
+    snprintf(path, sizeof path, "%s/quad.mtl", dir);
+    if ((f = fopen(path, "w"))) {
+        fprintf(f, "newmtl leaf\nKd 0.5 0.5 0.5\nmap_d mask.png\n");
+        fclose(f);
+    }
+    gib_image mask;
+    gib_error err;
+    snprintf(path, sizeof path, "%s/mask.png", dir);
+    if (gib_image_alloc(&mask, 64, 64, 1, &err) < 0) {
+        printf("FAIL alpha: %s\n", err.msg);
+        failures++;
+        return;
+    }
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 64; x++)
+            mask.px[y * 64 + x] = x < 32 ? 1.0f : 0.0f;
+    int rc = gib_png_write_preview(path, &mask, 1.0f, &err);
+    gib_image_free(&mask);
+    if (rc < 0) {
+        printf("FAIL alpha: %s\n", err.msg);
+        failures++;
+        return;
+    }
+    setenv("GIBENCH_SCENES", dir, 1);
+    gib_gl_fixture fx;
+    int opened = open_scene(&fx, dir, "alpha", "[scene]\ndescription = voxels: alpha-masked quad\n"
+                            "[mesh.quad]\nfile = quad.obj\n"
+                            "[camera.c]\neye = 0 1 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n");
+    unsetenv("GIBENCH_SCENES");
+    if (opened < 0)
+        return;
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_voxels v;
+    if (gib_voxels_create(&v, &fx.gpu, 64, "voxels", &ledger, &err) < 0) {
+        printf("FAIL alpha: %s\n", err.msg);
+        failures++;
+        gib_fixture_close(&fx);
+        return;
+    }
+    gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+    int R;
+    unsigned char *gpu = read_level(&v, 0, &R);
+    unsigned char *mark = calloc((size_t)R * R * R, 1);
+    cpu_voxelise(&v, &fx.gpu, mark, 2e-3);
+    const float vs = v.size / (float)R;
+    size_t solid = 0, solid_set = 0, hole = 0, hole_set = 0;
+    for (int z = 0; z < R; z++)
+        for (int y = 0; y < R; y++)
+            for (int x = 0; x < R; x++) {
+                size_t i = ((size_t)z * R + y) * R + x;
+                if (!(mark[i] & 1))
+                    continue;
+                float u = v.origin[0] + (x + 0.5f) * vs + 0.5f;
+                if (u < 0.5f - 2 * vs) {
+                    solid++;
+                    solid_set += gpu[i] != 0;
+                } else if (u > 0.5f + 2 * vs && u < 1 - 2 * vs) {
+                    hole++;
+                    hole_set += gpu[i] != 0;
+                }
+            }
+    printf("  alpha: solid half %zu/%zu voxels set, hole half %zu/%zu set\n", solid_set, solid,
+           hole_set, hole);
+    if (!solid || !hole || solid_set != solid || hole_set) {
+        printf("FAIL alpha: the mask is not honoured (solid %zu of %zu set, hole %zu of %zu)\n",
+               solid_set, solid, hole_set, hole);
+        failures++;
+    }
+    free(gpu);
+    free(mark);
+    gib_voxels_destroy(&v, &ledger);
+    gib_fixture_close(&fx);
+}
+
 /* Times gib_voxels_build: median of 5 builds after one warm-up, wall time with glFinish. */
 static int bench(const char *scene, char **res, int count)
 {
@@ -564,7 +664,13 @@ static int bench(const char *scene, char **res, int count)
         printf("SKIP: scene '%s' not available\n", scene);
         return 0;
     }
-    printf("GL_RENDERER: %s; %s: %u triangles\n", fx.info.renderer, scene, fx.scene.triangle_count);
+    const gib_scene *s = fx.gpu.scene;
+    uint32_t masked = 0;
+    for (uint32_t r = 0; r < s->range_count; r++)
+        if (s->materials[s->ranges[r].material].alpha_tex >= 0)
+            masked += s->ranges[r].index_count / 3;
+    printf("GL_RENDERER: %s; %s: %u triangles (%u alpha-masked), %u draw ranges\n",
+           fx.info.renderer, scene, s->triangle_count, masked, s->range_count);
     for (int i = 0; i < count; i++) {
         gib_ledger ledger;
         gib_ledger_init(&ledger);
@@ -599,16 +705,21 @@ static int bench(const char *scene, char **res, int count)
             mips[k] = t[3] - t[2];
             vox[k] = build[k] - clear[k] - mips[k];
         }
-        uint32_t large = 0;
-        glGetNamedBufferSubData(v.work, 12, 4, &large);
+        gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+        int R;
+        unsigned char *base = read_level(&v, 0, &R);
+        size_t set = 0;
+        for (size_t j = 0; j < (size_t)R * R * R; j++)
+            set += base[j] != 0;
+        free(base);
         double m[4], lo[4], hi;
         gib_stats_median(build, 5, &m[0], &lo[0], &hi);
         gib_stats_median(clear, 5, &m[1], &lo[1], &hi);
         gib_stats_median(vox, 5, &m[2], &lo[2], &hi);
         gib_stats_median(mips, 5, &m[3], &lo[3], &hi);
         printf("  %d^3: build %.1f ms (min %.1f) = clear %.1f + voxelise %.1f (min %.1f) + mips "
-               "%.1f (min %.1f); %u large triangles; %llu bytes\n", v.res, m[0], lo[0], m[1],
-               m[2], lo[2], m[3], lo[3], large, (unsigned long long)gib_voxels_bytes(v.res));
+               "%.1f (min %.1f); %zu voxels set; %llu bytes\n", v.res, m[0], lo[0], m[1], m[2], lo[2],
+               m[3], lo[3], set, (unsigned long long)gib_voxels_bytes(v.res));
         gib_voxels_destroy(&v, &ledger);
     }
     gib_fixture_close(&fx);
@@ -706,6 +817,7 @@ int main(int argc, char **argv)
     /* Sliver and zero-area triangles (a fan of 1024 slivers making a quad): no holes. */
     check_case(dir, "hard_sliver", NULL, 64, 0, 1);
     check_cones(dir);
+    check_alpha(dir);
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
