@@ -14,8 +14,8 @@
  *  - a plane and a wall voxelise without holes: their set voxels are one 6-connected component;
  *  - the mip chain: every texel of level k is the mean of its 8 children at level k - 1 within
  *    0.5/255 + 1e-6 (the mean of the stored bytes, rounded once to the nearest 1/255 by the R8
- *    store), so each level's mean is the base level's occupancy within k x 0.5/255;
- *  - voxel_cone.glsl compiled into a probe (check_cones).
+ *    store), so each level's mean is the base level's occupancy within k x 0.5/255.
+ * voxel_cone.glsl has its own test (test_voxel_cone.c).
  *
  * `test_voxels --bench SCENE RES...` times gib_voxels_build (median of 5 after one warm-up) and
  * `test_voxels --png DIR SCENE RES` writes slices and projections of the voxels, for looking. */
@@ -26,10 +26,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/timers.h"
 #include "harness/imaging/image.h"
-#include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
 #include "tests/common/gl_fixture.h"
 
@@ -338,224 +336,6 @@ static void check_case(const char *dir, const char *name, const char *text, int 
     gib_fixture_close(&fx);
 }
 
-/* ---- voxel_cone.glsl, compiled into a probe compute shader ---- */
-
-/* Each query is 3 vec4: (p, mode), (n, dist or diameter or cone index), (dir, aperture); the
- * result replaces the first vec4. Modes: 0 voxel_occlusion(p, diameter), 1 shadow_cone,
- * 2 diffuse cone i: (dir, weight). */
-static const char *probe_main =
-    "layout(local_size_x = 1) in;\n"
-    "layout(std430, binding = GIB_SSBO_OWN_FIRST) buffer Q { vec4 q[]; };\n"
-    "void main() {\n"
-    "  uint i = 3u * gl_WorkGroupID.x;\n"
-    "  vec4 a = q[i], b = q[i + 1u], c = q[i + 2u];\n"
-    "  if (a.w == 0.0) q[i] = vec4(voxel_occlusion(a.xyz, b.w));\n"
-    "  else if (a.w == 1.0) q[i] = vec4(shadow_cone(a.xyz, b.xyz, c.xyz, b.w, c.w));\n"
-    "  else { int k = int(b.w); q[i] = vec4(diffuse_cone_dir(k, b.xyz), diffuse_cone_weight(k));\n"
-    "         if (k == 0) q[i + 1u].w = float(diffuse_cone_count()); }\n"
-    "}\n";
-
-/* The embedded files in order, their #include lines commented out (each is included once). */
-static unsigned probe_program(void)
-{
-    const char *files[3] = {"gl/bindings.h", "common/basis.glsl", "common/voxel_cone.glsl"};
-    size_t cap = 1 << 16, len = 0;
-    char *src = calloc(cap, 1);
-    len += (size_t)snprintf(src, cap, "#version 450 core\n");
-    for (int f = 0; f < 3; f++) {
-        const char *t = gib_shader_source(files[f]);
-        if (!t) {
-            printf("FAIL: %s is not embedded\n", files[f]);
-            free(src);
-            return 0;
-        }
-        for (const char *l = t; *l;) {
-            const char *e = strchr(l, '\n');
-            size_t n = e ? (size_t)(e - l + 1) : strlen(l);
-            if (!strncmp(l, "#include", 8))
-                len += (size_t)snprintf(src + len, cap - len, "//");
-            len += (size_t)snprintf(src + len, cap - len, "%.*s", (int)n, l);
-            l += n;
-        }
-        len += (size_t)snprintf(src + len, cap - len, "\n");
-    }
-    snprintf(src + len, cap - len, "%s", probe_main);
-    GLuint sh = glCreateShader(GL_COMPUTE_SHADER), prog = glCreateProgram();
-    const char *cs = src;
-    glShaderSource(sh, 1, &cs, NULL);
-    glCompileShader(sh);
-    free(src);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        glGetShaderInfoLog(sh, sizeof log, NULL, log);
-        printf("FAIL: voxel_cone.glsl does not compile: %s\n", log);
-        glDeleteShader(sh);
-        glDeleteProgram(prog);
-        return 0;
-    }
-    glAttachShader(prog, sh);
-    glLinkProgram(prog);
-    glDeleteShader(sh);
-    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        printf("FAIL: the voxel_cone.glsl probe does not link\n");
-        glDeleteProgram(prog);
-        return 0;
-    }
-    return prog;
-}
-
-static void run_probe(unsigned prog, const gib_voxels *v, float (*q)[4], int count)
-{
-    GLuint buf = 0;
-    glCreateBuffers(1, &buf);
-    glNamedBufferStorage(buf, (GLsizeiptr)count * 48, q, GL_DYNAMIC_STORAGE_BIT);
-    glUseProgram(prog);
-    gib_voxels_bind(v);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST, buf);
-    glDispatchCompute((GLuint)count, 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(buf, 0, (GLsizeiptr)count * 48, q);
-    glUseProgram(0);
-    glDeleteBuffers(1, &buf);
-}
-
-/* A 2 m floor (y = 0) under a 0.6 x 0.2 x 0.6 m box at y = 0.4..0.6 (the roof):
- *  - voxel_occlusion at the centre of a set roof voxel is 1 (level 0, any diameter up to a voxel),
- *    0 in empty space and outside the grid (the border); tolerance 1/255 (R8);
- *  - a shadow cone straight up from under the roof is blocked (visibility < 0.5: a box's shell is
- *    two layers one voxel thin, and a layer one voxel thin read at mip level m lets 1 - 2^-m
- *    through, the leak of voxel cone tracing), from the floor beside it open (> 0.95), and from
- *    the roof's top face up open (> 0.95) wherever the face lies in its voxel: the start offset
- *    keeps a surface's own voxel out;
- *  - the 6 diffuse cones: one along n, five at 60 degrees from n, 72 degrees apart in azimuth,
- *    weights summing to 1 and proportional to cos(tilt) (the cosine-weighted share of equal caps),
- *    for several normals. */
-static void check_cones(const char *dir)
-{
-    const char *text = "[scene]\ndescription = voxels: roof over a floor\n"
-                       "[mesh.floor]\nprocedural = quad\nsize = 2 2\n"
-                       "[mesh.roof]\nprocedural = box\nsize = 0.6 0.2 0.6\ntranslate = 0 0.4 0\n"
-                       "[camera.c]\neye = 0 1 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n"
-                       "[light.l]\ntype = point\nposition = 0 2 2\nintensity = 1 1 1\n";
-    gib_gl_fixture fx;
-    if (open_scene(&fx, dir, "roof", text) < 0)
-        return;
-    gib_ledger ledger;
-    gib_ledger_init(&ledger);
-    gib_voxels v;
-    gib_error err;
-    unsigned prog = probe_program();
-    if (!prog || gib_voxels_create(&v, &fx.gpu, 64, "voxels", &ledger, &err) < 0) {
-        if (prog)
-            printf("FAIL cones: %s\n", err.msg);
-        failures++;
-        gib_fixture_close(&fx);
-        return;
-    }
-    gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
-    const float vs = v.size / (float)v.res;
-    /* The roof voxel under (0, 0.5, 0): its centre. */
-    float c[3];
-    for (int k = 0; k < 3; k++) {
-        float x = k == 1 ? 0.6f : 0.0f;
-        c[k] = v.origin[k] + (floorf((x - v.origin[k]) / vs) + 0.5f) * vs;
-    }
-    const float deg = (float)M_PI / 180;
-    float q[][3][4] = {
-        {{c[0], c[1], c[2], 0}, {0, 0, 0, vs}, {0}},             /* set voxel, 1 voxel */
-        {{c[0], c[1], c[2], 0}, {0, 0, 0, 0.3f * vs}, {0}},      /* set voxel, below 1 voxel */
-        {{0.0f, 0.25f, 0.0f, 0}, {0, 0, 0, vs}, {0}},            /* empty */
-        {{0.0f, 5.0f, 0.0f, 0}, {0, 0, 0, vs}, {0}},             /* outside the grid */
-        {{0, 0, 0, 1}, {0, 1, 0, 1.0f}, {0, 1, 0, 10 * deg}},    /* under the roof, up */
-        {{0.8f, 0, 0.8f, 1}, {0, 1, 0, 1.0f}, {0, 1, 0, 10 * deg}}, /* beside it, up */
-    };
-    const int nfix = (int)(sizeof q / sizeof q[0]), ntop = 8;
-    const float normals[4][3] = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0.48f, 0.6f, 0.64f}};
-    float (*all)[4] = calloc((size_t)(nfix + 24 + ntop) * 3, sizeof *all);
-    memcpy(all, q, sizeof q);
-    /* Shadow cones up from the roof's top face, the face placed anywhere in its voxel: points
-     * across the voxel the face (y = 0.6) lies in. */
-    const float top = floorf((0.6f - v.origin[1]) / vs);
-    for (int k = 0; k < ntop; k++) {
-        float (*e)[4] = all + 3 * (nfix + 24 + k);
-        const float p[4] = {0, v.origin[1] + (top + (k + 0.5f) / ntop) * vs, 0, 1};
-        const float n[4] = {0, 1, 0, 1.0f}, d[4] = {0, 1, 0, 10 * deg};
-        memcpy(e[0], p, 16);
-        memcpy(e[1], n, 16);
-        memcpy(e[2], d, 16);
-    }
-    for (int m = 0; m < 4; m++)
-        for (int i = 0; i < 6; i++) {
-            float (*e)[4] = all + 3 * (nfix + 6 * m + i);
-            e[0][3] = 2;
-            memcpy(e[1], normals[m], 12);
-            e[1][3] = (float)i;
-        }
-    run_probe(prog, &v, all, nfix + 24 + ntop);
-    const float want[4] = {1, 1, 0, 0};
-    for (int i = 0; i < 4; i++)
-        if (fabsf(all[3 * i][0] - want[i]) > 1.0f / 255) {
-            printf("FAIL cones: voxel_occlusion query %d = %.4f, expected %.0f\n", i,
-                   all[3 * i][0], want[i]);
-            failures++;
-        }
-    float blocked = all[3 * 4][0], open = all[3 * 5][0];
-    printf("  cones: occlusion %.3f %.3f %.3f %.3f; shadow cone under the roof %.3f, beside %.3f\n",
-           all[0][0], all[3][0], all[6][0], all[9][0], blocked, open);
-    if (!(blocked < 0.5f) || !(open > 0.95f)) {
-        printf("FAIL cones: shadow cone visibility %.3f under the roof (< 0.5), %.3f beside "
-               "(> 0.95)\n", blocked, open);
-        failures++;
-    }
-    float worst_top = 1;
-    for (int k = 0; k < ntop; k++)
-        worst_top = fminf(worst_top, all[3 * (nfix + 24 + k)][0]);
-    printf("  cones: from the roof's top face, up: visibility >= %.3f\n", worst_top);
-    if (!(worst_top > 0.95f)) {
-        printf("FAIL cones: a shadow cone up from the roof's top face sees its own voxel "
-               "(visibility %.3f, expected > 0.95)\n", worst_top);
-        failures++;
-    }
-    for (int m = 0; m < 4; m++) {
-        const float *n = normals[m];
-        double wsum = 0, tsum[3] = {0, 0, 0};
-        int bad = (int)all[3 * (nfix + 6 * m) + 1][3] != 6;
-        for (int i = 0; i < 6; i++) {
-            const float *r = all[3 * (nfix + 6 * m + i)];
-            double cosn = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
-            double len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-            double want_cos = i == 0 ? 1.0 : 0.5, want_w = want_cos / 3.5; /* cos / sum of cos */
-            bad += fabs(len - 1) > 1e-5 || fabs(cosn - want_cos) > 1e-5 ||
-                   fabs(r[3] - want_w) > 1e-6;
-            wsum += r[3];
-            for (int k = 0; k < 3 && i; k++)
-                tsum[k] += r[k] - cosn * n[k];
-            /* Neighbours in azimuth 72 degrees apart: tangent parts at cos 72 x sin^2 60. */
-            if (i) {
-                const float *s = all[3 * (nfix + 6 * m + (i % 5) + 1)];
-                double d = 0;
-                for (int k = 0; k < 3; k++)
-                    d += (r[k] - 0.5 * n[k]) * (s[k] - 0.5 * n[k]);
-                bad += fabs(d - cos(72 * M_PI / 180) * 0.75) > 1e-5;
-            }
-        }
-        bad += fabs(wsum - 1) > 1e-6 ||
-               sqrt(tsum[0] * tsum[0] + tsum[1] * tsum[1] + tsum[2] * tsum[2]) > 1e-5;
-        if (bad) {
-            printf("FAIL cones: the diffuse cone set for normal (%g %g %g) (%d errors)\n", n[0],
-                   n[1], n[2], bad);
-            failures++;
-        }
-    }
-    free(all);
-    glDeleteProgram(prog);
-    gib_voxels_destroy(&v, &ledger);
-    gib_fixture_close(&fx);
-}
-
 /* An alpha-masked quad (an OBJ whose MTL has map_d): the tilted plane y = 0.3 x + 0.2 z over
  * x, z in [-0.5, 0.5], uv = (x + 0.5, z + 0.5), solid where u < 0.5 and a hole elsewhere. Voxels
  * the quad touches (exactly, on the CPU) more than 2 voxels inside the solid half must be set,
@@ -816,7 +596,6 @@ int main(int argc, char **argv)
     check_case(dir, "cornell_moving", NULL, 64, 1.0, 0);
     /* Sliver and zero-area triangles (a fan of 1024 slivers making a quad): no holes. */
     check_case(dir, "hard_sliver", NULL, 64, 0, 1);
-    check_cones(dir);
     check_alpha(dir);
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
