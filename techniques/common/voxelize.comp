@@ -1,11 +1,12 @@
 // Occlusion voxels (techniques/common/voxels.h): writes 1 into every voxel a triangle touches.
 // Exact triangle/box overlap by the separating axis theorem (Akenine-Moller 2001, "Fast 3D
-// triangle-box overlap testing": the 3 box normals, the triangle's normal and the 9 edge x box-normal
-// axes), against a box dilated by EPS voxel on each side so that float rounding can only add voxels,
-// never miss one. Work per triangle: only the voxel columns along the triangle's dominant normal axis
-// w inside its bounding box; in each column the plane crosses at most 3 voxels (|n_w| is the largest
-// component), so the 13 axes split into the column's 2D test in the (u, v) projection (axes u, v and
-// the 3 edge x w), once per column, and the w extent, plane and 6 other edge axes per voxel.
+// triangle-box overlap testing": the 3 box normals, the triangle's normal and the 9 edge x
+// box-normal axes), against a box dilated by EPS voxel on each side so that float rounding can only
+// add voxels, never miss one. Work per triangle: only the voxel columns along the triangle's
+// dominant normal axis w inside its bounding box; in each column the plane crosses at most 4 voxels
+// (|n_w| is the largest component: the plane rises at most 2 voxels across a column), so the 13
+// axes split into the column's 2D test in the (u, v) projection (axes u, v and the 3 edge x w),
+// once per column, and the w extent, the plane and the 6 other edge axes per voxel.
 // Alpha-masked materials (cut-outs: Sponza's plants and chains), as the G-buffer and the light
 // views discard mask < 0.5: a voxel the triangle touches is set when the mask, filtered over one
 // voxel's footprint on the triangle (the mip level of a voxel side in texels) at the point of the
@@ -21,7 +22,7 @@ layout(std430, binding = GIB_SSBO_OWN_FIRST + 0) readonly buffer Positions { flo
 layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer Indices { uint indices[]; };
 // work[0..2]: the LARGE pass's indirect dispatch (groups, 1, 1); work[3]: large-triangle count;
 // work[4 .. 4 + T): their indices; work[4 + T + t]: triangle t's alpha mask, 0 for none, else
-// the scene texture's index + 1 (static, written at creation).
+// its id (1 + an index into gib_voxels.mask_tex; static, written at creation).
 layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) buffer Work { uint work[]; };
 layout(std430, binding = GIB_SSBO_OWN_FIRST + 3) readonly buffer Uvs { float uvs[]; };
 layout(r8, binding = 0) writeonly uniform image3D u_vox;

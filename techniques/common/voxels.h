@@ -6,7 +6,8 @@
  * Voxelisation is exact and conservative: a compute shader tests each voxel near each triangle
  * with the separating-axis triangle/box overlap test (Akenine-Moller 2001), so a voxel a triangle
  * touches is never missed, whatever the triangle's size or slope (Mesa has no conservative
- * rasterisation, and its geometry shaders run on one thread). */
+ * rasterisation, and its geometry shaders run on one thread). Triangles with an alpha mask set
+ * only the voxels where the mask is mostly solid, as the G-buffer and light views cut them out. */
 #ifndef GIB_VOXELS_H
 #define GIB_VOXELS_H
 
