@@ -183,6 +183,10 @@ static void check_cones(const char *dir)
             e[1][3] = (float)i;
         }
     run_probe(prog, &v, all, nfix + 24 + ntop);
+    if (gib_gl_check("running the voxel_cone.glsl probe", &err) < 0) {
+        printf("FAIL cones: %s\n", err.msg);
+        failures++;
+    }
     const float want[4] = {1, 1, 0, 0};
     for (int i = 0; i < 4; i++)
         if (fabsf(all[3 * i][0] - want[i]) > 1.0f / 255) {

@@ -291,6 +291,10 @@ static void check_case(const char *dir, const char *name, const char *text, int 
         failures++;
     }
     gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
+    if (gib_gl_check("building the voxels", &err) < 0) {
+        printf("FAIL %s: %s\n", name, err.msg);
+        failures++;
+    }
     int R;
     unsigned char *gpu = read_level(&v, 0, &R);
     size_t n = (size_t)R * R * R;
