@@ -2,7 +2,7 @@
  * occlusion voxels, a 1024^2 RSM, LRSM layers at 512^2, D x N = 2 x 2 and 3 x 2) on a scene with
  * one directional light (one light-view face, as SPONZA's sun), and the bytes the ledger holds
  * compared, exactly, with the formulas computed here level by level:
- *   voxels.occupancy R8 (the voxels' work list, 4 B a triangle, is apart): sum over the chain of (256 / 2^k)^3 x 1 B                  = 19,173,961 B
+ *   voxels.occupancy R8 (the voxels' work list, 8 B a triangle, is apart): sum over the chain of (256 / 2^k)^3 x 1 B                  = 19,173,961 B
  *   layers  RGBA16F + RGBA16F + RGBA16: sum of (512 / 2^k)^2 x 24 B x layers = 33,554,400 B (4)
  *                                                                           = 50,331,600 B (6)
  * and the 512^3 voxels of SPONZA through the plan only (153,391,689 B; not allocated on llvmpipe).
