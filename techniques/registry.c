@@ -13,6 +13,7 @@ extern const gib_technique gib_technique_ldm_ao;
 extern const gib_technique gib_technique_ldm_indirect;
 extern const gib_technique gib_technique_ldm_env;
 extern const gib_technique gib_technique_lrsm;
+extern const gib_technique gib_technique_vct;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
@@ -21,6 +22,7 @@ static const gib_technique *const registry[] = {
     &gib_technique_ldm_indirect,
     &gib_technique_ldm_env,
     &gib_technique_lrsm,
+    &gib_technique_vct,
 };
 
 const gib_technique *const *gib_techniques(int *count)

@@ -1,0 +1,162 @@
+/* gibench technique `vct` — dense voxel cone tracing (Crassin et al. 2011), the baseline of
+ * Sugihara, Rauwendaal and Salvi 2014 (Sec. 3.1 and 6): per frame
+ *  1. "voxelization": the light views (label "rsm": position, normal, reflected flux at
+ *     inject_res) injected into the dense base voxels (radiance + occlusion, normal; RGBA16F),
+ *     occupancy from the scene's triangles, anisotropic mips in 6 directions (vct_volume.c);
+ *  2. "gbuffer";
+ *  3. "shadow_cone" -> direct, "diffuse_cones" -> indirect, "specular_cone" -> glossy
+ *     (vct_shade.frag, vct_trace.glsl).
+ * Memory is planned before anything is allocated; a plan over the budget fails create() with
+ * "out of memory" (the row's status out_of_memory). A NaN reaching an output is found by the
+ * harness (status nonfinite). */
+#include "techniques/vct/vct.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "harness/gl/bindings.h"
+#include "harness/gl/context.h"
+#include "techniques/common/fullscreen.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/common/light_view.h"
+
+extern const gib_technique gib_technique_vct;
+
+static const gib_param_spec vct_params[] = {
+    {"voxel_res", GIB_PARAM_INT, 128, 64, 512, "voxels per side of the dense grid"},
+    {"diffuse_aperture", GIB_PARAM_FLOAT, 60, 1, 120, "full aperture of the 6 diffuse cones, degrees"},
+    {"specular_aperture", GIB_PARAM_FLOAT, 10, 0.5, 120, "full aperture of the specular cone, degrees"},
+    {"shadow_aperture", GIB_PARAM_FLOAT, 4, 0.5, 60, "full aperture of the shadow cones, degrees"},
+    {"step_factor", GIB_PARAM_FLOAT, 1, 0.1, 4,
+     "step between samples as a multiple of the current sample's radius"},
+    {"start_offset", GIB_PARAM_FLOAT, 1.5, 0, 8, "cone start offset along the normal, in voxels"},
+    {"max_distance", GIB_PARAM_FLOAT, 1, 0.01, 2, "longest cone, as a fraction of the grid side"},
+    {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
+    {"memory_budget_mb", GIB_PARAM_FLOAT, 0, 0, 1e7,
+     "memory budget for the voxels (decimal MB); 0 = the device's (NVX_gpu_memory_info, else "
+     "half the physical memory)"},
+    {0},
+};
+
+typedef struct vct {
+    const gib_gpu_scene *scene;
+    gib_ledger *ledger;
+    gib_gbuffer gbuffer;
+    gib_light_views views;
+    vct_volume vol;
+    gib_fullscreen direct, indirect, glossy;
+    int inject_res;
+    float step_factor, start_offset, max_distance;
+    float tan_diffuse, tan_specular, tan_shadow;
+} vct;
+
+static void vct_destroy(void *self)
+{
+    vct *a = self;
+    if (!a)
+        return;
+    gib_fullscreen_destroy(&a->direct);
+    gib_fullscreen_destroy(&a->indirect);
+    gib_fullscreen_destroy(&a->glossy);
+    vct_volume_destroy(&a->vol, a->ledger);
+    gib_light_views_destroy(&a->views, a->ledger);
+    gib_gbuffer_destroy(&a->gbuffer, a->ledger);
+    free(a);
+}
+
+static float tan_half_deg(double deg)
+{
+    return (float)tan(deg * M_PI / 360.0);
+}
+
+static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, int h,
+                        gib_ledger *ledger, gib_error *err)
+{
+    const gib_technique *t = &gib_technique_vct;
+    vct *a = calloc(1, sizeof *a);
+    if (!a) {
+        gib_fail(err, "vct: out of memory (host)");
+        return NULL;
+    }
+    a->scene = scene;
+    a->ledger = ledger;
+    a->inject_res = gib_param_int(t, p, "inject_res");
+    a->step_factor = (float)gib_param_float(t, p, "step_factor");
+    a->start_offset = (float)gib_param_float(t, p, "start_offset");
+    a->max_distance = (float)gib_param_float(t, p, "max_distance");
+    a->tan_diffuse = tan_half_deg(gib_param_float(t, p, "diffuse_aperture"));
+    a->tan_specular = tan_half_deg(gib_param_float(t, p, "specular_aperture"));
+    a->tan_shadow = tan_half_deg(gib_param_float(t, p, "shadow_aperture"));
+    float origin[3], size;
+    vct_grid_fit(scene->scene, origin, &size);
+    /* The voxels first: their plan is checked against the budget before anything is allocated. */
+    if (vct_volume_create(&a->vol, origin, size, gib_param_int(t, p, "voxel_res"),
+                          gib_param_float(t, p, "memory_budget_mb"), ledger, err) < 0 ||
+        gib_light_views_create(&a->views, scene, a->inject_res,
+                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
+                               err) < 0 ||
+        gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
+        gib_fullscreen_create(&a->direct, "vct/vct_shade.frag", "#define DIRECT 1\n", err) < 0 ||
+        gib_fullscreen_create(&a->indirect, "vct/vct_shade.frag", "#define INDIRECT 1\n", err) < 0 ||
+        gib_fullscreen_create(&a->glossy, "vct/vct_shade.frag", "#define GLOSSY 1\n", err) < 0) {
+        vct_destroy(a);
+        return NULL;
+    }
+    return a;
+}
+
+static void cone_pass(vct *a, const gib_fullscreen *fs, const char *pass, unsigned fbo,
+                      const gib_view *view, float tan_half, gib_timers *timers)
+{
+    gib_timer_begin(timers, pass);
+    gib_fullscreen_begin(fs, fbo, view->width, view->height, 0);
+    gib_gpu_scene_bind(a->scene);
+    gib_gbuffer_bind(&a->gbuffer);
+    glBindTextureUnit(GIB_UNIT_VOXELS, a->vol.radiance);
+    for (int d = 0; d < VCT_DIRECTIONS; d++)
+        glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, a->vol.aniso[d]);
+    glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, a->vol.origin);
+    glUniform1f(GIB_LOC_VOXEL_FIRST + 1, a->vol.size);
+    glUniform1i(GIB_LOC_VOXEL_FIRST + 2, a->vol.res);
+    glUniform3fv(2, 1, view->camera->eye);
+    glUniform1i(3, (int)a->scene->scene->light_count);
+    glUniform1f(4, tan_half);
+    glUniform1f(5, a->max_distance * a->vol.size);
+    glUniform1f(7, a->step_factor);
+    glUniform1f(8, a->start_offset);
+    gib_fullscreen_draw(fs);
+    gib_fullscreen_end();
+    gib_timer_end(timers);
+}
+
+static int vct_render(void *self, const gib_view *view, gib_timers *timers,
+                      const gib_image_target *targets, int target_count, gib_error *err)
+{
+    vct *a = self;
+    if (target_count != 3)
+        return gib_fail(err, "vct renders 3 components, was given %d targets", target_count);
+    gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
+    gib_light_views_render(&a->views, a->scene, timers, "voxelization");
+    gib_timer_begin(timers, "voxelization");
+    gib_light_views_bind(&a->views);
+    vct_volume_inject(&a->vol, a->scene, a->inject_res, a->views.first_face, a->views.faces_of,
+                      (int)a->scene->scene->light_count);
+    vct_volume_mips(&a->vol);
+    gib_timer_end(timers);
+    /* targets follow the component bits: direct, indirect, glossy. */
+    cone_pass(a, &a->direct, "shadow_cone", targets[0].fbo, view, a->tan_shadow, timers);
+    cone_pass(a, &a->indirect, "diffuse_cones", targets[1].fbo, view, a->tan_diffuse, timers);
+    cone_pass(a, &a->glossy, "specular_cone", targets[2].fbo, view, a->tan_specular, timers);
+    return gib_gl_check("vct", err);
+}
+
+const gib_technique gib_technique_vct = {
+    .name = "vct",
+    .source = "Crassin et al. 2011 voxel cone tracing, dense, as Sugihara et al. 2014 Sec. 6 ran it",
+    .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
+    .params = vct_params,
+    .create = vct_create,
+    .render = vct_render,
+    .destroy = vct_destroy,
+};

@@ -1,0 +1,63 @@
+/* gibench technique `vct` — dense voxel cone tracing (Crassin et al. 2011) as the LRSM paper ran
+ * it for its comparison (Sugihara et al. 2014, Sec. 6): a dense grid with radiance + occlusion
+ * (RGBA16F) and normal (RGBA16F) per base voxel, injected from the light views, and anisotropic
+ * mips of pre-integrated radiance and occlusion for each of the 6 axis directions.
+ *
+ * The volume (vct_volume.c) is exposed here so tests can build mips of synthetic data and check
+ * the memory plan without a technique run. */
+#ifndef GIB_VCT_H
+#define GIB_VCT_H
+
+#include <stdint.h>
+
+#include "harness/base/error.h"
+#include "harness/gl/gpu_scene.h"
+#include "harness/gl/ledger.h"
+
+/* The 6 anisotropic directions, in this order: the direction a cone TRAVELS along (+x: the
+ * values a cone moving toward +x sees, front-to-back in +x). */
+enum { VCT_PX = 0, VCT_NX, VCT_PY, VCT_NY, VCT_PZ, VCT_NZ, VCT_DIRECTIONS };
+
+/* The memory plan: exact bytes of each voxel structure at `res` voxels a side, as the ledger
+ * counts them once allocated. radiance and normal: RGBA16F res^3 (base level only, the paper's
+ * "base voxels"); aniso: 6 RGBA16F textures of (res/2)^3 with full mip chains. */
+typedef struct vct_plan {
+    uint64_t radiance, normal, aniso, total;
+} vct_plan;
+void vct_plan_bytes(int res, vct_plan *plan);
+/* The budget: `budget_mb` (decimal MB) if > 0, else the device's: GL_NVX_gpu_memory_info's
+ * currently available memory where the extension exists, otherwise half the physical memory
+ * (sysconf). `what` names the source, for the message. Needs a current context for the GL query. */
+uint64_t vct_budget_bytes(double budget_mb, const char **what);
+
+typedef struct vct_volume {
+    int res;
+    float origin[3], size;      /* the cubic grid over the scene's bounds (scene frame) */
+    unsigned radiance, normal;  /* RGBA16F 3D, 1 level: rgb = outgoing radiance (W/m^2/sr),
+                                   a = occupancy; normal: xyz, w = 1 where light was injected */
+    unsigned aniso[VCT_DIRECTIONS];/* RGBA16F 3D (res/2)^3, full chain: premultiplied radiance,
+                                      alpha = occlusion, pre-integrated along the direction */
+    int aniso_levels;
+    unsigned fbo, vao;             /* the injection's layered framebuffer (radiance, normal) */
+    unsigned inject_program, resolve_program, voxelize_program, mip_base_program, mip_program;
+} vct_volume;
+
+/* Plans, checks the budget, then allocates (labels "radiance.base", "normal.base",
+ * "aniso.<dir>"). Over budget: fails with "out of memory" and the planned and available bytes,
+ * allocating nothing. A GL_OUT_OF_MEMORY from an allocation fails the same way. */
+int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, double budget_mb,
+                      gib_ledger *ledger, gib_error *err);
+/* The grid over a scene: cubic, centred on its bounds, with a small margin. */
+void vct_grid_fit(const gib_scene *s, float origin[3], float *size);
+/* Clears the base voxels, injects the light views' texels (bound: gib_light_views_bind; `lv_res`
+ * texels a side, light l's faces first_face[l] .. + faces_of[l]), resolves the sums into
+ * averages, marks occupancy by voxelising the scene's triangles. */
+void vct_volume_inject(vct_volume *v, const gib_gpu_scene *scene, int lv_res,
+                       const int *first_face, const int *faces_of, int lights);
+/* The anisotropic mips (Crassin et al. 2011, Sec. 4): level 0 of each direction from the base
+ * voxels, level k+1 from level k, by compositing the 2 voxels along the direction front to back
+ * and averaging the 4 pairs. */
+void vct_volume_mips(vct_volume *v);
+void vct_volume_destroy(vct_volume *v, gib_ledger *ledger);
+
+#endif

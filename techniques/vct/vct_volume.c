@@ -1,0 +1,247 @@
+/* gibench `vct`: the dense voxel volume (vct.h) — memory plan, injection, occupancy and the
+ * anisotropic mips. */
+#include "techniques/vct/vct.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "harness/gl/bindings.h"
+#include "harness/gl/context.h"
+#include "techniques/common/shader.h"
+
+static const char *const dir_label[VCT_DIRECTIONS] = {"aniso.px", "aniso.nx", "aniso.py",
+                                                      "aniso.ny", "aniso.pz", "aniso.nz"};
+
+void vct_plan_bytes(int res, vct_plan *p)
+{
+    /* Exactly what gib_gpu_texture counts: RGBA16F is 8 bytes a texel; the anisotropic textures
+     * have every level from (res/2)^3 down to 1^3. */
+    uint64_t n = (uint64_t)res;
+    p->radiance = n * n * n * 8;
+    p->normal = n * n * n * 8;
+    uint64_t a = 0;
+    for (uint64_t s = n / 2; s >= 1; s /= 2)
+        a += s * s * s * 8;
+    p->aniso = a * VCT_DIRECTIONS;
+    p->total = p->radiance + p->normal + p->aniso;
+}
+
+#define GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX 0x9049
+
+uint64_t vct_budget_bytes(double budget_mb, const char **what)
+{
+    if (budget_mb > 0) {
+        *what = "memory_budget_mb";
+        return (uint64_t)(budget_mb * 1e6);
+    }
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; i++) {
+        const char *e = (const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i);
+        if (e && !strcmp(e, "GL_NVX_gpu_memory_info")) {
+            GLint kb = 0;
+            glGetIntegerv(GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, &kb);
+            *what = "the device's available memory (GL_NVX_gpu_memory_info)";
+            return (uint64_t)kb * 1024;
+        }
+    }
+    *what = "half the physical memory (no GL_NVX_gpu_memory_info)";
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    return pages > 0 && page > 0 ? (uint64_t)pages * (uint64_t)page / 2 : 0;
+}
+
+/* A failed allocation's message names GL_OUT_OF_MEMORY; say "out of memory" so the runner gives
+ * the row status out_of_memory (harness/app/runner.c). */
+static int alloc_failed(gib_error *err, const vct_plan *plan)
+{
+    if (strstr(err->msg, "GL_OUT_OF_MEMORY"))
+        gib_error_prefix(err, "vct: out of memory allocating the voxels (planned %llu bytes)",
+                         (unsigned long long)plan->total);
+    return -1;
+}
+
+int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, double budget_mb,
+                      gib_ledger *ledger, gib_error *err)
+{
+    memset(v, 0, sizeof *v);
+    v->res = res;
+    memcpy(v->origin, origin, sizeof v->origin);
+    v->size = size;
+    vct_plan plan;
+    vct_plan_bytes(res, &plan);
+    const char *what = "";
+    uint64_t budget = vct_budget_bytes(budget_mb, &what);
+    if (plan.total > budget)
+        return gib_fail(err,
+                        "vct: out of memory: voxel_res %d plans %llu bytes (radiance %llu, normal "
+                        "%llu, aniso %llu), over the %llu bytes available (%s); nothing allocated",
+                        res, (unsigned long long)plan.total, (unsigned long long)plan.radiance,
+                        (unsigned long long)plan.normal, (unsigned long long)plan.aniso,
+                        (unsigned long long)budget, what);
+    const char *inject[] = {"vct/vct_inject.vert", "vct/vct_inject.frag"};
+    const char *resolve[] = {"vct/vct_resolve.comp"};
+    const char *vox[] = {"vct/vct_voxelize.comp"};
+    const char *mip[] = {"vct/vct_aniso.comp"};
+    if (!(v->inject_program = gib_program(inject, 2, NULL, err)) ||
+        !(v->resolve_program = gib_program(resolve, 1, NULL, err)) ||
+        !(v->voxelize_program = gib_program(vox, 1, NULL, err)) ||
+        !(v->mip_base_program = gib_program(mip, 1, "#define FROM_BASE 1\n", err)) ||
+        !(v->mip_program = gib_program(mip, 1, NULL, err)))
+        return -1;
+    int half = res / 2;
+    v->aniso_levels = gib_mip_levels(half, half, half);
+    if (!(v->radiance = gib_gpu_texture(ledger, "radiance.base", GL_TEXTURE_3D, res, res, res,
+                                        GL_RGBA16F, 1, err)) ||
+        !(v->normal = gib_gpu_texture(ledger, "normal.base", GL_TEXTURE_3D, res, res, res,
+                                      GL_RGBA16F, 1, err)))
+        return alloc_failed(err, &plan);
+    for (int d = 0; d < VCT_DIRECTIONS; d++)
+        if (!(v->aniso[d] = gib_gpu_texture(ledger, dir_label[d], GL_TEXTURE_3D, half, half, half,
+                                            GL_RGBA16F, 0, err)))
+            return alloc_failed(err, &plan);
+    const unsigned all[2 + VCT_DIRECTIONS] = {v->radiance, v->normal, v->aniso[0], v->aniso[1],
+                                              v->aniso[2], v->aniso[3], v->aniso[4], v->aniso[5]};
+    for (int i = 0; i < 2 + VCT_DIRECTIONS; i++) {
+        /* Trilinear within and between levels; outside the grid is empty (border 0). */
+        glTextureParameteri(all[i], GL_TEXTURE_MIN_FILTER,
+                            i < 2 ? GL_LINEAR : GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(all[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (GLenum w = GL_TEXTURE_WRAP_S; w <= GL_TEXTURE_WRAP_R;
+             w = w == GL_TEXTURE_WRAP_S ? GL_TEXTURE_WRAP_T
+                 : w == GL_TEXTURE_WRAP_T ? GL_TEXTURE_WRAP_R : GL_TEXTURE_WRAP_R + 1)
+            glTextureParameteri(all[i], w, GL_CLAMP_TO_BORDER);
+    }
+    glCreateFramebuffers(1, &v->fbo);
+    glNamedFramebufferTexture(v->fbo, GL_COLOR_ATTACHMENT0, v->radiance, 0);
+    glNamedFramebufferTexture(v->fbo, GL_COLOR_ATTACHMENT1, v->normal, 0);
+    const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(v->fbo, 2, bufs);
+    if (glCheckNamedFramebufferStatus(v->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return gib_fail(err, "vct: the layered injection framebuffer is incomplete");
+    glCreateVertexArrays(1, &v->vao);
+    if (gib_gl_check("vct volume", err) < 0)
+        return alloc_failed(err, &plan);
+    return 0;
+}
+
+void vct_grid_fit(const gib_scene *s, float origin[3], float *size)
+{
+    /* Cubic, centred on the scene's bounds (which cover every instant of a moving scene), with a
+     * 2% margin so no surface lies on the grid's outer faces. */
+    float ext = 0;
+    for (int k = 0; k < 3; k++) {
+        float e = s->bounds_max[k] - s->bounds_min[k];
+        ext = e > ext ? e : ext;
+    }
+    ext = ext > 0 ? ext * 1.02f : 1.0f;
+    for (int k = 0; k < 3; k++)
+        origin[k] = 0.5f * (s->bounds_min[k] + s->bounds_max[k]) - 0.5f * ext;
+    *size = ext;
+}
+
+static void grid_uniforms(const vct_volume *v)
+{
+    glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, v->origin);
+    glUniform1f(GIB_LOC_VOXEL_FIRST + 1, v->size);
+    glUniform1i(GIB_LOC_VOXEL_FIRST + 2, v->res);
+}
+
+void vct_volume_inject(vct_volume *v, const gib_gpu_scene *scene, int lv_res,
+                       const int *first_face, const int *faces_of, int lights)
+{
+    const float zero[4] = {0, 0, 0, 0};
+    glClearTexImage(v->radiance, 0, GL_RGBA, GL_FLOAT, zero);
+    glClearTexImage(v->normal, 0, GL_RGBA, GL_FLOAT, zero);
+
+    /* Injection: every light-view texel drawn as a point into the voxel holding its position
+     * (vct_inject.vert), summed by additive blending into radiance (rgb: w L, a: w) and normal
+     * (rgb: w n), w the texel's area in voxel faces. */
+    glBindFramebuffer(GL_FRAMEBUFFER, v->fbo);
+    glViewport(0, 0, v->res, v->res);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glBlendEquation(GL_FUNC_ADD);
+    glUseProgram(v->inject_program);
+    grid_uniforms(v);
+    glUniform1i(3, lv_res);
+    glBindVertexArray(v->vao);
+    for (int l = 0; l < lights; l++)
+        for (int f = first_face[l]; f < first_face[l] + faces_of[l]; f++) {
+            glUniform1i(2, l);
+            glUniform1i(4, f);
+            glDrawArrays(GL_POINTS, 0, lv_res * lv_res);
+        }
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    /* The injection framebuffer stays bound: llvmpipe loses the begin of a GL_TIME_ELAPSED query
+     * started while framebuffer 0 (none, surfaceless) is bound, and the next pass's time. */
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+
+    /* Resolve: sums to area-weighted averages; occupancy where light landed. */
+    int g = (v->res + 3) / 4;
+    glUseProgram(v->resolve_program);
+    glBindImageTexture(0, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glBindImageTexture(1, v->normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glDispatchCompute(g, g, g);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    /* Occupancy: every voxel a triangle overlaps gets alpha 1 (vct_voxelize.comp). */
+    const gib_scene *s = scene->scene;
+    glUseProgram(v->voxelize_program);
+    grid_uniforms(v);
+    glUniform1ui(3, s->triangle_count);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 0, scene->positions);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, scene->indices);
+    glBindImageTexture(0, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glDispatchCompute((s->triangle_count + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void vct_volume_mips(vct_volume *v)
+{
+    for (int level = 0; level < v->aniso_levels; level++) {
+        int side = (v->res / 2) >> level;
+        glUseProgram(level == 0 ? v->mip_base_program : v->mip_program);
+        glUniform1i(2, level);
+        if (level == 0) {
+            glBindTextureUnit(GIB_UNIT_OWN_FIRST + 0, v->radiance);
+            glBindTextureUnit(GIB_UNIT_OWN_FIRST + 1, v->normal);
+        } else {
+            for (int d = 0; d < VCT_DIRECTIONS; d++)
+                glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, v->aniso[d]);
+        }
+        for (int d = 0; d < VCT_DIRECTIONS; d++)
+            glBindImageTexture((GLuint)d, v->aniso[d], level, GL_TRUE, 0, GL_WRITE_ONLY,
+                               GL_RGBA16F);
+        int g = (side + 3) / 4;
+        glDispatchCompute(g, g, g);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    for (int d = 0; d < VCT_DIRECTIONS; d++)
+        glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, 0);
+}
+
+void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
+{
+    const unsigned progs[] = {v->mip_base_program, v->inject_program, v->resolve_program,
+                              v->voxelize_program, v->mip_program};
+    for (int i = 0; i < 5; i++)
+        if (progs[i])
+            glDeleteProgram(progs[i]);
+    if (v->fbo)
+        glDeleteFramebuffers(1, &v->fbo);
+    if (v->vao)
+        glDeleteVertexArrays(1, &v->vao);
+    if (v->radiance)
+        gib_gpu_free(ledger, v->radiance, 1);
+    if (v->normal)
+        gib_gpu_free(ledger, v->normal, 1);
+    for (int d = 0; d < VCT_DIRECTIONS; d++)
+        if (v->aniso[d])
+            gib_gpu_free(ledger, v->aniso[d], 1);
+    memset(v, 0, sizeof *v);
+}
