@@ -39,7 +39,8 @@ void main()
         float cosi = dot(n, wi);
         if (cosi <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0)
             continue;
-        float v = 1.0 - vct_cone(pos.xyz, n, wi, u_tan_half, min(dist, u_max_dist)).a;
+        bool local = dist < 1e30; // point and spot lights: the cone tapers toward the light
+        float v = 1.0 - vct_cone_ex(pos.xyz, n, wi, u_tan_half, min(dist, u_max_dist), local).a;
         sum += brdf(alb.rgb, spec, int(alb.w + 0.5), n, wo, wi) * E * (cosi * v);
     }
 #elif defined(INDIRECT)

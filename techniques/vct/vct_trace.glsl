@@ -31,17 +31,21 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 }
 
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset along n) in direction
-// D, up to max_dist (world units; the whole sphere stays within it).
-vec4 vct_cone(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist)
+// D, up to max_dist (world units; the whole sphere stays within it). A shadow cone toward a point
+// light (taper = 1) narrows again toward the light, d = 2 tan(a/2) min(t, t_light - t): a point
+// light casts its penumbra from the receiver's side only, and a full-width sample at the light
+// would take the surfaces next to it (a light under a ceiling) for occluders; it also stops
+// start_offset voxels before the light, as it starts that far off the surface.
+vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool taper)
 {
     float vs = vct_voxel();
     vec3 o = p + n * (u_start_offset * vs);
-    float tmax = max_dist / vs;
+    float tmax = max_dist / vs - (taper ? u_start_offset : 0.0);
     vec3 I = vec3(0.0);
     float A = 0.0;
     float t = 0.0;
     for (int i = 0; i < 1024 && A < 0.995; i++) {
-        float d = max(2.0 * t * tan_half, 1.0);
+        float d = max(2.0 * (taper ? min(t, tmax - t) : t) * tan_half, 1.0);
         if (t + 0.5 * d > tmax)
             break;
         vec3 uvw = (o + D * (t * vs) - u_vct_origin) / u_vct_size;
@@ -56,6 +60,10 @@ vec4 vct_cone(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist)
         t += dt;
     }
     return vec4(I, A);
+}
+vec4 vct_cone(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist)
+{
+    return vct_cone_ex(p, n, D, tan_half, max_dist, false);
 }
 
 // The 6 diffuse cones: one along n and five around it tilted 60 degrees, 72 degrees apart; a
