@@ -1,0 +1,102 @@
+/* vct's memory plan (techniques/vct/vct.h) and its out-of-memory status.
+ *  - The plan's formula: RGBA16F radiance and normal at res^3, 6 RGBA16F anisotropic textures of
+ *    (res/2)^3 with full chains. 256^3: 383,479,216 bytes (the issue's "383 MB"); 512^3:
+ *    3,067,833,776 bytes (the paper's "3 GB"), planned only, never allocated here.
+ *  - After a run at voxel_res 64 the ledger's counted bytes per structure equal the plan exactly.
+ *  - A budget below the plan (memory_budget_mb 1 at 64^3, 1000 at 512^3): the runner's row has
+ *    status out_of_memory, the message carries the planned bytes, and nothing was allocated. */
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness/app/runner.h"
+#include "techniques/vct/vct.h"
+#include "tests/common/gl_fixture.h"
+
+/* Sum of the ledger summary's entries whose label starts with `prefix`. */
+static uint64_t label_bytes(const char *summary, const char *prefix)
+{
+    uint64_t sum = 0;
+    const char *s = summary;
+    while (s && *s) {
+        const char *eq = strchr(s, '=');
+        if (!eq)
+            break;
+        if (!strncmp(s, prefix, strlen(prefix)))
+            sum += strtoull(eq + 1, NULL, 10);
+        s = strchr(eq, ';');
+        s = s ? s + 1 : NULL;
+    }
+    return sum;
+}
+
+static int run(gib_gl_fixture *fx, const char *res, const char *budget, gib_run_result *r)
+{
+    const gib_technique *t = gib_technique_find("vct");
+    gib_params p;
+    gib_error err;
+    gib_params_default(t, &p);
+    if (gib_param_set(t, &p, "voxel_res", res, &err) < 0 ||
+        gib_param_set(t, &p, "inject_res", "32", &err) < 0 ||
+        gib_param_set(t, &p, "memory_budget_mb", budget, &err) < 0) {
+        printf("FAIL: %s\n", err.msg);
+        return -1;
+    }
+    gib_run_technique(&fx->gpu, t, &p, 0, 16, 16, 0, 1, r);
+    return 0;
+}
+
+int main(void)
+{
+    int ok = 1;
+    vct_plan p256, p512, p64;
+    vct_plan_bytes(256, &p256);
+    vct_plan_bytes(512, &p512);
+    vct_plan_bytes(64, &p64);
+    printf("plan 256^3: %" PRIu64 " bytes (%.1f MB), 512^3: %" PRIu64 " bytes (%.2f GB)\n",
+           p256.total, p256.total / 1e6, p512.total, p512.total / 1e9);
+    if (p256.total != 383479216ull || p512.total != 3067833776ull) {
+        printf("FAIL: the plan's formula (expected 383479216 and 3067833776 bytes)\n");
+        ok = 0;
+    }
+
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, "cornell") < 0)
+        return 1;
+    gib_run_result r;
+    if (run(&fx, "64", "0", &r) < 0)
+        return 1;
+    uint64_t rad = label_bytes(r.memory_by_label, "radiance."),
+             nrm = label_bytes(r.memory_by_label, "normal."),
+             ani = label_bytes(r.memory_by_label, "aniso.");
+    printf("run at 64^3: status %s; ledger radiance %" PRIu64 ", normal %" PRIu64 ", aniso %" PRIu64
+           "; plan %" PRIu64 ", %" PRIu64 ", %" PRIu64 "\n", r.status, rad, nrm, ani, p64.radiance,
+           p64.normal, p64.aniso);
+    if (!r.ok || rad != p64.radiance || nrm != p64.normal || ani != p64.aniso) {
+        printf("FAIL: the ledger's bytes differ from the plan (or the run failed: %s)\n", r.err.msg);
+        ok = 0;
+    }
+    gib_run_result_free(&r);
+
+    const char *cases[2][2] = {{"64", "1"}, {"512", "1000"}};
+    for (int i = 0; i < 2; i++) {
+        if (run(&fx, cases[i][0], cases[i][1], &r) < 0)
+            return 1;
+        vct_plan pl;
+        vct_plan_bytes(atoi(cases[i][0]), &pl);
+        char planned[32];
+        snprintf(planned, sizeof planned, "%" PRIu64, pl.total);
+        int good = !strcmp(r.status, "out_of_memory") && r.technique_bytes == 0 &&
+                   r.memory_by_label[0] == 0 && strstr(r.err.msg, planned) &&
+                   strstr(r.err.msg, "out of memory");
+        printf("%s voxel_res %s, budget %s MB: status %s, %" PRIu64 " bytes allocated: %s\n",
+               good ? "PASS" : "FAIL", cases[i][0], cases[i][1], r.status, r.technique_bytes,
+               r.err.msg);
+        ok &= good;
+        gib_run_result_free(&r);
+    }
+    printf("%s: vct memory plan and out_of_memory\n", ok ? "PASS" : "FAIL");
+    gib_fixture_close(&fx);
+    return ok ? 0 : 1;
+}
