@@ -31,7 +31,7 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 }
 
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset along n) in direction
-// D, up to max_dist (world units; the whole sphere stays within it). A shadow cone toward a point
+// D, with sample centres up to max_dist (world units) away. A shadow cone toward a point
 // light (taper = 1) narrows again toward the light, d = 2 tan(a/2) min(t, t_light - t): a point
 // light casts its penumbra from the receiver's side only, and a full-width sample at the light
 // would take the surfaces next to it (a light under a ceiling) for occluders; it also stops
@@ -46,7 +46,7 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
     float t = 0.0;
     for (int i = 0; i < 1024 && A < 0.995; i++) {
         float d = max(2.0 * (taper ? min(t, tmax - t) : t) * tan_half, 1.0);
-        if (t + 0.5 * d > tmax)
+        if (t > tmax)
             break;
         vec3 uvw = (o + D * (t * vs) - u_vct_origin) / u_vct_size;
         if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0))))

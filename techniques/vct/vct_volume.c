@@ -111,7 +111,7 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
         for (GLenum w = GL_TEXTURE_WRAP_S; w <= GL_TEXTURE_WRAP_R;
              w = w == GL_TEXTURE_WRAP_S ? GL_TEXTURE_WRAP_T
                  : w == GL_TEXTURE_WRAP_T ? GL_TEXTURE_WRAP_R : GL_TEXTURE_WRAP_R + 1)
-            glTextureParameteri(all[i], w, GL_CLAMP_TO_BORDER);
+            glTextureParameteri(all[i], w, GL_CLAMP_TO_EDGE);
     }
     glCreateFramebuffers(1, &v->fbo);
     glNamedFramebufferTexture(v->fbo, GL_COLOR_ATTACHMENT0, v->radiance, 0);
