@@ -29,7 +29,8 @@ static const gib_param_spec vct_params[] = {
     {"specular_aperture", GIB_PARAM_FLOAT, 10, 0.5, 120, "full aperture of the specular cone, degrees"},
     {"shadow_aperture", GIB_PARAM_FLOAT, 4, 0.5, 60, "full aperture of the shadow cones, degrees"},
     {"step_factor", GIB_PARAM_FLOAT, 1, 0.1, 4,
-     "step between samples as a multiple of the current sample's radius"},
+     "step between samples as a multiple of the current sample's diameter (1: spheres that "
+     "touch, Fig. 4; as common/voxel_cone.glsl's shadow_cone)"},
     {"start_offset", GIB_PARAM_FLOAT, 1.5, 0, 8, "cone start offset along the normal, in voxels"},
     {"max_distance", GIB_PARAM_FLOAT, 1, 0.01, 2, "longest cone, as a fraction of the grid side"},
     {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
@@ -89,9 +90,10 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->tan_specular = tan_half_deg(gib_param_float(t, p, "specular_aperture"));
     a->tan_shadow = tan_half_deg(gib_param_float(t, p, "shadow_aperture"));
     float origin[3], size;
-    vct_grid_fit(scene->scene, origin, &size);
+    int res = gib_param_int(t, p, "voxel_res");
+    vct_grid_fit(scene->scene, res, origin, &size);
     /* The voxels first: their plan is checked against the budget before anything is allocated. */
-    if (vct_volume_create(&a->vol, origin, size, gib_param_int(t, p, "voxel_res"),
+    if (vct_volume_create(&a->vol, origin, size, res,
                           gib_param_float(t, p, "memory_budget_mb"), ledger, err) < 0 ||
         gib_light_views_create(&a->views, scene, a->inject_res,
                                GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,

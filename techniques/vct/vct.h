@@ -47,8 +47,8 @@ typedef struct vct_volume {
  * allocating nothing. A GL_OUT_OF_MEMORY from an allocation fails the same way. */
 int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, double budget_mb,
                       gib_ledger *ledger, gib_error *err);
-/* The grid over a scene: cubic, centred on its bounds, with a small margin. */
-void vct_grid_fit(const gib_scene *s, float origin[3], float *size);
+/* The grid over a scene at res voxels a side: as the occlusion voxels place theirs. */
+void vct_grid_fit(const gib_scene *s, int res, float origin[3], float *size);
 /* Clears the base voxels, injects the light views' texels (bound: gib_light_views_bind; `lv_res`
  * texels a side, light l's faces first_face[l] .. + faces_of[l]), resolves the sums into
  * averages, marks occupancy by voxelising the scene's triangles. */

@@ -1,10 +1,10 @@
 #include "common/scene.glsl"
-#include "common/basis.glsl"
 #include "vct/vct_trace.glsl"
 // The cone passes on the G-buffer (Sugihara et al. 2014, Sec. 3.1 and 6), one per output:
 //  DIRECT:   every light with a shadow cone toward it (visibility 1 - occlusion), same BRDF and
 //            falloff as the reference's `direct`;
-//  INDIRECT: rho_d x sum_i w_i I_i over the 6 diffuse cones: the cosine-weighted mean incoming
+//  INDIRECT: rho_d x sum_i w_i I_i over the 6 diffuse cones (common/voxel_cone.glsl: weights are
+//            the cones' cosine-weighted shares, summing to 1): the cosine-weighted mean incoming
 //            radiance times pi, times rho_d / pi (the reference's one diffuse bounce, L D D E);
 //  GLOSSY:   one cone along the mirror direction on pixels with a specular lobe: rho_s I for a
 //            mirror; rho_s I max(0, n.r) for normalised Phong (its lobe integrates cos to about
@@ -44,9 +44,9 @@ void main()
         sum += brdf(alb.rgb, spec, int(alb.w + 0.5), n, wo, wi) * E * (cosi * v);
     }
 #elif defined(INDIRECT)
-    for (int i = 0; i < 6; i++)
-        sum += vct_diffuse_weight(i) * vct_cone(pos.xyz, n, vct_diffuse_dir(i, n), u_tan_half,
-                                                u_max_dist).rgb;
+    for (int i = 0; i < diffuse_cone_count(); i++)
+        sum += diffuse_cone_weight(i) * vct_cone(pos.xyz, n, diffuse_cone_dir(i, n), u_tan_half,
+                                                 u_max_dist).rgb;
     sum *= alb.rgb;
 #else
     int type = int(alb.w + 0.5);

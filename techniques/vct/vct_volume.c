@@ -16,15 +16,12 @@ static const char *const dir_label[VCT_DIRECTIONS] = {"aniso.px", "aniso.nx", "a
 
 void vct_plan_bytes(int res, vct_plan *p)
 {
-    /* Exactly what gib_gpu_texture counts: RGBA16F is 8 bytes a texel; the anisotropic textures
-     * have every level from (res/2)^3 down to 1^3. */
-    uint64_t n = (uint64_t)res;
-    p->radiance = n * n * n * 8;
-    p->normal = n * n * n * 8;
-    uint64_t a = 0;
-    for (uint64_t s = n / 2; s >= 1; s /= 2)
-        a += s * s * s * 8;
-    p->aniso = a * VCT_DIRECTIONS;
+    /* What gib_gpu_texture will count (the ledger's plan): RGBA16F base levels, and 6 RGBA16F
+     * textures of (res/2)^3 with full chains. */
+    p->radiance = gib_texture_bytes(GL_TEXTURE_3D, res, res, res, GL_RGBA16F, 1);
+    p->normal = gib_texture_bytes(GL_TEXTURE_3D, res, res, res, GL_RGBA16F, 1);
+    p->aniso = VCT_DIRECTIONS * gib_texture_bytes(GL_TEXTURE_3D, res / 2, res / 2, res / 2,
+                                                  GL_RGBA16F, 0);
     p->total = p->radiance + p->normal + p->aniso;
 }
 
@@ -126,19 +123,24 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     return 0;
 }
 
-void vct_grid_fit(const gib_scene *s, float origin[3], float *size)
+void vct_grid_fit(const gib_scene *s, int res, float origin[3], float *size)
 {
-    /* Cubic, centred on the scene's bounds (which cover every instant of a moving scene), with a
-     * 2% margin so no surface lies on the grid's outer faces. */
-    float ext = 0;
+    /* The occlusion voxels' placement (techniques/common/voxels.c): a cube centred on the scene's
+     * bounds (which cover every instant of a moving scene) with 1.5 voxels of margin a side, so
+     * `vct` and `lrsm` at the same resolution see the scene through the same grid. */
+    float ext = 0, c[3];
     for (int k = 0; k < 3; k++) {
-        float e = s->bounds_max[k] - s->bounds_min[k];
-        ext = e > ext ? e : ext;
+        float lo = s->bounds_min[k], hi = s->bounds_max[k];
+        int ok = isfinite(lo) && isfinite(hi) && hi >= lo;
+        c[k] = ok ? 0.5f * (lo + hi) : 0.0f;
+        if (ok && hi - lo > ext)
+            ext = hi - lo;
     }
-    ext = ext > 0 ? ext * 1.02f : 1.0f;
+    if (!(ext > 0))
+        ext = 1;
+    *size = ext * (float)res / (float)(res - 3);
     for (int k = 0; k < 3; k++)
-        origin[k] = 0.5f * (s->bounds_min[k] + s->bounds_max[k]) - 0.5f * ext;
-    *size = ext;
+        origin[k] = c[k] - 0.5f * *size;
 }
 
 static void grid_uniforms(const vct_volume *v)
