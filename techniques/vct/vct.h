@@ -3,6 +3,11 @@
  * (RGBA16F) and normal (RGBA16F) per base voxel, injected from the light views, and anisotropic
  * mips of pre-integrated radiance and occlusion for each of the 6 axis directions.
  *
+ * Known limits of the method as built (measured, see the tests): the coarse levels pre-integrate
+ * whole cells, so a cone's own surface and walls behind the sample darken wide cones in closed
+ * rooms (the paper: VCT's anisotropic mips are "sometimes over conservative", Sec. 6); a wall
+ * thinner than a voxel lit on both sides has one voxel, one averaged normal, and leaks radiance.
+ *
  * The volume (vct_volume.c) is exposed here so tests can build mips of synthetic data and check
  * the memory plan without a technique run. */
 #ifndef GIB_VCT_H
