@@ -14,6 +14,7 @@
 #include <glad/gl.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
@@ -102,6 +103,9 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
         gib_fullscreen_create(&a->direct, "vct/vct_shade.frag", "#define DIRECT 1\n", err) < 0 ||
         gib_fullscreen_create(&a->indirect, "vct/vct_shade.frag", "#define INDIRECT 1\n", err) < 0 ||
         gib_fullscreen_create(&a->glossy, "vct/vct_shade.frag", "#define GLOSSY 1\n", err) < 0) {
+        /* A driver's GL_OUT_OF_MEMORY anywhere (the ledger names it) is the row's out_of_memory. */
+        if (strstr(err->msg, "GL_OUT_OF_MEMORY") && !strstr(err->msg, "out of memory"))
+            gib_error_prefix(err, "vct: out of memory");
         vct_destroy(a);
         return NULL;
     }
