@@ -43,8 +43,9 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
     for (int i = 0; i < 1024 && A < 0.995 && t <= tmax; i++) {
         float d = max(2.0 * (taper ? min(t, tmax - t) : t) * tan_half, 1.0);
         vec3 uvw = (o + D * (t * vs) - u_voxel_origin) / u_voxel_size;
-        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0))))
-            break;
+        float r = d / float(u_voxel_res); // the sample's diameter as a fraction of the grid
+        if (any(lessThan(uvw, vec3(-r))) || any(greaterThan(uvw, vec3(1.0 + r))))
+            break; // the sphere has left the grid (as shadow_cone)
         vec4 s = vct_sample(uvw, D, log2(d));
         float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor);
         vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);

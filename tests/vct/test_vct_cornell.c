@@ -7,14 +7,14 @@
  *    centre; one bounce = 0.25 / pi = 0.079577 everywhere): the mean within FURNACE_LO..HI of the
  *    closed form, and the direct light within DIRECT_TOL of 0.5 / pi (no occluder between the
  *    light and any wall: a shadow cone that meets its own wall fails; measured 8.9e-5).
- *    Measured 0.39: a 1-voxel wall sampled trilinearly lets ~14% through (optical depth 2 of a
+ *    Measured 0.42: a 1-voxel wall sampled trilinearly lets ~14% through (optical depth 2 of a
  *    tent), and the coarse levels pre-integrate cells that hold the cone's own wall (dark, seen
  *    from behind), which the 60-degree cones reach within a few samples. Radiance injected
  *    without its 1/pi (x3.1) or the cone weights not summing to 1 fall outside;
  *  - the Cornell box against the `indirect` reference (REF_SPP): the mean of each channel within
- *    MEAN_LO..HI of the reference's (measured 0.56-0.58, the same darkening in a closed room: the
+ *    MEAN_LO..HI of the reference's (measured 0.62-0.64, the same darkening in a closed room: the
  *    paper's "over conservative" anisotropic mips), 8x8-block relative RMSE below BLOCK_TOL
- *    (measured 0.83-1.04: the ceiling, lit only indirectly from the floor, gets ~0.15 of the
+ *    (measured 0.81-1.03: the ceiling, lit only indirectly from the floor, gets ~0.15 of the
  *    reference through the coarse cells that hold the ceiling itself), and the colour bleeding on
  *    the right sides: the left third (red wall) redder than the right third (green wall), as in
  *    the reference (mirrored anisotropic directions fail this). */
