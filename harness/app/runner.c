@@ -127,9 +127,9 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
     }
     self = t->create(scene, params, w, h, &ledger, &r->err);
     if (!self) {
-        set_status(r, strstr(r->err.msg, "out of memory")                          ? "out_of_memory"
-                      : strstr(r->err.msg, "shader") || strstr(r->err.msg, "program") ? "shader_failed"
-                                                                                        : "create_failed");
+        set_status(r, strstr(r->err.msg, "out of memory") ? "out_of_memory"
+                      : strstr(r->err.msg, "shader") || strstr(r->err.msg, "program")
+                          ? "shader_failed" : "create_failed");
         goto done;
     }
     gib_view view;
