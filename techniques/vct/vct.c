@@ -1,8 +1,9 @@
 /* gibench technique `vct` — dense voxel cone tracing (Crassin et al. 2011), the baseline of
  * Sugihara, Rauwendaal and Salvi 2014 (Sec. 3.1 and 6): per frame
- *  1. "voxelization": the light views (label "rsm": position, normal, reflected flux at
- *     inject_res) injected into the dense base voxels (radiance + occlusion, normal; RGBA16F),
- *     occupancy from the scene's triangles, anisotropic mips in 6 directions (vct_volume.c);
+ *  1. "voxelization": the occlusion voxels (common/voxels.h) for the occupancy, the light views
+ *     (label "rsm": position, normal, reflected flux at inject_res) injected into the dense base
+ *     voxels (radiance + occlusion, normal; RGBA16F), anisotropic mips in 6 directions
+ *     (vct_volume.c);
  *  2. "gbuffer";
  *  3. "shadow_cone" -> direct, "diffuse_cones" -> indirect, "specular_cone" -> glossy
  *     (vct_shade.frag, vct_trace.glsl).
@@ -21,6 +22,7 @@
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
+#include "techniques/common/voxels.h"
 
 extern const gib_technique gib_technique_vct;
 
@@ -46,6 +48,7 @@ typedef struct vct {
     gib_ledger *ledger;
     gib_gbuffer gbuffer;
     gib_light_views views;
+    gib_voxels occ;          /* the shared occlusion voxels: the occupancy (radiance alpha) */
     vct_volume vol;
     gib_fullscreen direct, indirect, glossy;
     int inject_res;
@@ -62,6 +65,7 @@ static void vct_destroy(void *self)
     gib_fullscreen_destroy(&a->indirect);
     gib_fullscreen_destroy(&a->glossy);
     vct_volume_destroy(&a->vol, a->ledger);
+    gib_voxels_destroy(&a->occ, a->ledger);
     gib_light_views_destroy(&a->views, a->ledger);
     gib_gbuffer_destroy(&a->gbuffer, a->ledger);
     free(a);
@@ -90,12 +94,19 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->tan_diffuse = tan_half_deg(gib_param_float(t, p, "diffuse_aperture"));
     a->tan_specular = tan_half_deg(gib_param_float(t, p, "specular_aperture"));
     a->tan_shadow = tan_half_deg(gib_param_float(t, p, "shadow_aperture"));
-    float origin[3], size;
+    /* The plan is checked against the budget before anything is allocated. */
     int res = gib_param_int(t, p, "voxel_res");
-    vct_grid_fit(scene->scene, res, origin, &size);
-    /* The voxels first: their plan is checked against the budget before anything is allocated. */
-    if (vct_volume_create(&a->vol, origin, size, res,
-                          gib_param_float(t, p, "memory_budget_mb"), ledger, err) < 0 ||
+    vct_plan plan;
+    vct_plan_bytes(res, (long long)scene->scene->triangle_count, &plan);
+    if (vct_plan_check(&plan, res, gib_param_float(t, p, "memory_budget_mb"), err) < 0) {
+        free(a);
+        return NULL;
+    }
+    /* Occupancy from the shared occlusion voxels (common/voxels.h), the radiance in a grid
+     * placed as theirs: one exact voxeliser for LRSM and VCT, alpha masks honoured; its R8
+     * texture is the "voxels" structure, beside the paper's VCT formats. */
+    if (gib_voxels_create(&a->occ, scene, res, "voxels", ledger, err) < 0 ||
+        vct_volume_create(&a->vol, a->occ.origin, a->occ.size, res, ledger, err) < 0 ||
         gib_light_views_create(&a->views, scene, a->inject_res,
                                GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
                                err) < 0 ||
@@ -143,11 +154,13 @@ static int vct_render(void *self, const gib_view *view, gib_timers *timers,
     if (target_count != 3)
         return gib_fail(err, "vct renders 3 components, was given %d targets", target_count);
     gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
+    /* "voxelization": occupancy, light views, injection and mips (each call adds to the pass). */
+    gib_voxels_build(&a->occ, a->scene, timers, "voxelization");
     gib_light_views_render(&a->views, a->scene, timers, "voxelization");
     gib_timer_begin(timers, "voxelization");
     gib_light_views_bind(&a->views);
-    vct_volume_inject(&a->vol, a->scene, a->inject_res, a->views.first_face, a->views.faces_of,
-                      (int)a->scene->scene->light_count);
+    vct_volume_inject(&a->vol, a->occ.texture, a->inject_res, a->views.first_face,
+                      a->views.faces_of, (int)a->scene->scene->light_count);
     vct_volume_mips(&a->vol);
     gib_timer_end(timers);
     /* targets follow the component bits: direct, indirect, glossy. */

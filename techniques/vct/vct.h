@@ -27,9 +27,12 @@ enum { VCT_PX = 0, VCT_NX, VCT_PY, VCT_NY, VCT_PZ, VCT_NZ, VCT_DIRECTIONS };
  * counts them once allocated. radiance and normal: RGBA16F res^3 (base level only, the paper's
  * "base voxels"); aniso: 6 RGBA16F textures of (res/2)^3 with full mip chains. */
 typedef struct vct_plan {
-    uint64_t radiance, normal, aniso, total;
+    uint64_t radiance, normal, aniso, voxels, total;
 } vct_plan;
-void vct_plan_bytes(int res, vct_plan *plan);
+/* voxels: the shared occlusion voxels the occupancy comes from (common/voxels.h: R8 res^3 with
+ * its chain, and 8 bytes a triangle + 16 of work list); 0 for triangles < 0 (no scene: the
+ * volume alone, as the tests build it). */
+void vct_plan_bytes(int res, long long triangles, vct_plan *plan);
 /* The budget: `budget_mb` (decimal MB) if > 0, else the device's: GL_NVX_gpu_memory_info's
  * currently available memory where the extension exists, otherwise half the physical memory
  * (sysconf). `what` names the source, for the message. Needs a current context for the GL query. */
@@ -44,21 +47,23 @@ typedef struct vct_volume {
                                       alpha = occlusion, pre-integrated along the direction */
     int aniso_levels;
     unsigned fbo, vao;             /* the injection's layered framebuffer (radiance, normal) */
-    unsigned inject_program, resolve_program, voxelize_program, mip_base_program, mip_program;
+    unsigned inject_program, resolve_program, mip_base_program, mip_program;
 } vct_volume;
 
-/* Plans, checks the budget, then allocates (labels "radiance.base", "normal.base",
- * "aniso.<dir>"). Over budget: fails with "out of memory" and the planned and available bytes,
- * allocating nothing. A GL_OUT_OF_MEMORY from an allocation fails the same way. */
-int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, double budget_mb,
+/* Allocates (labels "radiance.base", "normal.base", "aniso.<dir>") for a grid of side `size` at
+ * `origin`. A GL_OUT_OF_MEMORY fails with "out of memory". The caller checks the plan against
+ * the budget first (vct_plan_check). */
+int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
                       gib_ledger *ledger, gib_error *err);
-/* The grid over a scene at res voxels a side: as the occlusion voxels place theirs. */
-void vct_grid_fit(const gib_scene *s, int res, float origin[3], float *size);
+/* The plan against the budget (budget_mb as vct_budget_bytes): over it, fails with "out of
+ * memory" and the planned and available bytes. */
+int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_error *err);
 /* Clears the base voxels, injects the light views' texels (bound: gib_light_views_bind; `lv_res`
  * texels a side, light l's faces first_face[l] .. + faces_of[l]), resolves the sums into
- * averages, marks occupancy by voxelising the scene's triangles. */
-void vct_volume_inject(vct_volume *v, const gib_gpu_scene *scene, int lv_res,
-                       const int *first_face, const int *faces_of, int lights);
+ * averages and takes the occupancy (alpha) from `occupancy`, the occlusion voxels' R8 texture
+ * (common/voxels.h) of the same grid, built this frame. */
+void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
+                       const int *faces_of, int lights);
 /* The anisotropic mips (Crassin et al. 2011, Sec. 4): level 0 of each direction from the base
  * voxels, level k+1 from level k, by compositing the 2 voxels along the direction front to back
  * and averaging the 4 pairs. */

@@ -10,11 +10,12 @@
 #include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
 #include "techniques/common/shader.h"
+#include "techniques/common/voxels.h"
 
 static const char *const dir_label[VCT_DIRECTIONS] = {"aniso.px", "aniso.nx", "aniso.py",
                                                       "aniso.ny", "aniso.pz", "aniso.nz"};
 
-void vct_plan_bytes(int res, vct_plan *p)
+void vct_plan_bytes(int res, long long triangles, vct_plan *p)
 {
     /* What gib_gpu_texture will count (the ledger's plan): RGBA16F base levels, and 6 RGBA16F
      * textures of (res/2)^3 with full chains. */
@@ -22,7 +23,23 @@ void vct_plan_bytes(int res, vct_plan *p)
     p->normal = gib_texture_bytes(GL_TEXTURE_3D, res, res, res, GL_RGBA16F, 1);
     p->aniso = VCT_DIRECTIONS * gib_texture_bytes(GL_TEXTURE_3D, res / 2, res / 2, res / 2,
                                                   GL_RGBA16F, 0);
-    p->total = p->radiance + p->normal + p->aniso;
+    p->voxels = triangles < 0 ? 0 : gib_voxels_bytes(res) + 16 + 8 * (uint64_t)triangles;
+    p->total = p->radiance + p->normal + p->aniso + p->voxels;
+}
+
+int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_error *err)
+{
+    const char *what = "";
+    uint64_t budget = vct_budget_bytes(budget_mb, &what);
+    if (plan->total <= budget)
+        return 0;
+    return gib_fail(err,
+                    "vct: out of memory: voxel_res %d plans %llu bytes (radiance %llu, normal %llu, "
+                    "aniso %llu, voxels %llu), over the %llu bytes available (%s); nothing "
+                    "allocated",
+                    res, (unsigned long long)plan->total, (unsigned long long)plan->radiance,
+                    (unsigned long long)plan->normal, (unsigned long long)plan->aniso,
+                    (unsigned long long)plan->voxels, (unsigned long long)budget, what);
 }
 
 #define GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX 0x9049
@@ -59,7 +76,7 @@ static int alloc_failed(gib_error *err, const vct_plan *plan)
     return -1;
 }
 
-int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, double budget_mb,
+int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
                       gib_ledger *ledger, gib_error *err)
 {
     memset(v, 0, sizeof *v);
@@ -67,23 +84,12 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     memcpy(v->origin, origin, sizeof v->origin);
     v->size = size;
     vct_plan plan;
-    vct_plan_bytes(res, &plan);
-    const char *what = "";
-    uint64_t budget = vct_budget_bytes(budget_mb, &what);
-    if (plan.total > budget)
-        return gib_fail(err,
-                        "vct: out of memory: voxel_res %d plans %llu bytes (radiance %llu, normal "
-                        "%llu, aniso %llu), over the %llu bytes available (%s); nothing allocated",
-                        res, (unsigned long long)plan.total, (unsigned long long)plan.radiance,
-                        (unsigned long long)plan.normal, (unsigned long long)plan.aniso,
-                        (unsigned long long)budget, what);
+    vct_plan_bytes(res, -1, &plan);
     const char *inject[] = {"vct/vct_inject.vert", "vct/vct_inject.frag"};
     const char *resolve[] = {"vct/vct_resolve.comp"};
-    const char *vox[] = {"vct/vct_voxelize.comp"};
     const char *mip[] = {"vct/vct_aniso.comp"};
     if (!(v->inject_program = gib_program(inject, 2, NULL, err)) ||
         !(v->resolve_program = gib_program(resolve, 1, NULL, err)) ||
-        !(v->voxelize_program = gib_program(vox, 1, NULL, err)) ||
         !(v->mip_base_program = gib_program(mip, 1, "#define FROM_BASE 1\n", err)) ||
         !(v->mip_program = gib_program(mip, 1, NULL, err)))
         return -1;
@@ -124,26 +130,6 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     return 0;
 }
 
-void vct_grid_fit(const gib_scene *s, int res, float origin[3], float *size)
-{
-    /* The occlusion voxels' placement (techniques/common/voxels.c): a cube centred on the scene's
-     * bounds (which cover every instant of a moving scene) with 1.5 voxels of margin a side, so
-     * `vct` and `lrsm` at the same resolution see the scene through the same grid. */
-    float ext = 0, c[3];
-    for (int k = 0; k < 3; k++) {
-        float lo = s->bounds_min[k], hi = s->bounds_max[k];
-        int ok = isfinite(lo) && isfinite(hi) && hi >= lo;
-        c[k] = ok ? 0.5f * (lo + hi) : 0.0f;
-        if (ok && hi - lo > ext)
-            ext = hi - lo;
-    }
-    if (!(ext > 0))
-        ext = 1;
-    *size = ext * (float)res / (float)(res - 3);
-    for (int k = 0; k < 3; k++)
-        origin[k] = c[k] - 0.5f * *size;
-}
-
 static void grid_uniforms(const vct_volume *v)
 {
     glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, v->origin);
@@ -151,8 +137,8 @@ static void grid_uniforms(const vct_volume *v)
     glUniform1i(GIB_LOC_VOXEL_FIRST + 2, v->res);
 }
 
-void vct_volume_inject(vct_volume *v, const gib_gpu_scene *scene, int lv_res,
-                       const int *first_face, const int *faces_of, int lights)
+void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
+                       const int *faces_of, int lights)
 {
     const float zero[4] = {0, 0, 0, 0};
     glClearTexImage(v->radiance, 0, GL_RGBA, GL_FLOAT, zero);
@@ -184,23 +170,14 @@ void vct_volume_inject(vct_volume *v, const gib_gpu_scene *scene, int lv_res,
      * started while framebuffer 0 (none, surfaceless) is bound, and the next pass's time. */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
-    /* Resolve: sums to area-weighted averages; occupancy where light landed. */
+    /* Resolve: sums to area-weighted averages; alpha = occupancy (the occlusion voxels', or
+     * where light landed). */
     int g = (v->res + 3) / 4;
     glUseProgram(v->resolve_program);
+    glBindTextureUnit(GIB_UNIT_OWN_FIRST, occupancy);
     glBindImageTexture(0, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
     glBindImageTexture(1, v->normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(g, g, g);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-
-    /* Occupancy: every voxel a triangle overlaps gets alpha 1 (vct_voxelize.comp). */
-    const gib_scene *s = scene->scene;
-    glUseProgram(v->voxelize_program);
-    grid_uniforms(v);
-    glUniform1ui(3, s->triangle_count);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 0, scene->positions);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, scene->indices);
-    glBindImageTexture(0, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
-    glDispatchCompute((s->triangle_count + 63) / 64, 1, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -231,8 +208,8 @@ void vct_volume_mips(vct_volume *v)
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
 {
     const unsigned progs[] = {v->mip_base_program, v->inject_program, v->resolve_program,
-                              v->voxelize_program, v->mip_program};
-    for (int i = 0; i < 5; i++)
+                              v->mip_program};
+    for (int i = 0; i < 4; i++)
         if (progs[i])
             glDeleteProgram(progs[i]);
     if (v->fbo)
