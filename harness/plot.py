@@ -7,8 +7,15 @@
 - sweeps: for every parameter a matrix varies over three or more values, GPU time and relative RMSE
   against that parameter, one line per technique and setting of the other parameters (scaling curves:
   time against LDM count, resolution, dmax...). An unbounded value (inf) is drawn at the right end;
+- error against memory (the ledger's peak bytes), per (matrix, scene, component) whose runs differ
+  in memory (structure resolutions, layers: the LRSM paper's Table 2 and the sweeps);
+- across matrices: where runs of different matrices estimate the same component of the same scene
+  at the same size on the same renderer (ldm_indirect, lrsm and vct on `indirect`), speed and memory
+  against error of them all in one plot (cross_<scene>_<component>_<size>);
 - the reference path tracer's throughput against Embree on the same rays, by scene, beside the
   lean tracer's (results/bench_reference.csv, `gibench bench reference`).
+Error is the relative RMSE, or the RMSE where the reference's mean is 0 (a view that should be black,
+thin_wall_leak's); rows without a finite error or time are left out of the plots (not the CSV).
 Writes PNG and SVG. Uses only the standard library and gnuplot (Debian's gnuplot-nox).
 
 usage: plot.py RESULTS_DIR [--out PLOTS_DIR]
@@ -35,14 +42,43 @@ def gp_quote(s):
     return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
-def plot_group(key, rows, out_dir, renderer):
+def finite_num(text):
+    try:
+        x = float(text)
+    except (TypeError, ValueError):
+        return None
+    return x if x == x and abs(x) != float("inf") else None
+
+
+def error_metric(rows):
+    """Relative RMSE, or RMSE where no row has a finite one: a reference whose mean is 0 (a view
+    that should be black, as thin_wall_leak's) makes every relative error infinite."""
+    if any(finite_num(r["rel_rmse"]) is not None for r in rows):
+        return "rel_rmse", "relative RMSE against the reference"
+    return "rmse", "RMSE against the reference (its mean is 0: relative error undefined)"
+
+
+X_AXES = {"time": ("gpu_ms_median", 1.0, "GPU time per frame, median (ms)"),
+          "memory": ("mem_bytes", 1e-6, "technique memory, peak (MB, ledger)")}
+
+
+def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=False):
+    """Speed (x = "time") or memory (x = "memory") against error, one point per run."""
     matrix, scene, component = key
-    base = os.path.join(out_dir, f"{matrix}_{scene}_{component}")
+    col, scale, xlabel = X_AXES[x]
+    metric, ylabel = error_metric(rows)
+    base = os.path.join(out_dir, name or f"{matrix}_{scene}_{component}" + ("" if x == "time" else "_memory"))
     by_tech = {}
     for r in rows:
-        by_tech.setdefault(r["technique"], []).append(
-            (float(r["gpu_ms_median"]), float(r["rel_rmse"]), r["params"],
+        xv, yv = finite_num(r.get(col)), finite_num(r[metric])
+        if xv is None or yv is None or xv <= 0:
+            continue  # unplottable (no memory figure, an infinite error): the CSV keeps the row
+        tech = r["technique"] + (f" ({r['matrix']})" if label_matrix else "")
+        by_tech.setdefault(tech, []).append(
+            (xv * scale, yv, r["params"],
              r["width"] + "x" + r["height"] + (f" t={r['time']}" if r.get("time", "0") != "0" else "")))
+    if not by_tech:
+        return None
     data_path = base + ".dat"
     with open(data_path, "w") as f:
         blocks = []
@@ -67,13 +103,28 @@ def plot_group(key, rows, out_dir, renderer):
     for term, ext in (("pngcairo size 900,600 font 'sans,10'", "png"), ("svg size 900,600", "svg")):
         script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
                    f"set title {gp_quote(title)} noenhanced",
-                   "set xlabel 'GPU time per frame, median (ms)'",
-                   "set ylabel 'relative RMSE against the reference'",
+                   f"set xlabel {gp_quote(xlabel)}",
+                   f"set ylabel {gp_quote(ylabel)}",
                    "set logscale x", "set grid", "set key outside right top noenhanced",
                    "plot " + ", ".join(plots), "unset output"]
     subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
     os.remove(data_path)
     return base + ".png"
+
+
+def cross_groups(groups):
+    """Runs of different matrices that estimate the same component of the same scene at the same
+    image size on the same renderer (e.g. ldm_indirect, lrsm and vct on `indirect`): one plot of
+    them all, when they hold at least two techniques from at least two matrices."""
+    merged = {}
+    for (matrix, scene, component), rows in groups.items():
+        for r in rows:
+            merged.setdefault((scene, component, r["width"] + "x" + r["height"], r["renderer"]), []).append(r)
+    out = {}
+    for k, rows in merged.items():
+        if len({r["technique"] for r in rows}) >= 2 and len({r["matrix"] for r in rows}) >= 2:
+            out[k] = rows
+    return out
 
 
 def parse_params(text):
@@ -88,6 +139,7 @@ def parse_params(text):
 def sweep_plots(key, rows, out_dir, renderer):
     """One sweep plot per parameter with >= 3 distinct values within a technique."""
     matrix, scene, component = key
+    metric, _ = error_metric(rows)
     written = []
     params = {}
     for r in rows:
@@ -103,7 +155,10 @@ def sweep_plots(key, rows, out_dir, renderer):
             others = ", ".join(f"{k}={v:g}" for k, v in sorted(p.items()) if k != name
                                and len(params[(r["technique"], k)]) > 1)
             label = r["technique"] + (f" ({others})" if others else "") + f" {r['width']}x{r['height']}"
-            series.setdefault(label, []).append((p[name], float(r["gpu_ms_median"]), float(r["rel_rmse"])))
+            err = finite_num(r[metric])
+            if err is None or finite_num(r["gpu_ms_median"]) is None:
+                continue
+            series.setdefault(label, []).append((p[name], float(r["gpu_ms_median"]), err))
         finite = [x for pts in series.values() for x, _, _ in pts if x != float("inf")]
         if not finite:
             continue
@@ -129,7 +184,7 @@ def sweep_plots(key, rows, out_dir, renderer):
                        f"set xlabel {gp_quote(name)} noenhanced", "set ylabel 'GPU ms per frame (median)'", "set logscale y",
                        "plot " + ", ".join(f"{gp_quote(data_path)} index {i} using 1:2 with linespoints pt 7 title {gp_quote(l)}"
                                            for i, l in enumerate(labels)),
-                       "set logscale y", "set ylabel 'relative RMSE (log)'",
+                       "set logscale y", f"set ylabel '{metric} (log)'",
                        "plot " + ", ".join(f"{gp_quote(data_path)} index {i} using 1:3 with linespoints pt 7 title {gp_quote(l)}"
                                            for i, l in enumerate(labels)),
                        "unset multiplot", "unset output", "unset xtics", "set xtics autofreq"]
@@ -210,7 +265,11 @@ def main():
         if not name.endswith(".csv") or name.endswith("_passes.csv"):
             continue
         with open(os.path.join(a.results, name), newline="") as f:
-            for r in csv.DictReader(f):
+            reader = csv.DictReader(f)
+            # Runner tables only (the papers' tables beside ours have other columns).
+            if not {"matrix", "gpu_ms_median", "rel_rmse", "status"} <= set(reader.fieldnames or []):
+                continue
+            for r in reader:
                 if r.get("status") != "ok":
                     continue
                 key = (r["matrix"], r["scene"], r["component"])
@@ -220,9 +279,20 @@ def main():
         print(f"plot.py: no ok rows in {a.results}/*.csv; nothing to plot")
         return
     for key, rows in sorted(groups.items()):
-        print("plot.py: wrote", plot_group(key, rows, out, renderers[key]))
-        for path in sweep_plots(key, rows, out, renderers[key]):
-            print("plot.py: wrote", path)
+        for path in [plot_group(key, rows, out, renderers[key])] + sweep_plots(key, rows, out, renderers[key]):
+            if path:
+                print("plot.py: wrote", path)
+        # Error against memory where the runs' memory differs (structure resolutions, layers...).
+        if len({r["mem_bytes"] for r in rows}) >= 2:
+            path = plot_group(key, rows, out, renderers[key], x="memory")
+            if path:
+                print("plot.py: wrote", path)
+    for (scene, component, size, renderer), rows in sorted(cross_groups(groups).items()):
+        for x in ("time", "memory"):
+            path = plot_group(("all matrices", scene, component), rows, out, renderer, x=x, label_matrix=True,
+                              name=f"cross_{scene}_{component}_{size}" + ("" if x == "time" else "_memory"))
+            if path:
+                print("plot.py: wrote", path)
 
 
 if __name__ == "__main__":
