@@ -109,7 +109,7 @@ def ldm_rows(results, paper_csv):
 # the runner's rows); the tables below are written under the paper's names. Every table is written
 # from whatever rows exist: a scene, technique or setting that did not run is a row saying `missing`.
 
-LRSM_SCENES = {"SIBENIK": "sibenik", "SPONZA": "sponza_sun", "SPONZA DRAGON": "sponza_dragon"}
+LRSM_SCENES = {"SIBENIK": "sibenik", "SPONZA": "sponza_glossy", "SPONZA DRAGON": "sponza_dragon"}
 MB = 1e6  # the paper's MB are decimal (its sums show it: paper-values/README.md)
 MISSING = "missing"
 
@@ -335,7 +335,7 @@ def table3(results, paper_dir):
     for tech, want in (("lrsm", {"voxel_res": 512, "rsm_res": 1024, "layers_depth": 2, "layers_normal": 2}),
                        ("vct", {"voxel_res": 512})):
         cands = [r for r in rows if r["technique"] == tech and run_key(r) in passes]
-        cands.sort(key=lambda r: (r["scene"] == "sponza_sun", want_match(r, want),
+        cands.sort(key=lambda r: (r["scene"] == "sponza_glossy", want_match(r, want),
                                   params(r["params"]).get("voxel_res", 0), int(r["width"]) * int(r["height"])))
         chosen[tech] = cands[-1] if cands else None
     paper = {}
@@ -388,7 +388,7 @@ def scene_exposure(scene):
     return 1.0
 
 
-FIG7_SCENES = [("sibenik", "SIBENIK", 256), ("sponza_sun", "SPONZA", 512), ("thin_wall_leak", "", None),
+FIG7_SCENES = [("sibenik", "SIBENIK", 256), ("sponza_glossy", "SPONZA", 512), ("thin_wall_leak", "", None),
                ("cornell", "", None)]
 # A leak is visible when its RMS reaches 1% of display white at the scene's exposure (2.5 of 255
 # levels); thin_wall_leak's correct image is black, so its RMSE is the leaked light's RMS.
