@@ -68,17 +68,25 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
     col, scale, xlabel = X_AXES[x]
     metric, ylabel = error_metric(rows)
     base = os.path.join(out_dir, name or f"{matrix}_{scene}_{component}" + ("" if x == "time" else "_memory"))
+    # Label each point with the parameters that vary among its technique's runs here (all of a
+    # technique's parameters make labels that cover the plot).
+    varying = {}
+    for r in rows:
+        for k, v in parse_params(r["params"]).items():
+            varying.setdefault((r["technique"], k), set()).add(v)
     by_tech = {}
     for r in rows:
+        short = ";".join(f"{k}={v:g}" for k, v in parse_params(r["params"]).items()
+                         if len(varying[(r["technique"], k)]) > 1)
         xv, yv = finite_num(r.get(col)), finite_num(r[metric])
         if xv is None or yv is None or xv <= 0:
             continue  # unplottable (no memory figure, an infinite error): the CSV keeps the row
         tech = r["technique"] + (f" ({r['matrix']})" if label_matrix else "")
         by_tech.setdefault(tech, []).append(
-            (xv * scale, yv, r["params"],
+            (xv * scale, yv, short,
              r["width"] + "x" + r["height"] + (f" t={r['time']}" if r.get("time", "0") != "0" else "")))
-    if not by_tech:
-        return None
+    if not by_tech or all(p[1] == 0 for pts in by_tech.values() for p in pts):
+        return None  # nothing to compare: every run exact (a component the scene lacks: black)
     data_path = base + ".dat"
     with open(data_path, "w") as f:
         blocks = []
@@ -155,9 +163,9 @@ def sweep_plots(key, rows, out_dir, renderer):
             others = ", ".join(f"{k}={v:g}" for k, v in sorted(p.items()) if k != name
                                and len(params[(r["technique"], k)]) > 1)
             label = r["technique"] + (f" ({others})" if others else "") + f" {r['width']}x{r['height']}"
-            err = finite_num(r[metric])
-            if err is None or finite_num(r["gpu_ms_median"]) is None:
-                continue
+            err, ms = finite_num(r[metric]), finite_num(r["gpu_ms_median"])
+            if err is None or ms is None or err <= 0 or ms <= 0:
+                continue  # both axes are logarithmic (a black reference and image give error 0)
             series.setdefault(label, []).append((p[name], float(r["gpu_ms_median"]), err))
         finite = [x for pts in series.values() for x, _, _ in pts if x != float("inf")]
         if not finite:
