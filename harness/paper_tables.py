@@ -243,7 +243,9 @@ def table2(results, paper_dir):
                                        "layers_normal": n})
         by = mem_by_structure(row) if row else None
         if row and by is None:
-            note = (note + "; " if note else "") + "the CSV has no per-structure memory column"
+            note = (note + "; " if note else "") + "the CSV has no per-structure memory column" + (
+                f" (all the technique allocated: {float(row['mem_bytes']) / MB:.2f} MB)"
+                if fnum(row.get("mem_bytes")) else "")
         where = f"{row['scene']} {row['params']} {row['width']}x{row['height']} profile={row['profile']}" \
             if row else ""
         structs = [("occlusion_voxels", "voxels", f"{vres}^3 R8, full mips", voxels_bytes(vres),
@@ -300,6 +302,9 @@ def table2(results, paper_dir):
         paper_mb = 3000.0 if vres == 512 else None
         m, of, pv = mem_compare(ours, vct_bytes(vres), None)
         note = []
+        if by is None and r and fnum(r.get("mem_bytes")):
+            note.append(f"the CSV has no per-structure memory column (all the technique allocated: "
+                        f"{float(r['mem_bytes']) / MB:.2f} MB)")
         if others:
             note.append("besides: " + ", ".join(f"{k} {v / MB:.2f} MB" for k, v in sorted(others.items())))
         if planned:
