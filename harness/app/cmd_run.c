@@ -12,6 +12,7 @@
 #include "runner.h"
 #include "app.h"
 #include "csv.h"
+#include "harness/base/hash.h"
 #include "matrix.h"
 
 static const char help[] =
@@ -27,14 +28,14 @@ static const char help[] =
 
 enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
        C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU,
-       C_MEM, C_SCENE_MEM,
+       C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
        C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_NONFINITE, C_REF_SPP, C_REF_NOISE, C_REF_NOISY,
        C_STATUS, C_MESSAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
 
 static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
     "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms",
-    "mem_bytes",
+    "mem_bytes", "mem_by_structure",
     "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "nonfinite", "ref_spp",
     "ref_noise_rmse", "ref_noisy", "status", "message", "backend", "renderer", "gl_version",
     "git_revision", "timestamp"};
@@ -111,7 +112,7 @@ typedef struct run_ctx {
     const char *out, *cache;
     int images;
     gib_gl_info info;
-    int rows_written, rows_failed, runs_skipped;
+    int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
 } run_ctx;
 
 /* The identity part of a row: what makes it this run. */
@@ -166,7 +167,10 @@ static void append_row(run_ctx *ctx, row *r)
     if (gib_csv_append(ctx->csv, r->ptr, &err) < 0)
         fprintf(stderr, "gibench run: %s\n", err.msg);
     ctx->rows_written++;
-    if (strcmp(r->v[C_STATUS], "ok"))
+    /* out_of_memory is a result (the plan exceeds the device), not a failure of the run. */
+    if (!strcmp(r->v[C_STATUS], "out_of_memory"))
+        ctx->rows_out_of_memory++;
+    else if (strcmp(r->v[C_STATUS], "ok"))
         ctx->rows_failed++;
 }
 
@@ -188,6 +192,7 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         row_identity(&r, ctx, mr, bit);
         row_set(&r, C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
         row_set(&r, C_MEM, "%llu", (unsigned long long)res->technique_bytes);
+        row_set(&r, C_MEM_STRUCT, "%s", res->memory_by_structure);
         if (res->driver_bytes >= 0)
             row_set(&r, C_DRIVER_MEM, "%lld", res->driver_bytes);
         if (!res->ok) {
@@ -227,6 +232,13 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         for (char *p = name; *p; p++)
             if (*p == ';' || *p == '=')
                 *p = *p == ';' ? '_' : '-';
+        /* File names stop at 255 bytes: a long parameter list (lrsm has 15) becomes its hash. */
+        if (strlen(name) + strlen("_error.png") + 16 > 240) {
+            char hex[17];
+            gib_hash_hex(gib_hash_str(GIB_HASH_INIT, mr->params_key), hex);
+            snprintf(name, sizeof name, "%s_%s_p%s_%dx%d%s_%s", mr->scene, t->name, hex, mr->width,
+                     mr->height, at, comp);
+        }
         if (ctx->images) {
             /* The reference beside the technique images, once per (scene, component, size, dmax). */
             char ref_png[4096];
@@ -456,8 +468,8 @@ int gib_cmd_run(int argc, char **argv)
         gib_csv_close(&csv);
         gib_csv_close(&passes);
     }
-    printf("gibench run: %d rows written (%d not ok), %d runs skipped\n", ctx.rows_written,
-           ctx.rows_failed, ctx.runs_skipped);
+    printf("gibench run: %d rows written (%d not ok, %d out of memory), %d runs skipped\n",
+           ctx.rows_written, ctx.rows_failed, ctx.rows_out_of_memory, ctx.runs_skipped);
     if (ctx.rows_failed)
         status = 1;
     gib_gl_shutdown();

@@ -176,6 +176,7 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
 done:
     r->technique_bytes = ledger.peak_bytes;
     gib_ledger_summary(&ledger, r->memory_by_label, sizeof r->memory_by_label);
+    gib_ledger_structures(&ledger, r->memory_by_structure, sizeof r->memory_by_structure);
     if (self)
         t->destroy(self);
     gib_ledger_release_all(&ledger); /* whatever a technique forgot to free */

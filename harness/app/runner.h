@@ -26,6 +26,7 @@ typedef struct gib_run_result {
                                        drop in available video memory from before create to after
                                        the last frame), -1 where the driver does not tell */
     char memory_by_label[1024];
+    char memory_by_structure[256];  /* the same summed by structure (gib_ledger_structures) */
     gib_error err;
 } gib_run_result;
 

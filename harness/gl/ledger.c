@@ -149,7 +149,15 @@ void gib_ledger_release_all(gib_ledger *l)
     l->current_bytes = 0;
 }
 
-void gib_ledger_summary(const gib_ledger *l, char *out, int out_len)
+/* Length of the key a label is summed under: the whole label, or (by_structure) the part before
+ * its first '.'. */
+static size_t key_len(const char *label, int by_structure)
+{
+    const char *dot = by_structure ? strchr(label, '.') : NULL;
+    return dot ? (size_t)(dot - label) : strlen(label);
+}
+
+static void summary(const gib_ledger *l, int by_structure, char *out, int out_len)
 {
     int used = 0;
     out[0] = 0;
@@ -157,16 +165,29 @@ void gib_ledger_summary(const gib_ledger *l, char *out, int out_len)
     for (int i = 0; i < l->count; i++) {
         if (seen[i])
             continue;
+        const char *key = l->entries[i].label;
+        size_t n_key = key_len(key, by_structure);
         uint64_t sum = 0;
         for (int j = i; j < l->count; j++)
-            if (!strcmp(l->entries[j].label, l->entries[i].label)) {
+            if (key_len(l->entries[j].label, by_structure) == n_key &&
+                !strncmp(l->entries[j].label, key, n_key)) {
                 sum += l->entries[j].bytes;
                 seen[j] = 1;
             }
-        int n = snprintf(out + used, out_len - used, "%s%s=%llu", used ? ";" : "",
-                         l->entries[i].label, (unsigned long long)sum);
+        int n = snprintf(out + used, out_len - used, "%s%.*s=%llu", used ? ";" : "", (int)n_key,
+                         key, (unsigned long long)sum);
         if (n < 0 || n >= out_len - used)
             break;
         used += n;
     }
+}
+
+void gib_ledger_summary(const gib_ledger *l, char *out, int out_len)
+{
+    summary(l, 0, out, out_len);
+}
+
+void gib_ledger_structures(const gib_ledger *l, char *out, int out_len)
+{
+    summary(l, 1, out, out_len);
 }

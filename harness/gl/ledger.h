@@ -55,5 +55,8 @@ int gib_mip_levels(int width, int height, int depth);
 
 /* "label=bytes;label=bytes" summed by label, for the CSV. */
 void gib_ledger_summary(const gib_ledger *l, char *out, int out_len);
+/* The same summed by structure, the part of a label before its first '.' ("voxels=...;rsm=..."):
+ * the CSV's mem_by_structure (the LRSM paper's Table 2 is per structure). */
+void gib_ledger_structures(const gib_ledger *l, char *out, int out_len);
 
 #endif
