@@ -63,7 +63,7 @@ static int make_work(gib_voxels *v, const gib_scene *s, const char *label, gib_l
             data[4 + t + i] = (uint32_t)id + 1;
     }
     char name[96];
-    snprintf(name, sizeof name, "%s.work", label);
+    snprintf(name, sizeof name, "%s_work.triangles", label);
     v->work = gib_gpu_buffer(ledger, name, 4 * (4 + 2 * (uint64_t)t), data, GL_DYNAMIC_STORAGE_BIT,
                              err);
     free(data);

@@ -39,8 +39,9 @@ typedef struct gib_voxels {
 uint64_t gib_voxels_bytes(int res);
 /* Sets up res^3 voxels (64..512) over the scene's bounds: a cube centred on them, 1.5 voxels of
  * margin on each side. Allocates "<label>.occupancy" (the texture, gib_voxels_bytes) and
- * "<label>.work" (the large-triangle list and each triangle's alpha mask, 8 bytes per triangle
- * + 16) through the ledger. */
+ * "<label>_work.triangles" (the large-triangle list and each triangle's alpha mask, 8 bytes per
+ * triangle + 16: scratch, a structure of its own so that "<label>" is the paper's) through the
+ * ledger. */
 int gib_voxels_create(gib_voxels *v, const gib_gpu_scene *scene, int res, const char *label,
                       gib_ledger *ledger, gib_error *err);
 /* Clears, voxelises the scene's current positions (moving scenes: after gib_gpu_scene_set_time)

@@ -72,7 +72,8 @@ int main(void)
     uint64_t rad = label_bytes(r.memory_by_label, "radiance."),
              nrm = label_bytes(r.memory_by_label, "normal."),
              ani = label_bytes(r.memory_by_label, "aniso."),
-             vox = label_bytes(r.memory_by_label, "voxels.");
+             vox = label_bytes(r.memory_by_label, "voxels.") +
+                   label_bytes(r.memory_by_label, "voxels_work.");
     printf("run at 64^3: status %s; ledger radiance %" PRIu64 ", normal %" PRIu64 ", aniso %" PRIu64
            ", voxels %" PRIu64 "; plan %" PRIu64 ", %" PRIu64 ", %" PRIu64 ", %" PRIu64 "\n",
            r.status, rad, nrm, ani, vox, p64.radiance, p64.normal, p64.aniso, p64.voxels);
