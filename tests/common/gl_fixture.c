@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "reference/reference.h"
+
 int gib_fixture_open(gib_gl_fixture *f, const char *scene_name)
 {
     memset(f, 0, sizeof *f);
@@ -19,6 +21,34 @@ int gib_fixture_open(gib_gl_fixture *f, const char *scene_name)
         return -1;
     }
     f->gl_up = 1;
+    return 0;
+}
+
+int gib_fixture_open_text(gib_gl_fixture *f, const char *dir, const char *name, const char *text)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s.scene", dir, name);
+    FILE *file = fopen(path, "w");
+    if (!file) {
+        printf("FAIL %s: cannot write %s\n", name, path);
+        return -1;
+    }
+    fputs(text, file);
+    fclose(file);
+    return gib_fixture_open(f, path);
+}
+
+int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, int spp,
+                          gib_image *out, gib_ref_stats *st)
+{
+    gib_ref_params rp = {.component = component, .width = w, .height = h, .spp = spp, .seed = 1,
+                         .quiet = 1};
+    gib_ref_stats own;
+    gib_error err;
+    if (gib_reference_render(&f->scene, &rp, out, NULL, st ? st : &own, &err) < 0) {
+        printf("FAIL: reference: %s\n", err.msg);
+        return -1;
+    }
     return 0;
 }
 

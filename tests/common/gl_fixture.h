@@ -7,6 +7,7 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/gpu_scene.h"
+#include "harness/imaging/image.h"
 
 typedef struct gib_gl_fixture {
     gib_scene scene;
@@ -18,7 +19,17 @@ typedef struct gib_gl_fixture {
 /* Loads `scene_name`, creates a context (auto backend) and uploads the scene. On failure prints
  * "FAIL: set-up: ..." and returns -1. */
 int gib_fixture_open(gib_gl_fixture *f, const char *scene_name);
+/* Writes `text` to dir/name.scene and opens it as gib_fixture_open. On failure prints
+ * "FAIL name: ..." and returns -1. */
+int gib_fixture_open_text(gib_gl_fixture *f, const char *dir, const char *name, const char *text);
 void gib_fixture_close(gib_gl_fixture *f);
+
+/* The path tracer's image of `component` (GIB_COMP_*) of the fixture's scene at w x h with spp
+ * samples (seed 1), and its statistics (st may be NULL). On failure prints "FAIL: reference: ..."
+ * and returns -1. */
+struct gib_ref_stats;
+int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, int spp,
+                          gib_image *out, struct gib_ref_stats *st);
 
 /* A committed Embree scene of the scene's triangles (release with rtcReleaseScene and
  * rtcReleaseDevice). */

@@ -116,18 +116,8 @@ static void check_cones(const char *dir)
                        "[mesh.roof]\nprocedural = box\nsize = 0.6 0.2 0.6\ntranslate = 0 0.4 0\n"
                        "[camera.c]\neye = 0 1 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n"
                        "[light.l]\ntype = point\nposition = 0 2 2\nintensity = 1 1 1\n";
-    char path[512];
-    snprintf(path, sizeof path, "%s/roof.scene", dir);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        printf("FAIL cones: cannot write %s\n", path);
-        failures++;
-        return;
-    }
-    fputs(text, f);
-    fclose(f);
     gib_gl_fixture fx;
-    if (gib_fixture_open(&fx, path) < 0) {
+    if (gib_fixture_open_text(&fx, dir, "roof", text) < 0) {
         failures++;
         return;
     }

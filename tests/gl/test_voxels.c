@@ -243,17 +243,7 @@ static void check_mips(const char *name, const gib_voxels *v)
 
 static int open_scene(gib_gl_fixture *fx, const char *dir, const char *name, const char *text)
 {
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s.scene", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        printf("FAIL %s: cannot write %s\n", name, path);
-        failures++;
-        return -1;
-    }
-    fputs(text, f);
-    fclose(f);
-    if (gib_fixture_open(fx, path) < 0) {
+    if (gib_fixture_open_text(fx, dir, name, text) < 0) {
         failures++;
         return -1;
     }

@@ -40,15 +40,10 @@ int main(void)
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "plane_box_sky") < 0)
         return 1;
-    gib_ref_params rp = {.component = GIB_COMP_DIRECT, .width = 96, .height = 96, .spp = 64,
-                         .seed = 1, .quiet = 1};
     gib_image ref;
     gib_ref_stats st;
-    gib_error err;
-    if (gib_reference_render(&fx.scene, &rp, &ref, NULL, &st, &err) < 0) {
-        printf("FAIL: reference: %s\n", err.msg);
+    if (gib_fixture_reference(&fx, GIB_COMP_DIRECT, 96, 96, 64, &ref, &st) < 0)
         return 1;
-    }
     double ms_env = 0, ms_direct = 0;
     double env = rel_rmse_of(&fx, "ldm_env", &ref, &ms_env);
     double direct = rel_rmse_of(&fx, "direct", &ref, &ms_direct);

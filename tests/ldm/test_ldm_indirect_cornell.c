@@ -27,6 +27,7 @@
 #include "harness/gl/context.h"
 #include "reference/reference.h"
 #include "techniques/ldm_indirect/ldm_indirect.h"
+#include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
 #define W 64
@@ -37,35 +38,8 @@
 #define BLOCK_TOL 0.13
 #define SPLAT_TOL 0.06
 
-/* Relative RMSE of BLOCK x BLOCK block means of channel c, and the ratio of the image means. */
-static void block_error(const float *ref, const float *img, int c, double *block_rel, double *mean_ratio)
-{
-    double se = 0, mref = 0, mimg = 0;
-    int nb = 0;
-    for (int by = 0; by < H; by += BLOCK)
-        for (int bx = 0; bx < W; bx += BLOCK) {
-            double a = 0, b = 0;
-            for (int y = by; y < by + BLOCK; y++)
-                for (int x = bx; x < bx + BLOCK; x++) {
-                    a += ref[(y * W + x) * 3 + c];
-                    b += img[(y * W + x) * 3 + c];
-                }
-            a /= BLOCK * BLOCK;
-            b /= BLOCK * BLOCK;
-            se += (b - a) * (b - a);
-            mref += a;
-            mimg += b;
-            nb++;
-        }
-    mref /= nb;
-    mimg /= nb;
-    *block_rel = sqrt(se / nb) / mref;
-    *mean_ratio = mimg / mref;
-}
-
 int main(void)
 {
-    gib_error err;
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "cornell") < 0)
         return 1;
@@ -79,14 +53,10 @@ int main(void)
         printf("FAIL: ldm_indirect: %s: %s\n", r.status, r.err.msg);
         return 1;
     }
-    gib_ref_params rp = {.component = GIB_COMP_INDIRECT, .width = W, .height = H, .spp = REF_SPP,
-                         .seed = 1, .quiet = 1};
     gib_image ref;
     gib_ref_stats st;
-    if (gib_reference_render(&fx.scene, &rp, &ref, NULL, &st, &err) < 0) {
-        printf("FAIL: reference: %s\n", err.msg);
+    if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, &st) < 0)
         return 1;
-    }
     int ok = 1;
     long nonfinite = gib_image_count_nonfinite(&r.images[0]);
     printf("renderer %s: ldm_indirect on cornell %dx%d (reference %d spp, noise %.2f%% of its mean), "
@@ -98,7 +68,7 @@ int main(void)
     static const char *const channel[3] = {"red", "green", "blue"};
     for (int c = 0; c < 3; c++) {
         double block, mean;
-        block_error(ref.px, r.images[0].px, c, &block, &mean);
+        gib_block_error(ref.px, r.images[0].px, W, H, BLOCK, c, &block, &mean);
         int good = fabs(mean - 1) <= MEAN_TOL && block <= BLOCK_TOL;
         printf("%s %s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative RMSE "
                "%.4f (bound %.2f)\n", good ? "PASS" : "FAIL", channel[c], mean, MEAN_TOL, BLOCK, BLOCK,

@@ -88,7 +88,6 @@ static double block_corr(const gib_image *ref, const gib_image *im)
 
 int main(void)
 {
-    gib_error err;
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "cornell") < 0)
         return 1;
@@ -107,14 +106,10 @@ int main(void)
         unsigned comp = r.output_components[o];
         if (comp != GIB_OUT_DIRECT && comp != GIB_OUT_INDIRECT)
             continue;
-        gib_ref_params rp = {.component = comp == GIB_OUT_DIRECT ? GIB_COMP_DIRECT : GIB_COMP_INDIRECT,
-                             .width = W, .height = H, .spp = REF_SPP, .seed = 1, .quiet = 1};
         gib_image ref;
-        gib_ref_stats st;
-        if (gib_reference_render(&fx.scene, &rp, &ref, NULL, &st, &err) < 0) {
-            printf("FAIL: reference: %s\n", err.msg);
+        if (gib_fixture_reference(&fx, comp == GIB_OUT_DIRECT ? GIB_COMP_DIRECT : GIB_COMP_INDIRECT,
+                                  W, H, REF_SPP, &ref, NULL) < 0)
             return 1;
-        }
         const gib_image *im = &r.images[o];
         long nonfinite = gib_image_count_nonfinite(im);
         double e = rel_rmse(&ref, im);

@@ -25,6 +25,7 @@
 #include "harness/app/runner.h"
 #include "harness/gl/context.h"
 #include "reference/reference.h"
+#include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
 #define W 64
@@ -38,32 +39,6 @@
 #define FURNACE_LO 0.30
 #define FURNACE_HI 0.50
 #define DIRECT_TOL 5e-4
-
-static void block_error(const float *ref, const float *img, int c, double *block_rel,
-                        double *mean_ratio)
-{
-    double se = 0, mref = 0, mimg = 0;
-    int nb = 0;
-    for (int by = 0; by < H; by += BLOCK)
-        for (int bx = 0; bx < W; bx += BLOCK) {
-            double a = 0, b = 0;
-            for (int y = by; y < by + BLOCK; y++)
-                for (int x = bx; x < bx + BLOCK; x++) {
-                    a += ref[(y * W + x) * 3 + c];
-                    b += img[(y * W + x) * 3 + c];
-                }
-            a /= BLOCK * BLOCK;
-            b /= BLOCK * BLOCK;
-            se += (b - a) * (b - a);
-            mref += a;
-            mimg += b;
-            nb++;
-        }
-    mref /= nb;
-    mimg /= nb;
-    *block_rel = sqrt(se / nb) / mref;
-    *mean_ratio = mimg / mref;
-}
 
 /* Runs vct at the test's settings on the open fixture. */
 static int run_vct(gib_gl_fixture *fx, gib_run_result *r)
@@ -126,21 +101,16 @@ static int furnace(void)
 
 int main(void)
 {
-    gib_error err;
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "cornell") < 0)
         return 1;
     gib_run_result r;
     if (run_vct(&fx, &r) < 0)
         return 1;
-    gib_ref_params rp = {.component = GIB_COMP_INDIRECT, .width = W, .height = H, .spp = REF_SPP,
-                         .seed = 1, .quiet = 1};
     gib_image ref;
     gib_ref_stats st;
-    if (gib_reference_render(&fx.scene, &rp, &ref, NULL, &st, &err) < 0) {
-        printf("FAIL: reference: %s\n", err.msg);
+    if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, &st) < 0)
         return 1;
-    }
     int ok = 1;
     const gib_image *ind = &r.images[1]; /* direct, indirect, glossy */
     printf("renderer %s: vct on cornell %dx%d (reference %d spp, noise %.2f%% of its mean)\n",
@@ -148,7 +118,7 @@ int main(void)
     static const char *const channel[3] = {"red", "green", "blue"};
     for (int c = 0; c < 3; c++) {
         double block, mean;
-        block_error(ref.px, ind->px, c, &block, &mean);
+        gib_block_error(ref.px, ind->px, W, H, BLOCK, c, &block, &mean);
         int good = mean >= MEAN_LO && mean <= MEAN_HI && block <= BLOCK_TOL;
         printf("%s %s: mean %.4f of the reference's (band %.2f..%.2f), %dx%d-block relative RMSE "
                "%.4f (bound %.2f)\n", good ? "PASS" : "FAIL", channel[c], mean, MEAN_LO, MEAN_HI,
