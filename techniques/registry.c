@@ -14,6 +14,7 @@ extern const gib_technique gib_technique_ldm_indirect;
 extern const gib_technique gib_technique_ldm_env;
 extern const gib_technique gib_technique_lrsm;
 extern const gib_technique gib_technique_vct;
+extern const gib_technique gib_technique_rsm_gather;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
@@ -23,6 +24,7 @@ static const gib_technique *const registry[] = {
     &gib_technique_ldm_env,
     &gib_technique_lrsm,
     &gib_technique_vct,
+    &gib_technique_rsm_gather,
 };
 
 const gib_technique *const *gib_techniques(int *count)

@@ -1,0 +1,16 @@
+#include "common/vpl_gather.glsl"
+// Test hook (common/vpl.h, gib_vpls_probe): vpl_irradiance() at given points and normals.
+layout(local_size_x = 64) in;
+layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer ProbeIn { vec4 probe_in[]; };
+layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) writeonly buffer ProbeOut { vec4 probe_out[]; };
+layout(location = 2) uniform int u_count;
+layout(location = 3) uniform int u_vpls;
+layout(location = 4) uniform float u_eps;
+void main()
+{
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= u_count)
+        return;
+    probe_out[i] = vec4(vpl_irradiance(probe_in[2 * i].xyz, probe_in[2 * i + 1].xyz, u_vpls, u_eps),
+                        0.0);
+}

@@ -1,0 +1,133 @@
+/* gibench technique `rsm_gather` — one diffuse bounce from virtual point lights gathered at every
+ * pixel (Dachsbacher and Stamminger 2005; the thesis' baseline, Sec. 2.2.2, Algorithm 2.1, with the
+ * VPL patterns of Sec. 3.2.1).
+ *
+ * Per frame (timer passes):
+ *  gbuffer    the shared G-buffer;
+ *  rsm        the shared light views (position, normal, flux at rsm_res; label "rsm"), then the
+ *             VPLs extracted from them (techniques/common/vpl.h: vpl_count VPLs whose regions of
+ *             texels partition the views, so their fluxes add up to the reflected flux);
+ *  gathering  every VPL at every pixel: L = rho_d / pi x sum Phi cos_l cos_x / (pi max(d^2, eps^2))
+ *             (vpl_gather.glsl, with the issue's corrections of the text's formula), eps =
+ *             clamp_distance in the scene's units. No visibility between VPL and pixel (as the
+ *             thesis): light passes through occluders, so the blocks' indirect shadows are missing.
+ * Output `indirect`. */
+#include <glad/gl.h>
+#include <stdlib.h>
+
+#include "harness/gl/context.h"
+#include "techniques/common/fullscreen.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/common/vpl.h"
+#include "techniques/rsm_gather/rsm_gather.h"
+
+extern const gib_technique gib_technique_rsm_gather;
+
+typedef struct rsm_gather {
+    const gib_gpu_scene *scene;
+    gib_ledger *ledger;
+    gib_gbuffer gbuffer;
+    gib_light_views views;
+    gib_vpls vpls;
+    gib_fullscreen gather;
+    float eps;
+} rsm_gather;
+
+static const gib_param_spec rsm_gather_params[] = {
+    {"rsm_res", GIB_PARAM_INT, 256, 16, 1024, "light view side, texels"},
+    {"vpl_count", GIB_PARAM_INT, 256, 1, 4096,
+     "VPLs over all light-view faces (at least one per face), fixed at create"},
+    {"clamp_distance", GIB_PARAM_LENGTH, 0.05, 0, 1e9,
+     "eps under the VPL distance: 1 / max(d^2, eps^2), scene units"},
+    {0},
+};
+
+static void rsm_gather_destroy(void *self)
+{
+    rsm_gather *s = self;
+    if (!s)
+        return;
+    gib_fullscreen_destroy(&s->gather);
+    gib_vpls_destroy(&s->vpls, s->ledger);
+    gib_light_views_destroy(&s->views, s->ledger);
+    gib_gbuffer_destroy(&s->gbuffer, s->ledger);
+    free(s);
+}
+
+static void *rsm_gather_create(const gib_gpu_scene *scene, const gib_params *p, int width,
+                               int height, gib_ledger *ledger, gib_error *err)
+{
+    const gib_technique *t = &gib_technique_rsm_gather;
+    rsm_gather *s = calloc(1, sizeof *s);
+    if (!s) {
+        gib_fail(err, "out of memory");
+        return NULL;
+    }
+    s->scene = scene;
+    s->ledger = ledger;
+    s->eps = (float)gib_param_float(t, p, "clamp_distance");
+    if (gib_gbuffer_create(&s->gbuffer, width, height, ledger, err) < 0 ||
+        gib_light_views_create(&s->views, scene, gib_param_int(t, p, "rsm_res"),
+                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
+                               err) < 0 ||
+        gib_vpls_create(&s->vpls, &s->views, gib_param_int(t, p, "vpl_count"), 1, "vpl", ledger,
+                        err) < 0 ||
+        gib_fullscreen_create(&s->gather, "rsm_gather/rsm_gather.frag", NULL, err) < 0 ||
+        gib_gl_check("rsm_gather creation", err) < 0) {
+        rsm_gather_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
+void rsm_gather_render_vpls(void *self, const gib_view *view, gib_timers *timers)
+{
+    rsm_gather *s = self;
+    gib_gbuffer_render(&s->gbuffer, s->scene, view, timers, "gbuffer");
+    gib_light_views_render(&s->views, s->scene, timers, "rsm");
+    gib_vpls_update(&s->vpls, &s->views, timers, "rsm");
+}
+
+void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, unsigned fbo)
+{
+    rsm_gather *s = self;
+    gib_timer_begin(timers, "gathering");
+    gib_fullscreen_begin(&s->gather, fbo, view->width, view->height, 0);
+    gib_gbuffer_bind(&s->gbuffer);
+    gib_vpls_bind(&s->vpls);
+    glUniform1i(2, s->vpls.count);
+    glUniform1f(3, s->eps);
+    gib_fullscreen_draw(&s->gather);
+    gib_fullscreen_end();
+    gib_timer_end(timers);
+}
+
+gib_vpls *rsm_gather_vpls(void *self)
+{
+    return &((rsm_gather *)self)->vpls;
+}
+
+static int rsm_gather_render(void *self, const gib_view *view, gib_timers *timers,
+                             const gib_image_target *targets, int target_count, gib_error *err)
+{
+    rsm_gather_render_vpls(self, view, timers);
+    for (int i = 0; i < target_count; i++)
+        if (targets[i].component == GIB_OUT_INDIRECT)
+            rsm_gather_gather(self, view, timers, targets[i].fbo);
+    return gib_gl_check("rsm_gather", err);
+}
+
+const gib_technique gib_technique_rsm_gather = {
+    .name = "rsm_gather",
+    .source = "VPLs from reflective shadow maps gathered at every pixel (Dachsbacher and "
+              "Stamminger 2005; thesis 004 Sec. 2.2.2, 3.2.1, Alg. 2.1)",
+    .components = GIB_OUT_INDIRECT,
+    .params = rsm_gather_params,
+    .reference = NULL,
+    .scene_needs = 0,
+    .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,
+    .create = rsm_gather_create,
+    .render = rsm_gather_render,
+    .status = NULL,
+    .destroy = rsm_gather_destroy,
+};
