@@ -15,6 +15,7 @@ extern const gib_technique gib_technique_ldm_env;
 extern const gib_technique gib_technique_lrsm;
 extern const gib_technique gib_technique_vct;
 extern const gib_technique gib_technique_rsm_gather;
+extern const gib_technique gib_technique_multires_ir;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
@@ -25,6 +26,7 @@ static const gib_technique *const registry[] = {
     &gib_technique_lrsm,
     &gib_technique_vct,
     &gib_technique_rsm_gather,
+    &gib_technique_multires_ir,
 };
 
 const gib_technique *const *gib_techniques(int *count)

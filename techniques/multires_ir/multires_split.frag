@@ -1,0 +1,11 @@
+#define MR_READ_MIPS 1
+#include "multires_ir/multires_common.glsl"
+// Region splitting (Algorithm 3.1): a full-screen pass over the flattened image; the texels of
+// valid regions survive and set the stencil (the others are discarded).
+void main()
+{
+    ivec2 region;
+    int k = mr_level(ivec2(gl_FragCoord.xy), region);
+    if (k < 0 || !mr_valid(k, region))
+        discard;
+}
