@@ -31,19 +31,50 @@ static void face_pattern(int kind, int n, int res, uint64_t *rng, double *u, dou
             u[i] = 0.5 + r * cos(a);
             v[i] = 0.5 + r * sin(a);
         }
+        /* Nearest sample by buckets: a G x G grid over the square, searched ring by ring until
+         * the ring lies farther than the best sample found (exact; ties to the lower index). */
+        int G = (int)ceil(sqrt((double)n));
+        int *head = malloc((size_t)G * G * sizeof *head), *next = malloc((size_t)n * sizeof *next);
+        if (!head || !next) {
+            free(head), free(next);
+            for (int k = 0; k < res * res; k++)
+                owner[k] = 0;
+            return;
+        }
+        for (int b = 0; b < G * G; b++)
+            head[b] = -1;
+        for (int i = n - 1; i >= 0; i--) {
+            int bx = (int)(u[i] * G), by = (int)(v[i] * G);
+            bx = bx < 0 ? 0 : bx >= G ? G - 1 : bx;
+            by = by < 0 ? 0 : by >= G ? G - 1 : by;
+            next[i] = head[by * G + bx];
+            head[by * G + bx] = i;
+        }
         for (int y = 0; y < res; y++)
             for (int x = 0; x < res; x++) {
                 double cu = (x + 0.5) / res, cv = (y + 0.5) / res, best = INFINITY;
-                int b = 0;
-                for (int i = 0; i < n; i++) {
-                    double d = (cu - u[i]) * (cu - u[i]) + (cv - v[i]) * (cv - v[i]);
-                    if (d < best) {
-                        best = d;
-                        b = i;
-                    }
+                int b = 0, bx = (int)(cu * G), by = (int)(cv * G);
+                for (int ring = 0; ring <= G; ring++) {
+                    double reach = (ring - 1) / (double)G; /* nearest a ring's cells can be */
+                    if (ring > 1 && reach * reach > best)
+                        break;
+                    for (int gy = by - ring; gy <= by + ring; gy++)
+                        for (int gx = bx - ring; gx <= bx + ring; gx++) {
+                            if (gx < 0 || gy < 0 || gx >= G || gy >= G ||
+                                (abs(gx - bx) != ring && abs(gy - by) != ring))
+                                continue;
+                            for (int i = head[gy * G + gx]; i >= 0; i = next[i]) {
+                                double d = (cu - u[i]) * (cu - u[i]) + (cv - v[i]) * (cv - v[i]);
+                                if (d < best || (d == best && i < b)) {
+                                    best = d;
+                                    b = i;
+                                }
+                            }
+                        }
                 }
                 owner[y * res + x] = b;
             }
+        free(head), free(next);
         return;
     }
     /* Jittered grid: round(sqrt(n)) rows, row r with floor(n(r+1)/R) - floor(nr/R) cells. */
