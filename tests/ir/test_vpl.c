@@ -9,13 +9,16 @@
  * 2. The VPLs' fluxes add up to the light views' total reflected flux (the FLUX texels summed in
  *    double) within 1e-5 relative (float sums of ~10^3 texels a thread), for a 40-degree spot (one
  *    perspective view: the circle pattern, Voronoi regions) and a point light in the Cornell box (a
- *    cube: the grid, 256 VPLs in rows of 6-7 over 6 faces), at two VPL counts each; each VPL
+ *    cube: the grid, 256 VPLs in rows of 6-7 over 6 faces), at two VPL counts each, and a
+ *    directional light (the grid on its orthographic view); each VPL
  *    with flux stands on a surface. A VPL weighted by its sample texel's flux times the texels per
- *    VPL instead (the uniform-density assumption the circle pattern breaks) misses by percents. */
+ *    VPL instead (the uniform-density assumption the circle pattern breaks) misses by percents.
+ * 3. Fewer VPLs than light-view faces is refused, naming vpl_count. */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "techniques/common/light_view.h"
 #include "techniques/common/vpl.h"
@@ -35,6 +38,38 @@ static const char *point_scene =
     "[light.bulb]\ntype = point\nposition = 0.3 0.4 0.25\nintensity = 0.5 0.5 0.5\n"
     "[camera.published]\neye = 0.278 0.273 -0.800\ntarget = 0.278 0.273 0.0\nup = 0 1 0\n"
     "fov = 39.3077\n";
+
+static const char *sun_scene =
+    "[scene]\ndescription = Cornell box under a directional light (grid pattern on the ortho view)\n"
+    "[mesh.box]\nprocedural = cornell_box\n"
+    "[light.sun]\ntype = directional\ndirection = 0.3 -1 0.4\nintensity = 2 2 2\n"
+    "[camera.published]\neye = 0.278 0.273 -0.800\ntarget = 0.278 0.273 0.0\nup = 0 1 0\n"
+    "fov = 39.3077\n";
+
+/* Fewer VPLs than faces is refused with a message naming the parameter. */
+static int count_test(void)
+{
+    gib_gl_fixture fx;
+    if (gib_fixture_open_text(&fx, "/tmp", "ir_vpl_point", point_scene) < 0)
+        return 0;
+    gib_light_views lv;
+    gib_vpls v;
+    gib_ledger ledger;
+    gib_error err;
+    gib_ledger_init(&ledger);
+    int ok = 0;
+    if (gib_light_views_create(&lv, &fx.gpu, 16, GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX,
+                               "rsm", &ledger, &err) == 0) {
+        ok = gib_vpls_create(&v, &lv, 5, 1, "vpl", &ledger, &err) < 0 &&
+             strstr(err.msg, "vpl_count") != NULL;
+        printf("%s: 5 VPLs for a cube's 6 faces: %s\n", ok ? "PASS" : "FAIL", ok ? err.msg : "accepted");
+        if (!ok)
+            gib_vpls_destroy(&v, &ledger);
+        gib_light_views_destroy(&lv, &ledger);
+    }
+    gib_fixture_close(&fx);
+    return ok;
+}
 
 static int probe_test(gib_gl_fixture *fx)
 {
@@ -196,6 +231,8 @@ int main(void)
     ok &= flux_test("ir_vpl_spot", spot_scene, 37);
     ok &= flux_test("ir_vpl_point", point_scene, 256);
     ok &= flux_test("ir_vpl_point", point_scene, 6 * 16);
+    ok &= flux_test("ir_vpl_sun", sun_scene, 256);
+    ok &= count_test();
     printf("%s: VPL gather and flux\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }
