@@ -32,9 +32,11 @@ static unsigned fs_program(const char *frag, const char *defines, gib_error *err
 }
 
 int multires_create(multires *m, int width, int height, int levels, float depth_threshold,
-                    float normal_deg, int with_gather, gib_ledger *ledger, gib_error *err)
+                    float normal_deg, int use_stencil, int with_gather, gib_ledger *ledger,
+                    gib_error *err)
 {
     memset(m, 0, sizeof *m);
+    m->use_stencil = use_stencil;
     m->width = width;
     m->height = height;
     m->levels = levels;
@@ -62,18 +64,30 @@ int multires_create(multires *m, int width, int height, int levels, float depth_
         glTextureParameteri(*tex[i], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(*tex[i], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
-    if (!(m->stencil = gib_gpu_renderbuffer(ledger, "mips.stencil", GL_DEPTH24_STENCIL8, m->atlas_w,
-                                            m->atlas_h, err)))
-        return -1;
-    glCreateFramebuffers(1, &m->fbo);
-    glNamedFramebufferTexture(m->fbo, GL_COLOR_ATTACHMENT0, m->irradiance, 0);
-    glNamedFramebufferRenderbuffer(m->fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, m->stencil);
+    glCreateFramebuffers(1, &m->fbo_color);
+    glNamedFramebufferTexture(m->fbo_color, GL_COLOR_ATTACHMENT0, m->irradiance, 0);
+    if (use_stencil) {
+        if (!(m->stencil = gib_gpu_renderbuffer(ledger, "mips.stencil", GL_DEPTH24_STENCIL8,
+                                                m->atlas_w, m->atlas_h, err)))
+            return -1;
+        glCreateFramebuffers(1, &m->fbo);
+        glNamedFramebufferTexture(m->fbo, GL_COLOR_ATTACHMENT0, m->irradiance, 0);
+        glNamedFramebufferRenderbuffer(m->fbo, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                       m->stencil);
+    } else {
+        if (!(m->mask = gib_gpu_texture(ledger, "mips.valid", GL_TEXTURE_2D, m->atlas_w,
+                                        m->atlas_h, 1, GL_R8, 1, err)))
+            return -1;
+        glCreateFramebuffers(1, &m->fbo_mask);
+        glNamedFramebufferTexture(m->fbo_mask, GL_COLOR_ATTACHMENT0, m->mask, 0);
+    }
     const char *mips[] = {"multires_ir/multires_mips.comp"};
     if (!(m->mips_program = gib_program(mips, 1, NULL, err)) ||
         !(m->split_program = fs_program("multires_ir/multires_split.frag", NULL, err)))
         return -1;
     if (with_gather &&
-        (!(m->gather_program = fs_program("multires_ir/multires_gather.frag", NULL, err)) ||
+        (!(m->gather_program = fs_program("multires_ir/multires_gather.frag",
+                                          use_stencil ? NULL : "#define MASKED 1\n", err)) ||
          !(m->upsample_program = fs_program("multires_ir/multires_upsample.frag", NULL, err)) ||
          !(m->resolve_program =
                fs_program("multires_ir/multires_upsample.frag", "#define RESOLVE 1\n", err))))
@@ -115,17 +129,24 @@ void multires_split(multires *m, unsigned position_tex, unsigned normal_tex, con
         glDispatchCompute((GLuint)(r[2] + 7) / 8, (GLuint)(r[3] + 7) / 8, 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    /* Stencil marking: texels of invalid regions are discarded, the rest write stencil 1. */
-    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
-    glViewport(0, 0, m->atlas_w, m->atlas_h);
-    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    /* Marking: texels of invalid regions are discarded, the rest write stencil 1 (colour writes
+     * off) or 1 into the mask (cleared to 0 first). */
+    const float zero[4] = {0, 0, 0, 0};
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glEnable(GL_STENCIL_TEST);
-    glStencilMask(0xff);
-    glStencilFunc(GL_ALWAYS, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    if (m->use_stencil) {
+        glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_STENCIL_TEST);
+        glStencilMask(0xff);
+        glStencilFunc(GL_ALWAYS, 1, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, m->fbo_mask);
+        glClearBufferfv(GL_COLOR, 0, zero);
+    }
+    glViewport(0, 0, m->atlas_w, m->atlas_h);
     glUseProgram(m->split_program);
     common_uniforms(m);
     bind_mips(m);
@@ -138,19 +159,23 @@ void multires_split(multires *m, unsigned position_tex, unsigned normal_tex, con
 
 void multires_gather(multires *m, int vpl_count, float eps)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
-    glViewport(0, 0, m->atlas_w, m->atlas_h);
     const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearTexImage(m->irradiance, 0, GL_RGBA, GL_FLOAT, zero);
+    glBindFramebuffer(GL_FRAMEBUFFER, m->use_stencil ? m->fbo : m->fbo_color);
+    glViewport(0, 0, m->atlas_w, m->atlas_h);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
-    glEnable(GL_STENCIL_TEST);
-    glStencilMask(0);
-    glStencilFunc(GL_EQUAL, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    if (m->use_stencil) {
+        glEnable(GL_STENCIL_TEST);
+        glStencilMask(0);
+        glStencilFunc(GL_EQUAL, 1, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
     glUseProgram(m->gather_program);
     common_uniforms(m);
     bind_mips(m);
+    if (m->mask)
+        glBindTextureUnit(GIB_UNIT_OWN_FIRST + 5, m->mask);
     glUniform1i(8, vpl_count);
     glUniform1f(9, eps);
     glBindVertexArray(m->vao);
@@ -171,7 +196,7 @@ void multires_upsample(multires *m, unsigned fbo, const float eye[3])
     bind_mips(m);
     glUniform3fv(7, 1, eye);
     glBindTextureUnit(GIB_UNIT_OWN_FIRST + 4, m->irradiance);
-    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo_color);
     /* Each level reads only the next coarser level's texels and writes its own (disjoint), with a
      * texture barrier between levels (GL 4.5, 9.3.1). */
     for (int k = m->levels - 2; k >= 1; k--) {
@@ -193,12 +218,19 @@ void multires_upsample(multires *m, unsigned fbo, const float eye[3])
     glBindVertexArray(0);
 }
 
-void multires_read_stencil(const multires *m, unsigned char *out)
+void multires_read_valid(const multires *m, unsigned char *out)
 {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, m->fbo);
+    size_t n = (size_t)m->atlas_w * m->atlas_h;
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, m->atlas_w, m->atlas_h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, out);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    if (m->use_stencil) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, m->fbo);
+        glReadPixels(0, 0, m->atlas_w, m->atlas_h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, out);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    } else {
+        glGetTextureImage(m->mask, 0, GL_RED, GL_UNSIGNED_BYTE, (GLsizei)n, out);
+        for (size_t i = 0; i < n; i++)
+            out[i] = out[i] > 127;
+    }
 }
 
 long multires_count_valid(const multires *m, long *counts)
@@ -206,7 +238,7 @@ long multires_count_valid(const multires *m, long *counts)
     unsigned char *s = malloc((size_t)m->atlas_w * m->atlas_h);
     if (!s)
         return -1;
-    multires_read_stencil(m, s);
+    multires_read_valid(m, s);
     long total = 0;
     for (int k = 0; k < m->levels; k++) {
         int r[4];
@@ -230,8 +262,12 @@ void multires_destroy(multires *m, gib_ledger *ledger)
             glDeleteProgram(*prog[i]);
     if (m->vao)
         glDeleteVertexArrays(1, &m->vao);
-    if (m->fbo)
-        glDeleteFramebuffers(1, &m->fbo);
+    unsigned *fbo[3] = {&m->fbo, &m->fbo_mask, &m->fbo_color};
+    for (int i = 0; i < 3; i++)
+        if (*fbo[i])
+            glDeleteFramebuffers(1, fbo[i]);
+    if (m->mask)
+        gib_gpu_free(ledger, m->mask, 1);
     unsigned *tex[5] = {&m->lo, &m->hi, &m->mean, &m->nsum, &m->irradiance};
     for (int i = 0; i < 5; i++)
         if (*tex[i])

@@ -1,15 +1,22 @@
 #define MR_READ_MIPS 1
 #include "multires_ir/multires_common.glsl"
 #include "common/vpl_gather.glsl"
-// Gathering (Sec. 3.2.2.2): over the flattened image with the stencil test, so only valid regions
-// are shaded: the irradiance of every VPL (vpl_gather.glsl, the formula of rsm_gather) at the
+// Gathering (Sec. 3.2.2.2): over the flattened image with the stencil test (MASKED: the mask), so
+// only valid regions are shaded: the irradiance of every VPL (vpl_gather.glsl, the formula of rsm_gather) at the
 // region's mean position and normal. Irradiance, not radiance: the albedo varies inside a region
 // (textures), so each pixel applies its own after interpolation. alpha 1 marks data.
+#ifdef MASKED
+layout(binding = GIB_UNIT_OWN_FIRST + 5) uniform sampler2D mr_valid_mask;  // multires.h, stencil = 0
+#endif
 layout(location = 8) uniform int u_vpls;
 layout(location = 9) uniform float u_eps;
 layout(location = 0) out vec4 o_irradiance;
 void main()
 {
+#ifdef MASKED
+    if (texelFetch(mr_valid_mask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
+        discard;
+#endif
     ivec2 region;
     int k = mr_level(ivec2(gl_FragCoord.xy), region);
     ivec2 a = mr_texel(k, region);

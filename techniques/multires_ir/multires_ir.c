@@ -7,9 +7,11 @@
  *  rsm         the shared light views and the VPLs (techniques/common/vpl.h), as rsm_gather;
  *  splitting   min-max mips of depth (distance to the camera) and normal over `levels`
  *              resolutions (regions of 1, 2, ..., 2^(levels-1) pixels), then Algorithm 3.1 marks
- *              the valid regions in the stencil of one flattened image of all levels (multires.h;
- *              the rules for the coarsest and finest levels in multires_common.glsl);
- *  gathering   every VPL at each valid region's mean position and normal (the stencil test),
+ *              the valid regions in the stencil of one flattened image of all levels, or in a mask
+ *              image (parameter `stencil`, multires.h: same regions; llvmpipe's timers
+ *              under-count passes into a framebuffer with a stencil); the rules for the coarsest
+ *              and finest levels in multires_common.glsl;
+ *  gathering   every VPL at each valid region's mean position and normal (stencil test or mask),
  *              the irradiance of vpl_gather.glsl;
  *  upsampling  Algorithm 3.2: from the coarsest level down, regions inside a valid coarser one take
  *              the bilinear interpolation of the coarser level's data; at full resolution each
@@ -47,6 +49,9 @@ static const gib_param_spec multires_ir_params[] = {
      "a region splits where its depth range exceeds this fraction of its nearest depth"},
     {"normal_threshold", GIB_PARAM_FLOAT, 20, 0, 180,
      "a region splits where a normal component's range exceeds the chord of this angle, degrees"},
+    {"stencil", GIB_PARAM_INT, 0, 0, 1,
+     "valid regions marked in: 1 the stencil (the thesis), 0 a mask image (same regions; "
+     "llvmpipe's timers under-count stencil-buffer passes)"},
     {0},
 };
 
@@ -82,7 +87,8 @@ static void *multires_ir_create(const gib_gpu_scene *scene, const gib_params *p,
                         err) < 0 ||
         multires_create(&s->mr, width, height, gib_param_int(t, p, "levels"),
                         (float)gib_param_float(t, p, "depth_threshold"),
-                        (float)gib_param_float(t, p, "normal_threshold"), 1, ledger, err) < 0 ||
+                        (float)gib_param_float(t, p, "normal_threshold"),
+                        gib_param_int(t, p, "stencil"), 1, ledger, err) < 0 ||
         gib_gl_check("multires_ir creation", err) < 0) {
         multires_ir_destroy(s);
         return NULL;
