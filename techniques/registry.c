@@ -16,6 +16,7 @@ extern const gib_technique gib_technique_lrsm;
 extern const gib_technique gib_technique_vct;
 extern const gib_technique gib_technique_rsm_gather;
 extern const gib_technique gib_technique_multires_ir;
+extern const gib_technique gib_technique_ispm_caustics;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
@@ -27,6 +28,7 @@ static const gib_technique *const registry[] = {
     &gib_technique_vct,
     &gib_technique_rsm_gather,
     &gib_technique_multires_ir,
+    &gib_technique_ispm_caustics,
 };
 
 const gib_technique *const *gib_techniques(int *count)

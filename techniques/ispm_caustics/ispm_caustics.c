@@ -1,0 +1,439 @@
+/* gibench technique `ispm_caustics` — caustics by photons from the light view traced through the
+ * camera's per-pixel linked lists and splatted (Le Hoang Quyen 2014, thesis 004, Sec. 3.3,
+ * Algorithms 3.3-3.5, Ch. 4). Output: `caustic` (L S D E: one specular bounce, as the thesis).
+ *
+ *  1. Light view (common/light_view.h, pass "rsm") with position, normal (w: specular mask),
+ *     flux (rho_d x flux) and specular part.
+ *  2. "list_build": the scene from the camera at ray_res^2 into per-pixel linked lists
+ *     (list_build.frag, Algorithm 3.4), a pool of list_capacity nodes per pixel on average; a full
+ *     pool is status `overflow`.
+ *  3. "photon_tracing": the specular mask's mip chain (mask_mip.comp), one photon per fully
+ *     specular texel of level mask_level (emit.comp: roulette, mirror or Phong reflection with
+ *     random numbers generated once at create), their rays drawn as lines at ray_res^2 against the
+ *     lists (trace.*, Algorithm 3.5), then each photon's hit, normal and splat radius
+ *     (resolve.comp). One draw traces every photon: the first hit of each goes to its own slot
+ *     (atomicMin) instead of a texture row, so the thesis' repeated passes (rows run out) are one.
+ *     Hits outside the camera's frustum are not found (the thesis' lists are perspective too).
+ *  4. "splatting": Gaussian disks into an irradiance target at 1/splat_res_divisor of the image.
+ *  5. "upsampling": radiance rho_d / pi E, with bilateral upsampling when the splats were smaller.
+ * layers = 4: the lists are replaced by 4 depth-peeled layers (not implemented yet: create fails). */
+#include <glad/gl.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness/gl/bindings.h"
+#include "harness/gl/context.h"
+#include "techniques/common/fullscreen.h"
+#include "techniques/common/gbuffer.h"
+#include "techniques/common/light_view.h"
+#include "techniques/common/shader.h"
+#include "techniques/ispm_caustics/ispm_caustics.h"
+
+extern const gib_technique gib_technique_ispm_caustics;
+
+#define PHOTON_BYTES 80u
+#define NODE_BYTES 12u
+
+typedef struct caustics {
+    const gib_gpu_scene *scene;
+    gib_ledger *ledger;
+    int width, height, ray_res, level, res_l, divisor, splat_w, splat_h;
+    float splat_scale, delta, slack, diag;
+    gib_gbuffer gbuffer, low;      /* low: the splats' G-buffer when divisor > 1 */
+    gib_light_views views;
+    unsigned mask;                 /* R32F 2D array, levels 0..mask_level */
+    unsigned heads, nodes, counts, status_buf, photons, random, first_t, command;
+    unsigned irradiance, splat_fbo, list_fbo, vao;
+    unsigned mip_prog, emit_prog, list_prog, trace_prog, resolve_prog, splat_prog;
+    gib_fullscreen shade;
+    uint32_t node_capacity, photon_capacity;
+    char status[32];
+} caustics;
+
+static const gib_param_spec caustics_params[] = {
+    {"rsm_res", GIB_PARAM_INT, 256, 16, 4096, "light-view resolution per face (the RSM, Ch. 4: 512)"},
+    {"mask_level", GIB_PARAM_INT, 2, 0, 10,
+     "mip level of the specular mask photons are emitted from (Sec. 3.3.1.1): ~4x fewer a level"},
+    {"ray_res", GIB_PARAM_INT, 128, 16, 2048,
+     "side of the camera's linked lists and of the photon lines (Ch. 4: 128 or 256)"},
+    {"list_capacity", GIB_PARAM_INT, 8, 1, 1024,
+     "list nodes per ray_res pixel on average (the pool; Ch. 4: 20 MB)"},
+    {"splat_scale", GIB_PARAM_FLOAT, 3.0, 0.01, 100,
+     "C: splat radius h = C sqrt(area the photon stands for on the receiver)"},
+    {"splat_res_divisor", GIB_PARAM_INT, 1, 1, 8,
+     "splats at 1/k of the image side; k > 1 upsampled bilaterally (Sec. 3.3.2.4: 2)"},
+    {"layers", GIB_PARAM_INT, 0, 0, 4,
+     "0: per-pixel linked lists; 4: 4 depth-peeled layers (the thesis' comparison, Fig. 4.2(b))"},
+    {"kernel_delta", GIB_PARAM_FLOAT, 0.25, 0.01, 10,
+     "delta of the Gaussian splat kernel exp(-(r/h)^2 / (2 delta)), cut at r = h"},
+    {"hit_slack", GIB_PARAM_FLOAT, 0.5, 0, 4,
+     "pixels around a line fragment where a crossing of a list node's plane counts as a hit"},
+    {"seed", GIB_PARAM_INT, 1, 0, 1e9, "seed of the pre-generated random numbers"},
+    {0},
+};
+
+static void caustics_destroy(void *self)
+{
+    caustics *c = self;
+    if (!c)
+        return;
+    gib_gbuffer_destroy(&c->gbuffer, c->ledger);
+    if (c->low.fbo)
+        gib_gbuffer_destroy(&c->low, c->ledger);
+    gib_light_views_destroy(&c->views, c->ledger);
+    const unsigned bufs[] = {c->heads, c->nodes, c->counts, c->status_buf, c->photons, c->random, c->first_t,
+                             c->command};
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
+        if (bufs[i])
+            gib_gpu_free(c->ledger, bufs[i], 0);
+    if (c->mask)
+        gib_gpu_free(c->ledger, c->mask, 1);
+    if (c->irradiance)
+        gib_gpu_free(c->ledger, c->irradiance, 1);
+    const unsigned progs[] = {c->mip_prog, c->emit_prog, c->list_prog, c->trace_prog,
+                              c->resolve_prog, c->splat_prog};
+    for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
+        if (progs[i])
+            glDeleteProgram(progs[i]);
+    gib_fullscreen_destroy(&c->shade);
+    if (c->splat_fbo)
+        glDeleteFramebuffers(1, &c->splat_fbo);
+    if (c->list_fbo)
+        glDeleteFramebuffers(1, &c->list_fbo);
+    if (c->vao)
+        glDeleteVertexArrays(1, &c->vao);
+    free(c);
+}
+
+/* PCG32 (O'Neill 2014) for the random numbers generated once at create. */
+static uint32_t pcg32(uint64_t *s)
+{
+    uint64_t old = *s;
+    *s = old * 6364136223846793005ull + 1442695040888963407ull;
+    uint32_t x = (uint32_t)(((old >> 18u) ^ old) >> 27u), r = (uint32_t)(old >> 59u);
+    return (x >> r) | (x << ((32 - r) & 31));
+}
+
+static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, int w, int h,
+                             gib_ledger *ledger, gib_error *err)
+{
+    const gib_technique *t = &gib_technique_ispm_caustics;
+    caustics *c = calloc(1, sizeof *c);
+    if (!c) {
+        gib_fail(err, "out of memory");
+        return NULL;
+    }
+    c->scene = scene;
+    c->ledger = ledger;
+    c->width = w;
+    c->height = h;
+    strcpy(c->status, "ok");
+    int rsm_res = gib_param_int(t, p, "rsm_res");
+    c->level = gib_param_int(t, p, "mask_level");
+    c->ray_res = gib_param_int(t, p, "ray_res");
+    c->divisor = gib_param_int(t, p, "splat_res_divisor");
+    c->splat_scale = (float)gib_param_float(t, p, "splat_scale");
+    c->delta = (float)gib_param_float(t, p, "kernel_delta");
+    c->slack = (float)gib_param_float(t, p, "hit_slack");
+    int layers = gib_param_int(t, p, "layers");
+    if (layers != 0) {
+        gib_fail(err, "ispm_caustics: parameter 'layers' = %d: only 0 (linked lists) is "
+                      "implemented", layers);
+        goto fail;
+    }
+    if ((rsm_res >> c->level) < 1) {
+        gib_fail(err, "ispm_caustics: mask_level %d is past the last mip of a %d^2 light view",
+                 c->level, rsm_res);
+        goto fail;
+    }
+    c->res_l = rsm_res >> c->level;
+    const gib_scene *s = scene->scene;
+    c->diag = 0;
+    for (int k = 0; k < 3; k++)
+        c->diag += (s->bounds_max[k] - s->bounds_min[k]) * (s->bounds_max[k] - s->bounds_min[k]);
+    c->diag = sqrtf(c->diag);
+    c->splat_w = (w + c->divisor - 1) / c->divisor;
+    c->splat_h = (h + c->divisor - 1) / c->divisor;
+
+    const char *mip[] = {"ispm_caustics/mask_mip.comp"};
+    const char *emit[] = {"ispm_caustics/emit.comp"};
+    const char *list[] = {"common/gbuffer.vert", "ispm_caustics/list_build.frag"};
+    const char *trace[] = {"ispm_caustics/trace.vert", "ispm_caustics/trace.frag"};
+    const char *resolve[] = {"ispm_caustics/resolve.comp"};
+    const char *splat[] = {"ispm_caustics/splat.vert", "ispm_caustics/splat.geom",
+                           "ispm_caustics/splat.frag"};
+    if (gib_gbuffer_create(&c->gbuffer, w, h, ledger, err) < 0 ||
+        (c->divisor > 1 && gib_gbuffer_create(&c->low, c->splat_w, c->splat_h, ledger, err) < 0) ||
+        gib_light_views_create(&c->views, scene, rsm_res,
+                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX | GIB_LV_SPECULAR,
+                               "rsm", ledger, err) < 0 ||
+        !(c->mip_prog = gib_program(mip, 1, NULL, err)) ||
+        !(c->emit_prog = gib_program(emit, 1, NULL, err)) ||
+        !(c->list_prog = gib_program(list, 2, NULL, err)) ||
+        !(c->trace_prog = gib_program(trace, 2, NULL, err)) ||
+        !(c->resolve_prog = gib_program(resolve, 1, NULL, err)) ||
+        !(c->splat_prog = gib_program(splat, 3, NULL, err)) ||
+        gib_fullscreen_create(&c->shade, "ispm_caustics/shade.frag", NULL, err) < 0)
+        goto fail;
+    int faces = c->views.face_count > 0 ? c->views.face_count : 1;
+    uint64_t pixels = (uint64_t)c->ray_res * (uint64_t)c->ray_res;
+    uint64_t nodes = pixels * (uint64_t)gib_param_int(t, p, "list_capacity");
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (nodes * NODE_BYTES > (uint64_t)max_block) {
+        gib_fail(err, "ispm_caustics: list_capacity %d x %d^2 nodes of %u bytes exceed one storage "
+                      "buffer (%lld bytes)", gib_param_int(t, p, "list_capacity"), c->ray_res,
+                 NODE_BYTES, (long long)max_block);
+        goto fail;
+    }
+    c->node_capacity = (uint32_t)nodes;
+    c->photon_capacity = (uint32_t)((uint64_t)faces * c->res_l * c->res_l);
+    size_t nrand = (size_t)c->photon_capacity * 8;
+    float *rnd = malloc(nrand * sizeof *rnd);
+    if (!rnd) {
+        gib_fail(err, "out of memory");
+        goto fail;
+    }
+    uint64_t state = 0x853c49e6748fea9bull ^ ((uint64_t)gib_param_int(t, p, "seed") << 1);
+    for (size_t i = 0; i < nrand; i++)
+        rnd[i] = (float)(pcg32(&state) >> 8) * (1.0f / 16777216.0f);
+    const uint32_t cmd[8] = {2, 0, 0, 0, 0, 1, 0, 0};
+    c->random = gib_gpu_buffer(ledger, "photons.random", nrand * sizeof *rnd, rnd, 0, err);
+    free(rnd);
+    if (!c->random ||
+        !(c->mask = gib_gpu_texture(ledger, "mips.mask", GL_TEXTURE_2D_ARRAY, rsm_res, rsm_res,
+                                    faces, GL_R32F, c->level + 1, err)) ||
+        !(c->heads = gib_gpu_buffer(ledger, "lists.heads", 4 * pixels, NULL,
+                                    GL_DYNAMIC_STORAGE_BIT, err)) ||
+        !(c->counts = gib_gpu_buffer(ledger, "lists.counts", 4 * pixels, NULL,
+                                     GL_DYNAMIC_STORAGE_BIT, err)) ||
+        !(c->nodes = gib_gpu_buffer(ledger, "lists.nodes", NODE_BYTES * nodes, NULL, 0, err)) ||
+        !(c->status_buf = gib_gpu_buffer(ledger, "lists.status", 16, NULL, GL_DYNAMIC_STORAGE_BIT,
+                                         err)) ||
+        !(c->photons = gib_gpu_buffer(ledger, "photons.buffer",
+                                      (uint64_t)PHOTON_BYTES * c->photon_capacity, NULL, 0, err)) ||
+        !(c->first_t = gib_gpu_buffer(ledger, "photons.first_hit", 4ull * c->photon_capacity, NULL,
+                                      GL_DYNAMIC_STORAGE_BIT, err)) ||
+        !(c->command = gib_gpu_buffer(ledger, "photons.command", sizeof cmd, cmd,
+                                      GL_DYNAMIC_STORAGE_BIT, err)) ||
+        !(c->irradiance = gib_gpu_texture(ledger, "splat.irradiance", GL_TEXTURE_2D, c->splat_w,
+                                          c->splat_h, 1, GL_RGBA32F, 1, err)))
+        goto fail;
+    glCreateFramebuffers(1, &c->splat_fbo);
+    glNamedFramebufferTexture(c->splat_fbo, GL_COLOR_ATTACHMENT0, c->irradiance, 0);
+    glCreateFramebuffers(1, &c->list_fbo); /* no attachments: lists and lines write buffers only */
+    glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, c->ray_res);
+    glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, c->ray_res);
+    glCreateVertexArrays(1, &c->vao);
+    if (gib_gl_check("ispm_caustics create", err) < 0)
+        goto fail;
+    return c;
+fail:
+    caustics_destroy(c);
+    return NULL;
+}
+
+/* The camera's axes scaled for list_lookup.glsl and the ray-resolution uniforms every list user
+ * takes (locations 1, 6, 7, 8, 10, 11). */
+static void list_uniforms(const caustics *c, const gib_view *v)
+{
+    const float *V = v->view, *P = v->proj;
+    const float right[3] = {V[0] / P[0], V[4] / P[0], V[8] / P[0]};
+    const float up[3] = {V[1] / P[5], V[5] / P[5], V[9] / P[5]};
+    const float fwd[3] = {-V[2], -V[6], -V[10]};
+    glUniformMatrix4fv(1, 1, GL_FALSE, v->view_proj);
+    glUniform3fv(6, 1, v->origin);
+    glUniform3fv(7, 1, fwd);
+    glUniform1i(8, c->ray_res);
+    glUniform3fv(10, 1, right);
+    glUniform3fv(11, 1, up);
+}
+
+static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
+                           const gib_image_target *targets, int target_count, gib_error *err)
+{
+    caustics *c = self;
+    if (target_count != 1)
+        return gib_fail(err, "ispm_caustics renders one component, was given %d targets",
+                        target_count);
+    const float *V = view->view;
+    const float fwd[3] = {-V[2], -V[6], -V[10]};
+    const uint32_t cmd[8] = {2, 0, 0, 0, 0, 1, 0, 0};
+    const uint32_t ones = 0xffffffffu, zero = 0;
+    const float tmax = 2.0f * c->diag;
+
+    gib_gbuffer_render(&c->gbuffer, c->scene, view, timers, "gbuffer");
+    if (c->divisor > 1) {
+        gib_view lv = *view;
+        lv.width = c->splat_w;
+        lv.height = c->splat_h;
+        gib_gbuffer_render(&c->low, c->scene, &lv, timers, "gbuffer");
+    }
+    gib_light_views_render(&c->views, c->scene, timers, "rsm");
+
+    /* Algorithm 3.4: the lists. */
+    gib_timer_begin(timers, "list_build");
+    glClearNamedBufferData(c->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+    glClearNamedBufferData(c->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(c->status_buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindFramebuffer(GL_FRAMEBUFFER, c->list_fbo);
+    glViewport(0, 0, c->ray_res, c->ray_res);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(c->list_prog);
+    gib_gpu_scene_bind(c->scene);
+    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(6, 1, view->origin);
+    glUniform3fv(7, 1, fwd);
+    glUniform1i(8, c->ray_res);
+    glUniform1ui(9, c->node_capacity);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, c->counts);
+    gib_gpu_scene_draw(c->scene);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gib_timer_end(timers);
+
+    gib_timer_begin(timers, "photon_tracing");
+    /* The specular mask and its mips (Fig. 3.5). */
+    gib_light_views_bind(&c->views);
+    glUseProgram(c->mip_prog);
+    int faces = c->views.face_count;
+    for (int l = 0; l <= c->level && faces > 0; l++) {
+        int res = c->views.res >> l;
+        glBindImageTexture(0, c->mask, l, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindImageTexture(1, c->mask, l > 0 ? l - 1 : 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32F);
+        glUniform1i(2, l);
+        glUniform1i(3, res);
+        glDispatchCompute((unsigned)(res + 7) / 8, (unsigned)(res + 7) / 8, (unsigned)faces);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    /* Emission (Sec. 3.3.1). */
+    glNamedBufferSubData(c->command, 0, sizeof cmd, cmd);
+    glClearNamedBufferData(c->first_t, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+    glUseProgram(c->emit_prog);
+    gib_gpu_scene_bind(c->scene);
+    glBindTextureUnit(GIB_UNIT_OWN_FIRST, c->mask);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->photons);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->random);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, c->command);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
+    glUniform1i(2, c->level);
+    glUniform1i(3, c->res_l);
+    glUniform1ui(4, c->photon_capacity);
+    glUniform3fv(5, 1, view->origin);
+    glUniform3fv(7, 1, fwd);
+    glUniform1f(8, 2.0f / ((float)c->ray_res * view->proj[5]));
+    glUniform1f(9, 1e-4f * c->diag);
+    if (faces > 0)
+        glDispatchCompute((unsigned)(c->res_l + 7) / 8, (unsigned)(c->res_l + 7) / 8,
+                          (unsigned)faces);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    /* Algorithm 3.5: the photons' lines against the lists. */
+    glBindFramebuffer(GL_FRAMEBUFFER, c->list_fbo);
+    glViewport(0, 0, c->ray_res, c->ray_res);
+    glUseProgram(c->trace_prog);
+    list_uniforms(c, view);
+    glUniform1f(12, tmax);
+    glUniform1ui(13, c->photon_capacity);
+    glUniform1f(14, c->slack);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, c->photons);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, c->first_t);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, c->command);
+    glBindVertexArray(c->vao);
+    glDrawArraysIndirect(GL_LINES, NULL);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    /* Hits, normals, radii. */
+    glUseProgram(c->resolve_prog);
+    list_uniforms(c, view);
+    glUniform1f(12, tmax);
+    glUniform1ui(13, c->photon_capacity);
+    glUniform1f(14, c->splat_scale);
+    glUniform1f(15, 0.1f * c->diag);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, c->command);
+    glDispatchCompute((c->photon_capacity + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gib_timer_end(timers);
+
+    /* Splatting (Sec. 3.3.2.3). */
+    gib_timer_begin(timers, "splatting");
+    const gib_gbuffer *sg = c->divisor > 1 ? &c->low : &c->gbuffer;
+    glBindFramebuffer(GL_FRAMEBUFFER, c->splat_fbo);
+    glViewport(0, 0, c->splat_w, c->splat_h);
+    const float black[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, black);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(c->splat_prog);
+    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(6, 1, view->origin);
+    glUniform1f(2, c->delta);
+    glBindTextureUnit(GIB_UNIT_GBUF_POSITION, sg->position);
+    glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, sg->normal);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, c->photons);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, c->command);
+    glDrawArraysIndirect(GL_POINTS, (const void *)(uintptr_t)16);
+    glBindVertexArray(0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_BLEND);
+    gib_timer_end(timers);
+
+    gib_timer_begin(timers, "upsampling");
+    gib_fullscreen_begin(&c->shade, targets[0].fbo, c->width, c->height, 0);
+    gib_gbuffer_bind(&c->gbuffer);
+    glBindTextureUnit(GIB_UNIT_OWN_FIRST, c->irradiance);
+    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 1, sg->position);
+    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 2, sg->normal);
+    glUniform1i(2, c->divisor);
+    glUniform3fv(3, 1, view->origin);
+    gib_fullscreen_draw(&c->shade);
+    gib_fullscreen_end();
+    gib_timer_end(timers);
+    return gib_gl_check("ispm_caustics", err);
+}
+
+int ispm_caustics_read_photons(void *self, ispm_photon **out)
+{
+    caustics *c = self;
+    uint32_t cmd[8];
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(c->command, 0, sizeof cmd, cmd);
+    uint32_t n = cmd[1] < c->photon_capacity ? cmd[1] : c->photon_capacity;
+    *out = malloc(sizeof **out * (n ? n : 1));
+    if (!*out)
+        return -1;
+    if (n)
+        glGetNamedBufferSubData(c->photons, 0, (GLsizeiptr)(sizeof **out * n), *out);
+    return (int)n;
+}
+
+static const char *caustics_status(void *self)
+{
+    caustics *c = self;
+    uint32_t st[3];
+    glGetNamedBufferSubData(c->status_buf, 0, sizeof st, st);
+    if (st[1] || st[2])
+        strcpy(c->status, "overflow");
+    return c->status;
+}
+
+const gib_technique gib_technique_ispm_caustics = {
+    .name = "ispm_caustics",
+    .source = "Le Hoang Quyen 2014 (thesis), Sec. 3.3, Algorithms 3.3-3.5 (caustic photons "
+              "through per-pixel linked lists)",
+    .components = GIB_OUT_CAUSTIC,
+    .params = caustics_params,
+    .scene_needs_any = GIB_FEAT_SPECULAR | GIB_FEAT_MIRROR,
+    .create = caustics_create,
+    .render = caustics_render,
+    .status = caustics_status,
+    .destroy = caustics_destroy,
+};

@@ -1,0 +1,43 @@
+// The camera's lists at the ray resolution (list_build.frag) and what the trace asks of them.
+layout(std430, binding = 8) readonly buffer Heads { uint heads[]; };
+layout(std430, binding = 9) readonly buffer Nodes { Node nodes[]; };
+layout(location = 1) uniform mat4 u_view_proj; // camera-relative: maps p - u_origin
+layout(location = 6) uniform vec3 u_origin;    // the eye
+layout(location = 7) uniform vec3 u_forward;
+layout(location = 8) uniform int u_res;
+layout(location = 10) uniform vec3 u_right_tan; // camera right / P[0]: x_ndc 1's direction step
+layout(location = 11) uniform vec3 u_up_tan;    // camera up / P[5]
+layout(std430, binding = 11) readonly buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
+// Walks stop after the longest list's length (llvmpipe runs a loop's lanes to its bound when the
+// bound is a large constant, however early each list ends).
+int max_walk() { return int(min(list_longest, 1u << 20)); }
+
+// The point of node nd of pixel px: on the pixel centre's ray at the node's linear depth.
+vec3 node_point(ivec2 px, float depth)
+{
+    vec2 c = (vec2(px) + 0.5) / float(u_res) * 2.0 - 1.0;
+    return u_origin + abs(depth) * (u_forward + c.x * u_right_tan + c.y * u_up_tan);
+}
+
+// Ray parameter where o + t d crosses the node's tangent plane, or -1 when it runs parallel to it
+// or (Sec. 3.3.2.2, Fig. 3.11) reaches a one-sided surface from behind: the thesis' rejection of
+// self-intersections, which also keeps it from hitting the back faces of closed meshes.
+float node_hit(ivec2 px, Node nd, vec3 o, vec3 d, out vec3 n)
+{
+    n = oct_decode(nd.normal);
+    float dn = dot(d, n);
+    if (abs(dn) < 1e-6 || (nd.depth < 0.0 && dn > 0.0))
+        return -1.0;
+    return dot(node_point(px, nd.depth) - o, n) / dn;
+}
+
+// Distance in ray-resolution pixels (Chebyshev) from pixel px's centre to where point q projects.
+float pixel_distance(ivec2 px, vec3 q)
+{
+    vec4 c = u_view_proj * vec4(q - u_origin, 1.0);
+    if (c.w <= 0.0)
+        return 1e30;
+    vec2 w = (c.xy / c.w * 0.5 + 0.5) * float(u_res);
+    vec2 dd = abs(w - (vec2(px) + 0.5));
+    return max(dd.x, dd.y);
+}
