@@ -59,7 +59,7 @@ static const gib_param_spec caustics_params[] = {
      "mip level of the specular mask photons are emitted from (Sec. 3.3.1.1): ~4x fewer a level"},
     {"ray_res", GIB_PARAM_INT, 128, 16, 2048,
      "side of the camera's linked lists and of the photon lines (Ch. 4: 128 or 256)"},
-    {"list_capacity", GIB_PARAM_INT, 8, 1, 1024,
+    {"list_capacity", GIB_PARAM_FLOAT, 8, 0.01, 1024,
      "list nodes per ray_res pixel on average (the pool; Ch. 4: 20 MB)"},
     {"splat_scale", GIB_PARAM_FLOAT, 3.0, 0.01, 100,
      "C: splat radius h = C sqrt(area the photon stands for on the receiver)"},
@@ -180,12 +180,13 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
         goto fail;
     int faces = c->views.face_count > 0 ? c->views.face_count : 1;
     uint64_t pixels = (uint64_t)c->ray_res * (uint64_t)c->ray_res;
-    uint64_t nodes = pixels * (uint64_t)gib_param_int(t, p, "list_capacity");
+    double per_pixel = gib_param_float(t, p, "list_capacity");
+    uint64_t nodes = (uint64_t)ceil((double)pixels * per_pixel);
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (nodes * NODE_BYTES > (uint64_t)max_block) {
-        gib_fail(err, "ispm_caustics: list_capacity %d x %d^2 nodes of %u bytes exceed one storage "
-                      "buffer (%lld bytes)", gib_param_int(t, p, "list_capacity"), c->ray_res,
+        gib_fail(err, "ispm_caustics: list_capacity %g x %d^2 nodes of %u bytes exceed one storage "
+                      "buffer (%lld bytes)", per_pixel, c->ray_res,
                  NODE_BYTES, (long long)max_block);
         goto fail;
     }
