@@ -16,7 +16,9 @@
  *     Hits outside the camera's frustum are not found (the thesis' lists are perspective too).
  *  4. "splatting": Gaussian disks into an irradiance target at 1/splat_res_divisor of the image.
  *  5. "upsampling": radiance rho_d / pi E, with bilateral upsampling when the splats were smaller.
- * layers = 4: the lists are replaced by 4 depth-peeled layers (not implemented yet: create fails). */
+ * layers = 4: the lists are replaced by 4 depth-peeled layers (peel.frag, 4 passes) turned into
+ * lists of at most 4 nodes (layers.comp), the thesis' comparison: surfaces deeper than the 4th
+ * along a camera ray are missing (Fig. 4.2(b)). */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdint.h>
@@ -48,6 +50,8 @@ typedef struct caustics {
     unsigned heads, nodes, counts, status_buf, photons, random, first_t, command;
     unsigned irradiance, splat_fbo, list_fbo, vao;
     unsigned mip_prog, emit_prog, list_prog, trace_prog, resolve_prog, splat_prog;
+    int layers;                    /* 0: lists; 4: depth-peeled layers */
+    unsigned layer_tex[4], layer_depth, layer_fbo, peel_prog, layers_prog;
     gib_fullscreen shade;
     uint32_t node_capacity, photon_capacity;
     char status[32];
@@ -99,6 +103,17 @@ static void caustics_destroy(void *self)
         if (progs[i])
             glDeleteProgram(progs[i]);
     gib_fullscreen_destroy(&c->shade);
+    for (int k = 0; k < 4; k++)
+        if (c->layer_tex[k])
+            gib_gpu_free(c->ledger, c->layer_tex[k], 1);
+    if (c->layer_depth)
+        gib_gpu_free(c->ledger, c->layer_depth, 2);
+    if (c->layer_fbo)
+        glDeleteFramebuffers(1, &c->layer_fbo);
+    if (c->peel_prog)
+        glDeleteProgram(c->peel_prog);
+    if (c->layers_prog)
+        glDeleteProgram(c->layers_prog);
     if (c->splat_fbo)
         glDeleteFramebuffers(1, &c->splat_fbo);
     if (c->list_fbo)
@@ -138,10 +153,10 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     c->splat_scale = (float)gib_param_float(t, p, "splat_scale");
     c->delta = (float)gib_param_float(t, p, "kernel_delta");
     c->slack = (float)gib_param_float(t, p, "hit_slack");
-    int layers = gib_param_int(t, p, "layers");
-    if (layers != 0) {
-        gib_fail(err, "ispm_caustics: parameter 'layers' = %d: only 0 (linked lists) is "
-                      "implemented", layers);
+    c->layers = gib_param_int(t, p, "layers");
+    if (c->layers != 0 && c->layers != 4) {
+        gib_fail(err, "ispm_caustics: parameter 'layers' = %d: 0 (linked lists) or 4 (the "
+                      "thesis' 4 depth layers)", c->layers);
         goto fail;
     }
     if ((rsm_res >> c->level) < 1) {
@@ -190,6 +205,8 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
                  NODE_BYTES, (long long)max_block);
         goto fail;
     }
+    if (c->layers)
+        nodes = 4 * pixels;
     c->node_capacity = (uint32_t)nodes;
     c->photon_capacity = (uint32_t)((uint64_t)faces * c->res_l * c->res_l);
     size_t nrand = (size_t)c->photon_capacity * 8;
@@ -229,6 +246,22 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, c->ray_res);
     glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, c->ray_res);
     glCreateVertexArrays(1, &c->vao);
+    if (c->layers) {
+        const char *peel[] = {"common/gbuffer.vert", "ispm_caustics/peel.frag"};
+        const char *lay[] = {"ispm_caustics/layers.comp"};
+        if (!(c->peel_prog = gib_program(peel, 2, NULL, err)) ||
+            !(c->layers_prog = gib_program(lay, 1, NULL, err)) ||
+            !(c->layer_depth = gib_gpu_renderbuffer(ledger, "layers.zbuffer", GL_DEPTH_COMPONENT32F,
+                                                    c->ray_res, c->ray_res, err)))
+            goto fail;
+        for (int k = 0; k < 4; k++)
+            if (!(c->layer_tex[k] = gib_gpu_texture(ledger, "layers.depth_normal", GL_TEXTURE_2D,
+                                                    c->ray_res, c->ray_res, 1, GL_RGBA32F, 1, err)))
+                goto fail;
+        glCreateFramebuffers(1, &c->layer_fbo);
+        glNamedFramebufferRenderbuffer(c->layer_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                       c->layer_depth);
+    }
     if (gib_gl_check("ispm_caustics create", err) < 0)
         goto fail;
     return c;
@@ -251,6 +284,44 @@ static void list_uniforms(const caustics *c, const gib_view *v)
     glUniform1i(8, c->ray_res);
     glUniform3fv(10, 1, right);
     glUniform3fv(11, 1, up);
+}
+
+/* The 4-layer variant: 4 peeling passes, then the layers as lists of at most 4 nodes. */
+static void build_layers(caustics *c, const gib_view *view, const float fwd[3])
+{
+    const uint32_t zero = 0;
+    glClearNamedBufferData(c->status_buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindFramebuffer(GL_FRAMEBUFFER, c->layer_fbo);
+    glViewport(0, 0, c->ray_res, c->ray_res);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(c->peel_prog);
+    gib_gpu_scene_bind(c->scene);
+    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(6, 1, view->origin);
+    glUniform3fv(7, 1, fwd);
+    const float none[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; k++) {
+        glNamedFramebufferTexture(c->layer_fbo, GL_COLOR_ATTACHMENT0, c->layer_tex[k], 0);
+        glClearBufferfv(GL_COLOR, 0, none);
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        glUniform1i(8, k);
+        glBindTextureUnit(GIB_UNIT_OWN_FIRST, c->layer_tex[k > 0 ? k - 1 : 0]);
+        gib_gpu_scene_draw(c->scene);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    }
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(c->layers_prog);
+    for (int k = 0; k < 4; k++)
+        glBindTextureUnit(GIB_UNIT_OWN_FIRST + k, c->layer_tex[k]);
+    glUniform1i(8, c->ray_res);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
+    glDispatchCompute((unsigned)(c->ray_res + 7) / 8, (unsigned)(c->ray_res + 7) / 8, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
@@ -277,6 +348,11 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
 
     /* Algorithm 3.4: the lists. */
     gib_timer_begin(timers, "list_build");
+    if (c->layers) {
+        build_layers(c, view, fwd);
+        gib_timer_end(timers);
+        goto lists_done;
+    }
     glClearNamedBufferData(c->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
     glClearNamedBufferData(c->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glClearNamedBufferData(c->status_buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -300,6 +376,7 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gib_timer_end(timers);
 
+lists_done:
     gib_timer_begin(timers, "photon_tracing");
     /* The specular mask and its mips (Fig. 3.5). */
     gib_light_views_bind(&c->views);
