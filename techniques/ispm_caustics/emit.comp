@@ -105,6 +105,9 @@ void main()
         return;
     }
     atomicAdd(cmd[4], 1u);
+    // t_min (Sec. 3.3.2.2, Fig. 3.11: self-intersection): two ray-resolution pixels at the
+    // origin's depth, where neighbouring list nodes of the same curved surface can still be met,
+    // and never under 1e-4 of the scene's diagonal.
     float z0 = max(dot(pos.xyz - u_eye, u_forward), 0.0);
     float tmin = max(u_tmin_floor, 2.0 * z0 * u_pixel_scale);
     photons[k].origin = vec4(pos.xyz, dist0);

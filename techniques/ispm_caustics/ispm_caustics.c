@@ -14,6 +14,8 @@
  *     (resolve.comp). One draw traces every photon: the first hit of each goes to its own slot
  *     (atomicMin) instead of a texture row, so the thesis' repeated passes (rows run out) are one.
  *     Hits outside the camera's frustum are not found (the thesis' lists are perspective too).
+ *     The thesis' per-pixel min/max depth for skipping empty space is not kept: the walk's bound
+ *     is the longest list instead (list_lookup.glsl).
  *  4. "splatting": Gaussian disks into an irradiance target at 1/splat_res_divisor of the image.
  *  5. "upsampling": radiance rho_d / pi E, with bilateral upsampling when the splats were smaller.
  * layers = 4: the lists are replaced by 4 depth-peeled layers (peel.frag, 4 passes) turned into
