@@ -1,7 +1,7 @@
 /* gibench — scenes built in C: the generators' keys and their checks, and three generators: the
  * Cornell box from its published measurements, a plane with a box on it, and a closed room to put
- * scanned models in. The others live in proc_shapes.c (quad, box, slivers, sphere_interior) and
- * proc_hairball.c.
+ * scanned models in. The others live in proc_shapes.c (quad, box, slivers, sphere_interior),
+ * proc_hairball.c, proc_water.c and proc_ring.c.
  *
  * Every flat face gets its own vertices carrying the face's geometric normal, so the shading normal
  * equals the geometric normal and the GL side and the path tracer cannot disagree about it. All
@@ -29,6 +29,7 @@ static const gib_proc_key_info key_info[GIB_PK_COUNT] = {
     [GIB_PK_SIDES] = {"sides", 1, 1, 1, 3.0, 64.0},
     [GIB_PK_SEED] = {"seed", 1, 1, 1, 0.0, 4294967295.0},
     [GIB_PK_SUBDIVISIONS] = {"subdivisions", 1, 1, 1, 0.0, 7.0},
+    [GIB_PK_HEIGHT] = {"height", 1, 1, 0, 0.0, 1e30},
 };
 
 /* The generators, the keys each takes, and how many numbers its `size` has. */
@@ -48,6 +49,7 @@ static const struct generator {
                      K(GIB_PK_SIDES) | K(GIB_PK_SEED),
      0},
     {"water", K(GIB_PK_SIZE) | K(GIB_PK_SEGMENTS), 2},
+    {"ring", K(GIB_PK_RADIUS) | K(GIB_PK_THICKNESS) | K(GIB_PK_HEIGHT) | K(GIB_PK_SEGMENTS), 0},
 };
 #define NGEN (sizeof generators / sizeof generators[0])
 
@@ -143,7 +145,7 @@ int gib_procedural_known(const char *name)
 
 const char *gib_procedural_names(void)
 {
-    return "cornell_box, plane_box, room, box, quad, slivers, sphere_interior, hairball, water";
+    return "cornell_box, plane_box, room, box, quad, slivers, sphere_interior, hairball, water, ring";
 }
 
 /* "room, box" : the generators that take key k. */
@@ -226,6 +228,15 @@ int gib_procedural_check(const char *name, const gib_proc_params *p, int *key, c
             *key = GIB_PK_SEGMENTS;
             snprintf(msg, msg_len, "water: 'segments' must be from 1 to 2896 (2 x segments^2 "
                      "triangles, at most %u), got %.0f", MAX_GENERATED_TRIANGLES, n);
+            return -1;
+        }
+    }
+    if (strcmp(name, "ring") == 0 && (p->set & K(GIB_PK_SEGMENTS))) {
+        const double n = p->v[GIB_PK_SEGMENTS][0];
+        if (n < 3 || 6 * n > MAX_GENERATED_TRIANGLES) {
+            *key = GIB_PK_SEGMENTS;
+            snprintf(msg, msg_len, "ring: 'segments' must be from 3 to %u, got %.0f",
+                     MAX_GENERATED_TRIANGLES / 6, n);
             return -1;
         }
     }
@@ -384,6 +395,8 @@ int gib_procedural_build(const char *name, const gib_proc_params *p, gib_geom *o
         return gib_gen_hairball(out, p, err);
     if (strcmp(name, "water") == 0)
         return gib_gen_water(out, p, err);
+    if (strcmp(name, "ring") == 0)
+        return gib_gen_ring(out, p, err);
     return gib_fail(err, "unknown procedural generator '%s' (known: %s)", name,
                     gib_procedural_names());
 }

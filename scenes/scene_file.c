@@ -30,7 +30,7 @@ static const char *const mesh_keys[] = {
     "file",     "procedural", "scale", "rotate", "translate", "material", "smooth_angle",
     "keys",     "key_rotate", "key_translate", "pivot", "loop", "waves",
     "size",     "radius",     "thickness", "tubes", "segments",  "sides",    "seed",
-    "subdivisions", NULL};
+    "subdivisions", "height", NULL};
 static const char *const material_keys[] = {"albedo",    "specular", "phong_n", "mirror",
                                             "two_sided", NULL}; /* order = GIB_MS_* bits */
 static const char *const light_keys[] = {"type",      "position", "direction",   "target",

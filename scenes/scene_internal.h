@@ -6,7 +6,8 @@
  *   scene_file.c   the .scene text (INI via libinih) -> gib_scene_spec, file:line for every key
  *   scene_check.c  whole-file checks of the spec; is the shared data there?
  *   procedural.c   generators built in C: their keys and checks, cornell_box, plane_box, room
- *   proc_shapes.c  quad, box, slivers, sphere_interior; proc_hairball.c: hairball
+ *   proc_shapes.c  quad, box, slivers, sphere_interior; proc_hairball.c: hairball;
+ *                  proc_water.c: water; proc_ring.c: ring
  *   mesh_import.c  mesh files through assimp (OBJ+MTL, PLY, gzipped PLY) -> gib_geom
  *   scene_build.c  spec + geometry -> the flattened gib_scene (materials, ranges, hash, features)
  *   textures.c     texture files -> linear float RGBA, cached per file
@@ -75,6 +76,7 @@ enum gib_proc_key {
     GIB_PK_SIDES,        /* hairball: sides of a tube's cross-section */
     GIB_PK_SEED,         /* hairball: random seed */
     GIB_PK_SUBDIVISIONS, /* sphere_interior: icosahedron subdivision levels */
+    GIB_PK_HEIGHT,       /* ring: height of the wall */
     GIB_PK_COUNT
 };
 
@@ -130,6 +132,12 @@ int gib_gen_slivers(gib_geom *g, const gib_proc_params *p, gib_error *err);
 int gib_gen_sphere_interior(gib_geom *g, const gib_proc_params *p, gib_error *err);
 int gib_gen_hairball(gib_geom *g, const gib_proc_params *p, gib_error *err);
 int gib_gen_water(gib_geom *g, const gib_proc_params *p, gib_error *err);
+int gib_gen_ring(gib_geom *g, const gib_proc_params *p, gib_error *err);
+/* The ring's defaults (FORMAT.md): inner radius; thickness and height are fractions of it. */
+#define GIB_RING_RADIUS 0.5
+#define GIB_RING_THICKNESS 0.06
+#define GIB_RING_HEIGHT 0.6
+#define GIB_RING_SEGMENTS 32
 /* The water grid's defaults (FORMAT.md). */
 #define GIB_WATER_SIZE 4.0
 #define GIB_WATER_SEGMENTS 64
