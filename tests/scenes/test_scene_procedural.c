@@ -393,6 +393,71 @@ static void test_hard_cases(void)
     }
 }
 
+/* ------------------------------------------------------------------ ring */
+
+/* The ring generator (FORMAT.md): 6 x segments triangles; every vertex within [r0, r0 + t] of the
+ * axis and [0, h] in height; inner-wall normals point toward the axis, outer ones away, rim +y;
+ * every corner's normal on the side of its triangle's winding (the walls are smooth, the winding
+ * must still agree); ring.scene (the thesis' simple ring) is the room's 12 + 192 triangles. */
+static void test_ring(void)
+{
+    char path[512];
+    write_file("ring.scene",
+               "[scene]\n[mesh.r]\nprocedural = ring\nradius = 0.4\nthickness = 0.05\n"
+               "height = 0.3\nsegments = 12\n"
+               "[light.l]\ntype = point\nposition = 0 2 0\nintensity = 1 1 1\n"
+               "[camera.c]\neye = 0 1 3\ntarget = 0 0 0\n",
+               path, sizeof path);
+    gib_scene s;
+    if (load(path, &s))
+        return;
+    CHECK(s.triangle_count == 6u * 12, "ring: %u triangles, want 72", s.triangle_count);
+    uint32_t bad_pos = 0, bad_n = 0, against = 0;
+    /* Float positions of r = 0.4 and 0.45: 1e-6 m covers cos/sin rounded to float. */
+    const double r0 = 0.4, r1 = 0.45, h = 0.3, eps = 1e-6;
+    for (uint32_t v = 0; v < s.vertex_count; v++) {
+        const float *p = s.positions + 3 * (size_t)v, *n = s.normals + 3 * (size_t)v;
+        const double r = sqrt((double)p[0] * p[0] + (double)p[2] * p[2]);
+        bad_pos += r < r0 - eps || r > r1 + eps || p[1] < -eps || p[1] > h + eps;
+        const double radial = (p[0] * n[0] + p[2] * n[2]) / r;
+        if (fabs(n[1] - 1.0) < 1e-6)
+            bad_n += fabs(p[1] - h) > eps; /* rim: at the top */
+        else if (fabs(r - r0) < eps)
+            bad_n += !(radial < -0.999999); /* inner wall: toward the axis */
+        else if (fabs(r - r1) < eps)
+            bad_n += !(radial > 0.999999); /* outer wall: away from it */
+        else
+            bad_n++;
+    }
+    for (uint32_t t = 0; t < s.triangle_count; t++) {
+        double a[3], b[3], c[3], e1[3], e2[3], g[3];
+        vtx(&s, t, 0, a);
+        vtx(&s, t, 1, b);
+        vtx(&s, t, 2, c);
+        sub(b, a, e1);
+        sub(c, a, e2);
+        cross(e1, e2, g);
+        for (int k = 0; k < 3; k++) {
+            const float *nf = s.normals + 3 * (size_t)s.indices[3 * (size_t)t + (size_t)k];
+            const double n[3] = {nf[0], nf[1], nf[2]};
+            against += dot(n, g) <= 0;
+        }
+    }
+    CHECK(bad_pos == 0, "ring: %u vertices outside the ring's shell", bad_pos);
+    CHECK(bad_n == 0, "ring: %u vertices whose normal is not the wall's or the rim's", bad_n);
+    CHECK(against == 0, "ring: %u corners whose normal disagrees with the winding", against);
+    printf("ok   ring: %u triangles, %u vertices, normals radial and +y\n", s.triangle_count,
+           s.vertex_count);
+    gib_scene_free(&s);
+    unlink(path);
+    gib_scene r;
+    if (load("ring", &r) == 0) {
+        CHECK(r.triangle_count == 12 + 6 * 32, "ring.scene: %u triangles, want 204",
+              r.triangle_count);
+        gib_scene_free(&r);
+    }
+}
+
 /* ------------------------------------------------------------------ generator key errors */
 
 static void expect_error(const char *what, const char *text, int line, const char *phrase)
@@ -455,6 +520,10 @@ static void test_key_errors(void)
     expect_error("seed given twice",
                  "[scene]\n[mesh.h]\nprocedural = hairball\nseed = 1\nseed = 2\n" CAM, 5,
                  "given twice");
+    expect_error("ring segments", "[scene]\n[mesh.r]\nprocedural = ring\nsegments = 2\n" CAM, 4,
+                 "ring: 'segments' must be from 3");
+    expect_error("height on a box", "[scene]\n[mesh.b]\nprocedural = box\nheight = 2\n" CAM, 4,
+                 "'height' applies only to 'procedural = ring'");
 }
 
 int main(void)
@@ -464,6 +533,7 @@ int main(void)
     test_hairball();
     test_furnace();
     test_hard_cases();
+    test_ring();
     test_key_errors();
     return scene_test_end();
 }
