@@ -8,7 +8,8 @@ usage: paper_tables.py RESULTS_DIR [--paper-values DIR]
 Writes RESULTS_DIR/<table>_vs_ours.csv for the LDM paper's figures, and for the LRSM paper's
 lrsm_table2.csv (memory per structure: ours, the formulas', the paper's), lrsm_table3.csv (stage
 times), lrsm_fig7.csv (error per scene, technique and component) and lrsm_dynamic.csv (SPONZA
-DRAGON at two instants), each with a row per claim saying whether it reproduced here. "Best match" is the run with the paper's settings when the
+DRAGON at two instants), each with a row per claim saying whether it reproduced here, and the
+thesis' (Le 2014) Tables 4.1-4.5 as thesis_tables.csv (harness/thesis_tables.py). "Best match" is the run with the paper's settings when the
 profile ran them (profile `paper`), else the run closest to them (the same scene and technique, the
 most directions and resolution that ran): the `our_settings` column says which, so a reader never
 takes a quick-profile number for the paper's configuration.
@@ -22,6 +23,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot import parse_params  # noqa: E402
+from thesis_tables import thesis_table  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -542,6 +544,7 @@ def main():
             if name.endswith(".csv"):
                 shutil.copy(os.path.join(a.paper_values, name), os.path.join(paper_dir, name))
     lrsm_tables(a.results, paper_dir)
+    thesis_table(a.results, paper_dir)
     ldm = os.path.join(paper_dir, "ldm_figures.csv")
     if not os.path.exists(ldm):
         print(f"paper_tables.py: no {ldm} (paper values not found under {a.paper_values}); nothing to compare")
