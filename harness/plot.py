@@ -10,8 +10,10 @@
 - error against memory (the ledger's peak bytes), per (matrix, scene, component) whose runs differ
   in memory (structure resolutions, layers: the LRSM paper's Table 2 and the sweeps);
 - across matrices: where runs of different matrices estimate the same component of the same scene
-  at the same size on the same renderer (ldm_indirect, lrsm and vct on `indirect`), speed and memory
-  against error of them all in one plot (cross_<scene>_<component>_<size>);
+  at the same size on the same renderer (ldm_indirect, lrsm, vct and the thesis' rsm_gather and
+  multires_ir on `indirect`: thesis_indirect.matrix runs them on lrsm_sweeps' scenes and sizes and on
+  the thesis' scenes), speed and memory against error of them all in one plot
+  (cross_<scene>_<component>_<size>);
 - the reference path tracer's throughput against Embree on the same rays, by scene, beside the
   lean tracer's (results/bench_reference.csv, `gibench bench reference`).
 Error is the relative RMSE, or the RMSE where the reference's mean is 0 (a view that should be black,
@@ -122,8 +124,9 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
 
 def cross_groups(groups):
     """Runs of different matrices that estimate the same component of the same scene at the same
-    image size on the same renderer (e.g. ldm_indirect, lrsm and vct on `indirect`): one plot of
-    them all, when they hold at least two techniques from at least two matrices."""
+    image size on the same renderer (e.g. ldm_indirect, lrsm, vct, rsm_gather and multires_ir on
+    `indirect`): one plot of them all, when they hold at least two techniques from at least two
+    matrices."""
     merged = {}
     for (matrix, scene, component), rows in groups.items():
         for r in rows:
