@@ -359,6 +359,9 @@ def claims(matched, mats):
         ev = "; ".join(f"{a['width']}^2 ray_res {parse_params(a['params']).get('ray_res', 0):g}: caustic RMSE "
                        f"layers=4 {a['rmse']} vs lists {b['rmse']} (rel {a['rel_rmse']} vs {b['rel_rmse']})"
                        for a, b in leak)
+        if all(a["rmse"] == b["rmse"] for a, b in leak):
+            ev += ("; identical images at every setting: the photons 4 layers miss (their receiver lies "
+                   "5+ surfaces deep) land, in this view, only on surfaces the camera does not see")
         out.append(claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not "
                          "(layers=4 RMSE >= 1.1x lists')", "yes" if ok else "no", ev))
     else:
