@@ -246,3 +246,30 @@ void gib_vpls_destroy(gib_vpls *v, gib_ledger *ledger)
         gib_gpu_free(ledger, v->texels, 0);
     memset(v, 0, sizeof *v);
 }
+
+int gib_vpl_frame_create(gib_vpl_frame *f, const gib_gpu_scene *scene, int width, int height,
+                         int rsm_res, int vpl_count, gib_ledger *ledger, gib_error *err)
+{
+    if (gib_gbuffer_create(&f->gbuffer, width, height, ledger, err) < 0 ||
+        gib_light_views_create(&f->views, scene, rsm_res,
+                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
+                               err) < 0 ||
+        gib_vpls_create(&f->vpls, &f->views, vpl_count, 1, "vpl", ledger, err) < 0)
+        return -1;
+    return 0;
+}
+
+void gib_vpl_frame_render(gib_vpl_frame *f, const gib_gpu_scene *scene, const gib_view *view,
+                          gib_timers *timers)
+{
+    gib_gbuffer_render(&f->gbuffer, scene, view, timers, "gbuffer");
+    gib_light_views_render(&f->views, scene, timers, "rsm");
+    gib_vpls_update(&f->vpls, &f->views, timers, "rsm");
+}
+
+void gib_vpl_frame_destroy(gib_vpl_frame *f, gib_ledger *ledger)
+{
+    gib_vpls_destroy(&f->vpls, ledger);
+    gib_light_views_destroy(&f->views, ledger);
+    gib_gbuffer_destroy(&f->gbuffer, ledger);
+}

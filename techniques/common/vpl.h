@@ -20,6 +20,7 @@
 #ifndef GIB_VPL_H
 #define GIB_VPL_H
 
+#include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
 
 /* One VPL in the SSBO (std430, 48 bytes): position.xyz (w: 1 valid, 0 none), normal.xyz (facing
@@ -55,5 +56,21 @@ void gib_vpls_destroy(gib_vpls *v, gib_ledger *ledger);
  * in[2i + 1] = (n, 0); out[i] = (E, 0), irradiance in W/m^2. */
 int gib_vpls_probe(const gib_vpls *v, float clamp_distance, const float *in, int n, float *out,
                    gib_error *err);
+
+/* What every VPL technique sets up and renders each frame alike: the G-buffer, the light views
+ * (position, normal, flux at rsm_res; label "rsm") and their VPLs (seed 1, label "vpl"). */
+typedef struct gib_vpl_frame {
+    gib_gbuffer gbuffer;
+    gib_light_views views;
+    gib_vpls vpls;
+} gib_vpl_frame;
+
+/* f must be zeroed; on failure what was made is left for gib_vpl_frame_destroy. */
+int gib_vpl_frame_create(gib_vpl_frame *f, const gib_gpu_scene *scene, int width, int height,
+                         int rsm_res, int vpl_count, gib_ledger *ledger, gib_error *err);
+/* Passes "gbuffer" and "rsm" (the light views and the VPL extraction). */
+void gib_vpl_frame_render(gib_vpl_frame *f, const gib_gpu_scene *scene, const gib_view *view,
+                          gib_timers *timers);
+void gib_vpl_frame_destroy(gib_vpl_frame *f, gib_ledger *ledger);
 
 #endif

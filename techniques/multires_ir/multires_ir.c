@@ -30,9 +30,7 @@ extern const gib_technique gib_technique_multires_ir;
 typedef struct multires_ir {
     const gib_gpu_scene *scene;
     gib_ledger *ledger;
-    gib_gbuffer gbuffer;
-    gib_light_views views;
-    gib_vpls vpls;
+    gib_vpl_frame frame;     /* G-buffer, light views, VPLs */
     multires mr;
     float eps;
 } multires_ir;
@@ -61,9 +59,7 @@ static void multires_ir_destroy(void *self)
     if (!s)
         return;
     multires_destroy(&s->mr, s->ledger);
-    gib_vpls_destroy(&s->vpls, s->ledger);
-    gib_light_views_destroy(&s->views, s->ledger);
-    gib_gbuffer_destroy(&s->gbuffer, s->ledger);
+    gib_vpl_frame_destroy(&s->frame, s->ledger);
     free(s);
 }
 
@@ -79,12 +75,8 @@ static void *multires_ir_create(const gib_gpu_scene *scene, const gib_params *p,
     s->scene = scene;
     s->ledger = ledger;
     s->eps = (float)gib_param_float(t, p, "clamp_distance");
-    if (gib_gbuffer_create(&s->gbuffer, width, height, ledger, err) < 0 ||
-        gib_light_views_create(&s->views, scene, gib_param_int(t, p, "rsm_res"),
-                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
-                               err) < 0 ||
-        gib_vpls_create(&s->vpls, &s->views, gib_param_int(t, p, "vpl_count"), 1, "vpl", ledger,
-                        err) < 0 ||
+    if (gib_vpl_frame_create(&s->frame, scene, width, height, gib_param_int(t, p, "rsm_res"),
+                             gib_param_int(t, p, "vpl_count"), ledger, err) < 0 ||
         multires_create(&s->mr, width, height, gib_param_int(t, p, "levels"),
                         (float)gib_param_float(t, p, "depth_threshold"),
                         (float)gib_param_float(t, p, "normal_threshold"),
@@ -100,22 +92,20 @@ static int multires_ir_render(void *self, const gib_view *view, gib_timers *time
                               const gib_image_target *targets, int target_count, gib_error *err)
 {
     multires_ir *s = self;
-    gib_gbuffer_render(&s->gbuffer, s->scene, view, timers, "gbuffer");
-    gib_light_views_render(&s->views, s->scene, timers, "rsm");
-    gib_vpls_update(&s->vpls, &s->views, timers, "rsm");
+    gib_vpl_frame_render(&s->frame, s->scene, view, timers);
     const float *eye = view->camera->eye;
     for (int i = 0; i < target_count; i++) {
         if (targets[i].component != GIB_OUT_INDIRECT)
             continue;
         gib_timer_begin(timers, "splitting");
-        multires_split(&s->mr, s->gbuffer.position, s->gbuffer.normal, eye);
+        multires_split(&s->mr, s->frame.gbuffer.position, s->frame.gbuffer.normal, eye);
         gib_timer_end(timers);
         gib_timer_begin(timers, "gathering");
-        gib_vpls_bind(&s->vpls);
-        multires_gather(&s->mr, s->vpls.count, s->eps);
+        gib_vpls_bind(&s->frame.vpls);
+        multires_gather(&s->mr, s->frame.vpls.count, s->eps);
         gib_timer_end(timers);
         gib_timer_begin(timers, "upsampling");
-        gib_gbuffer_bind(&s->gbuffer);
+        gib_gbuffer_bind(&s->frame.gbuffer);
         multires_upsample(&s->mr, targets[i].fbo, eye);
         gib_timer_end(timers);
     }

@@ -26,9 +26,7 @@ extern const gib_technique gib_technique_rsm_gather;
 typedef struct rsm_gather {
     const gib_gpu_scene *scene;
     gib_ledger *ledger;
-    gib_gbuffer gbuffer;
-    gib_light_views views;
-    gib_vpls vpls;
+    gib_vpl_frame frame;     /* G-buffer, light views, VPLs */
     gib_fullscreen gather;
     float eps;
 } rsm_gather;
@@ -48,9 +46,7 @@ static void rsm_gather_destroy(void *self)
     if (!s)
         return;
     gib_fullscreen_destroy(&s->gather);
-    gib_vpls_destroy(&s->vpls, s->ledger);
-    gib_light_views_destroy(&s->views, s->ledger);
-    gib_gbuffer_destroy(&s->gbuffer, s->ledger);
+    gib_vpl_frame_destroy(&s->frame, s->ledger);
     free(s);
 }
 
@@ -66,12 +62,8 @@ static void *rsm_gather_create(const gib_gpu_scene *scene, const gib_params *p, 
     s->scene = scene;
     s->ledger = ledger;
     s->eps = (float)gib_param_float(t, p, "clamp_distance");
-    if (gib_gbuffer_create(&s->gbuffer, width, height, ledger, err) < 0 ||
-        gib_light_views_create(&s->views, scene, gib_param_int(t, p, "rsm_res"),
-                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
-                               err) < 0 ||
-        gib_vpls_create(&s->vpls, &s->views, gib_param_int(t, p, "vpl_count"), 1, "vpl", ledger,
-                        err) < 0 ||
+    if (gib_vpl_frame_create(&s->frame, scene, width, height, gib_param_int(t, p, "rsm_res"),
+                             gib_param_int(t, p, "vpl_count"), ledger, err) < 0 ||
         gib_fullscreen_create(&s->gather, "rsm_gather/rsm_gather.frag", NULL, err) < 0 ||
         gib_gl_check("rsm_gather creation", err) < 0) {
         rsm_gather_destroy(s);
@@ -83,9 +75,7 @@ static void *rsm_gather_create(const gib_gpu_scene *scene, const gib_params *p, 
 void rsm_gather_render_vpls(void *self, const gib_view *view, gib_timers *timers)
 {
     rsm_gather *s = self;
-    gib_gbuffer_render(&s->gbuffer, s->scene, view, timers, "gbuffer");
-    gib_light_views_render(&s->views, s->scene, timers, "rsm");
-    gib_vpls_update(&s->vpls, &s->views, timers, "rsm");
+    gib_vpl_frame_render(&s->frame, s->scene, view, timers);
 }
 
 void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, unsigned fbo)
@@ -93,9 +83,9 @@ void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, uns
     rsm_gather *s = self;
     gib_timer_begin(timers, "gathering");
     gib_fullscreen_begin(&s->gather, fbo, view->width, view->height, 0);
-    gib_gbuffer_bind(&s->gbuffer);
-    gib_vpls_bind(&s->vpls);
-    glUniform1i(2, s->vpls.count);
+    gib_gbuffer_bind(&s->frame.gbuffer);
+    gib_vpls_bind(&s->frame.vpls);
+    glUniform1i(2, s->frame.vpls.count);
     glUniform1f(3, s->eps);
     gib_fullscreen_draw(&s->gather);
     gib_fullscreen_end();
@@ -104,7 +94,7 @@ void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, uns
 
 gib_vpls *rsm_gather_vpls(void *self)
 {
-    return &((rsm_gather *)self)->vpls;
+    return &((rsm_gather *)self)->frame.vpls;
 }
 
 static int rsm_gather_render(void *self, const gib_view *view, gib_timers *timers,

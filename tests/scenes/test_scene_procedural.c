@@ -41,6 +41,28 @@ static double dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* Corners whose vertex normal points against the triangle's winding (smooth normals of a closed
+ * shape must agree with it). */
+static uint32_t corners_against_winding(const gib_scene *s)
+{
+    uint32_t against = 0;
+    for (uint32_t t = 0; t < s->triangle_count; t++) {
+        double a[3], b[3], c[3], e1[3], e2[3], g[3];
+        vtx(s, t, 0, a);
+        vtx(s, t, 1, b);
+        vtx(s, t, 2, c);
+        sub(b, a, e1);
+        sub(c, a, e2);
+        cross(e1, e2, g);
+        for (int k = 0; k < 3; k++) {
+            const float *nf = s->normals + 3 * (size_t)s->indices[3 * (size_t)t + (size_t)k];
+            const double n[3] = {nf[0], nf[1], nf[2]};
+            against += dot(n, g) <= 0;
+        }
+    }
+    return against;
+}
+
 /* How many triangles the whole line o + t d, t > 0, crosses (Moller-Trumbore in double). */
 static int crossings(const gib_scene *s, const double o[3], const double d[3])
 {
@@ -122,20 +144,7 @@ static void test_hairball(void)
     }
     /* Tube normals are smooth but must agree with the winding (outward). */
     uint32_t against = 0;
-    for (uint32_t t = 0; t < s.triangle_count; t++) {
-        double a[3], b[3], c[3], e1[3], e2[3], g[3];
-        vtx(&s, t, 0, a);
-        vtx(&s, t, 1, b);
-        vtx(&s, t, 2, c);
-        sub(b, a, e1);
-        sub(c, a, e2);
-        cross(e1, e2, g);
-        for (int k = 0; k < 3; k++) {
-            const float *nf = s.normals + 3 * (size_t)s.indices[3 * (size_t)t + (size_t)k];
-            const double n[3] = {nf[0], nf[1], nf[2]};
-            against += dot(n, g) <= 0;
-        }
-    }
+    against += corners_against_winding(&s);
     CHECK(against == 0, "hairball: %u corners whose normal disagrees with the winding", against);
     /* Another seed: another hairball, another hash. */
     char path[512];
@@ -429,20 +438,7 @@ static void test_ring(void)
         else
             bad_n++;
     }
-    for (uint32_t t = 0; t < s.triangle_count; t++) {
-        double a[3], b[3], c[3], e1[3], e2[3], g[3];
-        vtx(&s, t, 0, a);
-        vtx(&s, t, 1, b);
-        vtx(&s, t, 2, c);
-        sub(b, a, e1);
-        sub(c, a, e2);
-        cross(e1, e2, g);
-        for (int k = 0; k < 3; k++) {
-            const float *nf = s.normals + 3 * (size_t)s.indices[3 * (size_t)t + (size_t)k];
-            const double n[3] = {nf[0], nf[1], nf[2]};
-            against += dot(n, g) <= 0;
-        }
-    }
+    against += corners_against_winding(&s);
     CHECK(bad_pos == 0, "ring: %u vertices outside the ring's shell", bad_pos);
     CHECK(bad_n == 0, "ring: %u vertices whose normal is not the wall's or the rim's", bad_n);
     CHECK(against == 0, "ring: %u corners whose normal disagrees with the winding", against);
