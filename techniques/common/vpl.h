@@ -65,6 +65,14 @@ typedef struct gib_vpl_frame {
     gib_vpls vpls;
 } gib_vpl_frame;
 
+/* The parameters gib_vpl_frame_create reads, in every VPL technique's spec list. */
+#define GIB_VPL_PARAMS                                                                            \
+    {"rsm_res", GIB_PARAM_INT, 256, 16, 1024, "light view side, texels"},                         \
+    {"vpl_count", GIB_PARAM_INT, 256, 1, 4096,                                                    \
+     "VPLs over all light-view faces (at least one per face), fixed at create"},                  \
+    {"clamp_distance", GIB_PARAM_LENGTH, 0.05, 0, 1e9,                                            \
+     "eps under the VPL distance: 1 / max(d^2, eps^2), scene units"}
+
 /* f must be zeroed; on failure what was made is left for gib_vpl_frame_destroy. */
 int gib_vpl_frame_create(gib_vpl_frame *f, const gib_gpu_scene *scene, int width, int height,
                          int rsm_res, int vpl_count, gib_ledger *ledger, gib_error *err);

@@ -36,11 +36,7 @@ typedef struct multires_ir {
 } multires_ir;
 
 static const gib_param_spec multires_ir_params[] = {
-    {"rsm_res", GIB_PARAM_INT, 256, 16, 1024, "light view side, texels"},
-    {"vpl_count", GIB_PARAM_INT, 256, 1, 4096,
-     "VPLs over all light-view faces (at least one per face), fixed at create"},
-    {"clamp_distance", GIB_PARAM_LENGTH, 0.05, 0, 1e9,
-     "eps under the VPL distance: 1 / max(d^2, eps^2), scene units"},
+    GIB_VPL_PARAMS,
     {"levels", GIB_PARAM_INT, 4, 1, 8,
      "resolutions: regions of 1 to 2^(levels-1) pixels a side (1: every pixel, as rsm_gather)"},
     {"depth_threshold", GIB_PARAM_FLOAT, 0.05, 0, 10,

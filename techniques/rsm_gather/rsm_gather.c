@@ -32,11 +32,7 @@ typedef struct rsm_gather {
 } rsm_gather;
 
 static const gib_param_spec rsm_gather_params[] = {
-    {"rsm_res", GIB_PARAM_INT, 256, 16, 1024, "light view side, texels"},
-    {"vpl_count", GIB_PARAM_INT, 256, 1, 4096,
-     "VPLs over all light-view faces (at least one per face), fixed at create"},
-    {"clamp_distance", GIB_PARAM_LENGTH, 0.05, 0, 1e9,
-     "eps under the VPL distance: 1 / max(d^2, eps^2), scene units"},
+    GIB_VPL_PARAMS,
     {0},
 };
 
