@@ -91,12 +91,9 @@ def pkey(r):
 
 
 def photon_count(row):
-    """Our photon count where the run reports it (a `photons` column, or `photons=N` in the row's
-    message); None otherwise."""
-    n = fnum(row.get("photons"))
-    if n is not None:
-        return n
-    m = re.search(r"photons\s*[=:]\s*(\d+)", row.get("message", "") or "")
+    """Our photon count where the run reports it (`photons=N` in the row's `counters` column, which
+    ispm_caustics fills from the frame's emission); None otherwise (rows of older runs)."""
+    m = re.search(r"(?:^|;)photons=(\d+)", row.get("counters", "") or "")
     return float(m.group(1)) if m else None
 
 

@@ -7,6 +7,7 @@
 #ifndef GIB_TECHNIQUE_H
 #define GIB_TECHNIQUE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "harness/base/error.h"
@@ -96,6 +97,9 @@ typedef struct gib_technique {
                   const gib_image_target *targets, int target_count, gib_error *err);
     /* Optional: a status word for conditions found while rendering ("overflow"), or NULL. */
     const char *(*status)(void *self);
+    /* Optional: what the last frame counted, as name=value pairs joined by ';' ("photons=6954"),
+     * written to the row's `counters` column (a photon count the thesis' tables are indexed by). */
+    void (*counters)(void *self, char *buf, size_t len);
     void (*destroy)(void *self);
 } gib_technique;
 

@@ -30,14 +30,14 @@ enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAM
        C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU,
        C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
        C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_NONFINITE, C_REF_SPP, C_REF_NOISE, C_REF_NOISY,
-       C_STATUS, C_MESSAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
+       C_STATUS, C_MESSAGE, C_COUNTERS, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
 
 static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
     "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms",
     "mem_bytes", "mem_by_structure",
     "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "nonfinite", "ref_spp",
-    "ref_noise_rmse", "ref_noisy", "status", "message", "backend", "renderer", "gl_version",
+    "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "backend", "renderer", "gl_version",
     "git_revision", "timestamp"};
 static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
                                   C_WIDTH, C_HEIGHT, C_INSTANT};
@@ -193,6 +193,7 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         row_set(&r, C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
         row_set(&r, C_MEM, "%llu", (unsigned long long)res->technique_bytes);
         row_set(&r, C_MEM_STRUCT, "%s", res->memory_by_structure);
+        row_set(&r, C_COUNTERS, "%s", res->counters);
         if (res->driver_bytes >= 0)
             row_set(&r, C_DRIVER_MEM, "%lld", res->driver_bytes);
         if (!res->ok) {

@@ -162,6 +162,8 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
             snprintf(r->err.msg, sizeof r->err.msg, "technique '%s' reported '%s'", t->name, s);
         }
     }
+    if (t->counters)
+        t->counters(self, r->counters, sizeof r->counters);
     for (int i = 0; i < nt; i++)
         if (read_target(targets[i].texture, w, h, &r->images[i], &r->err) < 0) {
             set_status(r, "readback_failed");

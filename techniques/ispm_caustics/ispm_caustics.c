@@ -495,6 +495,17 @@ int ispm_caustics_read_photons(void *self, ispm_photon **out)
     return (int)n;
 }
 
+/* photons: how many the mask's mip level emitted this frame (Algorithm 3.3), the count the
+ * thesis' Tables 4.1-4.5 are indexed by. */
+static void caustics_counters(void *self, char *buf, size_t len)
+{
+    caustics *c = self;
+    uint32_t cmd[8];
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(c->command, 0, sizeof cmd, cmd);
+    snprintf(buf, len, "photons=%u", cmd[1]);
+}
+
 static const char *caustics_status(void *self)
 {
     caustics *c = self;
@@ -515,5 +526,6 @@ const gib_technique gib_technique_ispm_caustics = {
     .create = caustics_create,
     .render = caustics_render,
     .status = caustics_status,
+    .counters = caustics_counters,
     .destroy = caustics_destroy,
 };
