@@ -250,7 +250,7 @@ def claim(text, reproduced, evidence):
     return {"kind": "claim", "claim": text, "reproduced": reproduced, "evidence": evidence}
 
 
-def claims(matched, mats):
+def claims(results, matched, mats):
     out = []
     # 1. Photon tracing time against the photon count, per sweep (matrix, size, ray res, instant).
     sweeps, thesis_sweeps = {}, {}
@@ -306,14 +306,24 @@ def claims(matched, mats):
                          f"over {len(ratios)} pairs; {tev}"))
     else:
         out.append(claim("photon tracing about doubles from 128^2 to 256^2 rays", MISSING, "no pair ran; " + tev))
-    # 3. Multi-resolution gathering against rsm_gather (the same VPLs), time and error.
+    # 3. Multi-resolution gathering against rsm_gather (the same VPLs), time and error: the tables'
+    # matched rows, and thesis_gather_cost's sweep of image sizes (judged at its largest size).
     pairs = {}
     for pr, m, t, mr, gr, cr, trace in matched:
         if mr and gr:
-            pairs[(m.name, mr["width"], t)] = (m, mr, gr)
+            pairs[(m.name, mr["scene"], mr["width"], t)] = (m, mr, gr)
+    for scene in ("ring", "ring_occluded"):
+        m = Matrix(results, "thesis_gather_cost", scene)
+        for mr in (r for r in m.rows if r["technique"] == "multires_ir"):
+            pm = parse_params(mr["params"])
+            for gr in (r for r in m.rows if r["technique"] == "rsm_gather"):
+                pg = parse_params(gr["params"])
+                if gr["width"] == mr["width"] and gr.get("time", "0") == mr.get("time", "0") and \
+                        all(pg.get(k) == pm.get(k) for k in ("rsm_res", "vpl_count", "clamp_distance")):
+                    pairs[(m.name, scene, mr["width"], mr.get("time", "0"))] = (m, mr, gr)
     if pairs:
         speed, worse, ev, by_size = [], [], [], {}
-        for (name, w, t), (m, mr, gr) in sorted(pairs.items()):
+        for (name, scene, w, t), (m, mr, gr) in sorted(pairs.items(), key=lambda kv: (kv[0][0], kv[0][1], int(kv[0][2]), kv[0][3])):
             # Like for like: multires_ir's screen-space work (splitting, gathering, upsampling)
             # against rsm_gather's gathering; each technique's whole frame where a pass is absent.
             parts = [m.pass_ms(mr, n) for n in ("splitting", "gathering", "upsampling")]
@@ -321,19 +331,22 @@ def claims(matched, mats):
             full = m.pass_ms(gr, "gathering")
             full = full if full is not None else fnum(gr["gpu_ms_median"])
             e_m, e_g = fnum(mr["rel_rmse"]), fnum(gr["rel_rmse"])
+            good = None if e_m is None or e_g is None else (e_m - e_g <= ERR_ABS or e_m <= e_g * (1 + ERR_REL))
             if gm and full:
-                speed.append(full / gm)
-                by_size.setdefault(int(w), []).append(full / gm)
-            if e_m is not None and e_g is not None:
-                worse.append(e_m - e_g <= ERR_ABS or e_m <= e_g * (1 + ERR_REL))
-            ev.append(f"{name} {w}^2 t={t}: splitting+gathering+upsampling {fmt(gm)} ms vs rsm_gather's "
-                      f"gathering {fmt(full)} ms, "
-                      f"rel RMSE {fmt(e_m)} vs {fmt(e_g)}")
-        ok = speed and min(speed) >= SPEEDUP_MIN and worse and all(worse)
+                by_size.setdefault(int(w), []).append((full / gm, good))
+            ev.append(f"{name} {scene} {w}^2 t={t}: splitting+gathering+upsampling {fmt(gm)} ms vs rsm_gather's "
+                      f"gathering {fmt(full)} ms, rel RMSE {fmt(e_m)} vs {fmt(e_g)}")
+        # The thesis' images are 512^2 and 1024^2: the claim is judged at the largest size that ran
+        # (smaller ones are dominated by fixed costs on a CPU rasteriser), every size listed.
+        top = max(by_size) if by_size else None
+        at_top = by_size.get(top, [])
+        ok = bool(at_top) and all(x >= SPEEDUP_MIN for x, _ in at_top) and all(g for _, g in at_top)
         ev.insert(0, "rsm_gather / multires_ir by image size: " + ", ".join(
-            f"{w}^2 {min(v):.2f}-{max(v):.2f}x" for w, v in sorted(by_size.items())))
-        out.append(claim("multi-resolution gathering much cheaper than rsm_gather (>= 2x) at a small error cost "
-                         "(rel RMSE <= +0.05 or +25%)", "yes" if ok else "no", "; ".join(ev)))
+            f"{w}^2 {min(x for x, _ in v):.2f}-{max(x for x, _ in v):.2f}x" for w, v in sorted(by_size.items()))
+            + (f" (judged at {top}^2)" if top else ""))
+        out.append(claim("multi-resolution gathering much cheaper than rsm_gather (>= 2x at the largest image "
+                         "size run) at a small error cost (rel RMSE <= +0.05 or +25%)", "yes" if ok else "no",
+                         "; ".join(ev)))
     else:
         out.append(claim("multi-resolution gathering much cheaper than rsm_gather at a small error cost", MISSING,
                          "no matrix ran both multires_ir and rsm_gather"))
@@ -425,7 +438,7 @@ def thesis_table(results, paper_dir):
         return None
     paper = thesis_rows(paper_csv)
     rows, matched, mats = rows_for(results, paper)
-    rows += claims(matched, mats) + flags(paper)
+    rows += claims(results, matched, mats) + flags(paper)
     path = os.path.join(results, "thesis_tables.csv")
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=COLUMNS)
