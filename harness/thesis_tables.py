@@ -250,7 +250,7 @@ def claim(text, reproduced, evidence):
     return {"kind": "claim", "claim": text, "reproduced": reproduced, "evidence": evidence}
 
 
-def claims(results, matched, mats):
+def claims(results, matched, mats, paper):
     out = []
     # 1. Photon tracing time against the photon count, per sweep (matrix, size, ray res, instant).
     sweeps, thesis_sweeps = {}, {}
@@ -286,24 +286,35 @@ def claims(results, matched, mats):
     else:
         out.append(claim("photon tracing time roughly linear in the photon count", MISSING,
                          "no sweep of 3 or more photon counts with a photon_tracing pass ran; " + thesis_r2))
-    # 2. 128^2 -> 256^2 rays: about doubling.
+    # 2. 128^2 -> 256^2 rays: about doubling. A line's cost grows with its length in pixels (2x from
+    # 128^2 to 256^2) only where the photons' own work dominates the pass: the claim is judged on
+    # the pairs at the thesis' photon counts (N >= the smallest in its tables), every pair listed.
     by = {}
     for pr, m, t, mr, gr, cr, trace in matched:
         if cr is not None and trace is not None:
-            by.setdefault((m.name, cr["width"], pr["caustic_photons"], t), {})[pr["ray_resolution"]] = trace
-    ratios = [v["256"] / v["128"] for v in by.values() if "128" in v and "256" in v and v["128"] > 0]
+            by.setdefault((m.name, cr["width"], pr["caustic_photons"], t), {})[pr["ray_resolution"]] = \
+                (trace, photon_count(cr))
+    pairs2 = [(v["256"][0] / v["128"][0], v["128"][1]) for v in by.values()
+              if "128" in v and "256" in v and v["128"][0] > 0]
     seen = {}
     for pr, *_ in matched:
         seen.setdefault((pr["table"], pr["figure"], pr["resolution"], pr["caustic_photons"]), {})[pr["ray_resolution"]] = \
             float(pr["photon_tracing_ms"])
     tratios = [v["256"] / v["128"] for v in seen.values() if "128" in v and "256" in v and v["128"] > 0]
     tev = f"thesis' ratios {min(tratios):.2f}-{max(tratios):.2f}" if tratios else ""
-    if ratios:
-        med = median(ratios)
-        out.append(claim("photon tracing about doubles from 128^2 to 256^2 rays (median ratio in [1.5, 2.7])",
+    n_min = min(int(pr["caustic_photons"]) for pr in paper) if paper else 0
+    if pairs2:
+        big = [x for x, n in pairs2 if n is not None and n >= n_min]
+        judged = big or [x for x, _ in pairs2]
+        med = median(judged)
+        ev = (f"at N >= {n_min} photons: {len(big)} pairs, median {med:.2f}, {min(big):.2f}-{max(big):.2f}; "
+              if big else f"no pair at N >= {n_min} photons (judged on all); ")
+        ratios = [x for x, _ in pairs2]
+        out.append(claim("photon tracing about doubles from 128^2 to 256^2 rays (median ratio in [1.5, 2.7] "
+                         f"at the thesis' photon counts, N >= {n_min})",
                          "yes" if RATIO_LO <= med <= RATIO_HI else "no",
-                         f"our 256^2/128^2 ratios: median {med:.2f}, {min(ratios):.2f}-{max(ratios):.2f} "
-                         f"over {len(ratios)} pairs; {tev}"))
+                         ev + f"all our 256^2/128^2 ratios: median {median(ratios):.2f}, "
+                         f"{min(ratios):.2f}-{max(ratios):.2f} over {len(ratios)} pairs; {tev}"))
     else:
         out.append(claim("photon tracing about doubles from 128^2 to 256^2 rays", MISSING, "no pair ran; " + tev))
     # 3. Multi-resolution gathering against rsm_gather (the same VPLs), time and error: the tables'
@@ -438,7 +449,7 @@ def thesis_table(results, paper_dir):
         return None
     paper = thesis_rows(paper_csv)
     rows, matched, mats = rows_for(results, paper)
-    rows += claims(results, matched, mats) + flags(paper)
+    rows += claims(results, matched, mats, paper) + flags(paper)
     path = os.path.join(results, "thesis_tables.csv")
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=COLUMNS)
