@@ -12,16 +12,16 @@ CMAKE_ARGS ?=
 PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
-  libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git
+  libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git clang
 
 MATRICES = $(wildcard harness/matrices/*.matrix)
 
-.PHONY: all deps build build-asan test reproduce plots baselines clean help
+.PHONY: all deps build build-asan test reproduce plots baselines fuzz clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make test | make deps | make build | make plots | make baselines | make clean"
+	@echo "make reproduce | make test | make deps | make build | make plots | make baselines | make fuzz | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -70,10 +70,21 @@ plots:
 	python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
 	python3 harness/paper_tables.py $(RESULTS)
 
+# libFuzzer over every parser of outside input (tests/fuzz/README.md): FUZZ_SECONDS and FUZZ_RUNS
+# per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 120
+FUZZ_RUNS    ?= -1
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGIB_FUZZ=ON \
+	  -DGIB_WERROR=OFF -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ $(CMAKE_ARGS)
+	cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_scene fuzz_matrix fuzz_values fuzz_exr fuzz_mesh
+	tests/fuzz/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_BUILD)/fuzz.csv
+
 # Accepts the current quality numbers as the new baselines: a deliberate step, never automatic.
 baselines: build
 	python3 tests/quality/check_quality.py --gibench $(BUILD)/gibench --work $(BUILD)/quality \
 	  --update tests/quality/baselines.csv
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)

@@ -1,7 +1,8 @@
 /* gibench — mesh files through assimp 5.2's C API: OBJ with its MTL, PLY, gzipped PLY.
  *
  * Post-processing flags, and why:
- *  - Triangulate: OBJ faces may be quads or n-gons (Dabrovic Sponza).
+ *  - ValidateDataStructure: assimp's own check of indices and counts before the other steps.
+ *  - Triangulate: OBJ faces may be quads or n-gons (Dabrovic Sponza); not for PLY (see below).
  *  - SortByPType + AI_CONFIG_PP_SBP_REMOVE: drop point and line primitives, which neither side
  *    renders, instead of carrying vertices nothing uses.
  *  - GenSmoothNormals: only runs for meshes without normals (Sibenik, Dabrovic Sponza, the PLY
@@ -292,11 +293,21 @@ static int append_scene(const struct aiScene *sc, const char *dir, const char *m
     uint32_t tris_total = 0;
     for (unsigned mi = 0; mi < sc->mNumMeshes && rc == 0; mi++) {
         const struct aiMesh *m = sc->mMeshes[mi];
-        if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+        if (!(m->mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON)))
             continue;
+        /* Polygons (PLY, imported without assimp's triangulation) become fans; faces under 3
+         * corners are dropped; an index past the mesh's vertices is an error, never a read. */
         unsigned ntri = 0;
-        for (unsigned f = 0; f < m->mNumFaces; f++)
-            ntri += m->mFaces[f].mNumIndices == 3;
+        for (unsigned f = 0; f < m->mNumFaces && rc == 0; f++) {
+            const struct aiFace *face = &m->mFaces[f];
+            for (unsigned k = 0; k < face->mNumIndices && rc == 0; k++)
+                if (face->mIndices[k] >= m->mNumVertices)
+                    rc = gib_fail(err, "'%s': face %u refers to vertex %u of %u", mesh_path, f,
+                                  face->mIndices[k], m->mNumVertices);
+            ntri += face->mNumIndices >= 3 ? face->mNumIndices - 2 : 0;
+        }
+        if (rc != 0)
+            break;
         if (ntri == 0)
             continue;
         unsigned am = m->mMaterialIndex < sc->mNumMaterials ? m->mMaterialIndex : 0;
@@ -336,10 +347,9 @@ static int append_scene(const struct aiScene *sc, const char *dir, const char *m
         }
         for (unsigned f = 0; f < m->mNumFaces; f++) {
             const struct aiFace *face = &m->mFaces[f];
-            if (face->mNumIndices != 3)
-                continue;
-            gib_geom_triangle(out, base + face->mIndices[0], base + face->mIndices[1],
-                              base + face->mIndices[2], (uint32_t)mat_map[am]);
+            for (unsigned k = 2; k < face->mNumIndices; k++)
+                gib_geom_triangle(out, base + face->mIndices[0], base + face->mIndices[k - 1],
+                                  base + face->mIndices[k], (uint32_t)mat_map[am]);
         }
         tris_total += ntri;
     }
@@ -355,12 +365,29 @@ static int has_suffix_ci(const char *s, const char *suffix)
     return n >= k && strcasecmp(s + n - k, suffix) == 0;
 }
 
+/* The header of a PLY file on disk, checked as gib_ply_check_header says. */
+static int ply_file_check(const char *path, gib_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return gib_fail(err, "cannot open '%s'", path);
+    char *head = malloc(GIB_PLY_HEADER_MAX);
+    size_t n = head ? fread(head, 1, GIB_PLY_HEADER_MAX, f) : 0;
+    fclose(f);
+    int rc = head ? gib_ply_check_header(head, n, path, err) : gib_fail(err, "out of memory");
+    free(head);
+    return rc;
+}
+
 int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
                     gib_error *err)
 {
-    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType |
-                           aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices |
-                           aiProcess_PreTransformVertices;
+    /* PLY without aiProcess_Triangulate: its assertion aborts the process on malformed face
+     * lists (found by tests/fuzz/fuzz_mesh), and append_scene makes fans of PLY's polygons. */
+    const int is_ply = has_suffix_ci(path, ".ply") || has_suffix_ci(path, ".ply.gz");
+    const unsigned flags = aiProcess_ValidateDataStructure | (is_ply ? 0u : aiProcess_Triangulate) |
+                           aiProcess_SortByPType | aiProcess_GenSmoothNormals |
+                           aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices;
     struct aiPropertyStore *props = aiCreatePropertyStore();
     if (!props)
         return gib_fail(err, "assimp: cannot create a property store");
@@ -397,10 +424,14 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
         rc = read_gz(path, &buf, &len, hash, err);
         if (rc == 0 && len > 0xffffffffu)
             rc = gib_fail(err, "'%s' decompresses to more than 4 GiB", path);
+        if (rc == 0 && strcasecmp(hint, "ply") == 0)
+            rc = gib_ply_check_header((const char *)buf, len, path, err);
         if (rc == 0)
             sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags, hint,
                                                       props);
         free(buf);
+    } else if (has_suffix_ci(path, ".ply") && (rc = ply_file_check(path, err)) != 0) {
+        /* refused before assimp reads it */
     } else {
         io_state st;
         st.count = 0;

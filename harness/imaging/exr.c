@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* The library reports details (e.g. "No such file or directory") only through its error callback;
  * keep the last one per thread so our message can carry it. The callback's context has no user
@@ -228,7 +229,26 @@ int gib_exr_read(const char *path, gib_image *img, gib_kv **attrs, int *nattrs, 
         gib_fail(err, "exr '%s': needs R, G, B or Y channels", path);
         goto done;
     }
-    const int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
+    /* A header can claim any data window: it is held to sides and a pixel count gibench can hold
+     * (2^26 RGB floats: 768 MiB), and to the offset table its chunks need (8 bytes each), before
+     * anything is allocated (found by tests/fuzz/fuzz_exr: a 40-byte file claimed 36 GB). */
+    const int64_t w64 = (int64_t)dw.max.x - dw.min.x + 1, h64 = (int64_t)dw.max.y - dw.min.y + 1;
+    if (w64 < 1 || h64 < 1 || w64 > GIB_EXR_MAX_SIDE || h64 > GIB_EXR_MAX_SIDE ||
+        w64 * h64 > GIB_EXR_MAX_PIXELS) {
+        gib_fail(err, "exr '%s': data window %lld x %lld outside what gibench reads (sides 1 to %d, "
+                      "at most %lld pixels)", path, (long long)w64, (long long)h64,
+                 GIB_EXR_MAX_SIDE, (long long)GIB_EXR_MAX_PIXELS);
+        goto done;
+    }
+    int32_t chunk_count = 0;
+    struct stat file_st;
+    if (exr_get_chunk_count(ctxt, 0, &chunk_count) != EXR_ERR_SUCCESS || chunk_count < 1 ||
+        stat(path, &file_st) != 0 || (long long)file_st.st_size < 8LL * chunk_count) {
+        gib_fail(err, "exr '%s': truncated or inconsistent: %d chunks need an offset table of %lld "
+                      "bytes", path, chunk_count, 8LL * chunk_count);
+        goto done;
+    }
+    const int width = (int)w64, height = (int)h64;
     if (gib_image_alloc(img, width, height, 3, err) != 0) {
         gib_error_prefix(err, "exr '%s'", path);
         goto done;

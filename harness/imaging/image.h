@@ -29,7 +29,11 @@ int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, i
                   gib_error *err);
 /* Reads an EXR written by gib_exr_write (or any RGB/RGBA/Y float or half EXR) into 3 channels
  * (Y is replicated, A dropped). If attrs is non-NULL, *attrs receives a malloc'd array of the
- * header's string attributes and *nattrs its length. Errors name the file. */
+ * header's string attributes and *nattrs its length. Errors name the file. A header claiming more
+ * than GIB_EXR_MAX_PIXELS pixels, a side over GIB_EXR_MAX_SIDE, or more chunks than the file has
+ * room for is refused before anything is allocated. */
+#define GIB_EXR_MAX_SIDE 65536
+#define GIB_EXR_MAX_PIXELS (1LL << 26)
 int gib_exr_read(const char *path, gib_image *img, gib_kv **attrs, int *nattrs, gib_error *err);
 /* Looks up a key in an attribute list; NULL if absent. */
 const char *gib_kv_get(const gib_kv *attrs, int nattrs, const char *key);

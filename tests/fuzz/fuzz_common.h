@@ -1,0 +1,30 @@
+/* gibench fuzz targets (libFuzzer, tests/fuzz/README.md): the project's parsers read files by
+ * path, so each input is written to one temporary file per process and parsed from there, exactly
+ * as gibench reads a user's file. */
+#ifndef GIB_FUZZ_COMMON_H
+#define GIB_FUZZ_COMMON_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+/* Writes data to a per-process file ending in ext ("scene", "matrix", "exr"...) under $TMPDIR
+ * (default /tmp); returns its path (static storage), or NULL when it cannot be written. */
+static inline const char *fuzz_temp_file(const uint8_t *data, size_t size, const char *ext)
+{
+    static char path[512];
+    const char *dir = getenv("TMPDIR");
+    snprintf(path, sizeof path, "%s/gibench-fuzz-%ld.%s", dir && *dir ? dir : "/tmp", (long)getpid(),
+             ext);
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return NULL;
+    size_t w = size ? fwrite(data, 1, size, f) : 0;
+    if (fclose(f) != 0 || w != size)
+        return NULL;
+    return path;
+}
+
+#endif
