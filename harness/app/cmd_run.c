@@ -14,17 +14,23 @@
 #include "csv.h"
 #include "harness/base/hash.h"
 #include "matrix.h"
+#include "shard.h"
 
 static const char help[] =
     "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
-    "                   [--backend egl|osmesa|auto] [--no-images]\n"
+    "                   [--backend egl|osmesa|auto] [--no-images] [--shard I/N]\n"
     "\n"
     "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
     "it: DIR/<matrix>.csv gets one row per run and component, DIR/<matrix>_passes.csv the per-pass\n"
     "GPU times, DIR/images/<matrix>/ the images, previews and error maps. Rows are appended as\n"
     "runs finish; a rerun skips the runs already in the CSV. References come from --cache\n"
     "(default results/cache), rendered when missing or stale. Scenes whose data is absent are\n"
-    "skipped with a message. Exit status 1 when any row is not `ok`.\n";
+    "skipped with a message. Exit status 1 when any row is not `ok`.\n"
+    "\n"
+    "--shard I/N runs share I of N of each matrix's runs (with the references they need): a\n"
+    "deterministic, balanced split by scene, size and instant that every shard computes alike.\n"
+    "Each shard writes into its own DIR, plus DIR/<matrix>.shard, the manifest `gibench merge`\n"
+    "checks when it combines the shards' CSVs into the table one run would write.\n";
 
 enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
        C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU,
@@ -113,7 +119,22 @@ typedef struct run_ctx {
     int images;
     gib_gl_info info;
     int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
+    gib_shard shard;
+    const int *owner; /* with --shard: each run's shard (shard.h) */
+    char *state;      /* with --shard: 'e' rows expected, 's' skipped, 'f' failed; 0 not ours */
 } run_ctx;
+
+/* Whether run j is this process's to do: every run, or with --shard this shard's share. */
+static int run_mine(const run_ctx *ctx, int j)
+{
+    return !ctx->shard.count || ctx->owner[j] == ctx->shard.index;
+}
+
+static void run_state(run_ctx *ctx, int j, char state)
+{
+    if (ctx->state)
+        ctx->state[j] = state;
+}
 
 /* The identity part of a row: what makes it this run. */
 static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned comp)
@@ -325,13 +346,17 @@ static void run_matrix(run_ctx *ctx)
         if (done_scene[i])
             continue;
         const char *sname = m->runs[i].scene;
-        int pending = 0;
+        int pending = 0, mine = 0;
         for (int j = i; j < m->run_count; j++)
-            if (!strcmp(m->runs[j].scene, sname) && !run_done(ctx, &m->runs[j]))
-                pending++;
+            if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j)) {
+                mine++;
+                pending += !run_done(ctx, &m->runs[j]);
+            }
         for (int j = i; j < m->run_count; j++)
             if (!strcmp(m->runs[j].scene, sname))
                 done_scene[j] = 1;
+        if (!mine) /* another shard's scene */
+            continue;
         if (!pending) {
             printf("%s: every run already in %s\n", sname, ctx->csv->path);
             continue;
@@ -343,6 +368,9 @@ static void run_matrix(run_ctx *ctx)
         if (rc == GIB_SCENE_UNAVAILABLE) {
             printf("%s: skipped (%d runs): %s\n", sname, pending, err.msg);
             ctx->runs_skipped += pending;
+            for (int j = i; j < m->run_count; j++)
+                if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j]))
+                    run_state(ctx, j, 's');
             continue;
         }
         if (rc < 0 || gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
@@ -350,17 +378,21 @@ static void run_matrix(run_ctx *ctx)
             if (rc == 0)
                 gib_scene_free(&scene);
             ctx->rows_failed += pending;
+            for (int j = i; j < m->run_count; j++)
+                if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j]))
+                    run_state(ctx, j, 'f');
             continue;
         }
         printf("%s: %u triangles, %d runs to do\n", sname, scene.triangle_count, pending);
         for (int j = i; j < m->run_count; j++) {
             const gib_matrix_run *mr = &m->runs[j];
-            if (strcmp(mr->scene, sname) || run_done(ctx, mr))
+            if (strcmp(mr->scene, sname) || !run_mine(ctx, j) || run_done(ctx, mr))
                 continue;
             char why[512];
             if (!scene_wanted(&scene, mr->technique, why, sizeof why)) {
                 printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
                 ctx->runs_skipped++;
+                run_state(ctx, j, 's');
                 continue;
             }
             gib_run_result res;
@@ -378,11 +410,57 @@ static void run_matrix(run_ctx *ctx)
     free(done_scene);
 }
 
+/* DIR/<matrix>.shard (shard.h): this shard's runs, their state and the keys of the rows each
+ * writes, written under a temporary name and renamed once the runs are done. */
+static int write_manifest(const run_ctx *ctx, gib_error *err)
+{
+    const gib_matrix *m = ctx->m;
+    char path[2048], tmp[2100], hex[17];
+    snprintf(path, sizeof path, "%s/%s.shard", ctx->out, m->name);
+    snprintf(tmp, sizeof tmp, "%s.tmp%d", path, (int)getpid());
+    int *ordinal = malloc((size_t)m->run_count * sizeof *ordinal);
+    FILE *f = ordinal ? fopen(tmp, "w") : NULL;
+    if (!f) {
+        free(ordinal);
+        return gib_fail(err, "cannot write the shard manifest %s", tmp);
+    }
+    gib_shard_order(m, ordinal);
+    gib_hash_hex(gib_matrix_fingerprint(m), hex);
+    fprintf(f, "gibench-shard\t1\nmatrix\t%s\nprofile\t%s\nrevision\t%s\nfingerprint\t%s\n"
+               "shard\t%d/%d\nruns\t%d\n",
+            m->name, m->profile, gib_git_revision(), hex, ctx->shard.index, ctx->shard.count,
+            m->run_count);
+    for (int j = 0; j < m->run_count; j++) {
+        if (!run_mine(ctx, j))
+            continue;
+        char st = ctx->state[j];
+        fprintf(f, "run\t%d\t%d\t%s\n", j, ordinal[j],
+                st == 's' ? "skipped" : st == 'f' ? "failed" : "expect");
+        for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
+            if (!(m->runs[j].technique->components & bit))
+                continue;
+            row r;
+            char key[4096];
+            row_identity(&r, ctx, &m->runs[j], bit);
+            row_key(&r, key, sizeof key);
+            fprintf(f, "row\t%s\n", key);
+        }
+    }
+    free(ordinal);
+    if (fclose(f) != 0 || rename(tmp, path) != 0) {
+        unlink(tmp);
+        return gib_fail(err, "cannot write the shard manifest %s", path);
+    }
+    printf("shard %d/%d of %s: manifest %s\n", ctx->shard.index, ctx->shard.count, m->name, path);
+    return 0;
+}
+
 int gib_cmd_run(int argc, char **argv)
 {
     const char *profile = "quick", *out = GIB_PROJECT_ROOT "/results", *cache = NULL;
     const char *files[64];
     int nfiles = 0, backend = GIB_BACKEND_AUTO, images = 1;
+    gib_shard shard = {0, 0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -406,6 +484,13 @@ int gib_cmd_run(int argc, char **argv)
         if (!strcmp(a, "--profile")) profile = v;
         else if (!strcmp(a, "--out")) out = v;
         else if (!strcmp(a, "--cache")) cache = v;
+        else if (!strcmp(a, "--shard")) {
+            gib_error serr;
+            if (gib_shard_parse("--shard", v, &shard, &serr) < 0) {
+                fprintf(stderr, "gibench run: %s\n", serr.msg);
+                return 2;
+            }
+        }
         else if (!strcmp(a, "--backend")) {
             if ((backend = gib_backend_parse(v)) < 0) {
                 fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
@@ -436,7 +521,7 @@ int gib_cmd_run(int argc, char **argv)
     }
     char cache_dir[2048];
     snprintf(cache_dir, sizeof cache_dir, "%s", cache ? cache : GIB_PROJECT_ROOT "/results/cache");
-    run_ctx ctx = {.out = out, .cache = cache_dir, .images = images};
+    run_ctx ctx = {.out = out, .cache = cache_dir, .images = images, .shard = shard};
     if (gib_mkdirs(out, &err) < 0 || gib_gl_init(backend, &ctx.info, &err) < 0) {
         fprintf(stderr, "gibench run: %s\n", err.msg);
         for (int k = 0; k < nfiles; k++)
@@ -465,7 +550,37 @@ int gib_cmd_run(int argc, char **argv)
         ctx.cols = &cols;
         ctx.csv = &csv;
         ctx.passes = &passes;
+        int *owner = NULL;
+        if (shard.count) {
+            owner = malloc((size_t)ms[i].run_count * sizeof *owner);
+            ctx.state = calloc((size_t)ms[i].run_count + 1, 1);
+            if (!owner || !ctx.state) {
+                fprintf(stderr, "gibench run: out of memory splitting %s into shards\n", ms[i].name);
+                free(owner), free(ctx.state), ctx.state = NULL;
+                gib_csv_close(&csv), gib_csv_close(&passes);
+                status = 1;
+                continue;
+            }
+            gib_shard_assign(&ms[i], shard.count, owner);
+            int mine = 0;
+            for (int j = 0; j < ms[i].run_count; j++)
+                if (owner[j] == shard.index) {
+                    ctx.state[j] = 'e';
+                    mine++;
+                }
+            printf("shard %d/%d: %d of the %d runs\n", shard.index, shard.count, mine,
+                   ms[i].run_count);
+            ctx.owner = owner;
+        }
         run_matrix(&ctx);
+        if (shard.count && write_manifest(&ctx, &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            status = 1;
+        }
+        free(owner);
+        free(ctx.state);
+        ctx.owner = NULL;
+        ctx.state = NULL;
         gib_csv_close(&csv);
         gib_csv_close(&passes);
     }
