@@ -13,7 +13,8 @@ static const char usage[] =
     "  render    --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
     "  reference --scene S --component C --spp N --size WxH (--out F.exr | --cache DIR)\n"
     "  compare   REF.exr TEST.exr [--exposure E] [--json] [--map F.png] [--fail ...]\n"
-    "  run       MATRIX [--profile quick|paper] [--out DIR]\n"
+    "  run       MATRIX [--profile quick|paper] [--out DIR] [--shard I/N]\n"
+    "  merge     SHARD_DIR... --out DIR      the shards' CSVs as one run's table\n"
     "  bench     reference [--scene S] [--size WxH] [--out F.csv]   ray throughput\n"
     "\n"
     "Scene data (Crytek Sponza, Sibenik, ...) is found through $GIBENCH_SCENES\n"
@@ -37,6 +38,8 @@ int main(int argc, char **argv)
         return gib_cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "run"))
         return gib_cmd_run(argc - 1, argv + 1);
+    if (!strcmp(cmd, "merge"))
+        return gib_cmd_merge(argc - 1, argv + 1);
     if (!strcmp(cmd, "bench"))
         return gib_cmd_bench(argc - 1, argv + 1);
     fprintf(stderr, "gibench: unknown command '%s'\n\n%s", cmd, usage);
