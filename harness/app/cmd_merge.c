@@ -20,8 +20,8 @@ static const char help[] =
     "row for row what one unsharded run writes. Refuses (exit 1, that matrix not written) shards of\n"
     "different matrices, matrix expansions, profiles or revisions, a missing or repeated shard, and\n"
     "rows that are missing, duplicated or not the shard's. Refuses to overwrite an existing\n"
-    "DIR/<matrix>.csv. --matrix limits the merge to the named matrices. Images stay in the shards'\n"
-    "folders (DIR/images/<matrix>/ of each: copy them together with cp -rn or rsync).\n";
+    "DIR/<matrix>.csv. --matrix limits the merge to the named matrices. The shards' images\n"
+    "(SHARD_DIR/images/<matrix>/) are gathered into DIR/images/<matrix>/, hard-linked or copied.\n";
 
 /* The CSV identity key's columns, in cmd_run.c's order (key_columns there). */
 static const char *const key_names[] = {"profile", "scene", "camera", "technique", "component",
@@ -241,6 +241,55 @@ static void run_key_of(const char *key, char *out, size_t len)
     while (n < NKEY)
         f[n++][0] = 0;
     snprintf(out, len, "%.160s|%.160s|%.255s|%.32s|%.32s|%.64s", f[1], f[3], f[5], f[6], f[7], f[8]);
+}
+
+/* Gathers the shards' DIR/images/<matrix>/ into OUT/images/<matrix>/: hard links where the folders
+ * share a file system, copies elsewhere. A name already there (the references every shard of a
+ * scene writes, or a second merge) is kept. Returns the number of files gathered, or -1. */
+static int gather_images(const char *dir, const char *out, const char *name, gib_error *err)
+{
+    char src[2048], dst[2048];
+    snprintf(src, sizeof src, "%s/images/%s", dir, name);
+    DIR *dp = opendir(src);
+    if (!dp)
+        return 0; /* the shard ran with --no-images */
+    snprintf(dst, sizeof dst, "%s/images/%s", out, name);
+    if (gib_mkdirs(dst, err) < 0) {
+        closedir(dp);
+        return -1;
+    }
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(dp))) {
+        if (e->d_name[0] == '.')
+            continue;
+        char from[4096], to[4096];
+        snprintf(from, sizeof from, "%s/%s", src, e->d_name);
+        snprintf(to, sizeof to, "%s/%s", dst, e->d_name);
+        if (access(to, F_OK) == 0)
+            continue;
+        if (link(from, to) != 0) {
+            FILE *fi = fopen(from, "rb"), *fo = fi ? fopen(to, "wb") : NULL;
+            char buf[65536];
+            size_t k;
+            int ok = fi && fo;
+            while (ok && (k = fread(buf, 1, sizeof buf, fi)) > 0)
+                ok = fwrite(buf, 1, k, fo) == k;
+            ok = ok && !ferror(fi);
+            if (fi)
+                fclose(fi);
+            if (fo && fclose(fo) != 0)
+                ok = 0;
+            if (!ok) {
+                unlink(to);
+                closedir(dp);
+                return gib_fail(err, "cannot copy %s to %s", from, to);
+            }
+        }
+        n++;
+    }
+    closedir(dp);
+    return n;
 }
 
 static int write_atomic(const char *path, const char *header, mrow *rows, int n, gib_error *err)
@@ -485,8 +534,17 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
                 goto done_passes;
             break;
         }
-    printf("%s: %d shards, %d runs, %d rows -> %s/%s.csv\n", name, a->count, a->runs, nall, out,
-           name);
+    int nimages = 0;
+    for (int i = 0; i < n; i++) {
+        int k = gather_images(sh[i].dir, out, name, err);
+        if (k < 0)
+            goto done_passes;
+        nimages += k;
+    }
+    printf("%s: %d shards, %d runs, %d rows -> %s/%s.csv", name, a->count, a->runs, nall, out, name);
+    if (nimages)
+        printf(", %d images -> %s/images/%s/", nimages, out, name);
+    printf("\n");
     rc = 0;
 done_passes:
     free(passes);

@@ -166,7 +166,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     env = dict(os.environ, GIBENCH=gibench)
-    opts = ["--no-images"]
+    # Images in parallel mode (merge gathers them); the Slurm run checks the tables only.
+    opts = [] if a.mode == "parallel" else ["--no-images"]
 
     # The daemons' folder holds munge's Unix socket, whose path must stay short (108 bytes).
     slurm_dir = tempfile.mkdtemp(prefix="gib-slurm-") if a.mode == "slurm" else None
@@ -214,6 +215,15 @@ def main():
         compare(os.path.join(full, "tiny_passes.csv"), os.path.join(merged, "tiny_passes.csv"),
                 PASS_TIME_COLUMNS, "tiny_passes.csv")
         if a.mode == "parallel":
+            want = sorted(os.listdir(os.path.join(full, "images", "tiny")))
+            got = sorted(os.listdir(os.path.join(merged, "images", "tiny")))
+            check(want == got and len(want) > 0,
+                  f"merge gathers the shards' images: {len(got)} files, {len(want)} unsharded")
+            # The same renderer on the same input writes the same bytes (EXR and PNG, no dates).
+            differ = [f for f in want if f in got and
+                      open(os.path.join(full, "images", "tiny", f), "rb").read() !=
+                      open(os.path.join(merged, "images", "tiny", f), "rb").read()]
+            check(not differ, f"the merged images are the unsharded run's, byte for byte ({differ[:3]})")
             refusals(gibench, base, work)
     finally:
         if a.mode == "slurm":
