@@ -8,11 +8,13 @@ RESULTS    ?= results
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-# Debian 12 packages gibench builds and runs with (ARCHITECTURE.md, "Toolchain facts").
+# Debian 12 packages gibench builds and runs with (ARCHITECTURE.md, "Toolchain facts"); parallel,
+# slurm-wlm and munge are for spreading matrices over machines (harness/cluster/, tests/cluster/).
 PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
-  libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git clang
+  libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git clang \
+  parallel slurm-wlm munge
 
 MATRICES = $(wildcard harness/matrices/*.matrix)
 
