@@ -61,31 +61,37 @@ def compare(a_path, b_path, ignore, what):
 
 
 def manifests(base):
-    """Each shard's runs (index, width*height of its rows) from its manifest."""
+    """Each shard's runs (index -> width*height, state) from its manifest, and the run count."""
     out = {}
+    total = None
     for i in range(1, SHARDS + 1):
         runs = {}
         cur = None
         with open(os.path.join(base, f"shard-{i}", "tiny.shard")) as f:
             for line in f:
                 t = line.rstrip("\n").split("\t")
-                if t[0] == "run":
+                if t[0] == "runs":
+                    total = int(t[1])
+                elif t[0] == "run":
                     cur = int(t[1])
-                    runs[cur] = 0
+                    runs[cur] = (0, t[3])
                 elif t[0] == "row":
                     k = t[1].split("|")  # profile|scene|camera|technique|component|params|w|h|time
-                    runs[cur] = int(k[6]) * int(k[7])
+                    runs[cur] = (int(k[6]) * int(k[7]), runs[cur][1])
         out[i] = runs
-    return out
+    return out, total
 
 
-def check_split(base, total_runs):
-    m = manifests(base)
+def check_split(base, rows):
+    m, total_runs = manifests(base)
     every = sorted(j for runs in m.values() for j in runs)
     check(every == list(range(total_runs)), f"the {SHARDS} shards hold each of the {total_runs} runs once")
-    loads = [sum(r.values()) for r in m.values()]
+    skipped = sum(1 for runs in m.values() for _, st in runs.values() if st == "skipped")
+    check(skipped == total_runs - rows, f"{skipped} runs skipped (bunny's data hidden), "
+          f"{total_runs - rows} runs without rows unsharded")
+    loads = [sum(p for p, _ in r.values()) for r in m.values()]
     # Longest-processing-time-first over (scene, size) groups: no shard is loaded beyond the fair
-    # share plus the largest group (here 5 runs of 48x32 = 7680 pixels); every shard has work.
+    # share plus the largest group (here 5 runs of 48x32 = 7680 pixels).
     fair = sum(loads) / SHARDS
     check(min(loads) > 0 and max(loads) <= fair + 5 * 48 * 32,
           f"balanced split: pixel loads {loads}, fair share {fair:.0f}")
@@ -165,6 +171,10 @@ def main():
     work = os.path.abspath(a.work)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
+    # No shared scene data, here or not: tiny.matrix's `bunny` is skipped alike everywhere.
+    no_scenes = os.path.join(work, "no-scenes")
+    os.makedirs(no_scenes)
+    os.environ["GIBENCH_SCENES"] = no_scenes
     env = dict(os.environ, GIBENCH=gibench)
     # Images in parallel mode (merge gathers them); the Slurm run checks the tables only.
     opts = [] if a.mode == "parallel" else ["--no-images"]
@@ -208,8 +218,8 @@ def main():
             check(False, "the merged table exists")
             return 1
         full = os.path.join(work, "full")
-        total_runs = sum(1 for _ in read(os.path.join(full, "tiny.csv")))  # 1 component per run here
-        check_split(base, total_runs)
+        rows = sum(1 for _ in read(os.path.join(full, "tiny.csv")))  # 1 component per run here
+        check_split(base, rows)
         compare(os.path.join(full, "tiny.csv"), os.path.join(merged, "tiny.csv"), TIME_COLUMNS,
                 "tiny.csv")
         compare(os.path.join(full, "tiny_passes.csv"), os.path.join(merged, "tiny_passes.csv"),
