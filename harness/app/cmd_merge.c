@@ -484,6 +484,12 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
             continue;
         if (read_lines(path, &pcsv[i], err) < 0)
             goto done_passes;
+        for (int k = 0; k < i; k++)
+            if (pcsv[k].count && strcmp(pcsv[k].line[0], pcsv[i].line[0])) {
+                gib_fail(err, "%s: the shards' passes CSVs have different columns (%s and %s)",
+                         name, path, sh[k].dir);
+                goto done_passes;
+            }
         int pk[6];
         for (int k = 0; k < 6; k++)
             if ((pk[k] = column_of(pcsv[i].line[0], pass_key_names[k])) < 0) {

@@ -139,6 +139,12 @@ def refusals(gibench, base, work):
         return lambda t: "\n".join(f"{key}\t{value}" if l.startswith(key + "\t") else l
                                    for l in t.split("\n"))
 
+    p = run([gibench, "merge", "--help"], expect=None)
+    check(p.returncode == 0 and p.stdout.startswith("usage: gibench merge"), "merge --help")
+    p = run([gibench, "merge", s[0]], expect=None)
+    check(p.returncode == 2 and "--out DIR missing" in p.stderr, "merge without --out: exit 2")
+    p = run([gibench, "run", "x.matrix", "--shard", "4/3"], expect=None)
+    check(p.returncode == 2 and "--shard '4/3'" in p.stderr, "run --shard 4/3: exit 2 naming it")
     expect_refusal(gibench, s[:2], out, ["missing"], "a missing shard")
     expect_refusal(gibench, [s[0], s[0], s[1], s[2]], out, ["twice"], "a repeated shard")
     expect_refusal(gibench, [s[0], s[1], variant("v_profile", s[2], set_line("profile", "paper"))],
