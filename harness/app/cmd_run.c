@@ -48,6 +48,8 @@ static const char *const base_columns[C_BASE_COUNT] = {
 static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
                                   C_WIDTH, C_HEIGHT, C_INSTANT};
 #define NKEY ((int)(sizeof key_columns / sizeof key_columns[0]))
+/* profile, scene, technique, params, width, height, time, pass: a pass row's identity. */
+static const int pass_key_columns[] = {1, 2, 3, 4, 5, 6, 7, 8};
 
 static const char *const pass_columns[] = {"matrix", "profile", "scene", "technique", "params",
                                            "width", "height", "time", "pass", "ms_median", "ms_min",
@@ -185,8 +187,11 @@ static int run_done(const run_ctx *ctx, const gib_matrix_run *mr)
 static void append_row(run_ctx *ctx, row *r)
 {
     gib_error err;
-    if (gib_csv_append(ctx->csv, r->ptr, &err) < 0)
+    int w = gib_csv_append(ctx->csv, r->ptr, &err);
+    if (w < 0)
         fprintf(stderr, "gibench run: %s\n", err.msg);
+    if (w == 0) /* written before an interruption: the row is there once */
+        return;
     ctx->rows_written++;
     /* out_of_memory is a result (the plan exceeds the device), not a failure of the run. */
     if (!strcmp(r->v[C_STATUS], "out_of_memory"))
@@ -205,6 +210,30 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
     if (ctx->images && gib_mkdirs(img_dir, &err) < 0) {
         fprintf(stderr, "gibench run: %s\n", err.msg);
         ctx->images = 0;
+    }
+    /* The passes first: a run whose rows are all in the CSV (run_done) then has its passes too,
+     * whenever the process is stopped. */
+    for (int p = 0; res->ok && p < res->pass_count; p++) {
+        char v[14][256];
+        const char *ptr[14];
+        snprintf(v[0], 256, "%s", ctx->m->name);
+        snprintf(v[1], 256, "%s", ctx->m->profile);
+        snprintf(v[2], 256, "%s", mr->scene);
+        snprintf(v[3], 256, "%s", t->name);
+        snprintf(v[4], 256, "%s", mr->params_key);
+        snprintf(v[5], 256, "%d", mr->width);
+        snprintf(v[6], 256, "%d", mr->height);
+        snprintf(v[7], 256, "%.9g", mr->time);
+        snprintf(v[8], 256, "%s", res->passes[p].name);
+        snprintf(v[9], 256, "%.6g", res->passes[p].median_ms);
+        snprintf(v[10], 256, "%.6g", res->passes[p].min_ms);
+        snprintf(v[11], 256, "%.6g", res->passes[p].max_ms);
+        snprintf(v[12], 256, "%s", ctx->info.renderer);
+        snprintf(v[13], 256, "%s", gib_git_revision());
+        for (int k = 0; k < 14; k++)
+            ptr[k] = v[k];
+        if (gib_csv_append(ctx->passes, ptr, &err) < 0)
+            fprintf(stderr, "gibench run: %s\n", err.msg);
     }
     for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
         if (!(t->components & bit))
@@ -296,28 +325,6 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
                mr->scene, t->name, mr->params_key, mr->width, mr->height, mr->time,
                res->gpu_total.median_ms, m.rmse, m.ssim, r.v[C_STATUS]);
         gib_image_free(&ref.image);
-    }
-    for (int p = 0; res->ok && p < res->pass_count; p++) {
-        char v[14][256];
-        const char *ptr[14];
-        snprintf(v[0], 256, "%s", ctx->m->name);
-        snprintf(v[1], 256, "%s", ctx->m->profile);
-        snprintf(v[2], 256, "%s", mr->scene);
-        snprintf(v[3], 256, "%s", t->name);
-        snprintf(v[4], 256, "%s", mr->params_key);
-        snprintf(v[5], 256, "%d", mr->width);
-        snprintf(v[6], 256, "%d", mr->height);
-        snprintf(v[7], 256, "%.9g", mr->time);
-        snprintf(v[8], 256, "%s", res->passes[p].name);
-        snprintf(v[9], 256, "%.6g", res->passes[p].median_ms);
-        snprintf(v[10], 256, "%.6g", res->passes[p].min_ms);
-        snprintf(v[11], 256, "%.6g", res->passes[p].max_ms);
-        snprintf(v[12], 256, "%s", ctx->info.renderer);
-        snprintf(v[13], 256, "%s", gib_git_revision());
-        for (int k = 0; k < 14; k++)
-            ptr[k] = v[k];
-        if (gib_csv_append(ctx->passes, ptr, &err) < 0)
-            fprintf(stderr, "gibench run: %s\n", err.msg);
     }
 }
 
@@ -540,7 +547,7 @@ int gib_cmd_run(int argc, char **argv)
         snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
         snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
         if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
-            gib_csv_open(&passes, ppath, pass_columns, 14, key_columns, 0, &err) < 0) {
+            gib_csv_open(&passes, ppath, pass_columns, 14, pass_key_columns, 8, &err) < 0) {
             fprintf(stderr, "gibench run: %s\n", err.msg);
             status = 1;
             continue;

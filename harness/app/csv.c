@@ -2,6 +2,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Splits one CSV line (RFC 4180 quoting, no embedded newlines: gibench never writes them) into
  * fields, in place. Returns the field count. */
@@ -68,12 +69,61 @@ static void header_line(const char *const *columns, int ncols, char *out, size_t
     }
 }
 
+/* A process killed while appending leaves a last line without its newline: cut it off, so that the
+ * next row starts on a line of its own and the file parses. */
+static int cut_unfinished_line(const char *path, gib_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return gib_fail(err, "cannot reopen %s", path);
+    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1, keep = size;
+    int c = EOF;
+    while (keep > 0 && fseek(f, keep - 1, SEEK_SET) == 0 && (c = fgetc(f)) != '\n')
+        keep--;
+    fclose(f);
+    if (size < 0)
+        return gib_fail(err, "cannot read %s", path);
+    if (keep == size)
+        return 0;
+    if (truncate(path, keep) != 0)
+        return gib_fail(err, "%s ends in an unfinished line that cannot be cut off", path);
+    fprintf(stderr, "gibench: %s: cut off an unfinished last line (%ld bytes) left by an "
+                    "interrupted run\n", path, size - keep);
+    return 0;
+}
+
+static void row_key(const gib_csv *c, char *const *fields, char *key, size_t len)
+{
+    key[0] = 0;
+    for (int k = 0; k < c->nkey; k++) {
+        strncat(key, k ? "|" : "", len - strlen(key) - 1);
+        strncat(key, fields[c->key_cols[k]] ? fields[c->key_cols[k]] : "", len - strlen(key) - 1);
+    }
+}
+
+static int add_key(gib_csv *c, const char *key)
+{
+    char **nk = realloc(c->keys, sizeof(char *) * (c->nkeys + 1));
+    if (!nk)
+        return -1;
+    c->keys = nk;
+    if (!(c->keys[c->nkeys] = strdup(key)))
+        return -1;
+    c->nkeys++;
+    return 0;
+}
+
 int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int ncols,
                  const int *key_cols, int nkey, gib_error *err)
 {
     memset(c, 0, sizeof *c);
     snprintf(c->path, sizeof c->path, "%s", path);
     c->ncols = ncols;
+    if (nkey < 0 || nkey > (int)(sizeof c->key_cols / sizeof c->key_cols[0]))
+        return gib_fail(err, "%s: %d key columns, at most 16", path, nkey);
+    for (int k = 0; k < nkey; k++)
+        c->key_cols[k] = key_cols[k];
+    c->nkey = nkey;
     char header[8192];
     header_line(columns, ncols, header, sizeof header);
     FILE *old = fopen(path, "r");
@@ -92,21 +142,19 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
                     /* A truncated last line (killed mid-write) has too few fields: not finished. */
                     if (split_csv(line, fields, ncols) != ncols)
                         continue;
-                    char key[4096] = "";
-                    for (int k = 0; k < nkey; k++) {
-                        strncat(key, k ? "|" : "", sizeof key - strlen(key) - 1);
-                        strncat(key, fields[key_cols[k]], sizeof key - strlen(key) - 1);
-                    }
-                    char **nk = realloc(c->keys, sizeof(char *) * (c->nkeys + 1));
-                    if (!nk)
+                    if (!nkey)
+                        continue;
+                    char key[4096];
+                    row_key(c, fields, key, sizeof key);
+                    if (add_key(c, key) < 0)
                         break;
-                    c->keys = nk;
-                    c->keys[c->nkeys++] = strdup(key);
                 }
                 free(fields);
             }
         }
         fclose(old);
+        if (!fresh && cut_unfinished_line(path, err) < 0)
+            return -1;
         if (fresh) {
             char aside[1100];
             snprintf(aside, sizeof aside, "%s.old", path);
@@ -118,6 +166,7 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
     c->f = fopen(path, "a");
     if (!c->f)
         return gib_fail(err, "cannot open %s for appending", path);
+    setvbuf(c->f, NULL, _IOFBF, 1 << 16); /* a row leaves in one write(2) */
     if (fresh) {
         fprintf(c->f, "%s\n", header);
         fflush(c->f);
@@ -127,6 +176,12 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
 
 int gib_csv_append(gib_csv *c, const char *const *values, gib_error *err)
 {
+    char key[4096];
+    if (c->nkey) {
+        row_key(c, (char *const *)values, key, sizeof key);
+        if (gib_csv_has(c, key))
+            return 0;
+    }
     for (int i = 0; i < c->ncols; i++) {
         if (i)
             fputc(',', c->f);
@@ -135,7 +190,9 @@ int gib_csv_append(gib_csv *c, const char *const *values, gib_error *err)
     fputc('\n', c->f);
     if (fflush(c->f) != 0 || ferror(c->f))
         return gib_fail(err, "writing %s failed", c->path);
-    return 0;
+    if (c->nkey && add_key(c, key) < 0)
+        return gib_fail(err, "out of memory keeping the keys of %s", c->path);
+    return 1;
 }
 
 int gib_csv_has(const gib_csv *c, const char *key)

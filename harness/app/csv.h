@@ -17,13 +17,19 @@ typedef struct gib_csv {
     int ncols;
     char **keys;      /* identity keys of rows already present (for resume) */
     int nkeys;
+    int key_cols[16]; /* the columns that make a row's identity key (none: every row is new) */
+    int nkey;
 } gib_csv;
 
 /* Opens for appending. An existing file with the same header is kept (its rows' identity keys are
- * loaded); one with a different header is moved aside to PATH.old and a fresh file started. */
+ * loaded, and an unfinished last line, left by a process killed mid-write, is cut off); one with a
+ * different header is moved aside to PATH.old and a fresh file started. */
 int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int ncols,
                  const int *key_columns, int nkey_columns, gib_error *err);
-/* Appends one row (ncols values, NULL = empty), quoted as RFC 4180 needs, and flushes. */
+/* Appends one row (ncols values, NULL = empty), quoted as RFC 4180 needs, and flushes it in one
+ * write. A row whose identity key the file already holds is not written again (a run redone after
+ * an interruption re-appends only what is missing): every row is in the file exactly once.
+ * Returns 1 when written, 0 when the row was there already, -1 on a write error. */
 int gib_csv_append(gib_csv *c, const char *const *values, gib_error *err);
 /* Whether a row with this identity key (key columns joined by '|') is present. */
 int gib_csv_has(const gib_csv *c, const char *key);
