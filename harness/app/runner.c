@@ -85,6 +85,10 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
     set_status(r, "ok");
     gib_ledger ledger;
     gib_ledger_init(&ledger);
+    /* Fault injection (tests/faults): a GPU memory budget for the technique's allocations. */
+    const char *budget = getenv("GIBENCH_GPU_BUDGET_BYTES");
+    if (budget && *budget)
+        ledger.budget_bytes = strtoull(budget, NULL, 10);
     gib_timers timers;
     gib_timers_init(&timers);
     gib_image_target targets[GIB_MAX_OUTPUTS];

@@ -51,9 +51,22 @@ static int add_entry(gib_ledger *l, const char *label, unsigned name, int is_tex
     return 0;
 }
 
+/* The budget check, before anything is allocated. */
+static int over_budget(const gib_ledger *l, const char *label, uint64_t bytes, gib_error *err)
+{
+    if (!l->budget_bytes || l->current_bytes + bytes <= l->budget_bytes)
+        return 0;
+    return gib_fail(err, "out of memory: '%s' (%llu bytes) would take the technique to %llu bytes, "
+                         "over the budget of %llu bytes", label, (unsigned long long)bytes,
+                    (unsigned long long)(l->current_bytes + bytes),
+                    (unsigned long long)l->budget_bytes);
+}
+
 unsigned gib_gpu_buffer(gib_ledger *l, const char *label, uint64_t bytes, const void *data,
                         unsigned flags, gib_error *err)
 {
+    if (over_budget(l, label, bytes, err) < 0)
+        return 0;
     GLuint b = 0;
     glCreateBuffers(1, &b);
     glNamedBufferStorage(b, (GLsizeiptr)(bytes ? bytes : 4), data, flags);
@@ -88,6 +101,8 @@ unsigned gib_gpu_texture(gib_ledger *l, const char *label, unsigned target, int 
     int depth3d = target == GL_TEXTURE_3D ? layers : 1;
     if (levels <= 0)
         levels = gib_mip_levels(w, h, depth3d);
+    if (over_budget(l, label, gib_texture_bytes(target, w, h, layers, fmt, levels), err) < 0)
+        return 0;
     GLuint t = 0;
     glCreateTextures(target, 1, &t);
     if (target == GL_TEXTURE_2D || target == GL_TEXTURE_CUBE_MAP)
@@ -106,6 +121,8 @@ unsigned gib_gpu_texture(gib_ledger *l, const char *label, unsigned target, int 
 unsigned gib_gpu_renderbuffer(gib_ledger *l, const char *label, unsigned fmt, int w, int h,
                               gib_error *err)
 {
+    if (over_budget(l, label, (uint64_t)w * h * gib_format_bytes(fmt), err) < 0)
+        return 0;
     GLuint r = 0;
     glCreateRenderbuffers(1, &r);
     glNamedRenderbufferStorage(r, fmt, w, h);

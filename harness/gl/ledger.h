@@ -21,6 +21,10 @@ typedef struct gib_ledger {
     gib_ledger_entry entries[GIB_LEDGER_MAX];
     int count;
     uint64_t current_bytes, peak_bytes;
+    /* > 0: an allocation that would take current_bytes over it is refused with an "out of memory"
+     * error, as a driver's GL_OUT_OF_MEMORY would be: the runner sets it from the environment's
+     * GIBENCH_GPU_BUDGET_BYTES, so tests can exhaust "GPU memory" on any machine. */
+    uint64_t budget_bytes;
 } gib_ledger;
 
 void gib_ledger_init(gib_ledger *l);

@@ -100,6 +100,11 @@ unsigned gib_program(const char *const *files, int count, const char *defines, g
             ok = 0;
             break;
         }
+        /* Fault injection (tests/faults): a shader whose path contains the environment's
+         * GIBENCH_INJECT_SHADER_ERROR gets a line the GLSL compiler rejects. */
+        const char *inject = getenv("GIBENCH_INJECT_SHADER_ERROR");
+        if (inject && *inject && strstr(files[i], inject) && len + 64 < cap)
+            len += (size_t)snprintf(buf + len, cap - len, "\nnot glsl: an injected fault;\n");
         shaders[i] = glCreateShader(stage);
         const char *s = buf;
         glShaderSource(shaders[i], 1, &s, NULL);

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Faults injected into a matrix run (issue 19, section 3), each row's status and message checked:
+
+- GPU memory exhausted: GIBENCH_GPU_BUDGET_BYTES (the ledger refuses an allocation that would
+  pass it, as a driver's GL_OUT_OF_MEMORY would). With 2 MB, `direct` at shadow_res 512 and 1024
+  cannot allocate its shadow map (6 and 25 MB): those rows are `out_of_memory` with a message
+  naming the allocation, every other row renders as without the budget, the run exits 0
+  (out_of_memory is a result, not a failure) and every row is there once.
+- A shader that fails to compile: GIBENCH_INJECT_SHADER_ERROR=hbao puts a line the GLSL compiler
+  rejects into hbao's shaders: hbao's rows are `shader_failed` with the driver's log in the
+  message, the other techniques' rows are `ok` and equal to a clean run's, the run exits 1."""
+import argparse
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+KEY = ("scene", "technique", "component", "params", "width", "height")
+failures = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        failures.append(what)
+
+
+def run(gibench, matrix, out, cache, env_extra):
+    env = dict(os.environ, **env_extra)
+    p = subprocess.run([gibench, "run", matrix, "--out", out, "--cache", cache, "--no-images"],
+                       env=env, capture_output=True, text=True)
+    with open(os.path.join(out, "faults.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    return p.returncode, {tuple(r[k] for k in KEY): r for r in rows}, len(rows), p.stderr
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--gibench", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    matrix = os.path.join(os.path.dirname(os.path.abspath(__file__)), "faults.matrix")
+    shutil.rmtree(a.work, ignore_errors=True)
+    cache = os.path.join(a.work, "cache")
+    rc, clean, n, _ = run(a.gibench, matrix, os.path.join(a.work, "clean"), cache, {})
+    check(rc == 0 and all(r["status"] == "ok" for r in clean.values()),
+          f"clean run: exit {rc}, {n} rows, all ok")
+
+    rc, oom, n, _ = run(a.gibench, matrix, os.path.join(a.work, "oom"), cache,
+                        {"GIBENCH_GPU_BUDGET_BYTES": "2000000"})
+    check(rc == 0, f"2 MB budget: exit {rc} (out_of_memory rows are results)")
+    check(n == len(oom) == len(clean), f"2 MB budget: {n} rows, each once, as many as the clean run")
+    big = [k for k in oom if k[1] == "direct" and "shadow_res=256" not in k[3]]
+    check(big and all(oom[k]["status"] == "out_of_memory" and "out of memory: 'shadow.depth'"
+                      in oom[k]["message"] and "budget of 2000000 bytes" in oom[k]["message"]
+                      for k in big),
+          f"direct at shadow_res 512 and 1024: {len(big)} rows out_of_memory naming shadow.depth "
+          "and the budget")
+    check(all(oom[k]["rmse"] == "" for k in big), "no metric in an out_of_memory row")
+    fit = [k for k in oom if k[1] != "direct"]
+    check(fit and all(oom[k]["status"] == "ok" and oom[k]["rmse"] == clean[k]["rmse"] for k in fit),
+          f"hbao and ldm_ao under the budget: {len(fit)} rows ok, RMSE as the clean run's")
+
+    rc, bad, n, err = run(a.gibench, matrix, os.path.join(a.work, "shader"), cache,
+                          {"GIBENCH_INJECT_SHADER_ERROR": "hbao"})
+    check(rc == 1, f"injected shader error: exit {rc} (rows not ok)")
+    hb = [k for k in bad if k[1] == "hbao"]
+    check(hb and all(bad[k]["status"] == "shader_failed" and "failed to compile" in bad[k]["message"]
+                     and "error" in bad[k]["message"] for k in hb),
+          f"hbao: {len(hb)} rows shader_failed with the compiler's log")
+    other = [k for k in bad if k[1] != "hbao"]
+    check(n == len(clean) and other and all(bad[k]["status"] == "ok" and bad[k]["rmse"] == clean[k]["rmse"]
+                                            for k in other),
+          f"the matrix goes on: {len(other)} other rows ok and equal to the clean run's")
+    check("shader_failed" in err, "the failure is reported on stderr as it happens")
+    print("PASS" if not failures else f"FAIL: {len(failures)} checks")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
