@@ -73,6 +73,9 @@ typedef struct gib_ref_result {
     char path[1024];
 } gib_ref_result;
 
+/* 0, or -1 with err set; GIB_REF_WRITE_FAILED (< 0 too) when the reference rendered but its cache
+ * entry could not be written (a full disk): nothing of it is left behind. */
+#define GIB_REF_WRITE_FAILED (-2)
 int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err);
 
 /* Sets the reference settings of output `output` (a GIB_OUT_* bit) from the technique's declared
@@ -91,6 +94,9 @@ int gib_ref_seal(const gib_image *img, gib_kv *attrs, int n, int max);
 int gib_ref_seal_ok(const gib_image *img, const gib_kv *want, int nwant, const gib_kv *got,
                     int ngot);
 
+/* Returned by gib_score_and_save when the metrics are computed but an image cannot be written
+ * (a full disk): the caller stops rather than record a row. */
+#define GIB_IMAGE_WRITE_FAILED (-2)
 /* Scores a technique image against a reference and writes the images: DIR/NAME.exr, NAME.png
  * (preview at the scene's exposure) and NAME_error.png. */
 int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,

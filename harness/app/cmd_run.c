@@ -121,6 +121,7 @@ typedef struct run_ctx {
     int images;
     gib_gl_info info;
     int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
+    int write_failed; /* a table could not be written (a full disk): the run stops there */
     gib_shard shard;
     const int *owner; /* with --shard: each run's shard (shard.h) */
     char *state;      /* with --shard: 'e' rows expected, 's' skipped, 'f' failed; 0 not ours */
@@ -188,8 +189,11 @@ static void append_row(run_ctx *ctx, row *r)
 {
     gib_error err;
     int w = gib_csv_append(ctx->csv, r->ptr, &err);
-    if (w < 0)
-        fprintf(stderr, "gibench run: %s\n", err.msg);
+    if (w < 0) {
+        fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
+                        "resumes)\n", err.msg);
+        ctx->write_failed = 1;
+    }
     if (w == 0) /* written before an interruption: the row is there once */
         return;
     ctx->rows_written++;
@@ -232,8 +236,12 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         snprintf(v[13], 256, "%s", gib_git_revision());
         for (int k = 0; k < 14; k++)
             ptr[k] = v[k];
-        if (gib_csv_append(ctx->passes, ptr, &err) < 0)
-            fprintf(stderr, "gibench run: %s\n", err.msg);
+        if (gib_csv_append(ctx->passes, ptr, &err) < 0) {
+            fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
+                            "resumes)\n", err.msg);
+            ctx->write_failed = 1;
+            return;
+        }
     }
     for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
         if (!(t->components & bit))
@@ -267,7 +275,15 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
                               .cache_dir = ctx->cache};
         gib_ref_request_match(&rq, t, &mr->params, bit);
         gib_ref_result ref;
-        if (component < 0 || gib_reference_get(&rq, &ref, &err) < 0) {
+        int grc = component < 0 ? -1 : gib_reference_get(&rq, &ref, &err);
+        if (grc == GIB_REF_WRITE_FAILED) {
+            /* The disk is full: no row (a rerun redoes this run), the run stops as for a table. */
+            fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
+                            "resumes)\n", err.msg);
+            ctx->write_failed = 1;
+            return;
+        }
+        if (grc < 0) {
             row_set(&r, C_STATUS, "reference_failed");
             row_set(&r, C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
                                                        : err.msg);
@@ -302,8 +318,16 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
                 fprintf(stderr, "gibench run: %s\n", err.msg);
         }
         gib_metrics m;
-        if (gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
-                               name, &m, &err) < 0) {
+        int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
+                                     name, &m, &err);
+        if (src == GIB_IMAGE_WRITE_FAILED) {
+            fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
+                            "resumes)\n", err.msg);
+            ctx->write_failed = 1;
+            gib_image_free(&ref.image);
+            return;
+        }
+        if (src < 0) {
             row_set(&r, C_STATUS, "scoring_failed");
             row_set(&r, C_MESSAGE, "%s", err.msg);
         } else {
@@ -349,7 +373,7 @@ static void run_matrix(run_ctx *ctx)
 {
     const gib_matrix *m = ctx->m;
     char *done_scene = calloc(m->run_count, 1);
-    for (int i = 0; done_scene && i < m->run_count; i++) {
+    for (int i = 0; done_scene && i < m->run_count && !ctx->write_failed; i++) {
         if (done_scene[i])
             continue;
         const char *sname = m->runs[i].scene;
@@ -391,7 +415,7 @@ static void run_matrix(run_ctx *ctx)
             continue;
         }
         printf("%s: %u triangles, %d runs to do\n", sname, scene.triangle_count, pending);
-        for (int j = i; j < m->run_count; j++) {
+        for (int j = i; j < m->run_count && !ctx->write_failed; j++) {
             const gib_matrix_run *mr = &m->runs[j];
             if (strcmp(mr->scene, sname) || !run_mine(ctx, j) || run_done(ctx, mr))
                 continue;
@@ -541,7 +565,7 @@ int gib_cmd_run(int argc, char **argv)
     columns cols;
     make_columns(&cols);
     int status = 0;
-    for (int i = 0; i < nfiles; i++) {
+    for (int i = 0; i < nfiles && !ctx.write_failed; i++) {
         gib_csv csv, passes;
         char path[2048], ppath[2048];
         snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
@@ -580,7 +604,7 @@ int gib_cmd_run(int argc, char **argv)
             ctx.owner = owner;
         }
         run_matrix(&ctx);
-        if (shard.count && write_manifest(&ctx, &err) < 0) {
+        if (shard.count && !ctx.write_failed && write_manifest(&ctx, &err) < 0) {
             fprintf(stderr, "gibench run: %s\n", err.msg);
             status = 1;
         }
@@ -593,7 +617,7 @@ int gib_cmd_run(int argc, char **argv)
     }
     printf("gibench run: %d rows written (%d not ok, %d out of memory), %d runs skipped\n",
            ctx.rows_written, ctx.rows_failed, ctx.rows_out_of_memory, ctx.runs_skipped);
-    if (ctx.rows_failed)
+    if (ctx.rows_failed || ctx.write_failed)
         status = 1;
     gib_gl_shutdown();
     for (int k = 0; k < nfiles; k++)

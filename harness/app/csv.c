@@ -1,5 +1,6 @@
 #include "csv.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -189,7 +190,7 @@ int gib_csv_append(gib_csv *c, const char *const *values, gib_error *err)
     }
     fputc('\n', c->f);
     if (fflush(c->f) != 0 || ferror(c->f))
-        return gib_fail(err, "writing %s failed", c->path);
+        return gib_fail(err, "writing %s failed: %s", c->path, strerror(errno));
     if (c->nkey && add_key(c, key) < 0)
         return gib_fail(err, "out of memory keeping the keys of %s", c->path);
     return 1;

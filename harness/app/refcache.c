@@ -181,7 +181,8 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
     if (gib_exr_write(tmp, &out->image, attrs, n, err) < 0 || rename(tmp, out->path) != 0) {
         unlink(tmp);
         gib_image_free(&out->image);
-        return gib_error_prefix(err, "writing reference cache entry %s", out->path);
+        gib_error_prefix(err, "writing reference cache entry %s", out->path);
+        return GIB_REF_WRITE_FAILED;
     }
     out->spp = st.spp;
     out->noise_rmse = st.noise_rmse;

@@ -162,12 +162,14 @@ int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposur
     char path[4096];
     snprintf(path, sizeof path, "%s/%s.exr", dir, name);
     if (gib_exr_write(path, img, NULL, 0, err) < 0)
-        return -1;
+        return GIB_IMAGE_WRITE_FAILED;
     snprintf(path, sizeof path, "%s/%s.png", dir, name);
     if (gib_png_write_preview(path, img, exposure, err) < 0)
-        return -1;
+        return GIB_IMAGE_WRITE_FAILED;
     snprintf(path, sizeof path, "%s/%s_error.png", dir, name);
-    return gib_png_write_error_map(path, ref, img, 0.0f, err);
+    if (gib_png_write_error_map(path, ref, img, 0.0f, err) < 0)
+        return GIB_IMAGE_WRITE_FAILED;
+    return 0;
 }
 
 void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p,

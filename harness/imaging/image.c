@@ -6,8 +6,10 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int gib_image_alloc(gib_image *img, int width, int height, int channels, gib_error *err)
 {
@@ -79,12 +81,21 @@ static unsigned char to_u8(float v01)
     return (unsigned char)(v01 * 255.0f + 0.5f);
 }
 
+/* To a temporary name renamed on success, as the EXRs: a full disk or a kill never leaves a
+ * truncated PNG that a later run would take for finished (the runner keeps existing previews). */
 static int write_png(const char *path, int w, int h, int c, const unsigned char *data,
                      gib_error *err)
 {
-    char buf[1024];
-    if (gib_oiio_write_png8(path, w, h, c, data, buf, (int)sizeof buf) != 0)
+    char buf[1024], tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
+    if (gib_oiio_write_png8(tmp, w, h, c, data, buf, (int)sizeof buf) != 0) {
+        unlink(tmp);
         return gib_fail(err, "%s", buf);
+    }
+    if (rename(tmp, path) != 0) {
+        unlink(tmp);
+        return gib_fail(err, "png '%s': cannot rename the written file into place", path);
+    }
     return 0;
 }
 

@@ -8,11 +8,15 @@
   (out_of_memory is a result, not a failure) and every row is there once.
 - A shader that fails to compile: GIBENCH_INJECT_SHADER_ERROR=hbao puts a line the GLSL compiler
   rejects into hbao's shaders: hbao's rows are `shader_failed` with the driver's log in the
-  message, the other techniques' rows are `ok` and equal to a clean run's, the run exits 1."""
+  message, the other techniques' rows are `ok` and equal to a clean run's, the run exits 1.
+- A full disk (every file capped at 7,000 bytes): a clear error naming the file, the run stops,
+  no temporary or truncated file is left, and the next run finishes with the clean run's rows."""
 import argparse
 import csv
 import os
+import resource
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -26,7 +30,7 @@ def check(cond, what):
         failures.append(what)
 
 
-def run(gibench, matrix, out, cache, env_extra):
+def run(gibench, matrix, out, cache, env_extra, images=False):
     env = dict(os.environ, **env_extra)
     p = subprocess.run([gibench, "run", matrix, "--out", out, "--cache", cache, "--no-images"],
                        env=env, capture_output=True, text=True)
@@ -74,6 +78,32 @@ def main():
                                             for k in other),
           f"the matrix goes on: {len(other)} other rows ok and equal to the clean run's")
     check("shader_failed" in err, "the failure is reported on stderr as it happens")
+    # A full disk: every file limited to 7,000 bytes (RLIMIT_FSIZE, SIGXFSZ ignored, so a write past
+    # it fails with EFBIG as a full disk fails with ENOSPC; no privileges needed, unlike a tiny
+    # tmpfs). With an empty reference cache the first 9 kB reference entry cannot be written; with
+    # the clean run's cache the technique images and then the table fill up.
+    def limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (7000, 7000))
+    for case, what in (("empty_cache", "writing reference cache entry"), ("filled_cache", "cannot write")):
+        full_out, full_cache = os.path.join(a.work, case), os.path.join(a.work, case + "_cache")
+        if case == "filled_cache":
+            shutil.copytree(cache, full_cache)
+        p = subprocess.run([a.gibench, "run", matrix, "--out", full_out, "--cache", full_cache],
+                           preexec_fn=limit, capture_output=True, text=True)
+        print("     " + "\n     ".join(l for l in p.stderr.splitlines() if "stopping" in l))
+        check(p.returncode == 1 and what in p.stderr and "stopping" in p.stderr,
+              f"disk full, {case}: exit {p.returncode}, a message naming the file, the run stops")
+        left = [os.path.join(d, f) for d, _, fs in os.walk(a.work) for f in fs if ".tmp" in f]
+        check(not left, f"disk full, {case}: no temporary file left behind ({left[:3]})")
+        pngs = [os.path.join(d, f) for d, _, fs in os.walk(full_out) for f in fs if f.endswith(".png")]
+        cut = [f for f in pngs if b"IEND" not in open(f, "rb").read()[-12:]]
+        check(not cut, f"disk full, {case}: every PNG there is complete ({len(pngs)}, {len(cut)} cut)")
+        rc, resumed, n, err = run(a.gibench, matrix, full_out, full_cache, {}, images=True)
+        check(rc == 0 and n == len(resumed) == len(clean), f"disk full, {case}: the next run on a "
+              f"free disk finishes: exit {rc}, {n} rows, each once")
+        same = all(resumed[k]["status"] == "ok" and resumed[k]["rmse"] == clean[k]["rmse"] for k in clean)
+        check(same, f"disk full, {case}: its rows equal the clean run's (nothing half-written trusted)")
     print("PASS" if not failures else f"FAIL: {len(failures)} checks")
     return 1 if failures else 0
 
