@@ -14,7 +14,8 @@ PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
   libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git clang \
-  parallel slurm-wlm munge
+  parallel slurm-wlm munge \
+  libsqlite3-dev
 
 MATRICES = $(wildcard harness/matrices/*.matrix)
 

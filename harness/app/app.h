@@ -15,6 +15,7 @@ int gib_cmd_compare(int argc, char **argv);
 int gib_cmd_run(int argc, char **argv);
 int gib_cmd_bench(int argc, char **argv);
 int gib_cmd_merge(int argc, char **argv);
+int gib_cmd_history(int argc, char **argv);
 
 /* "256x256" → w, h; errors name the option. */
 int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *err);

@@ -12,6 +12,7 @@
 #include "runner.h"
 #include "app.h"
 #include "csv.h"
+#include "history.h"
 #include "harness/base/hash.h"
 #include "matrix.h"
 #include "shard.h"
@@ -19,13 +20,18 @@
 static const char help[] =
     "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
     "                   [--backend egl|osmesa|auto] [--no-images] [--shard I/N]\n"
+    "                   [--history PATH | --no-history]\n"
     "\n"
     "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
     "it: DIR/<matrix>.csv gets one row per run and component, DIR/<matrix>_passes.csv the per-pass\n"
     "GPU times, DIR/images/<matrix>/ the images, previews and error maps. Rows are appended as\n"
     "runs finish; a rerun skips the runs already in the CSV. References come from --cache\n"
     "(default results/cache), rendered when missing or stale. Scenes whose data is absent are\n"
-    "skipped with a message. Exit status 1 when any row is not `ok`.\n"
+    "skipped with a message. Exit status 1 when any row is not `ok` or the history could not\n"
+    "be written.\n"
+    "\n"
+    "Every row is also recorded in the results history, a SQLite file (--history, default\n"
+    "DIR/history.sqlite; `gibench history` queries it), with the machine and revision.\n"
     "\n"
     "--shard I/N runs share I of N of each matrix's runs (with the references they need): a\n"
     "deterministic, balanced split by scene, size and instant that every shard computes alike.\n"
@@ -120,6 +126,9 @@ typedef struct run_ctx {
     const char *out, *cache;
     int images;
     gib_gl_info info;
+    gib_history *hist;     /* NULL: --no-history, or recording failed (reported once) */
+    long long hist_run;
+    int hist_failed;
     int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
     int write_failed; /* a table could not be written (a full disk): the run stops there */
     gib_shard shard;
@@ -185,6 +194,15 @@ static int run_done(const run_ctx *ctx, const gib_matrix_run *mr)
     return 1;
 }
 
+/* Stops recording after the first failure, which makes the run's exit status 1. */
+static void history_failed(run_ctx *ctx, const gib_error *err)
+{
+    fprintf(stderr, "gibench run: results history not recorded from here on: %s\n", err->msg);
+    gib_history_close(ctx->hist);
+    ctx->hist = NULL;
+    ctx->hist_failed = 1;
+}
+
 static void append_row(run_ctx *ctx, row *r)
 {
     gib_error err;
@@ -193,9 +211,18 @@ static void append_row(run_ctx *ctx, row *r)
         fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
                         "resumes)\n", err.msg);
         ctx->write_failed = 1;
-    }
-    if (w == 0) /* written before an interruption: the row is there once */
         return;
+    }
+    if (w == 0) /* written before an interruption: the row is there once (and in
+                 * the history, unless the run was killed between the two writes) */
+        return;
+    /* One transaction per row: short, so concurrent runs writing the same history wait for each
+     * other only milliseconds (history.h). */
+    if (ctx->hist && (gib_history_begin(ctx->hist, &err) < 0 ||
+                      gib_history_add_row(ctx->hist, ctx->hist_run, ctx->cols->names, r->ptr,
+                                          ctx->cols->count, &err) < 0 ||
+                      gib_history_commit(ctx->hist, &err) < 0))
+        history_failed(ctx, &err);
     ctx->rows_written++;
     /* out_of_memory is a result (the plan exceeds the device), not a failure of the run. */
     if (!strcmp(r->v[C_STATUS], "out_of_memory"))
@@ -489,6 +516,8 @@ static int write_manifest(const run_ctx *ctx, gib_error *err)
 int gib_cmd_run(int argc, char **argv)
 {
     const char *profile = "quick", *out = GIB_PROJECT_ROOT "/results", *cache = NULL;
+    const char *history = NULL;
+    int no_history = 0;
     const char *files[64];
     int nfiles = 0, backend = GIB_BACKEND_AUTO, images = 1;
     gib_shard shard = {0, 0};
@@ -500,6 +529,10 @@ int gib_cmd_run(int argc, char **argv)
         }
         if (!strcmp(a, "--no-images")) {
             images = 0;
+            continue;
+        }
+        if (!strcmp(a, "--no-history")) {
+            no_history = 1;
             continue;
         }
         if (a[0] != '-') {
@@ -522,6 +555,7 @@ int gib_cmd_run(int argc, char **argv)
                 return 2;
             }
         }
+        else if (!strcmp(a, "--history")) history = v;
         else if (!strcmp(a, "--backend")) {
             if ((backend = gib_backend_parse(v)) < 0) {
                 fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
@@ -562,6 +596,20 @@ int gib_cmd_run(int argc, char **argv)
     }
     printf("gibench run: %d matrices, %d runs, profile %s, on %s (%s, %s)\n", nfiles, total,
            profile, ctx.info.renderer, ctx.info.backend, ctx.info.version);
+    char hist_path[2048];
+    snprintf(hist_path, sizeof hist_path, "%s", history ? history : "");
+    if (!history)
+        snprintf(hist_path, sizeof hist_path, "%s/history.sqlite", out);
+    gib_history_machine machine;
+    gib_history_machine_detect(&machine, ctx.info.renderer, ctx.info.version, ctx.info.backend);
+    if (!no_history && gib_history_open(&ctx.hist, hist_path, &err) < 0) {
+        fprintf(stderr, "gibench run: --history: %s\n", err.msg);
+        gib_gl_shutdown();
+        for (int k = 0; k < nfiles; k++)
+            gib_matrix_free(&ms[k]);
+        free(ms);
+        return 1;
+    }
     columns cols;
     make_columns(&cols);
     int status = 0;
@@ -577,6 +625,9 @@ int gib_cmd_run(int argc, char **argv)
             continue;
         }
         printf("matrix %s (%d runs): %s\n", ms[i].name, ms[i].run_count, ms[i].description);
+        if (ctx.hist && gib_history_begin_run(ctx.hist, &machine, gib_git_revision(), ms[i].name,
+                                              profile, &ctx.hist_run, &err) < 0)
+            history_failed(&ctx, &err);
         ctx.m = &ms[i];
         ctx.cols = &cols;
         ctx.csv = &csv;
@@ -617,8 +668,11 @@ int gib_cmd_run(int argc, char **argv)
     }
     printf("gibench run: %d rows written (%d not ok, %d out of memory), %d runs skipped\n",
            ctx.rows_written, ctx.rows_failed, ctx.rows_out_of_memory, ctx.runs_skipped);
-    if (ctx.rows_failed || ctx.write_failed)
+    if (ctx.hist)
+        printf("gibench run: rows recorded in %s\n", hist_path);
+    if (ctx.rows_failed || ctx.hist_failed || ctx.write_failed)
         status = 1;
+    gib_history_close(ctx.hist);
     gib_gl_shutdown();
     for (int k = 0; k < nfiles; k++)
         gib_matrix_free(&ms[k]);

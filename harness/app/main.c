@@ -16,6 +16,7 @@ static const char usage[] =
     "  run       MATRIX [--profile quick|paper] [--out DIR] [--shard I/N]\n"
     "  merge     SHARD_DIR... --out DIR      the shards' CSVs as one run's table\n"
     "  bench     reference [--scene S] [--size WxH] [--out F.csv]   ray throughput\n"
+    "  history   [--metric M] [--scene S] [--technique T] [--find] [--plot F.png]   results history\n"
     "\n"
     "Scene data (Crytek Sponza, Sibenik, ...) is found through $GIBENCH_SCENES\n"
     "(default ../shared/scenes beside the project); the procedural scenes need none.\n";
@@ -42,6 +43,8 @@ int main(int argc, char **argv)
         return gib_cmd_merge(argc - 1, argv + 1);
     if (!strcmp(cmd, "bench"))
         return gib_cmd_bench(argc - 1, argv + 1);
+    if (!strcmp(cmd, "history"))
+        return gib_cmd_history(argc - 1, argv + 1);
     fprintf(stderr, "gibench: unknown command '%s'\n\n%s", cmd, usage);
     return 2;
 }

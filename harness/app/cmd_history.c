@@ -1,0 +1,282 @@
+/* gibench history — questions asked of the results history (history.h), as airspeed velocity
+ * answers them for Python benchmarks: how a row's error or time changed across revisions, on
+ * which machine; which revision made it worse; as a table or a gnuplot plot. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app.h"
+#include "history.h"
+
+static const char help[] =
+    "usage: gibench history [--db PATH] [--metric M] [--matrix M] [--scene S] [--technique T]\n"
+    "                       [--component C] [--params P] [--size WxH] [--renderer TEXT]\n"
+    "                       [--machine ID] [--find [--tol REL] [--abs A]] [--plot FILE.png]\n"
+    "                       [--machines]\n"
+    "\n"
+    "Reads the results history `gibench run` records (default results/history.sqlite). Every\n"
+    "(matrix, scene, camera, technique, component, params, size, instant) row on one machine is a\n"
+    "series; each revision is a point, the median of its `ok` rows' metric (default rmse; any\n"
+    "numeric CSV column: ssim, gpu_ms_median, cpu_ms, mem_bytes, flip, ...), in the order the\n"
+    "revisions were first run.\n"
+    "  (default)    a table per series: revision, first run, rows, value, change\n"
+    "  --find       per series, the first revision worse than the best before it by more than\n"
+    "               REL of that best plus A (defaults: 0.02 for errors, as the quality gate;\n"
+    "               0.10 for times and memory, llvmpipe's run-to-run spread; A = 1e-6)\n"
+    "  --plot F.png the metric by revision, a line per series (gnuplot)\n"
+    "  --machines   the machines in the history (ids for --machine)\n"
+    "--renderer keeps machines whose GL renderer contains TEXT. Exit status 1 when --find finds a\n"
+    "regression, 2 for bad options, 3 when nothing matches.\n";
+
+static int is_time_metric(const char *m)
+{
+    return strstr(m, "_ms") || strstr(m, "mem") || strstr(m, "bytes");
+}
+
+/* The revisions of every series in the order they were first run (ISO times sort as text). */
+static int revision_order(const gib_history_series *s, int n, char (**revs)[64], int *nrev)
+{
+    int cap = 0, count = 0;
+    char (*r)[64] = NULL;
+    char(*first)[32] = NULL;
+    for (int i = 0; i < n; i++)
+        for (int p = 0; p < s[i].count; p++) {
+            int k = 0;
+            while (k < count && strcmp(r[k], s[i].points[p].revision))
+                k++;
+            if (k < count) {
+                if (strcmp(s[i].points[p].started, first[k]) < 0)
+                    memcpy(first[k], s[i].points[p].started, 32);
+                continue;
+            }
+            if (count == cap) {
+                cap = cap ? 2 * cap : 16;
+                void *a = realloc(r, cap * sizeof *r), *b = a ? realloc(first, cap * sizeof *first)
+                                                              : NULL;
+                if (a)
+                    r = a;
+                if (!a || !b) {
+                    free(r);
+                    free(b ? b : first);
+                    return -1;
+                }
+                first = b;
+            }
+            memcpy(r[count], s[i].points[p].revision, 64);
+            memcpy(first[count], s[i].points[p].started, 32);
+            count++;
+        }
+    for (int i = 1; i < count; i++) /* insertion sort by first run: few revisions */
+        for (int j = i; j > 0 && strcmp(first[j], first[j - 1]) < 0; j--) {
+            char t[64], u[32];
+            memcpy(t, r[j], 64), memcpy(r[j], r[j - 1], 64), memcpy(r[j - 1], t, 64);
+            memcpy(u, first[j], 32), memcpy(first[j], first[j - 1], 32), memcpy(first[j - 1], u, 32);
+        }
+    free(first);
+    *revs = r;
+    *nrev = count;
+    return 0;
+}
+
+static void series_title(const gib_history_series *s, char *out, size_t len)
+{
+    snprintf(out, len, "%s: %s %s %s [%s] %dx%d", s->matrix, s->scene, s->technique,
+             s->component, s->params, s->width, s->height);
+    if (s->time != 0.0 || s->camera != 0)
+        snprintf(out + strlen(out), len - strlen(out), " camera %d t %g", s->camera, s->time);
+}
+
+static int plot(const char *png, const char *metric, const gib_history_series *s, int n)
+{
+    char (*revs)[64];
+    int nrev;
+    if (revision_order(s, n, &revs, &nrev) < 0) {
+        fprintf(stderr, "gibench history: out of memory\n");
+        return 1;
+    }
+    char dat[] = "/tmp/gibench_history_XXXXXX";
+    int fd = mkstemp(dat);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "gibench history: --plot: cannot write a temporary file\n");
+        free(revs);
+        return 1;
+    }
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < nrev; k++)
+            for (int p = 0; p < s[i].count; p++)
+                if (!strcmp(s[i].points[p].revision, revs[k]))
+                    fprintf(f, "%d %.9g\n", k, s[i].points[p].value);
+        fprintf(f, "\n\n");
+    }
+    fclose(f);
+    FILE *g = popen("gnuplot", "w");
+    if (!g) {
+        fprintf(stderr, "gibench history: --plot: cannot run gnuplot (Debian gnuplot-nox)\n");
+        unlink(dat);
+        free(revs);
+        return 1;
+    }
+    fprintf(g, "set terminal pngcairo size 1200,700 noenhanced\nset output '%s'\n", png);
+    fprintf(g, "set title 'gibench history: %s by revision'\nset ylabel '%s'\n", metric, metric);
+    fprintf(g, "set xlabel 'revision (in the order first run)'\nset grid\nset key outside below\n");
+    fprintf(g, "set xrange [-0.5:%d.5]\nset xtics rotate by -45 (", nrev - 1);
+    for (int k = 0; k < nrev; k++)
+        fprintf(g, "%s'%.12s' %d", k ? ", " : "", revs[k], k);
+    fprintf(g, ")\nplot ");
+    for (int i = 0; i < n; i++) {
+        char t[1400];
+        series_title(&s[i], t, sizeof t);
+        for (char *c = t; *c; c++)
+            if (*c == '\'')
+                *c = '"';
+        fprintf(g, "%s'%s' index %d using 1:2 with linespoints title '%s [machine %lld]'",
+                i ? ", " : "", dat, i, t, s[i].machine);
+    }
+    fprintf(g, "\n");
+    int rc = pclose(g);
+    unlink(dat);
+    free(revs);
+    if (rc != 0) {
+        fprintf(stderr, "gibench history: gnuplot failed writing %s (status %d)\n", png, rc);
+        return 1;
+    }
+    printf("gibench history: wrote %s (%d series, %d revisions)\n", png, n, nrev);
+    return 0;
+}
+
+int gib_cmd_history(int argc, char **argv)
+{
+    const char *db = GIB_PROJECT_ROOT "/results/history.sqlite", *metric = "rmse", *png = NULL;
+    gib_history_filter f = {0};
+    int find = 0, machines = 0, have_tol = 0;
+    double tol = 0, abs_tol = 1e-6;
+    gib_error err;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--find")) {
+            find = 1;
+            continue;
+        }
+        if (!strcmp(a, "--machines")) {
+            machines = 1;
+            continue;
+        }
+        if (a[0] != '-' || i + 1 >= argc) {
+            fprintf(stderr, "gibench history: %s '%s'\n%s",
+                    a[0] != '-' ? "unexpected argument" : "option needs a value:", a, help);
+            return 2;
+        }
+        const char *v = argv[++i];
+        long id;
+        int rc = 0;
+        if (!strcmp(a, "--db")) db = v;
+        else if (!strcmp(a, "--metric")) metric = v;
+        else if (!strcmp(a, "--matrix")) f.matrix = v;
+        else if (!strcmp(a, "--scene")) f.scene = v;
+        else if (!strcmp(a, "--technique")) f.technique = v;
+        else if (!strcmp(a, "--component")) f.component = v;
+        else if (!strcmp(a, "--params")) f.params = v;
+        else if (!strcmp(a, "--renderer")) f.renderer = v;
+        else if (!strcmp(a, "--plot")) {
+            png = v;
+            rc = gib_check_output("--plot", v, ".png", &err);
+        } else if (!strcmp(a, "--size")) rc = gib_parse_size(a, v, &f.width, &f.height, &err);
+        else if (!strcmp(a, "--machine")) {
+            rc = gib_parse_int(a, v, 1, 1L << 40, &id, &err);
+            f.machine = id;
+        } else if (!strcmp(a, "--tol")) {
+            rc = gib_parse_float(a, v, 0, 1e6, &tol, &err);
+            have_tol = 1;
+        } else if (!strcmp(a, "--abs")) rc = gib_parse_float(a, v, 0, 1e30, &abs_tol, &err);
+        else {
+            fprintf(stderr, "gibench history: unknown option '%s'\n%s", a, help);
+            return 2;
+        }
+        if (rc < 0) {
+            fprintf(stderr, "gibench history: %s\n", err.msg);
+            return 2;
+        }
+    }
+    if (access(db, R_OK) != 0) {
+        fprintf(stderr, "gibench history: no history at %s (`gibench run` records one; --db PATH)\n",
+                db);
+        return 3;
+    }
+    gib_history *h;
+    if (gib_history_open(&h, db, &err) < 0) {
+        fprintf(stderr, "gibench history: %s\n", err.msg);
+        return 1;
+    }
+    if (machines) {
+        int rc = gib_history_print_machines(h, stdout, &err);
+        if (rc < 0)
+            fprintf(stderr, "gibench history: %s\n", err.msg);
+        gib_history_close(h);
+        return rc < 0 ? 1 : 0;
+    }
+    gib_history_series *s;
+    int n;
+    if (gib_history_query(h, &f, metric, &s, &n, &err) < 0) {
+        fprintf(stderr, "gibench history: %s\n", err.msg);
+        gib_history_close(h);
+        return 2;
+    }
+    gib_history_close(h);
+    if (!n) {
+        fprintf(stderr, "gibench history: no `ok` row with a numeric %s matches in %s\n", metric,
+                db);
+        return 3;
+    }
+    if (!have_tol)
+        tol = is_time_metric(metric) ? 0.10 : 0.02;
+    int higher = gib_history_higher_is_better(metric), status = 0, worse_count = 0;
+    if (png) {
+        if (n > 24)
+            fprintf(stderr, "gibench history: --plot: %d series match; filter to 24 or fewer\n", n);
+        status = n > 24 ? 2 : plot(png, metric, s, n);
+    }
+    for (int i = 0; i < n && !png; i++) {
+        char t[1400];
+        series_title(&s[i], t, sizeof t);
+        if (find) {
+            int w = gib_history_find_worse(&s[i], higher, tol, abs_tol);
+            if (w < 0)
+                continue;
+            double best = s[i].points[0].value;
+            for (int p = 1; p < w; p++)
+                if (higher ? s[i].points[p].value > best : s[i].points[p].value < best)
+                    best = s[i].points[p].value;
+            const gib_history_point *last = &s[i].points[s[i].count - 1];
+            printf("%s on machine %lld (%s)\n  %s worse at revision %s (first run %s): %.6g, best "
+                   "before %.6g (%+.1f%%, allowed %.1f%% + %g); latest %s: %.6g\n",
+                   t, s[i].machine, s[i].renderer, metric, s[i].points[w].revision,
+                   s[i].points[w].started, s[i].points[w].value, best,
+                   best ? 100.0 * (s[i].points[w].value / best - 1) : 0.0, 100 * tol, abs_tol,
+                   last->revision, last->value);
+            worse_count++;
+            continue;
+        }
+        printf("%s on machine %lld (%s)\n  %-20s %-20s %4s %14s %9s\n", t, s[i].machine,
+               s[i].renderer, "revision", "first run", "rows", metric, "change");
+        for (int p = 0; p < s[i].count; p++) {
+            const gib_history_point *q = &s[i].points[p];
+            char ch[32] = "";
+            if (p && s[i].points[p - 1].value)
+                snprintf(ch, sizeof ch, "%+.2f%%", 100 * (q->value / s[i].points[p - 1].value - 1));
+            printf("  %-20s %-20s %4d %14.6g %9s\n", q->revision, q->started, q->rows, q->value, ch);
+        }
+    }
+    if (find) {
+        printf("gibench history: %d of %d series got worse in %s (tolerance %g relative + %g)\n",
+               worse_count, n, metric, tol, abs_tol);
+        status = worse_count ? 1 : status;
+    }
+    gib_history_series_free(s, n);
+    return status;
+}
