@@ -118,16 +118,20 @@ static int plot(const char *png, const char *metric, const gib_history_series *s
         free(revs);
         return 1;
     }
-    fprintf(g, "set terminal pngcairo size 1200,700 noenhanced\nset output '%s'\n", png);
+    /* The key below the plot, one line per series: room grows with the series count. */
+    fprintf(g, "set terminal pngcairo size 1200,%d noenhanced font ',10'\nset output '%s'\n",
+            560 + 18 * n, png);
     fprintf(g, "set title 'gibench history: %s by revision'\nset ylabel '%s'\n", metric, metric);
-    fprintf(g, "set xlabel 'revision (in the order first run)'\nset grid\nset key outside below\n");
+    fprintf(g, "set xlabel 'revision (in the order first run)'\nset grid\nset key outside below Left reverse\n");
     fprintf(g, "set xrange [-0.5:%d.5]\nset xtics rotate by -45 (", nrev - 1);
     for (int k = 0; k < nrev; k++)
-        fprintf(g, "%s'%.12s' %d", k ? ", " : "", revs[k], k);
+        fprintf(g, "%s'%.24s' %d", k ? ", " : "", revs[k], k);
     fprintf(g, ")\nplot ");
     for (int i = 0; i < n; i++) {
         char t[1400];
         series_title(&s[i], t, sizeof t);
+        if (strlen(t) > 110) /* long parameter lists: the table has them whole */
+            strcpy(t + 104, " ...]");
         for (char *c = t; *c; c++)
             if (*c == '\'')
                 *c = '"';

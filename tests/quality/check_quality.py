@@ -19,10 +19,18 @@ leaks light, a wrong falloff — moves RMSE by tens of percent.
 
 `--update FILE` writes the current numbers as the new baselines (make baselines): deliberate, never
 automatic, and refused while a twin row fails.
+
+`--history PATH` also holds every row to the best this matrix's row reached in the results history
+(harness/app/history.h) on the same GL renderer: the lowest RMSE and the highest SSIM of the runs
+recorded before this one, with the same tolerances (the runs are deterministic on one renderer, so
+the best is what the code once achieved). This run is recorded there too, so the history grows with
+every check. A row the history has never seen passes as new; `--no-baselines` leaves the baselines
+file out (a renderer with no accepted baselines).
 """
 import argparse
 import csv
 import os
+import sqlite3
 import subprocess
 import sys
 
@@ -121,19 +129,83 @@ def check_twins(rows, scales, lengths):
     return passes, fails
 
 
+def history_last_run(path):
+    """The highest run id in the history (0 when there is none yet)."""
+    if not os.path.exists(path):
+        return 0
+    with sqlite3.connect(path) as db:
+        return db.execute("SELECT coalesce(max(id), 0) FROM run").fetchone()[0]
+
+
+def history_bests(path, matrix, renderer, last_run):
+    """KEY -> (lowest rmse, its revision, highest ssim, its revision) over the `ok` rows of matrix
+    on renderer recorded by runs up to last_run."""
+    bests = {}
+    if not os.path.exists(path):
+        return bests
+    with sqlite3.connect(path) as db:
+        cur = db.execute(
+            "SELECT r.scene, r.technique, r.component, r.params, r.width, r.height, r.rmse, r.ssim,"
+            " r.revision FROM result r JOIN run ru ON r.run_id = ru.id"
+            " JOIN machine m ON ru.machine_id = m.id"
+            " WHERE r.status = 'ok' AND r.matrix = ? AND m.renderer = ? AND ru.id <= ?"
+            " AND r.rmse IS NOT NULL AND r.ssim IS NOT NULL", (matrix, renderer, last_run))
+        for scene, tech, comp, params, w, h, rmse, ssim, rev in cur:
+            k = (scene, tech, comp, params, str(w), str(h))
+            b = bests.get(k)
+            if b is None:
+                bests[k] = (rmse, rev, ssim, rev)
+                continue
+            bests[k] = (min(b[0], rmse), rev if rmse < b[0] else b[1],
+                        max(b[2], ssim), rev if ssim > b[2] else b[3])
+    return bests
+
+
+def check_history(rows, bests):
+    """Holds each row to the history's best (history_bests). Returns (passes, fails)."""
+    passes = fails = 0
+    for k, r in sorted(rows.items()):
+        name = "history " + " ".join(k)
+        b = bests.get(k)
+        if b is None:
+            print(f"NEW  {name}: not in the history on this renderer")
+            continue
+        if r["status"] != "ok":
+            print(f"FAIL {name}: status {r['status']}: {r['message']}")
+            fails += 1
+            continue
+        rmse, ssim = float(r["rmse"]), float(r["ssim"])
+        limit = b[0] * (1 + RMSE_REL_TOL) + RMSE_ABS_TOL
+        ok = rmse <= limit and ssim >= b[2] - SSIM_TOL
+        print(f"{'PASS' if ok else 'FAIL'} {name}: rmse {rmse:.6g} (best {b[0]:.6g} at {b[1]}, limit "
+              f"{limit:.6g}), ssim {ssim:.5f} (best {b[2]:.5f} at {b[3]}, limit {b[2] - SSIM_TOL:.5f})")
+        fails += not ok
+        passes += ok
+    return passes, fails
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gibench", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--baselines", default=os.path.join(HERE, "baselines.csv"))
     ap.add_argument("--update", metavar="FILE")
+    ap.add_argument("--history", metavar="PATH", help="also compare with the history's best")
+    ap.add_argument("--no-baselines", action="store_true")
     a = ap.parse_args()
+    if a.no_baselines and not a.history:
+        ap.error("--no-baselines needs --history PATH: there would be nothing to compare with")
     out = os.path.join(a.work, "results")
     csv_path = os.path.join(out, "quality.csv")
     if os.path.exists(csv_path):
         os.remove(csv_path)  # always a fresh run: this is a check, not a resumable benchmark
     cmd = [a.gibench, "run", os.path.join(HERE, "quality.matrix"), "--profile", "quick", "--out", out,
            "--cache", os.path.join(a.work, "cache"), "--no-images"]
+    if a.history:
+        last_run = history_last_run(a.history)
+        cmd += ["--history", a.history]
+    else:
+        cmd += ["--no-history"]
     print("check_quality:", " ".join(cmd), flush=True)
     rc = subprocess.run(cmd).returncode  # 1 when a row is not ok: the rows are judged below
     if not os.path.exists(csv_path):
@@ -142,6 +214,17 @@ def main():
         rows = {tuple(r[k] for k in KEY): r for r in csv.DictReader(f)}
     passes, fails = check_twins(rows, matrix_scales(os.path.join(HERE, "quality.matrix")),
                                 length_params(a.gibench))
+    if a.history and not a.update:
+        renderers = {r["renderer"] for r in rows.values() if r["renderer"]}
+        bests = {}
+        for renderer in renderers:
+            bests.update(history_bests(a.history, "quality", renderer, last_run))
+        print(f"check_quality: {len(bests)} rows of {a.history} on {', '.join(sorted(renderers))}")
+        p, f = check_history(rows, bests)
+        passes, fails = passes + p, fails + f
+        if a.no_baselines:
+            print(f"{passes} passed, {fails} failed")
+            sys.exit(1 if fails or not passes else 0)
     if a.update:
         if fails:  # a broken twin row is fixed, not frozen
             sys.exit(f"check_quality: {fails} twin row(s) fail: no baselines written")
