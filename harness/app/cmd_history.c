@@ -213,7 +213,7 @@ int gib_cmd_history(int argc, char **argv)
         return 3;
     }
     gib_history *h;
-    if (gib_history_open(&h, db, &err) < 0) {
+    if (gib_history_open_readonly(&h, db, &err) < 0) {
         fprintf(stderr, "gibench history: %s\n", err.msg);
         return 1;
     }

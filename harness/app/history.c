@@ -109,15 +109,15 @@ void gib_history_machine_detect(gib_history_machine *m, const char *renderer,
         snprintf(m->gpu, sizeof m->gpu, "%s", m->renderer);
 }
 
-int gib_history_open(gib_history **out, const char *path, gib_error *err)
+static int history_open(gib_history **out, const char *path, int readonly, gib_error *err)
 {
     *out = NULL;
     gib_history *h = gib_calloc(1, sizeof *h, err);
     if (!h)
         return -1;
     snprintf(h->path, sizeof h->path, "%s", path);
-    if (sqlite3_open_v2(path, &h->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, NULL) !=
-        SQLITE_OK) {
+    int flags = readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+    if (sqlite3_open_v2(path, &h->db, flags, NULL) != SQLITE_OK) {
         gib_fail(err, "history %s: cannot open: %s", path,
                  h->db ? sqlite3_errmsg(h->db) : "out of memory");
         sqlite3_close(h->db);
@@ -125,6 +125,19 @@ int gib_history_open(gib_history **out, const char *path, gib_error *err)
         return -1;
     }
     sqlite3_busy_timeout(h->db, BUSY_TIMEOUT_MS);
+    if (readonly) {
+        /* A file that is not a history says so here, naming it. */
+        sqlite3_stmt *st;
+        if (sqlite3_prepare_v2(h->db, "SELECT count(*) FROM result JOIN run JOIN machine", -1, &st,
+                               NULL) != SQLITE_OK) {
+            gib_fail(err, "history %s: not a gibench history: %s", path, sqlite3_errmsg(h->db));
+            gib_history_close(h);
+            return -1;
+        }
+        sqlite3_finalize(st);
+        *out = h;
+        return 0;
+    }
     /* The default rollback journal, not WAL: WAL needs shared memory, which a history on a
      * cluster's network file system does not have. The schema is created in a write transaction
      * so two first writers do not race. */
@@ -147,6 +160,16 @@ int gib_history_open(gib_history **out, const char *path, gib_error *err)
     }
     *out = h;
     return 0;
+}
+
+int gib_history_open(gib_history **out, const char *path, gib_error *err)
+{
+    return history_open(out, path, 0, err);
+}
+
+int gib_history_open_readonly(gib_history **out, const char *path, gib_error *err)
+{
+    return history_open(out, path, 1, err);
 }
 
 void gib_history_close(gib_history *h)

@@ -34,6 +34,9 @@ void gib_history_machine_detect(gib_history_machine *m, const char *renderer,
 
 /* Opens (creating it and its tables when absent) the history at path. */
 int gib_history_open(gib_history **h, const char *path, gib_error *err);
+/* Opens an existing history read-only, for queries: a copy without write permission, or one
+ * another process is writing, is read as it is. */
+int gib_history_open_readonly(gib_history **h, const char *path, gib_error *err);
 void gib_history_close(gib_history *h);
 
 /* Records a run (one matrix of one `gibench run`) and returns its id. */

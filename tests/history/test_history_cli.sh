@@ -99,6 +99,14 @@ $G history --db "$W/h.sqlite" --metric "rmse;drop" >/dev/null 2>&1
 [ $? = 2 ] && pass "a metric that is no column: exit 2" || fail "bad metric accepted"
 $G history --db "$W/nothing.sqlite" >/dev/null 2>&1
 [ $? = 3 ] && pass "no history file: exit 3" || fail "missing history file"
+cp "$W/h.sqlite" "$W/ro.sqlite" && chmod a-w "$W/ro.sqlite"
+$G history --db "$W/ro.sqlite" --technique hbao >/dev/null 2>&1
+[ $? = 0 ] && pass "a read-only history is queried" || fail "read-only history"
+cp "$W/a/tiny.csv" "$W/notdb.sqlite"
+$G history --db "$W/notdb.sqlite" >"$W/n.txt" 2>&1
+rc=$?
+[ $rc = 1 ] && grep -q "notdb.sqlite" "$W/n.txt" && pass "a file that is no history: exit 1 naming it" \
+  || fail "not a history: exit $rc: $(cat "$W/n.txt")"
 
 # 4. The quality gate's comparison with the history's best (check_quality.py --history).
 py "
