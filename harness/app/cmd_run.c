@@ -127,7 +127,8 @@ typedef struct run_ctx {
     int images;
     gib_gl_info info;
     gib_history *hist;     /* NULL: --no-history, or recording failed (reported once) */
-    long long hist_run;
+    const gib_history_machine *machine;
+    long long hist_run;    /* the history's run of this matrix; 0 until its first row */
     int hist_failed;
     int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
     int write_failed; /* a table could not be written (a full disk): the run stops there */
@@ -218,6 +219,10 @@ static void append_row(run_ctx *ctx, row *r)
         return;
     /* One transaction per row: short, so concurrent runs writing the same history wait for each
      * other only milliseconds (history.h). */
+    if (ctx->hist && !ctx->hist_run &&
+        gib_history_begin_run(ctx->hist, ctx->machine, gib_git_revision(), ctx->m->name,
+                              ctx->m->profile, &ctx->hist_run, &err) < 0)
+        history_failed(ctx, &err);
     if (ctx->hist && (gib_history_begin(ctx->hist, &err) < 0 ||
                       gib_history_add_row(ctx->hist, ctx->hist_run, ctx->cols->names, r->ptr,
                                           ctx->cols->count, &err) < 0 ||
@@ -625,9 +630,8 @@ int gib_cmd_run(int argc, char **argv)
             continue;
         }
         printf("matrix %s (%d runs): %s\n", ms[i].name, ms[i].run_count, ms[i].description);
-        if (ctx.hist && gib_history_begin_run(ctx.hist, &machine, gib_git_revision(), ms[i].name,
-                                              profile, &ctx.hist_run, &err) < 0)
-            history_failed(&ctx, &err);
+        ctx.machine = &machine;
+        ctx.hist_run = 0; /* a history run is recorded with the matrix's first new row */
         ctx.m = &ms[i];
         ctx.cols = &cols;
         ctx.csv = &csv;

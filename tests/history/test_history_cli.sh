@@ -56,6 +56,11 @@ m = db.execute('select renderer, cores, cpu from machine').fetchall()
 assert len(m) == 1 and m[0][1] > 0 and m[0][2], m
 " && pass "row_json equals the CSV rows; one machine with cores and CPU" || fail "history rows differ from the CSVs"
 
+# A rerun that finds every row in its CSV records nothing (no empty run either).
+$R --out "$W/a" --history "$W/h.sqlite" >"$W/a2.txt" 2>&1
+n=$(py "import sqlite3; print(*sqlite3.connect('$W/h.sqlite').execute('select count(*), (select count(*) from run) from result').fetchone())")
+[ "$n" = "12 2" ] && pass "a rerun with nothing to do records nothing" || fail "after a rerun: rows, runs = $n"
+
 # 2. --no-history writes none; the default is DIR/history.sqlite; a bad path is an error naming it.
 $R --out "$W/c" --no-history >/dev/null 2>&1
 [ ! -e "$W/c/history.sqlite" ] && pass "--no-history records nothing" || fail "--no-history wrote a history"
