@@ -217,12 +217,12 @@ static void append_row(run_ctx *ctx, row *r)
     if (w == 0) /* written before an interruption: the row is there once (and in
                  * the history, unless the run was killed between the two writes) */
         return;
-    /* One transaction per row: short, so concurrent runs writing the same history wait for each
-     * other only milliseconds (history.h). */
     if (ctx->hist && !ctx->hist_run &&
         gib_history_begin_run(ctx->hist, ctx->machine, gib_git_revision(), ctx->m->name,
                               ctx->m->profile, &ctx->hist_run, &err) < 0)
         history_failed(ctx, &err);
+    /* One transaction per row: short, so concurrent runs writing the same history wait for each
+     * other only milliseconds (history.h). */
     if (ctx->hist && (gib_history_begin(ctx->hist, &err) < 0 ||
                       gib_history_add_row(ctx->hist, ctx->hist_run, ctx->cols->names, r->ptr,
                                           ctx->cols->count, &err) < 0 ||

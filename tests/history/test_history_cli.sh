@@ -102,6 +102,7 @@ $G history --db "$W/h.sqlite" --machines | grep -q "machine 1: .* 2 runs, 12 row
   || fail "--machines: $($G history --db "$W/h.sqlite" --machines)"
 $G history --db "$W/h.sqlite" --metric "rmse;drop" >/dev/null 2>&1
 [ $? = 2 ] && pass "a metric that is no column: exit 2" || fail "bad metric accepted"
+$G history --help | grep -q "usage: gibench history" && pass "history --help" || fail "history --help"
 $G history --db "$W/nothing.sqlite" >/dev/null 2>&1
 [ $? = 3 ] && pass "no history file: exit 3" || fail "missing history file"
 cp "$W/h.sqlite" "$W/ro.sqlite" && chmod a-w "$W/ro.sqlite"
