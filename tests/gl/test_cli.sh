@@ -14,7 +14,7 @@ expect_rc() { # expected-rc description command...
 }
 
 # --help on every command exits 0 and prints a usage line.
-for c in "" list render reference compare run bench merge; do
+for c in "" list render reference compare run bench merge history; do
   if $G $c --help 2>&1 | grep -q usage; then pass "gibench $c --help"; else fail "gibench $c --help"; fi
 done
 expect_rc 2 "unknown command" $G frobnicate
