@@ -98,8 +98,19 @@ int gib_ref_seal_ok(const gib_image *img, const gib_kv *want, int nwant, const g
 /* Returned by gib_score_and_save when the metrics are computed but an image cannot be written
  * (a full disk): the caller stops rather than record a row. */
 #define GIB_IMAGE_WRITE_FAILED (-2)
+
+/* FLIP means into m->flip and m->hdrflip (NaN where undefined: non-finite samples, or a black
+ * reference for HDR-FLIP). LDR-FLIP compares the images the PNG previews show, clamp(exposure *
+ * rgb) per channel (FLIP decodes its sRGB input to these linear values); HDR-FLIP the linear
+ * radiance, over the exposure range the reference defines. Both at the reference
+ * implementation's default 67.02 pixels per degree. ldr_map (w*h floats) gets the LDR-FLIP map
+ * when non-NULL. Returns -1 (err set) only when out of memory. */
+int gib_score_flip(const gib_image *ref, const gib_image *img, float exposure, float *ldr_map,
+                   gib_metrics *m, gib_error *err);
+
 /* Scores a technique image against a reference and writes the images: DIR/NAME.exr, NAME.png
- * (preview at the scene's exposure) and NAME_error.png. */
+ * (preview at the scene's exposure), NAME_error.png and NAME_flip.png (the LDR-FLIP error map in
+ * the magma colours of FLIP's reference tool). */
 int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,
                        const char *name, gib_metrics *m, gib_error *err);
 

@@ -88,7 +88,8 @@ int gib_cmd_compare(int argc, char **argv)
     free(attrs);
     gib_metrics m;
     int status = 0;
-    if (gib_metrics_compute(&ref, &test, (float)exposure, &m, &err) < 0) {
+    if (gib_metrics_compute(&ref, &test, (float)exposure, &m, &err) < 0 ||
+        gib_score_flip(&ref, &test, (float)exposure, NULL, &m, &err) < 0) {
         fprintf(stderr, "gibench compare: %s vs %s: %s\n", paths[0], paths[1], err.msg);
         status = 2;
     } else {
@@ -100,10 +101,14 @@ int gib_cmd_compare(int argc, char **argv)
             json_num("rel_rmse", m.rel_rmse, 0);
             json_num("psnr", m.psnr, 0);
             json_num("ssim", m.ssim, 0);
+            json_num("flip", m.flip, 0);
+            json_num("hdrflip", m.hdrflip, 0);
             printf("\"nonfinite\": %ld, \"pass\": %s}\n", m.nonfinite, fail ? "false" : "true");
         } else {
-            printf("rmse %.6g  rel_rmse %.6g  psnr %.3f dB  ssim %.6f  nonfinite %ld  -> %s\n",
-                   m.rmse, m.rel_rmse, m.psnr, m.ssim, m.nonfinite, fail ? "FAIL" : "PASS");
+            printf("rmse %.6g  rel_rmse %.6g  psnr %.3f dB  ssim %.6f  flip %.6f  hdrflip %.6f  "
+                   "nonfinite %ld  -> %s\n",
+                   m.rmse, m.rel_rmse, m.psnr, m.ssim, m.flip, m.hdrflip, m.nonfinite,
+                   fail ? "FAIL" : "PASS");
         }
         status = fail;
         if (map && gib_png_write_error_map(map, &ref, &test, 0.0f, &err) < 0) {

@@ -41,14 +41,16 @@ static const char help[] =
 enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
        C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU,
        C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
-       C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_NONFINITE, C_REF_SPP, C_REF_NOISE, C_REF_NOISY,
+       C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_FLIP, C_HDRFLIP, C_NONFINITE, C_REF_SPP,
+       C_REF_NOISE, C_REF_NOISY,
        C_STATUS, C_MESSAGE, C_COUNTERS, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
 
 static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
     "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms",
     "mem_bytes", "mem_by_structure",
-    "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "nonfinite", "ref_spp",
+    "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "flip", "hdrflip",
+    "nonfinite", "ref_spp",
     "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "backend", "renderer", "gl_version",
     "git_revision", "timestamp"};
 static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
@@ -367,6 +369,8 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
             fmt_num(&r, C_REL_RMSE, m.rel_rmse);
             fmt_num(&r, C_PSNR, m.psnr);
             fmt_num(&r, C_SSIM, m.ssim);
+            fmt_num(&r, C_FLIP, m.flip);
+            fmt_num(&r, C_HDRFLIP, m.hdrflip);
             row_set(&r, C_NONFINITE, "%ld", m.nonfinite);
             /* A reference noisier than a fifth of the error cannot rank techniques. */
             row_set(&r, C_REF_NOISY, "%d", ref.noise_rmse > 0.2 * m.rmse);
@@ -377,9 +381,10 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         row_set(&r, C_REF_SPP, "%d", ref.spp);
         fmt_num(&r, C_REF_NOISE, ref.noise_rmse);
         append_row(ctx, &r);
-        printf("  %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  %s\n",
+        printf("  %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f"
+               "  %s\n",
                mr->scene, t->name, mr->params_key, mr->width, mr->height, mr->time,
-               res->gpu_total.median_ms, m.rmse, m.ssim, r.v[C_STATUS]);
+               res->gpu_total.median_ms, m.rmse, m.ssim, m.flip, r.v[C_STATUS]);
         gib_image_free(&ref.image);
     }
 }

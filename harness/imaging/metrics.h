@@ -16,6 +16,9 @@
 typedef struct gib_metrics {
     double rmse, rel_rmse, psnr, ssim;
     double ref_mean;
+    /* LDR-FLIP and HDR-FLIP means (harness/imaging/flip.h); gib_metrics_compute leaves them 0,
+     * gib_score_flip (harness/app) fills them. */
+    double flip, hdrflip;
     long nonfinite; /* NaN/Inf samples in the test image (the reference's are counted too) */
 } gib_metrics;
 
