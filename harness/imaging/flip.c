@@ -178,76 +178,92 @@ static inline int clampi(int v, int lo, int hi)
     return v < lo ? lo : v > hi ? hi : v;
 }
 
-/* One image's filtered quantities: CSF-filtered YCxCz (3 per pixel) and the feature responses
- * (edge magnitude, point magnitude). tmp holds 4 floats per pixel of scratch. */
-static void filter_one(const float *ycc, int w, int h, const csf_filters *cf, const feat_filters *ff,
-                       float *tmp, float *csf_out, float *edge, float *point)
+/* out[x] = sum_i f[i] * in[x + i - r] for one row, edges clamped: the row is copied into pad with
+ * r clamped samples on each side, then accumulated tap by tap so the inner loop vectorises. */
+static void row_filter(const float *in, int w, const float *f, int r, float *pad, float *out)
 {
-    /* CSF: horizontal pass into tmp (Y, Cx, Cz*cz1, Cz*cz2), edge pixels clamped. */
+    for (int x = 0; x < r; x++) {
+        pad[x] = in[0];
+        pad[r + w + x] = in[w - 1];
+    }
+    memcpy(pad + r, in, (size_t)w * sizeof(float));
+    memset(out, 0, (size_t)w * sizeof(float));
+    for (int i = 0; i <= 2 * r; i++) {
+        const float fi = f[i], *p = pad + i;
+        for (int x = 0; x < w; x++)
+            out[x] += fi * p[x];
+    }
+}
+
+/* Column pass: out row y = sum_i f[i] * row (y + i - r) of the plane, edges clamped. */
+static void col_filter(const float *plane, int w, int h, int y, const float *f, int r, float *out)
+{
+    memset(out, 0, (size_t)w * sizeof(float));
+    for (int i = 0; i <= 2 * r; i++) {
+        const float fi = f[i], *p = plane + (size_t)clampi(y + i - r, 0, h - 1) * w;
+        for (int x = 0; x < w; x++)
+            out[x] += fi * p[x];
+    }
+}
+
+/* One image's filtered quantities. ycc: three planes (Y, Cx, Cz). csf_out: three planes of the
+ * CSF-filtered YCxCz; edge, point: feature magnitudes. tmp: 4 planes of scratch; pad: a row of
+ * w + 2 max(radius) floats; row: 4 rows of w floats. */
+static void filter_one(const float *ycc, int w, int h, const csf_filters *cf, const feat_filters *ff,
+                       float *tmp, float *pad, float *row, float *csf_out, float *edge, float *point)
+{
+    size_t n = (size_t)w * h;
+    const float *Y = ycc, *Cx = ycc + n, *Cz = ycc + 2 * n;
     int r = cf->radius;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            float s[4] = {0, 0, 0, 0};
-            for (int i = -r; i <= r; i++) {
-                const float *p = ycc + 3 * ((size_t)y * w + clampi(x + i, 0, w - 1));
-                s[0] += cf->y[i + r] * p[0];
-                s[1] += cf->cx[i + r] * p[1];
-                s[2] += cf->cz1[i + r] * p[2];
-                s[3] += cf->cz2[i + r] * p[2];
-            }
-            memcpy(tmp + 4 * ((size_t)y * w + x), s, sizeof s);
-        }
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            float s[4] = {0, 0, 0, 0};
-            for (int i = -r; i <= r; i++) {
-                const float *p = tmp + 4 * ((size_t)clampi(y + i, 0, h - 1) * w + x);
-                s[0] += cf->y[i + r] * p[0];
-                s[1] += cf->cx[i + r] * p[1];
-                s[2] += cf->cz1[i + r] * p[2];
-                s[3] += cf->cz2[i + r] * p[3];
-            }
-            float *o = csf_out + 3 * ((size_t)y * w + x);
-            o[0] = s[0];
-            o[1] = s[1];
-            o[2] = s[2] + s[3];
-        }
-    /* Features on the achromatic channel normalised to [0,1]: (Y + 16) / 116. Horizontal pass:
-     * d/dx, d2/dx2 and Gaussian; vertical: Gaussian of those, d/dy and d2/dy2 of the Gaussian. */
+    /* CSF (Eq. 2-3), horizontal: Y, Cx and the Cz channel with each of its two filters. */
+    for (int y = 0; y < h; y++) {
+        size_t o = (size_t)y * w;
+        row_filter(Y + o, w, cf->y, r, pad, tmp + o);
+        row_filter(Cx + o, w, cf->cx, r, pad, tmp + n + o);
+        row_filter(Cz + o, w, cf->cz1, r, pad, tmp + 2 * n + o);
+        row_filter(Cz + o, w, cf->cz2, r, pad, tmp + 3 * n + o);
+    }
+    /* Vertical; the blue-yellow channel is the sum of its two separable terms. */
+    for (int y = 0; y < h; y++) {
+        size_t o = (size_t)y * w;
+        col_filter(tmp, w, h, y, cf->y, r, csf_out + o);
+        col_filter(tmp + n, w, h, y, cf->cx, r, csf_out + n + o);
+        col_filter(tmp + 2 * n, w, h, y, cf->cz1, r, row);
+        col_filter(tmp + 3 * n, w, h, y, cf->cz2, r, row + w);
+        for (int x = 0; x < w; x++)
+            csf_out[2 * n + o + x] = row[x] + row[w + x];
+    }
+    /* Features (Sec. 5.1) on the achromatic channel normalised to [0,1], (Y + 16) / 116.
+     * Horizontal: d/dx, d2/dx2 and Gaussian; vertical: Gaussian of the first two, d/dy and d2/dy2
+     * of the third. */
     r = ff->radius;
-    for (int y = 0; y < h; y++)
+    float *yn = row;
+    for (int y = 0; y < h; y++) {
+        size_t o = (size_t)y * w;
+        for (int x = 0; x < w; x++)
+            yn[x] = Y[o + x] / 116.0f + 16.0f / 116.0f;
+        row_filter(yn, w, ff->dg, r, pad, tmp + o);
+        row_filter(yn, w, ff->ddg, r, pad, tmp + n + o);
+        row_filter(yn, w, ff->g, r, pad, tmp + 2 * n + o);
+    }
+    for (int y = 0; y < h; y++) {
+        size_t o = (size_t)y * w;
+        float *dx = row, *ddx = row + w, *dy = row + 2 * w, *ddy = row + 3 * w;
+        col_filter(tmp, w, h, y, ff->g, r, dx);
+        col_filter(tmp + n, w, h, y, ff->g, r, ddx);
+        col_filter(tmp + 2 * n, w, h, y, ff->dg, r, dy);
+        col_filter(tmp + 2 * n, w, h, y, ff->ddg, r, ddy);
         for (int x = 0; x < w; x++) {
-            float d = 0, dd = 0, g = 0;
-            for (int i = -r; i <= r; i++) {
-                float v = ycc[3 * ((size_t)y * w + clampi(x + i, 0, w - 1))] / 116.0f + 16.0f / 116.0f;
-                d += ff->dg[i + r] * v;
-                dd += ff->ddg[i + r] * v;
-                g += ff->g[i + r] * v;
-            }
-            float *t = tmp + 3 * ((size_t)y * w + x);
-            t[0] = d;
-            t[1] = dd;
-            t[2] = g;
+            edge[o + x] = sqrtf(dx[x] * dx[x] + dy[x] * dy[x]);
+            point[o + x] = sqrtf(ddx[x] * ddx[x] + ddy[x] * ddy[x]);
         }
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            float dx = 0, ddx = 0, dy = 0, ddy = 0;
-            for (int i = -r; i <= r; i++) {
-                const float *t = tmp + 3 * ((size_t)clampi(y + i, 0, h - 1) * w + x);
-                dx += ff->g[i + r] * t[0];
-                ddx += ff->g[i + r] * t[1];
-                dy += ff->dg[i + r] * t[2];
-                ddy += ff->ddg[i + r] * t[2];
-            }
-            edge[(size_t)y * w + x] = sqrtf(dx * dx + dy * dy);
-            point[(size_t)y * w + x] = sqrtf(ddx * ddx + ddy * ddy);
-        }
+    }
 }
 
 typedef struct flip_work {
     csf_filters cf;
     feat_filters ff;
-    float *ycc_r, *ycc_t, *tmp, *csf_r, *csf_t, *e_r, *e_t, *p_r, *p_t, *err_px;
+    float *ycc_r, *ycc_t, *tmp, *csf_r, *csf_t, *e_r, *e_t, *p_r, *p_t, *err_px, *pad, *row;
 } flip_work;
 
 static void work_free(flip_work *k)
@@ -262,8 +278,10 @@ static int work_alloc(flip_work *k, int w, int h, float ppd, gib_error *err)
 {
     memset(k, 0, sizeof *k);
     size_t n = (size_t)w * h;
-    /* ycc x2, csf x2 (3 each), tmp (4), edge/point x2, error (1): 21 floats per pixel. */
-    k->ycc_r = malloc(21 * n * sizeof(float));
+    /* ycc x2, csf x2 (3 planes each), tmp (4), edge/point x2, error (1): 21 floats per pixel;
+     * then the padded row and 4 scratch rows. */
+    int rmax = 3 * (int)ceilf(ppd) + 8; /* above both filters' radii (10 and 9 at 67 ppd) */
+    k->ycc_r = malloc((21 * n + (size_t)w + 2 * (size_t)rmax + 4 * (size_t)w) * sizeof(float));
     if (!k->ycc_r || csf_make(&k->cf, ppd) < 0 || feat_make(&k->ff, ppd) < 0) {
         work_free(k);
         return gib_fail(err, "FLIP: out of memory for a %dx%d image", w, h);
@@ -277,29 +295,46 @@ static int work_alloc(flip_work *k, int w, int h, float ppd, gib_error *err)
     k->p_r = k->e_t + n;
     k->p_t = k->p_r + n;
     k->err_px = k->p_t + n;
+    k->pad = k->err_px + n;
+    k->row = k->pad + w + 2 * rmax;
+    if (k->cf.radius > rmax || k->ff.radius > rmax) {
+        work_free(k);
+        return gib_fail(err, "FLIP: %g pixels per degree gives filters wider than planned", ppd);
+    }
     return 0;
 }
 
 /* LDR-FLIP of the pair already converted to YCxCz in k->ycc_r / k->ycc_t; writes k->err_px. */
 static void ldr_flip_core(flip_work *k, int w, int h)
 {
-    filter_one(k->ycc_r, w, h, &k->cf, &k->ff, k->tmp, k->csf_r, k->e_r, k->p_r);
-    filter_one(k->ycc_t, w, h, &k->cf, &k->ff, k->tmp, k->csf_t, k->e_t, k->p_t);
+    filter_one(k->ycc_r, w, h, &k->cf, &k->ff, k->tmp, k->pad, k->row, k->csf_r, k->e_r, k->p_r);
+    filter_one(k->ycc_t, w, h, &k->cf, &k->ff, k->tmp, k->pad, k->row, k->csf_t, k->e_t, k->p_t);
     const float cmax = cmax_value(), pccmax = pc * cmax;
     size_t n = (size_t)w * h;
     for (size_t i = 0; i < n; i++) {
-        float lr[3], lt[3];
-        ycxcz_to_lab_hunt(k->csf_r + 3 * i, lr);
-        ycxcz_to_lab_hunt(k->csf_t + 3 * i, lt);
+        float lr[3], lt[3], vr[3] = {k->csf_r[i], k->csf_r[n + i], k->csf_r[2 * n + i]};
+        float vt[3] = {k->csf_t[i], k->csf_t[n + i], k->csf_t[2 * n + i]};
+        ycxcz_to_lab_hunt(vr, lr);
+        ycxcz_to_lab_hunt(vt, lt);
         /* Colour error (Eq. 5): HyAB^qc, compressed so that [0, pc cmax] maps to [0, pt] and the
          * rest to (pt, 1]. */
         float de = powf(hyab(lr, lt), qc);
         de = de < pccmax ? de * pt / pccmax : pt + (de - pccmax) / (cmax - pccmax) * (1.0f - pt);
         /* Feature error (Eq. 8) and the combination (Eq. 9): dE_c ^ (1 - dE_f). */
         float fe = fmaxf(fabsf(k->e_r[i] - k->e_t[i]), fabsf(k->p_r[i] - k->p_t[i]));
-        fe = powf(fe / sqrtf(2.0f), qf);
+        fe = qf == 0.5f ? sqrtf(fe / sqrtf(2.0f)) : powf(fe / sqrtf(2.0f), qf);
         k->err_px[i] = powf(de, 1.0f - fe);
     }
+}
+
+/* Linear RGB pixel i -> YCxCz, into three planes of n floats. */
+static void store_ycc(float *planes, size_t n, size_t i, const float rgb[3])
+{
+    float v[3];
+    rgb_to_ycxcz(rgb, v);
+    planes[i] = v[0];
+    planes[n + i] = v[1];
+    planes[2 * n + i] = v[2];
 }
 
 static int check_inputs(const float *ref, const float *test, int w, int h, gib_error *err)
@@ -335,8 +370,8 @@ double gib_flip_ldr(const float *ref, const float *test, int w, int h, float ppd
             a[c] = fminf(fmaxf(ref[3 * i + c], 0.0f), 1.0f);
             b[c] = fminf(fmaxf(test[3 * i + c], 0.0f), 1.0f);
         }
-        rgb_to_ycxcz(a, k.ycc_r + 3 * i);
-        rgb_to_ycxcz(b, k.ycc_t + 3 * i);
+        store_ycc(k.ycc_r, n, i, a);
+        store_ycc(k.ycc_t, n, i, b);
     }
     ldr_flip_core(&k, w, h);
     double mean = mean_of(k.err_px, n);
@@ -426,8 +461,8 @@ double gib_flip_hdr(const float *ref, const float *test, int w, int h, float ppd
                 a[c] = tonemap(ref[3 * i + c] * m);
                 b[c] = tonemap(test[3 * i + c] * m);
             }
-            rgb_to_ycxcz(a, k.ycc_r + 3 * i);
-            rgb_to_ycxcz(b, k.ycc_t + 3 * i);
+            store_ycc(k.ycc_r, n, i, a);
+            store_ycc(k.ycc_t, n, i, b);
         }
         ldr_flip_core(&k, w, h);
         for (size_t i = 0; i < n; i++)
