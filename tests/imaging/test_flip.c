@@ -203,6 +203,15 @@ int main(int argc, char **argv)
     double m = gib_flip_ldr(ref, test, W, H, ppd, NULL, &err);
     check("NaN in test -> NaN mean", isnan(m), err.msg);
     check("message names the test image", strstr(err.msg, "test image") != NULL, err.msg);
+    /* Over half the reference black (a caustic component): the median of the positive
+     * luminances sets the stop exposure (our stated choice; FLIP.h would get an infinite range). */
+    make_pair(2, ref, test);
+    for (int i = 0; i < 3 * W * H * 6 / 10; i++)
+        ref[i] = test[i] = 0.0f;
+    float s0, s1;
+    m = gib_flip_hdr(ref, test, W, H, ppd, NULL, &s0, &s1, &err);
+    check("HDR-FLIP, 60% black reference: finite range", isfinite(m) && isfinite(s1) && s1 > s0,
+          "median of the positive luminances");
     /* A black reference has no HDR exposure range. */
     memset(ref, 0, sizeof ref);
     memset(test, 0, sizeof test);
