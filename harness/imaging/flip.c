@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/imaging/oiio_shim.h"
+#include "harness/imaging/image.h"
 
 #define FLIP_PI 3.14159265358979f
 
@@ -507,10 +507,7 @@ int gib_flip_write_png(const char *path, const float *map, int w, int h, gib_err
         return gib_fail(err, "png '%s': out of memory", path);
     for (size_t i = 0; i < (size_t)w * h; i++)
         gib_flip_magma(map[i], rgb + 3 * i);
-    char buf[512];
-    int rc = gib_oiio_write_png8(path, w, h, 3, rgb, buf, (int)sizeof buf);
+    int rc = gib_png_write8(path, w, h, 3, rgb, err);
     free(rgb);
-    if (rc != 0)
-        return gib_fail(err, "%s", buf);
-    return 0;
+    return rc;
 }

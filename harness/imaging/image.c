@@ -83,8 +83,8 @@ static unsigned char to_u8(float v01)
 
 /* To a temporary name renamed on success, as the EXRs: a full disk or a kill never leaves a
  * truncated PNG that a later run would take for finished (the runner keeps existing previews). */
-static int write_png(const char *path, int w, int h, int c, const unsigned char *data,
-                     gib_error *err)
+int gib_png_write8(const char *path, int w, int h, int c, const unsigned char *data,
+                   gib_error *err)
 {
     char buf[1024], tmp[4200];
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
@@ -116,7 +116,7 @@ int gib_png_write_preview(const char *path, const gib_image *img, float exposure
         float v = img->px[i];
         data[i] = is_alpha ? to_u8(v) : to_u8(gib_srgb_encode(exposure * v));
     }
-    int rc = write_png(path, img->width, img->height, c, data, err);
+    int rc = gib_png_write8(path, img->width, img->height, c, data, err);
     free(data);
     return rc;
 }
@@ -208,7 +208,7 @@ int gib_png_write_error_map(const char *path, const gib_image *ref, const gib_im
             ramp(e[i] / scale, &rgb[i * 3]);
         }
     }
-    int rc = write_png(path, ref->width, ref->height, 3, rgb, err);
+    int rc = gib_png_write8(path, ref->width, ref->height, 3, rgb, err);
     free(e);
     free(sorted);
     free(rgb);

@@ -40,6 +40,10 @@ const char *gib_kv_get(const gib_kv *attrs, int nattrs, const char *key);
 
 /* Converts linear to display: srgb_encode(clamp(exposure * v, 0, 1)). */
 float gib_srgb_encode(float linear);
+/* Writes 8-bit PNG pixels (c = 1, 3 or 4 channels, rows top first) to a temporary name renamed into
+ * place on success, so a full disk or a kill never leaves a truncated PNG. */
+int gib_png_write8(const char *path, int w, int h, int c, const unsigned char *data,
+                   gib_error *err);
 /* Writes an 8-bit sRGB PNG preview of a linear image, scaled by exposure first. */
 int gib_png_write_preview(const char *path, const gib_image *img, float exposure, gib_error *err);
 /* Writes a false-colour error map PNG: per-pixel RMS over channels of (test - ref), mapped with a
