@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""Gathers every claim of every paper that paper_tables.py set beside our numbers into one table,
+RESULTS_DIR/claims.csv: a row per claim with the paper's value, ours, the machine ours ran on and a
+verdict `reproduced` / `not reproduced` / `not measurable here`, with the reason.
+
+usage: claims.py RESULTS_DIR
+
+Reads only the CSVs paper_tables.py writes (thesis_tables.csv, lrsm_table2.csv, lrsm_table3.csv,
+lrsm_fig7.csv, lrsm_dynamic.csv, ldm_figures_vs_ours.csv); a missing file gives no rows.
+Verdict rules (the choice this file makes, stated once):
+- a row whose table already says reproduced yes/no keeps that verdict;
+- an absolute time measured on the paper's GPU is `not measurable here` on another renderer (a
+  time on llvmpipe says nothing about a GTX 770's), as is a row that did not run or ran out of memory;
+- a memory figure is compared exactly (the table's own `matches` column: byte counts do not depend
+  on the renderer).
+"""
+import csv
+import os
+import sys
+
+COLUMNS = ["paper", "source", "claim", "paper_value", "our_value", "renderer", "cores", "verdict",
+           "reason"]
+REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
+THESIS = "Le 2014 (thesis): interactive caustics and multi-resolution indirect illumination"
+LRSM = "Sugihara et al. 2014: Layered Reflective Shadow Maps (LRSM)"
+LDM = "Layered depth maps (LDM) for ambient occlusion and indirect light"
+
+
+def read(results, name):
+    path = os.path.join(results, name)
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def verdict_of(text):
+    """The tables' `reproduced` column: yes / no, anything else (missing, not comparable ...)."""
+    t = (text or "").strip().lower()
+    if t == "yes":
+        return REPRODUCED, ""
+    if t == "no":
+        return NOT_REPRODUCED, ""
+    return NOT_MEASURABLE, text or "no run of ours matches (missing)"
+
+
+def row(paper, source, claim, paper_value, our_value, renderer, verdict, reason, cores=""):
+    return {"paper": paper, "source": source, "claim": claim, "paper_value": paper_value,
+            "our_value": our_value, "renderer": renderer, "cores": cores, "verdict": verdict,
+            "reason": reason}
+
+
+def thesis(results):
+    out = []
+    rows = read(results, "thesis_tables.csv")
+    # claim lines leave the renderer empty: theirs is the one the table's rows ran on
+    renderers = sorted({r["renderer"] for r in rows if r["renderer"]})
+    for r in rows:
+        if r["kind"] == "claim":
+            v, why = verdict_of(r["reproduced"])
+            out.append(row(THESIS, "thesis_tables.csv", r["claim"], "", "",
+                           r["renderer"] or "; ".join(renderers), v,
+                           r["evidence"] if v != NOT_MEASURABLE else why + "; " + r["evidence"]))
+        elif r["kind"] == "row":
+            what = (f"Table {r['table']} {r['paper_scene']}: {r['resolution']}^2 image, "
+                    f"{r['caustic_photons']} photons, {r['ray_resolution']}^2 rays, t={r['time_s']}: "
+                    f"frame time")
+            if r["status"] != "ok":
+                reason = "not run here: " + (r["note"] or r["status"])
+            else:
+                reason = ("the thesis timed its GPU; ours ran on " + (r["renderer"] or "another renderer")
+                          + " at " + r["our_settings"].split(" profile=")[0].rsplit(" ", 1)[-1]
+                          + ": absolute times are not comparable (the linear-tracing and speed-up "
+                          "claims compare ratios instead)")
+            out.append(row(THESIS, "thesis_tables.csv", what,
+                           f"{r['paper_frame_ms']} ms ({r['paper_fps']} fps)" if r["paper_frame_ms"] else "",
+                           f"{r['our_frame_ms']} ms" if r["our_frame_ms"] else "", r["renderer"],
+                           NOT_MEASURABLE, reason))
+    return out
+
+
+def lrsm(results):
+    out = []
+    for r in read(results, "lrsm_table2.csv"):
+        if not r["paper_mb"]:
+            continue  # a formula's figure with no number of the paper's beside it
+        what = f"Table 2 {r['paper_scene']} {r['technique']} {r['structure']} memory ({r['setting']})"
+        if r["status"] == "missing" or not r["ours_mb"]:
+            v, why = NOT_MEASURABLE, "no run of ours measured this structure"
+        elif r["status"] != "ok":
+            v, why = NOT_MEASURABLE, f"our run ended {r['status']} on this machine ({r['note']})".rstrip(" ()")
+        elif r["matches"] == "yes":
+            v, why = REPRODUCED, f"ours {r['ours_vs_formula']} the formula; paper {r['paper_vs_formula']}"
+        else:
+            v, why = NOT_REPRODUCED, f"ours {r['ours_vs_formula']} from the formula; paper {r['paper_vs_formula']}"
+        out.append(row(LRSM, "lrsm_table2.csv", what, f"{r['paper_mb']} MB",
+                       f"{r['ours_mb']} MB" if r["ours_mb"] else "", "", v, why))
+    for r in read(results, "lrsm_table3.csv"):
+        if r["kind"] == "claim":
+            v, why = verdict_of(r["reproduced"])
+            out.append(row(LRSM, "lrsm_table3.csv", "Table 3: " + r["stage"], r["paper_gtx770_ms"] + " ms",
+                           r["our_ms"] + " ms" if r["our_ms"] else "", r["our_renderer"], v,
+                           why or "the order of the two stage times, compared on this renderer"))
+        elif r["paper_gtx770_ms"] or r["paper_iris_pro_ms"]:
+            out.append(row(LRSM, "lrsm_table3.csv", f"Table 3: {r['method']} {r['stage']} time",
+                           f"{r['paper_gtx770_ms']} ms (GTX 770), {r['paper_iris_pro_ms']} ms (Iris Pro)",
+                           r["our_ms"] + " ms" if r["our_ms"] else "", r["our_renderer"], NOT_MEASURABLE,
+                           "absolute stage time on the paper's GPUs; ours on "
+                           + (r["our_renderer"] or "no run") + " (the stage-order claims compare ratios)"))
+    for r in read(results, "lrsm_fig7.csv"):
+        if r["kind"] != "claim":
+            continue
+        v, why = verdict_of(r["reproduced"])
+        out.append(row(LRSM, "lrsm_fig7.csv", f"Figure 7: {r['claim']} {r['params']} {r['size']}",
+                       "LRSM leaks, VCT does not", r["evidence"].split(";")[0], r["renderer"], v,
+                       (why + "; " if why else "") + r["evidence"]))
+    for r in read(results, "lrsm_dynamic.csv"):
+        if r["kind"] != "claim":
+            continue
+        v, why = verdict_of(r["reproduced"])
+        out.append(row(LRSM, "lrsm_dynamic.csv", "SPONZA DRAGON: " + r["claim"], "", r["note"],
+                       r["renderer"], v, why or r["note"]))
+    return out
+
+
+def ldm(results):
+    out = []
+    for r in read(results, "ldm_figures_vs_ours.csv"):
+        what = f"Figure {r['figure']} {r['scene']} {r['method']} ({r['paper_settings']}): time"
+        pv = f"{r['paper_ms']} ms on {r['paper_gpu']}" + (f", {r['paper_mb']} MB" if r["paper_mb"] else "")
+        ov = (f"{r['our_ms']} ms, {r['our_mb']} MB, rel RMSE {r['our_rel_rmse']}" if r["our_ms"] else "")
+        if not r["our_ms"]:
+            why = r["our_settings"]
+        else:
+            why = (f"absolute time on the paper's {r['paper_gpu']}; ours on {r['our_renderer']}"
+                   + ("; and not at the paper's settings (quick profile)" if "NOT" in r["our_settings"] else ""))
+        out.append(row(LDM, "ldm_figures_vs_ours.csv", what, pv, ov, r["our_renderer"], NOT_MEASURABLE, why))
+    return out
+
+
+ORDER = {REPRODUCED: 0, NOT_REPRODUCED: 1, NOT_MEASURABLE: 2}
+
+
+def claims(results):
+    """Per paper, the claims with a verdict first, then the ones not measurable here (stable)."""
+    out = []
+    for part in (thesis(results), lrsm(results), ldm(results)):
+        out += sorted(part, key=lambda r: ORDER[r["verdict"]])
+    return out
+
+
+def write(results):
+    rows = claims(results)
+    path = os.path.join(results, "claims.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS)
+        w.writeheader()
+        w.writerows(rows)
+    return path, rows
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: claims.py RESULTS_DIR")
+    path, rows = write(sys.argv[1])
+    counts = {}
+    for r in rows:
+        counts[r["verdict"]] = counts.get(r["verdict"], 0) + 1
+    print(f"{path}: {len(rows)} claims (" + ", ".join(f"{n} {k}" for k, n in sorted(counts.items())) + ")")
+
+
+if __name__ == "__main__":
+    main()
