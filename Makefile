@@ -1,5 +1,5 @@
 # gibench — thin wrapper over CMake and ctest. Two commands set everything up on a fresh Debian 12:
-#   make reproduce   install missing packages, build, run the quick profile, draw the plots
+#   make reproduce   install missing packages, build, run the quick profile, draw the plots, write the report
 #   make test        install missing packages, build (normal + ASan/UBSan), run every test
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
@@ -9,22 +9,24 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
 # Debian 12 packages gibench builds and runs with (ARCHITECTURE.md, "Toolchain facts"); parallel,
-# slurm-wlm and munge are for spreading matrices over machines (harness/cluster/, tests/cluster/).
+# slurm-wlm and munge are for spreading matrices over machines (harness/cluster/, tests/cluster/);
+# chromium opens the report in its test (tests/report/).
 PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
   libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git clang \
   parallel slurm-wlm munge \
-  libsqlite3-dev
+  libsqlite3-dev \
+  chromium
 
 MATRICES = $(wildcard harness/matrices/*.matrix)
 
-.PHONY: all deps build build-asan test reproduce plots baselines fuzz clean help
+.PHONY: all deps build build-asan test reproduce plots report baselines fuzz clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make test | make deps | make build | make plots | make baselines | make fuzz | make clean"
+	@echo "make reproduce | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -67,11 +69,17 @@ reproduce: build
 	  rc=$$?; \
 	  $(BUILD)/gibench bench reference --scene cornell,sibenik,sponza --repeat 9 \
 	    --out $(RESULTS)/bench_reference.csv || rc=1; \
-	  $(MAKE) --no-print-directory plots || rc=1; exit $$rc
+	  $(MAKE) --no-print-directory report || rc=1; exit $$rc
 
 plots:
 	python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
 	python3 harness/paper_tables.py $(RESULTS)
+	python3 harness/claims.py $(RESULTS)
+
+# The reproduction report from the CSVs: $(RESULTS)/REPORT.md and $(RESULTS)/report/index.html
+# (opens offline from the file system).
+report: plots
+	python3 harness/report.py $(RESULTS)
 
 # libFuzzer over every parser of outside input (tests/fuzz/README.md): FUZZ_SECONDS and FUZZ_RUNS
 # per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv.

@@ -126,6 +126,16 @@ def rel(path, start):
 # ---- HTML -----------------------------------------------------------------------------------------
 
 CHECK_SCRIPT = """
+function openTarget() {  /* a link to #m-<matrix> opens that matrix */
+  var d = location.hash && document.getElementById(decodeURIComponent(location.hash.slice(1)));
+  if (d && d.tagName === 'DETAILS') { d.open = true; d.scrollIntoView(); }
+}
+window.addEventListener('hashchange', openTarget);
+/* ?open=<matrix> opens that matrix in place (the README's screenshot) */
+var om = /[?&]open=([^&#]*)/.exec(location.search);
+if (om) { var od = document.getElementById('m-' + decodeURIComponent(om[1])); if (od) od.open = true; }
+function toggleNa(box) { document.getElementById('claims').classList.toggle('show-na', box.checked); }
+window.addEventListener('load', openTarget);
 if (location.search.indexOf('check') >= 0) {
   document.querySelectorAll('details').forEach(function (d) { d.open = true; });
   var imgs = Array.prototype.slice.call(document.images);
@@ -162,7 +172,9 @@ def claims_html(claims):
     for c in claims:
         if c["paper"] != paper:
             paper = c["paper"]
-            out.append(f'<tr class="paper"><th colspan="7">{esc(paper)}</th></tr>')
+            mine = [x for x in claims if x["paper"] == paper]
+            out.append(f'<tr class="paper"><th colspan="7">{esc(paper)} '
+                       f'<span class="counts">({esc(summary_counts(mine))})</span></th></tr>')
         v = c["verdict"]
         out.append(f'<tr class="claim {VERDICT_CLASS.get(v, "na")}"><td>{esc(c["claim"])}</td>'
                    f'<td>{esc(c["paper_value"])}</td><td>{esc(c["our_value"])}</td><td>{esc(c["renderer"])}</td>'
@@ -237,6 +249,9 @@ def write_html(results, claims, mats, plots):
              '<p>A verdict is <i>not measurable here</i> where the paper measured absolute times on its '
              'GPU (ours ran on the renderer shown), where our run did not run or ran out of memory, or '
              'where our settings differ from the paper\'s (quick profile).</p>',
+             f'<label><input type="checkbox" onchange="toggleNa(this)"> show the '
+             f'{sum(1 for c in claims if c["verdict"] == "not measurable here")} claims not measurable here '
+             f'(their rows are in the table, hidden until asked)</label>',
              claims_html(claims), '<h2>Matrices</h2>',
              '<p>Each row: reference, technique and false-colour error map side by side; the RMSE with the '
              'reference\'s own noise beside it (an error near that noise cannot rank techniques).</p>']
