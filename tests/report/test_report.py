@@ -98,6 +98,8 @@ def main():
         check(caps[:3] == ["reference", "technique", "error map"],
               f"{r['technique']} {r['params']}: reference, image and error map side by side ({caps})")
         check("ref noise" in block, f"{r['technique']}: the reference's noise beside the error")
+        if "flip" in r:  # rows with FLIP columns also have the FLIP map (harness/app/util.c)
+            check("FLIP map" in caps and "FLIP" in block, f"{r['technique']}: the FLIP map and mean shown")
 
     n_img = len(re.findall(r"<img ", src))
     got, dom = image_check(exe, page)
@@ -124,7 +126,7 @@ def main():
     os.remove(bad)
 
     shot = os.path.join(work, "report_screenshot.png")
-    browser(exe, "--window-size=1280,1400", "--screenshot=" + shot, "file://" + page)
+    browser(exe, "--window-size=1280,2600", "--screenshot=" + shot, "file://" + page + "?open=report_tiny")
     with open(shot, "rb") as f:
         check(f.read(8) == b"\x89PNG\r\n\x1a\n", f"screenshot saved: {shot}")
     print(f"{len(failures)} failed" if failures else "all passed")
