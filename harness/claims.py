@@ -13,9 +13,13 @@ Verdict rules (the choice this file makes, stated once):
   time on llvmpipe says nothing about a GTX 770's), as is a row that did not run or ran out of memory;
 - a memory figure is compared exactly (the table's own `matches` column: byte counts do not depend
   on the renderer).
+The result CSVs do not record the CPU's cores; `cores` comes from RESULTS_DIR/history.sqlite (the
+machines `gibench run` recorded) where exactly one core count was recorded with the row's renderer,
+and stays empty otherwise (a renderer string alone does not name a machine).
 """
 import csv
 import os
+import sqlite3
 import sys
 
 COLUMNS = ["paper", "source", "claim", "paper_value", "our_value", "renderer", "cores", "verdict",
@@ -149,8 +153,27 @@ def claims(results):
     return out
 
 
+def cores_by_renderer(results):
+    """{renderer: cores} for the renderers the history recorded with one core count only."""
+    path = os.path.join(results, "history.sqlite")
+    if not os.path.exists(path):
+        return {}
+    try:
+        db = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=10)
+        found = db.execute("SELECT renderer, group_concat(DISTINCT cores) FROM machine GROUP BY renderer").fetchall()
+        db.close()
+    except sqlite3.Error as e:
+        print(f"claims.py: {path}: {e}: cores left empty", file=sys.stderr)
+        return {}
+    return {r: c for r, c in found if c and "," not in str(c)}
+
+
 def write(results):
     rows = claims(results)
+    cores = cores_by_renderer(results)
+    for r in rows:
+        if not r["cores"] and r["renderer"] in cores:
+            r["cores"] = str(cores[r["renderer"]])
     path = os.path.join(results, "claims.csv")
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=COLUMNS)

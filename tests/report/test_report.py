@@ -111,6 +111,11 @@ def main():
         check(loaded == images and broken == 0, f"every image loaded ({loaded} of {images}) {which}")
         with open(os.path.join(results, "claims.csv"), newline="") as f:
             n_claims = len(list(csv.DictReader(f)))
+        with open(os.path.join(results, "claims.csv"), newline="") as f:
+            same = [c for c in csv.DictReader(f) if c["renderer"] == rows[0]["renderer"]]
+        if same:  # the tiny run recorded this renderer's machine in results/history.sqlite
+            check(all(c["cores"].isdigit() for c in same),
+                  f"claims on {rows[0]['renderer']} name the cores the history recorded ({same[0]['cores']})")
         in_dom = len(re.findall(r'<tr class="claim ', dom))
         check(n_claims > 0 and in_dom == n_claims,
               f"claims table: {in_dom} rows for {n_claims} rows of claims.csv")
