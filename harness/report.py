@@ -72,9 +72,12 @@ def image_name(r):
 
 
 def reference_png(img_dir, r):
-    """The reference preview beside a row's images. Its name ends in the reference's parameter hash,
-    which the CSV does not hold: found by scene, component and size, shown only where that names one
-    file (else None and how many candidates)."""
+    """The reference preview beside a row's images: the row's `ref_image` column where the run wrote
+    it; for older tables, found by scene, component and size, shown only where that names one file
+    (else None and how many candidates)."""
+    if r.get("ref_image"):
+        path = os.path.join(img_dir, r["ref_image"])
+        return (path, 1) if os.path.exists(path) else (None, 0)
     cands = sorted(glob.glob(os.path.join(
         glob.escape(img_dir), f"reference_{r['scene']}_{r['component']}_{r['width']}x{r['height']}_*.png")))
     return (cands[0], 1) if len(cands) == 1 else (None, len(cands))
@@ -211,7 +214,7 @@ def matrix_html(results, page_dir, name, rows, plots):
         ref, n = reference_png(img_dir, r)
         if ref:
             out.append(figure(ref, "reference", page_dir))
-        base = os.path.join(img_dir, image_name(r))
+        base = os.path.join(img_dir, r.get("image") or image_name(r))
         if not os.path.exists(base + ".png"):
             out.append(f'<div class="noimg">no images of this row in images/{esc(name)}/ (run with images)</div>')
         elif not ref:

@@ -43,7 +43,7 @@ enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAM
        C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
        C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_FLIP, C_HDRFLIP, C_NONFINITE, C_REF_SPP,
        C_REF_NOISE, C_REF_NOISY,
-       C_STATUS, C_MESSAGE, C_COUNTERS, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
+       C_STATUS, C_MESSAGE, C_COUNTERS, C_IMAGE, C_REF_IMAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
 
 static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
@@ -51,7 +51,7 @@ static const char *const base_columns[C_BASE_COUNT] = {
     "mem_bytes", "mem_by_structure",
     "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "flip", "hdrflip",
     "nonfinite", "ref_spp",
-    "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "backend", "renderer", "gl_version",
+    "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "image", "ref_image", "backend", "renderer", "gl_version",
     "git_revision", "timestamp"};
 static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
                                   C_WIDTH, C_HEIGHT, C_INSTANT};
@@ -350,6 +350,9 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
                 strcpy(dot, ".png");
             if (access(ref_png, F_OK) != 0 && gib_png_write_preview(ref_png, &ref.image, scene->exposure, &err) < 0)
                 fprintf(stderr, "gibench run: %s\n", err.msg);
+            /* The row's images by name, relative to DIR/images/<matrix>/ (the report reads them). */
+            row_set(&r, C_IMAGE, "%s", name);
+            row_set(&r, C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
         }
         gib_metrics m;
         int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
