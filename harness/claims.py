@@ -22,6 +22,9 @@ import os
 import sqlite3
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paper_tables import paper_csv  # noqa: E402  (a CSV's rows, [] when absent)
+
 COLUMNS = ["paper", "source", "claim", "paper_value", "our_value", "renderer", "cores", "verdict",
            "reason"]
 REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
@@ -31,11 +34,7 @@ LDM = "Layered depth maps (LDM) for ambient occlusion and indirect light"
 
 
 def read(results, name):
-    path = os.path.join(results, name)
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    return paper_csv(results, name)
 
 
 def verdict_of(text):

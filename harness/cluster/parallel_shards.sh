@@ -12,21 +12,9 @@
 #                  the same paths (a shared file system): PARALLEL_ARGS="-S host1,host2 --workdir ."
 # Exit status: the merge's (0 when every shard's rows are there and agree), 2 for bad usage.
 set -u
-if [ $# -lt 3 ]; then
-    echo "usage: $0 MATRIX N OUT [gibench run options...]" >&2
-    exit 2
-fi
-root=$(cd "$(dirname "$0")/../.." && pwd)
-matrix=$1
-n=$2
-out=$3
-shift 3
-case "$n" in '' | *[!0-9]* | 0) echo "$0: N must be a positive integer, got '$n'" >&2; exit 2 ;; esac
+. "$(dirname "$0")/shard_args.sh"
 gibench=${GIBENCH:-$root/build/gibench}
 command -v parallel >/dev/null 2>&1 || { echo "$0: GNU parallel is not installed (make deps)" >&2; exit 2; }
-mkdir -p "$out" || exit 2
-out=$(cd "$out" && pwd)
-matrix=$(cd "$(dirname "$matrix")" && pwd)/$(basename "$matrix")
 
 # --halt never: every shard runs even when another has rows that are not `ok` (exit 1); the merge
 # then checks that each shard finished (its manifest) and that no row is missing.

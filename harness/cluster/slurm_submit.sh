@@ -12,20 +12,8 @@
 # options: partition, time, account...), WAIT=1 to return only when the merge has run, with its
 # exit status.
 set -u
-if [ $# -lt 3 ]; then
-    echo "usage: $0 MATRIX N OUT [gibench run options...]" >&2
-    exit 2
-fi
-root=$(cd "$(dirname "$0")/../.." && pwd)
-matrix=$1
-n=$2
-out=$3
-shift 3
-case "$n" in '' | *[!0-9]* | 0) echo "$0: N must be a positive integer, got '$n'" >&2; exit 2 ;; esac
+. "$(dirname "$0")/shard_args.sh"
 export GIBENCH="${GIBENCH:-$root/build/gibench}"
-mkdir -p "$out" || exit 2
-out=$(cd "$out" && pwd)
-matrix=$(cd "$(dirname "$matrix")" && pwd)/$(basename "$matrix")
 # shellcheck disable=SC2086
 array=$(sbatch --parsable ${SBATCH_ARGS:-} --array="1-$n" --chdir="$root" --export=ALL \
     --output="$out/shard-%a.log" "$root/harness/cluster/slurm_array.sbatch" "$matrix" "$out" "$@") || exit 1

@@ -19,15 +19,7 @@
 #include "harness/app/history.h"
 
 static int failures;
-#define CHECK(c, ...)                                                                              \
-    do {                                                                                           \
-        if (!(c)) {                                                                                \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-            failures++;                                                                            \
-        }                                                                                          \
-    } while (0)
+#include "tests/common/check.h"
 
 static const char *names[] = {"matrix", "profile", "scene", "camera", "technique", "component",
                               "params", "width", "height", "time", "gpu_ms_median", "rmse",

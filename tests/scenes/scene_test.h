@@ -11,15 +11,7 @@
 extern int failures;
 extern char tmpdir[256]; /* a fresh directory under /tmp, removed by scene_test_end() */
 
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            failures++;                                                                            \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-        }                                                                                          \
-    } while (0)
+#include "tests/common/check.h"
 
 /* |a - b| <= tol; `why` says where the tolerance comes from. */
 #define NEAR(a, b, tol, why)                                                                       \

@@ -12,15 +12,7 @@
 #include "techniques/technique.h"
 
 static int failures;
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-            failures++;                                                                            \
-        }                                                                                          \
-    } while (0)
+#include "tests/common/check.h"
 
 static const unsigned all_outputs =
     GIB_OUT_AO | GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY | GIB_OUT_CAUSTIC;
