@@ -81,6 +81,7 @@ int main(void)
            r.status);
     ok &= over;
     gib_run_result_free(&r);
+    gib_image_free(&ref);
     gib_fixture_close(&fx);
     printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;

@@ -131,6 +131,17 @@ int main(void)
         }
         gib_run_result_free(&ro);
     }
+    gib_run_result_free(&r32);
+    gib_run_result_free(&r512);
+    gib_run_result_free(&again);
+    gib_run_result_free(&rp128);
+    gib_image_free(&ref);
+    gib_image_free(&pref);
+    gib_gpu_scene_free(&gpu);
+    gib_gpu_scene_free(&gplane);
+    gib_scene_free(&scene);
+    gib_scene_free(&plane);
+    gib_gl_shutdown();
     printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }
