@@ -49,10 +49,21 @@ build-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DGIB_SANITIZE=ON $(CMAKE_ARGS)
 	cmake --build $(ASAN_BUILD) -j$(JOBS)
 
+# Every test twice: in the sanitizer build (ASan+UBSan, LeakSanitizer with Mesa's and the driver's
+# own leaks suppressed by tests/lsan_mesa.supp, never ours), then in the release build; then
+# ThreadSanitizer over the reference's threads and the runner (make tsan).
 test: build build-asan
-	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest -L unit --output-on-failure -j$(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan_mesa.supp UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j$(JOBS)
 	cd $(BUILD) && ctest --output-on-failure
+	$(MAKE) --no-print-directory tsan
+
+TSAN_BUILD ?= build-tsan
+tsan: deps
+	cmake -S . -B $(TSAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGIB_TSAN=ON -DGIB_WERROR=OFF $(CMAKE_ARGS)
+	cmake --build $(TSAN_BUILD) -j$(JOBS) --target gibench
+	sh tests/tsan/run_tsan.sh $(TSAN_BUILD) $(TSAN_BUILD)/tsan-work
 
 # The matrices, the reference's ray throughput, then plots and the papers' tables beside ours.
 # Afresh: `gibench run` skips the runs its CSV already holds, so the tables of the last run (the
@@ -98,4 +109,4 @@ baselines: build
 	  --update tests/quality/baselines.csv
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(TSAN_BUILD)
