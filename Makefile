@@ -21,7 +21,7 @@ PACKAGES = build-essential cmake pkg-config python3 python3-glad \
 
 MATRICES = $(wildcard harness/matrices/*.matrix)
 
-.PHONY: all deps build build-asan test reproduce plots report baselines fuzz clean help
+.PHONY: all deps build build-asan test tsan reproduce plots report baselines fuzz clean help
 
 all: build
 
