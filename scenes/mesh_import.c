@@ -365,17 +365,21 @@ static int has_suffix_ci(const char *s, const char *suffix)
     return n >= k && strcasecmp(s + n - k, suffix) == 0;
 }
 
-/* The header of a PLY file on disk, checked as gib_ply_check_header says. */
+/* A PLY file on disk, checked whole as gib_ply_check says. */
 static int ply_file_check(const char *path, gib_error *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
         return gib_fail(err, "cannot open '%s'", path);
-    char *head = malloc(GIB_PLY_HEADER_MAX);
-    size_t n = head ? fread(head, 1, GIB_PLY_HEADER_MAX, f) : 0;
+    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    char *buf = size >= 0 ? malloc((size_t)size + 1) : NULL;
+    int rc;
+    if (!buf || fseek(f, 0, SEEK_SET) != 0 || fread(buf, 1, (size_t)size, f) != (size_t)size)
+        rc = gib_fail(err, "cannot read '%s'%s", path, buf ? "" : " (out of memory)");
+    else
+        rc = gib_ply_check(buf, (size_t)size, path, err);
     fclose(f);
-    int rc = head ? gib_ply_check_header(head, n, path, err) : gib_fail(err, "out of memory");
-    free(head);
+    free(buf);
     return rc;
 }
 
@@ -425,7 +429,7 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
         if (rc == 0 && len > 0xffffffffu)
             rc = gib_fail(err, "'%s' decompresses to more than 4 GiB", path);
         if (rc == 0 && strcasecmp(hint, "ply") == 0)
-            rc = gib_ply_check_header((const char *)buf, len, path, err);
+            rc = gib_ply_check((const char *)buf, len, path, err);
         if (rc == 0)
             sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags, hint,
                                                       props);

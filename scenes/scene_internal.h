@@ -167,11 +167,13 @@ void gib_geom_add_box(gib_geom *g, const float lo[3], const float hi[3], int inw
 int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
                     gib_error *err);
 
-/* ply_check.c: 0 when data (a PLY file's first len bytes, or all of it) starts with a well-formed
- * header ending in end_header within GIB_PLY_HEADER_MAX bytes; else -1 with err naming the file
- * and line. assimp is never handed a PLY that fails it (it hangs on some). */
+/* ply_check.c: 0 when data (a whole PLY file, len bytes) is well formed: its header ends in
+ * end_header within GIB_PLY_HEADER_MAX bytes, its body holds every element the header declares as
+ * the header types them, lists at most 1024 long, face indices within the vertices; else -1 with
+ * err naming the file and the line or byte. assimp is never handed a PLY that fails it (it hangs
+ * or crashes on some). */
 #define GIB_PLY_HEADER_MAX 65536
-int gib_ply_check_header(const char *data, size_t len, const char *path, gib_error *err);
+int gib_ply_check(const char *data, size_t len, const char *path, gib_error *err);
 
 /* ---------------------------------------------------------------- textures */
 
