@@ -127,13 +127,14 @@ static int ref_sees_sky(const ref_world *w, const ref_hit *h, const float d[3], 
  * rho_d L V, 0 or rho_d L; the Phong lobe's weight is rho_s (n + 2) / (n + 1) cos L V, as in
  * ref_sample_phong), and the mirror lobe by its one direction. */
 void ref_nee_sky(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
-                 ref_pcg32 *rng, float dif[3], float spec[3], long long *rays)
+                 ref_rng *rng, float dif[3], float spec[3], long long *rays)
 {
     const float *L = w->gs->sky;
     if (!ref_has_sky(w->gs))
         return;
-    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
-    float u3 = ref_pcg32_float(rng), u4 = ref_pcg32_float(rng);
+    float u1, u2, u3, u4;
+    ref_rng_2d(rng, &u1, &u2);
+    ref_rng_2d(rng, &u3, &u4);
     if (h->back)
         return;
     float d[3];

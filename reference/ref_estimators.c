@@ -28,7 +28,7 @@
  * L S E, is a path of positive measure and belongs here).
  * Without a sky no random numbers are used: with delta lights the estimator is exact, so 1 spp is
  * the converged image; with a sky it is random and needs spp >= 2 like the others. */
-void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
                     float out[3], long long *rays)
 {
     out[0] = out[1] = out[2] = 0.0f;
@@ -53,12 +53,13 @@ void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref
  * but gives no falloff): we use Zhukov's linear rho(d) = min(d / dmax, 1), so an occluder at the
  * surface blocks fully, one at dmax or beyond not at all; the sample's value is rho(d), 1 on a
  * miss. d is measured from the ray origin (the point moved off the surface by the ray offset). */
-float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_pcg32 *rng,
+float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_rng *rng,
                  long long *rays)
 {
     if (h->back)
         return 0.0f;
-    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    float u1, u2;
+    ref_rng_2d(rng, &u1, &u2);
     float d[3], o[3];
     ref_sample_cosine(h->n, u1, u2, d);
     ref_offset_origin(w, h, d, o);
@@ -75,7 +76,7 @@ float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscuranc
  * and L D S E), the sky's included. A bounce ray that escapes contributes nothing: that path
  * (L_sky D E or L_sky S E) is one vertex long and `direct` counts it, by its own sky sampling. */
 static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float d[3],
-                              ref_pcg32 *rng, float L[3], long long *rays)
+                              ref_rng *rng, float L[3], long long *rays)
 {
     L[0] = L[1] = L[2] = 0.0f;
     if (!(ref_dot(d, h->ng) > 0.0f))
@@ -97,11 +98,12 @@ static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float 
 /* Indirect, L D D E: a cosine-weighted bounce from the visible point's diffuse lobe
  * (f cos / pdf = rho_d), then the diffuse lobe of the bounce point lit by next-event estimation.
  * Specular lobes at either vertex belong to glossy (x1) and caustic (x2). */
-void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_pcg32 *rng, float out[3],
+void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_rng *rng, float out[3],
                       long long *rays)
 {
     out[0] = out[1] = out[2] = 0.0f;
-    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    float u1, u2;
+    ref_rng_2d(rng, &u1, &u2);
     if (h->back)
         return;
     float kd[3];
@@ -117,11 +119,12 @@ void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_pcg32 *rng, floa
 
 /* Glossy, L D S E: the visible point's specular lobe (Phong, importance-sampled; or the mirror
  * direction) sees a diffuse surface lit by next-event estimation. */
-void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
                     float out[3], long long *rays)
 {
     out[0] = out[1] = out[2] = 0.0f;
-    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    float u1, u2;
+    ref_rng_2d(rng, &u1, &u2);
     if (h->back)
         return;
     ref_mat m;
@@ -165,7 +168,7 @@ void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3])
     }
 }
 
-static void ref_sample_one(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+static void ref_sample_one(const ref_ctx *c, const ref_hit *h, const float wo[3], ref_rng *rng,
                            float out[3], long long *rays)
 {
     switch (c->p.component) {
@@ -193,7 +196,7 @@ static void ref_sample_one(const ref_ctx *c, const ref_hit *h, const float wo[3]
 }
 
 void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], int n,
-                       ref_pcg32 *rng, float (*out)[3], long long *rays)
+                       ref_rng *rng, float (*out)[3], long long *rays)
 {
     if (c->p.component == GIB_COMP_FULL || c->p.component == GIB_COMP_HIGHER) {
         ref_est_paths(c, h, wo, c->p.component == GIB_COMP_HIGHER, n, rng, out, rays);

@@ -20,6 +20,7 @@
 
 #include "reference.h"
 #include "rng.h"
+#include "sampler.h"
 
 #define REF_PI 3.14159265358979323846f
 #define REF_MAX_MIPS 24
@@ -221,7 +222,7 @@ static inline int ref_has_sky(const gib_scene *s)
  * Phong u1 u2) whatever is wanted; without one it draws none and casts no ray, so scenes without
  * a sky render exactly as before it existed. */
 void ref_nee_sky(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
-                 ref_pcg32 *rng, float dif[3], float spec[3], long long *rays);
+                 ref_rng *rng, float dif[3], float spec[3], long long *rays);
 
 /* Orthonormal basis around unit n. */
 void ref_basis(const float n[3], float t[3], float b[3]);
@@ -268,28 +269,28 @@ typedef struct ref_splats {
  * time or together (full and higher run them as one batch, ref_est_paths). */
 #define REF_PATH_BATCH 16
 void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], int n,
-                       ref_pcg32 *rng, float (*out)[3], long long *rays);
+                       ref_rng *rng, float (*out)[3], long long *rays);
 
 /* Estimators. Each adds the rays it casts to *rays. */
-void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
                     float out[3], long long *rays);
 /* One cosine-weighted visibility sample: 1 when unoccluded within dmax (<= 0 or inf: unbounded);
  * with obscurance, min(d / dmax, 1). */
-float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_pcg32 *rng,
+float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_rng *rng,
                  long long *rays);
-void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_pcg32 *rng, float out[3],
+void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_rng *rng, float out[3],
                       long long *rays);
-void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_pcg32 *rng,
+void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
                     float out[3], long long *rays);
 /* caustic, camera part: L S+ D E whose light-side vertex is Phong. */
-void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float out[3],
+void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_rng *rng, float out[3],
                      long long *rays);
 void ref_est_aux(const ref_ctx *c, const ref_hit *h, float out[3]);
 /* full (higher_only = 0) or higher (1): n <= REF_PATH_BATCH camera paths from one visible
  * point, path i on its own stream rng[i] into out[i], run together depth by depth so that their
  * memory misses overlap (ref_path.c); each out[i] is what the path alone would give. */
 void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
-                   int n, ref_pcg32 *rng, float (*out)[3], long long *rays);
+                   int n, ref_rng *rng, float (*out)[3], long long *rays);
 
 /* Path classes (reference.h): 1 when a path of `verts` surface vertices whose visible point x1
  * leaves through lobe s1 (1 = S) and whose other vertices are all S (all_s_rest) belongs to
@@ -311,6 +312,8 @@ static inline long long ref_light_particles(const ref_ctx *c)
 
 /* gib_component_deterministic for a given max_depth (full and higher with one vertex are). */
 int ref_deterministic(const gib_scene *s, int component, int max_depth);
+/* With Sobol batches: spp above GIB_REF_SOBOL_BATCHES rounded up to a multiple of it. */
+int ref_sobol_round_spp(int spp);
 
 /* gib_reference_render on an already built world (the bench times rendering alone); no
  * parameter checks beyond the caller's. */

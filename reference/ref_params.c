@@ -70,6 +70,30 @@ int ref_deterministic(const gib_scene *s, int comp, int max_depth)
     }
 }
 
+const char *gib_ref_sampler_name(int sampler)
+{
+    return sampler == GIB_REF_SAMPLER_RANDOM                                   ? "random"
+           : sampler == GIB_REF_SAMPLER_SOBOL || sampler == GIB_REF_SAMPLER_DEFAULT ? "sobol"
+                                                                                : "unknown";
+}
+
+int gib_ref_sampler_parse(const char *name)
+{
+    if (name && !strcmp(name, "sobol"))
+        return GIB_REF_SAMPLER_SOBOL;
+    if (name && !strcmp(name, "random"))
+        return GIB_REF_SAMPLER_RANDOM;
+    return -1;
+}
+
+int ref_sobol_round_spp(int spp)
+{
+    const int B = GIB_REF_SOBOL_BATCHES;
+    if (spp <= B)
+        return spp;
+    return spp > (1 << 30) - B ? (1 << 30) / B * B : (spp + B - 1) / B * B;
+}
+
 int gib_component_deterministic(const gib_scene *scene, int component)
 {
     return ref_deterministic(scene, component, GIB_REF_DEFAULT_MAX_DEPTH);
@@ -100,16 +124,23 @@ void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gi
                           : 0;
     if (paths && o->min_depth > o->max_depth)
         o->min_depth = o->max_depth; /* no roulette: the same image */
+    o->sampler = p->sampler == GIB_REF_SAMPLER_RANDOM ? GIB_REF_SAMPLER_RANDOM
+                                                      : GIB_REF_SAMPLER_SOBOL;
     if (ref_deterministic(scene, c, o->max_depth)) {
         o->spp = 1;
         o->target_noise = 0.0;
         o->max_spp = 0;
         o->seed = 0;
+        o->sampler = GIB_REF_SAMPLER_SOBOL; /* no numbers drawn: every sampler the same image */
     } else if (p->target_noise > 0.0) {
         o->max_spp = p->max_spp > 0 ? p->max_spp : GIB_REF_DEFAULT_MAX_SPP;
     } else {
         o->target_noise = 0.0;
         o->max_spp = 0;
+    }
+    if (o->sampler == GIB_REF_SAMPLER_SOBOL) { /* equal batches (reference.h) */
+        o->spp = ref_sobol_round_spp(o->spp);
+        o->max_spp = ref_sobol_round_spp(o->max_spp);
     }
 }
 
@@ -129,6 +160,7 @@ uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params 
     h = gib_hash_bytes(h, &n.target_noise, sizeof n.target_noise);
     h = gib_hash_u64(h, (uint64_t)n.max_spp);
     h = gib_hash_u64(h, n.seed);
+    h = gib_hash_u64(h, (uint64_t)n.sampler);
     if (scene && scene->cameras && n.camera >= 0 && (uint32_t)n.camera < scene->camera_count) {
         const gib_camera *cam = &scene->cameras[n.camera];
         h = gib_hash_bytes(h, cam->eye, sizeof cam->eye);
@@ -214,6 +246,8 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
     ref_attr(attrs, max_attrs, &n, "rounds", "%d", s ? s->rounds : 0);
     ref_attr(attrs, max_attrs, &n, "estimator", "%s",
              ref_deterministic(scene, c, q.max_depth) ? "deterministic" : "random");
+    ref_attr(attrs, max_attrs, &n, "sampler", "%s",
+             ref_deterministic(scene, c, q.max_depth) ? "none" : gib_ref_sampler_name(q.sampler));
     ref_attr(attrs, max_attrs, &n, "footprint", "%s", footprint);
     ref_attr(attrs, max_attrs, &n, "missing", "%s", missing);
     ref_attr(attrs, max_attrs, &n, "cache_key", "%s", key);

@@ -54,7 +54,7 @@ int ref_basic_class(int verts, int s1, int all_s_rest, int max_specular)
 typedef struct ref_path_state {
     ref_hit cur;             /* the current vertex */
     ref_pending pend;        /* its continuation, traced */
-    ref_pcg32 *rng;
+    ref_rng *rng;
     float *out;
     float wcur[3], beta[3], d[3], f, q, prob;
     int depth, s1, all_s_rest; /* lobes of the vertices before the current one */
@@ -110,8 +110,8 @@ static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, lo
     ps->lobe_s = 0, ps->hit = 0, ps->f = 1.0f, ps->q = 1.0f, ps->prob = 1.0f;
     if (!cont)
         return;
-    float u0 = ref_pcg32_float(ps->rng), u1 = ref_pcg32_float(ps->rng),
-          u2 = ref_pcg32_float(ps->rng);
+    float u0 = ref_rng_1d(ps->rng), u1, u2;
+    ref_rng_2d(ps->rng, &u1, &u2);
     ps->lobe_s = u0 * (pd + psp) >= pd;
     ps->prob = (ps->lobe_s ? psp : pd) / (pd + psp);
     if (!ps->lobe_s) {
@@ -131,7 +131,7 @@ static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, lo
         for (int k = 0; k < 3; k++)
             est = ref_fmaxf(est, ps->beta[k] * refl[k] * ps->f / ps->prob);
         ps->q = ref_fminf(1.0f, est);
-        cont = ref_pcg32_float(ps->rng) < ps->q;
+        cont = ref_rng_1d(ps->rng) < ps->q;
     }
     if (cont) {
         float o[3];
@@ -210,7 +210,7 @@ static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *ray
 }
 
 void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int higher_only,
-                   int n, ref_pcg32 *rng, float (*out)[3], long long *rays)
+                   int n, ref_rng *rng, float (*out)[3], long long *rays)
 {
     ref_path_state ps[REF_PATH_BATCH];
     int live = 0;
@@ -244,12 +244,13 @@ void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int hi
     }
 }
 
-void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float out[3],
+void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_rng *rng, float out[3],
                      long long *rays)
 {
     const ref_world *w = c->w;
     out[0] = out[1] = out[2] = 0.0f;
-    float u1 = ref_pcg32_float(rng), u2 = ref_pcg32_float(rng);
+    float u1, u2;
+    ref_rng_2d(rng, &u1, &u2);
     if (h->back || !w->has_specular)
         return;
     float beta[3], d[3];
@@ -284,9 +285,11 @@ void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_pcg32 *rng, float o
             return;
         float r[3], f = 1.0f;
         ref_reflect(wo, cur.n, r);
-        if (m.spec == GIB_SPEC_PHONG)
-            f = ref_sample_phong(r, m.phong_n, cur.n, ref_pcg32_float(rng), ref_pcg32_float(rng),
-                                 d);
+        if (m.spec == GIB_SPEC_PHONG) {
+            float v1, v2;
+            ref_rng_2d(rng, &v1, &v2);
+            f = ref_sample_phong(r, m.phong_n, cur.n, v1, v2, d);
+        }
         else
             d[0] = r[0], d[1] = r[1], d[2] = r[2];
         if (!(f > 0.0f))

@@ -4,14 +4,17 @@
  *
  * Two parts, each with its own per-pixel statistics, added at the end:
  *  - camera part: at each pixel, the primary hit is found once per round and every sample of the
- *    round is drawn there; sample s uses its own generator (rng.h) and is accumulated in sample
- *    order (Welford) by the one thread that owns the row;
+ *    round is drawn there; sample s uses its own numbers (sampler.h: a PCG32 generator, or
+ *    Sobol points of its batch's scramble) and is accumulated in sample order (Welford; with
+ *    Sobol also into its batch's sum) by the one thread that owns the row;
  *  - light part (caustic, full, higher in scenes with mirrors): pass s traces width*height
  *    particles, in fixed chunks; the chunks' splats are added into the pass image in chunk order,
  *    and each pixel's pass values are accumulated in pass order.
  * So every bit of the image, its standard error and the statistics is independent of the thread
  * count, and a round structure (--target-noise) gives the pixels of one plain run of the same
- * total spp. The two parts are independent, so their variances of the mean add. */
+ * total spp. The two parts are independent, so their variances of the mean add. The camera
+ * part's variance of the mean: with random numbers, the samples' variance over n; with Sobol,
+ * the spread of the batch means (reference.h, GIB_REF_SAMPLER_SOBOL). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +31,7 @@ typedef struct ref_run {
     ref_ctx c;
     ref_progress *prog;
     double *cm, *cm2;         /* camera part: per pixel and channel, mean and Welford's M2 */
+    double *cb;               /* sobol: per pixel, channel and batch (innermost), the batch's sum */
     double *lm, *lm2;         /* light part */
     int s0, s1;               /* this round's samples */
     /* light passes in flight: passes g0 .. g0+gn-1, chunks per pass, their splats and images */
@@ -95,14 +99,19 @@ static void ref_row_task(void *ctx, int y)
         /* the pixel's samples in batches, each on its sample's own stream (ref_sample_camera) */
         for (int s0 = r->s0; s0 < r->s1; s0 += REF_PATH_BATCH) {
             int nb = r->s1 - s0 < REF_PATH_BATCH ? r->s1 - s0 : REF_PATH_BATCH;
-            ref_pcg32 rng[REF_PATH_BATCH];
+            ref_rng rng[REF_PATH_BATCH];
             float v[REF_PATH_BATCH][3];
             for (int i = 0; i < nb; i++)
-                ref_pcg32_seed_sample(&rng[i], pix, (uint64_t)(s0 + i), c->p.seed,
-                                      c->p.component);
+                ref_rng_seed_sample(&rng[i], c->p.sampler, pix, (uint64_t)(s0 + i), c->p.seed,
+                                    c->p.component);
             ref_sample_camera(c, &h, wo, nb, rng, v, &rays);
-            for (int i = 0; i < nb; i++)
+            for (int i = 0; i < nb; i++) {
                 ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s0 + i + 1, v[i]);
+                if (r->cb)
+                    for (int k = 0; k < 3; k++)
+                        r->cb[(pix * 3 + k) * GIB_REF_SOBOL_BATCHES +
+                              (size_t)(s0 + i) % GIB_REF_SOBOL_BATCHES] += (double)v[i][k];
+            }
         }
     }
     atomic_fetch_add(&r->prog->rays, rays);
@@ -191,6 +200,10 @@ int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error 
                         "reference: component %s samples at random: spp must be at least 2 (with "
                         "one sample the variance, hence the standard error, is unknown)",
                         gib_component_name(p->component));
+    if (p->sampler != GIB_REF_SAMPLER_DEFAULT && p->sampler != GIB_REF_SAMPLER_SOBOL &&
+        p->sampler != GIB_REF_SAMPLER_RANDOM)
+        return gib_fail(err, "reference: unknown sampler %d (sobol %d, random %d)", p->sampler,
+                        GIB_REF_SAMPLER_SOBOL, GIB_REF_SAMPLER_RANDOM);
     if (p->threads < 0)
         return gib_fail(err, "reference: threads must be >= 0 (0 = all cores), got %d",
                         p->threads);
@@ -219,6 +232,26 @@ static int ref_thread_count(const gib_ref_params *p)
     return n < 1 ? 1 : n > REF_MAX_THREADS ? REF_MAX_THREADS : (int)n;
 }
 
+/* The variance of pixel value i's mean after n samples (n > 1): the camera part's (the samples'
+ * variance over n, or with Sobol batches the batch means' spread: B equal batches, B = n when
+ * n <= GIB_REF_SOBOL_BATCHES, as gib_reference_normalize and ref_next_goal keep it) plus the
+ * light part's (its passes' variance over n). */
+static double ref_var_of_mean(const ref_run *r, size_t i, int n)
+{
+    double v = r->lm2 ? r->lm2[i] / (n - 1) / n : 0.0;
+    if (!r->cb)
+        return v + r->cm2[i] / (n - 1) / n;
+    const int B = n < GIB_REF_SOBOL_BATCHES ? n : GIB_REF_SOBOL_BATCHES;
+    const double *s = r->cb + i * GIB_REF_SOBOL_BATCHES, per = (double)(n / B);
+    double mb = 0.0, ss = 0.0;
+    for (int b = 0; b < B; b++)
+        mb += s[b] / per;
+    mb /= B;
+    for (int b = 0; b < B; b++)
+        ss += (s[b] / per - mb) * (s[b] / per - mb);
+    return v + ss / ((double)B * (B - 1));
+}
+
 /* Image mean and noise RMSE over pixels and channels, in pixel order. */
 static void ref_summary(const ref_run *r, int n, double *mean, double *noise)
 {
@@ -227,22 +260,26 @@ static void ref_summary(const ref_run *r, int n, double *mean, double *noise)
     for (size_t i = 0; i < m; i++) {
         sum += r->cm[i] + (r->lm ? r->lm[i] : 0.0);
         if (n > 1)
-            var += (r->cm2[i] + (r->lm2 ? r->lm2[i] : 0.0)) / (n - 1) / n;
+            var += ref_var_of_mean(r, i, n);
     }
     *mean = sum / (double)m;
     *noise = sqrt(var / (double)m);
 }
 
 /* The next round's total spp: the noise falls as 1/sqrt(spp), aim 10% past the target, grow at
- * most 4x per round (a noisy early estimate cannot overshoot far), never past max_spp. */
-static int ref_next_goal(int n, double rel, double target, int max_spp)
+ * most 4x per round (a noisy early estimate cannot overshoot far), never past max_spp. With
+ * Sobol batches, above GIB_REF_SOBOL_BATCHES a multiple of it (max_spp is one: normalised). */
+static int ref_next_goal(int n, double rel, double target, int max_spp, int sobol)
 {
     double need = ceil((double)n * (rel / target) * (rel / target) * 1.1);
     if (!(need <= 4.0 * n))
         need = 4.0 * n;
     if (need > max_spp)
         need = max_spp;
-    return need > n ? (int)need : n + 1;
+    int goal = need > n ? (int)need : n + 1;
+    if (sobol)
+        goal = ref_sobol_round_spp(goal);
+    return goal < max_spp ? goal : max_spp;
 }
 
 static int ref_run_alloc(ref_run *r, gib_error *err)
@@ -251,6 +288,9 @@ static int ref_run_alloc(ref_run *r, gib_error *err)
     r->cm = gib_calloc(m, sizeof *r->cm, err);
     r->cm2 = r->cm ? gib_calloc(m, sizeof *r->cm2, err) : NULL;
     if (!r->cm2)
+        return -1;
+    if (r->c.p.sampler == GIB_REF_SAMPLER_SOBOL && r->c.camera_part && r->c.p.spp > 1 &&
+        !(r->cb = gib_calloc(m * GIB_REF_SOBOL_BATCHES, sizeof *r->cb, err)))
         return -1;
     if (!r->c.light_part)
         return 0;
@@ -272,13 +312,14 @@ static int ref_run_alloc(ref_run *r, gib_error *err)
 static void ref_run_saved(ref_run *r, int save)
 {
     const size_t m = (size_t)r->c.p.width * (size_t)r->c.p.height * 3;
-    double *arr[4] = {r->cm, r->cm2, r->lm, r->lm2};
-    for (int i = 0; i < 4; i++)
+    double *arr[5] = {r->cm, r->cm2, r->lm, r->lm2, r->cb};
+    size_t len[5] = {m, m, m, m, m * GIB_REF_SOBOL_BATCHES}, at = 0;
+    for (int i = 0; i < 5; at += len[i], i++)
         if (arr[i]) {
             if (save)
-                memcpy(r->saved + (size_t)i * m, arr[i], m * sizeof *arr[i]);
+                memcpy(r->saved + at, arr[i], len[i] * sizeof *arr[i]);
             else
-                memcpy(arr[i], r->saved + (size_t)i * m, m * sizeof *arr[i]);
+                memcpy(arr[i], r->saved + at, len[i] * sizeof *arr[i]);
         }
 }
 
@@ -292,6 +333,7 @@ static void ref_run_free(ref_run *r)
     free(r->pass_img);
     free(r->lm2);
     free(r->lm);
+    free(r->cb);
     free(r->cm2);
     free(r->cm);
 }
@@ -347,7 +389,8 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     r.stop = p->interrupt;
     atomic_init(&r.abandoned, 0);
     if (r.stop && np->target_noise > 0.0 &&
-        !(r.saved = gib_calloc((size_t)W * H * 3 * 4, sizeof *r.saved, err)))
+        !(r.saved = gib_calloc((size_t)W * H * 3 * (4 + GIB_REF_SOBOL_BATCHES), sizeof *r.saved,
+                               err)))
         goto done;
     if (gib_image_alloc(out, W, H, 3, err) < 0 ||
         (stderr_img && gib_image_alloc(stderr_img, W, H, 3, err) < 0))
@@ -390,16 +433,16 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
             ref_run_saved(&r, 1);
             r.can_abandon = 1;
         }
-        goal = ref_next_goal(n, rel, np->target_noise, np->max_spp);
+        goal = ref_next_goal(n, rel, np->target_noise, np->max_spp,
+                             np->sampler == GIB_REF_SAMPLER_SOBOL);
     }
     ref_progress_end(&prog);
 
     for (size_t i = 0; i < (size_t)W * H * 3; i++) {
         double v = r.cm[i] + (r.lm ? r.lm[i] : 0.0);
-        double var = n > 1 ? (r.cm2[i] + (r.lm2 ? r.lm2[i] : 0.0)) / (n - 1) : 0.0;
         out->px[i] = (float)v;
         if (stderr_img)
-            stderr_img->px[i] = (float)sqrt(var / n);
+            stderr_img->px[i] = n > 1 ? (float)sqrt(ref_var_of_mean(&r, i, n)) : 0.0f;
     }
     if (stats) {
         memset(stats, 0, sizeof *stats);
@@ -414,6 +457,7 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
         stats->interrupted = interrupted;
         stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
         stats->seconds = ref_now() - t0;
+        stats->render_seconds = stats->seconds;
         stats->threads = prog.threads_used;
         if (w->time_embree) { /* ticks to seconds at the rate the clock ran during this render,
                                * less the clock reads themselves (one pair a ray) */

@@ -12,7 +12,8 @@
 #include "scenes/scene.h"
 
 /* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). */
-#define GIB_REFERENCE_VERSION "gibench-ref-5" /* 5: scenes far from the origin in their own frame */
+#define GIB_REFERENCE_VERSION "gibench-ref-6" /* 6: Owen-scrambled Sobol camera samples, noise from
+                                                * independently scrambled batches */
 
 enum gib_component {
     GIB_COMP_AO = 0,
@@ -43,6 +44,23 @@ int gib_component_deterministic(const gib_scene *scene, int component);
 #define GIB_REF_DEFAULT_MAX_SPECULAR 1
 #define GIB_REF_DEFAULT_MAX_SPP 65536
 
+/* The camera samples' numbers (reference/sampler.h). SOBOL, the default: Owen-scrambled Sobol
+ * points (Burley 2020), each pixel's samples dealt round-robin into GIB_REF_SOBOL_BATCHES batches
+ * with independent scrambles. The noise reported (noise_rmse, the standard-error image) is then
+ * the spread of the batch means: sqrt(sum_b (m_b - m)^2 / (B (B - 1))) per pixel and channel, B
+ * batches of equal size (spp is rounded up to a multiple of B above B; below, each sample is its
+ * own batch). The spread of single samples would overstate a low-discrepancy estimator's error
+ * (its samples are not independent); independent scrambles make the batch means independent and
+ * unbiased, so theirs is an honest estimate (randomised quasi-Monte Carlo replicates).
+ * RANDOM: independent PCG32 numbers per sample, the noise from the samples' own variance (the
+ * renderer before version 6, bit for bit). The light-tracing passes (mirrors) use PCG32 with
+ * either; their passes are independent and their variance is added as before. */
+enum { GIB_REF_SAMPLER_DEFAULT = 0, GIB_REF_SAMPLER_SOBOL = 1, GIB_REF_SAMPLER_RANDOM = 2 };
+#define GIB_REF_SOBOL_BATCHES 8
+const char *gib_ref_sampler_name(int sampler);
+/* Returns the enum value ("sobol", "random"), or -1. */
+int gib_ref_sampler_parse(const char *name);
+
 /* A request to stop early, for a caller that catches an interrupt (`gibench reference` on Ctrl-C):
  * once `requested` is set, a render in rounds toward a target noise abandons the round in progress
  * (its threads stop at the next pixel or light chunk; the statistics go back to the last finished
@@ -69,6 +87,7 @@ typedef struct gib_ref_params {
     double target_noise;  /* > 0: add rounds until noise_rmse / mean <= this, up to max_spp */
     int max_spp;          /* cap with target_noise; 0 = default 65536 */
     uint64_t seed;        /* default 1 */
+    int sampler;          /* GIB_REF_SAMPLER_*; 0 = sobol */
     int threads;          /* 0 = all cores */
     int camera;           /* index into scene->cameras */
     float time;           /* seconds: the instant a moving scene is rendered at (gib_motion_pose);
@@ -91,6 +110,7 @@ typedef struct gib_ref_stats {
     double embree_cpu_seconds; /* bench only: seconds inside Embree's ray calls, summed over
                                 * threads (0 unless the bench asked for it, or not measurable) */
     int threads;          /* threads the render ran on (at most one per image row, 256) */
+    double render_seconds; /* seconds of sampling alone (seconds less the BVH build) */
 } gib_ref_stats;
 
 /* Renders into out (3 channels, allocated here). If stderr_img is non-NULL it receives the per-pixel
@@ -118,13 +138,14 @@ uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p
 /* Fills the EXR header attributes describing a reference render, all strings: component, spp,
  * seconds, scene_hash (16 hex digits), renderer_version, noise_rmse, mean, width, height, dmax
  * ("inf" when unbounded), seed, camera, obscurance, max_depth, min_depth, max_specular,
- * target_noise, max_spp, rounds, estimator ("deterministic" or "random"), footprint ("centre" or
+ * target_noise, max_spp, rounds, estimator ("deterministic" or "random"), sampler ("sobol",
+ * "random", or "none" for a deterministic estimator), footprint ("centre" or
  * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key,
  * sky (the sky's radiance, three numbers, "0 0 0" without one), stop (why sampling ended: "spp"
  * the fixed count, "target" the target noise, "max_spp" the cap before the target, "interrupted").
  * A moving scene's also get `time` (seconds). Parameters are written normalised. Returns the
  * count written, at most max_attrs; GIB_REF_ATTR_COUNT is the most there are. */
-#define GIB_REF_ATTR_COUNT 26
+#define GIB_REF_ATTR_COUNT 27
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
 

@@ -103,6 +103,11 @@ typedef struct sums { /* per channel: summed pixel values and summed variances o
 static void rt_add(const gib_scene *s, int comp, int spp, sums *acc, sums *acc2, double *mean)
 {
     gib_ref_params p = rt_params(comp, W, H, spp);
+    /* Independent samples: the 4-sigma bound on 192 blocks assumes block standard errors of many
+     * degrees of freedom; Sobol's come from 8 batches a pixel (7 each, Student-t tails), which
+     * would need a wider bound. The sum's exactness does not depend on the sampler; Sobol's
+     * unbiasedness is tested against closed forms (ref_ao_wall, ref_sky, ref_noise_honest). */
+    p.sampler = GIB_REF_SAMPLER_RANDOM;
     p.max_depth = 2;
     p.max_specular = 1;
     gib_image img, sd;

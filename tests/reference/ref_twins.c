@@ -11,6 +11,10 @@
  *    then hit points that differ by that fraction, and the images by a few 1e-6 (measured 3e-6
  *    direct, 0 ao, 8e-7 indirect). 2e-5 leaves room for another compiler or Embree ISA while a
  *    scale-dependent constant (a fixed epsilon, a fixed dmax) moves them by whole percent.
+ *    Except a ray that grazes an edge within that fraction: it can hit in one scene and miss in
+ *    the other, moving one pixel by one sample's share (ao: relative RMSE 4.8e-4 from one such
+ *    ray; seen with 5 of 16 seeds with independent samples and 4 of 16 with Sobol). So at most
+ *    2 pixels may differ by more than 1% of the mean, and the others must agree to 2e-5 of it.
  *  - far against back: the same float geometry, rendered in the renderer's frame (moved next to
  *    the origin by a multiple of 0.5 m) and at the origin, so only the rounding of the arithmetic
  *    differs (a few 1e-7 of the box). A pixel centre within that of a silhouette or an edge can
@@ -43,6 +47,7 @@ static const char *const NAMES[C_COUNT] = {"cornell", "hard_far", "hard_tiny", "
 static const double SCALE[C_COUNT] = {1.0, 1.0, 0.0018, 18000.0, 1.0};
 
 #define TOL_SCALED 2e-5
+#define TOL_GRAZE 2
 #define TOL_FLIPS (W * H / 200)
 #define TOL_REST 1e-5
 
@@ -163,10 +168,14 @@ int main(void)
                "(the 3.9 mm rounding alone, its box moved back: %.3g); hard_far against its box "
                "moved back: %d pixels apart, the others within %.3g\n",
                cases[c].what, e[C_TINY], e[C_HUGE], e[C_FAR], e[C_BACK], flips, rest);
-        RT_CHECK(e[C_TINY] <= TOL_SCALED, "%s: hard_tiny %g > %g", cases[c].what, e[C_TINY],
-                 TOL_SCALED);
-        RT_CHECK(e[C_HUGE] <= TOL_SCALED, "%s: hard_huge %g > %g", cases[c].what, e[C_HUGE],
-                 TOL_SCALED);
+        for (int i = C_TINY; i <= C_HUGE; i++) {
+            double rest_s;
+            int graze = flipped(&img[C_CORNELL], &img[i], &rest_s);
+            RT_CHECK(graze <= TOL_GRAZE && rest_s <= TOL_SCALED,
+                     "%s: %s: %d pixels apart (max %d), the others within %g (max %g); relative "
+                     "RMSE %g", cases[c].what, NAMES[i], graze, TOL_GRAZE, rest_s, TOL_SCALED,
+                     e[i]);
+        }
         RT_CHECK(flips <= TOL_FLIPS, "%s: hard_far and its box at the origin differ at %d pixels > %d",
                  cases[c].what, flips, TOL_FLIPS);
         RT_CHECK(rest <= TOL_REST, "%s: hard_far against its box at the origin, pixels that agree: "
