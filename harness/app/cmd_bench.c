@@ -1,6 +1,8 @@
 /* gibench bench reference — the reference renderer's ray throughput against raw Embree
- * (reference/ref_bench.c), printed and written to CSV with the machine it ran on. Performance is
+ * (reference/ref_bench.c), and with --efficiency its sampling efficiency by sampler (how fast its
+ * error falls per second), printed and written to CSV with the machine it ran on. Performance is
  * measured and reported here, never asserted by a test. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +15,9 @@
 static const char help[] =
     "usage: gibench bench reference [--scene S[,S...]] [--size WxH] [--component C] [--spp N]\n"
     "                               [--threads N] [--repeat N] [--out F.csv]\n"
+    "       gibench bench reference --efficiency [--scene S[,S...]] [--size WxH]\n"
+    "                               [--component C[,C...]] [--sampler random,sobol] [--spp N[,N...]]\n"
+    "                               [--truth-spp N] [--threads N] [--repeat N] [--out F.csv]\n"
     "\n"
     "Measures, on one scene and BVH: raw Embree throughput on random incoherent rays\n"
     "(rtcIntersect1; from the bounding box, and Aila and Laine's diffuse rays from the visible\n"
@@ -27,7 +32,16 @@ static const char help[] =
     "cores. --repeat N rounds (default 3, at most 100) each run every measure once; each row\n"
     "has the best, median and worst time, and its paired ratio: its rays/s over the fastest\n"
     "replay's in the same round, whose median is the figure to quote on a shared machine\n"
-    "(both sides of a pair ran under the same load).\n";
+    "(both sides of a pair ran under the same load).\n"
+    "\n"
+    "--efficiency: per scene and component, a truth image (Sobol, --truth-spp, default 2048,\n"
+    "seed 1000), then per sampler and spp --repeat renders (seeds 1..N); each render's actual\n"
+    "error is its mean squared difference from the truth less the truth's own reported variance\n"
+    "(independent renders: variances add). efficiency = 1 / (relative variance x seconds), the\n"
+    "relative variance that error over the truth's squared mean, the seconds those of sampling\n"
+    "(the BVH build left out); beside it the efficiency the renderer's own noise estimate\n"
+    "predicts, and their ratio (an honest estimate gives ~1). Defaults: scenes cornell,sibenik,\n"
+    "sponza, components full,indirect, 128x128, spp 16,64, samplers random,sobol, 3 repeats.\n";
 
 static void machine_name(char *out, size_t len)
 {
@@ -179,6 +193,196 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
     return 0;
 }
 
+/* ---- --efficiency: error per second, by sampler ---- */
+
+typedef struct eff_opts {
+    int w, h, truth_spp, repeat, threads;
+    int spp[8], nspp;
+    int sampler[2], nsampler;
+    int comp[GIB_COMP_COUNT], ncomp;
+} eff_opts;
+
+static int eff_render(const gib_scene *sc, int comp, int spp, int sampler, uint64_t seed,
+                      const eff_opts *o, gib_image *img, gib_ref_stats *st)
+{
+    gib_error err = {{0}};
+    gib_ref_params p = {.component = comp, .width = o->w, .height = o->h, .spp = spp,
+                        .seed = seed, .sampler = sampler, .threads = o->threads, .quiet = 1};
+    if (gib_reference_render(sc, &p, img, NULL, st, &err) < 0) {
+        fprintf(stderr, "gibench bench: %s %s: %s\n", sc->name, gib_component_name(comp), err.msg);
+        return -1;
+    }
+    return 0;
+}
+
+static int eff_cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* One scene: every component, sampler and spp; rows to f. Returns 0, 3 (data absent), 1. */
+static int eff_scene(const char *name, const eff_opts *o, FILE *f, const char *machine)
+{
+    gib_error err = {{0}};
+    gib_scene sc;
+    int rc = gib_scene_load(name, &sc, &err);
+    if (rc < 0) {
+        fprintf(stderr, "gibench bench: %s scene '%s': %s\n",
+                rc == GIB_SCENE_UNAVAILABLE ? "skipping" : "cannot load", name, err.msg);
+        return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
+    }
+    long cores = o->threads > 0 ? o->threads : sysconf(_SC_NPROCESSORS_ONLN);
+    for (int ci = 0; ci < o->ncomp; ci++) {
+        const int comp = o->comp[ci];
+        gib_image truth;
+        gib_ref_stats ts;
+        if (eff_render(&sc, comp, o->truth_spp, GIB_REF_SAMPLER_SOBOL, 1000, o, &truth, &ts) < 0) {
+            gib_scene_free(&sc);
+            return 1;
+        }
+        const size_t n = (size_t)o->w * o->h * 3;
+        const double tvar = ts.noise_rmse * ts.noise_rmse, m2 = ts.mean * ts.mean;
+        printf("%s %s %dx%d: truth %d spp (sobol) in %.1f s, mean %.6g, its noise %.3g\n",
+               sc.name, gib_component_name(comp), o->w, o->h, ts.spp, ts.render_seconds, ts.mean,
+               ts.noise_rmse);
+        for (int k = 0; k < o->nspp; k++) {
+            /* the samplers' repeats alternate, so both ran under the machine's same load */
+            double secs[2][GIB_REF_BENCH_MAX_REPEATS], err2[2] = {0}, pred2[2] = {0};
+            int spp_done[2] = {0};
+            for (int r = 0; r < o->repeat; r++)
+                for (int si = 0; si < o->nsampler; si++) {
+                    gib_image img;
+                    gib_ref_stats st;
+                    if (eff_render(&sc, comp, o->spp[k], o->sampler[si], (uint64_t)r + 1, o, &img,
+                                   &st) < 0) {
+                        gib_image_free(&truth);
+                        gib_scene_free(&sc);
+                        return 1;
+                    }
+                    double e2 = 0.0;
+                    for (size_t i = 0; i < n; i++) {
+                        double d = (double)img.px[i] - truth.px[i];
+                        e2 += d * d;
+                    }
+                    err2[si] += e2 / (double)n / o->repeat;
+                    pred2[si] += st.noise_rmse * st.noise_rmse / o->repeat;
+                    secs[si][r] = st.render_seconds;
+                    spp_done[si] = st.spp;
+                    gib_image_free(&img);
+                }
+            double eff_random = 0.0;
+            for (int si = 0; si < o->nsampler; si++) {
+                const int smp = o->sampler[si];
+                double *sv = secs[si];
+                qsort(sv, (size_t)o->repeat, sizeof *sv, eff_cmp);
+                double t = o->repeat % 2 ? sv[o->repeat / 2]
+                                         : 0.5 * (sv[o->repeat / 2 - 1] + sv[o->repeat / 2]);
+                double var = err2[si] - tvar; /* the truth's own noise removed */
+                double rel = m2 > 0.0 ? var / m2 : var;
+                double prel = m2 > 0.0 ? pred2[si] / m2 : pred2[si];
+                double eff = var > 0.0 && t > 0.0 ? 1.0 / (rel * t) : INFINITY;
+                double peff = pred2[si] > 0.0 && t > 0.0 ? 1.0 / (prel * t) : INFINITY;
+                double honest = var > 0.0 ? sqrt(pred2[si] / var) : INFINITY;
+                if (smp == GIB_REF_SAMPLER_RANDOM)
+                    eff_random = eff;
+                double vs = eff_random > 0.0 ? eff / eff_random : 0.0;
+                printf("  %-6s %5d spp: %.3f s (median of %d), relative RMSE %.4g, efficiency "
+                       "%.4g /s (reported noise's: %.4g, reported/actual error %.3f)%s",
+                       gib_ref_sampler_name(smp), spp_done[si], t, o->repeat,
+                       sqrt(fmax(rel, 0.0)), eff, peff, honest,
+                       vs > 0.0 && smp != GIB_REF_SAMPLER_RANDOM ? "" : "\n");
+                if (vs > 0.0 && smp != GIB_REF_SAMPLER_RANDOM)
+                    printf("; %.2fx random's\n", vs);
+                if (f)
+                    fprintf(f,
+                            "%s,%u,%s,%d,%d,%d,%d,%ld,%s,%s,%d,%.6f,%.6f,%.9g,%.9g,%.9g,%.6f,"
+                            "%.6g,%.6g,%.4f\n",
+                            sc.name, sc.triangle_count, gib_component_name(comp), o->w, o->h,
+                            spp_done[si], ts.spp, cores, machine, gib_ref_sampler_name(smp),
+                            o->repeat, t, sv[o->repeat - 1], ts.mean, sqrt(fmax(rel, 0.0)),
+                            sqrt(prel), honest, eff, peff, vs);
+            }
+        }
+        if (f)
+            fflush(f);
+        gib_image_free(&truth);
+    }
+    gib_scene_free(&sc);
+    return 0;
+}
+
+/* Splits a comma list into ints parsed by parse(); returns the count or -1. */
+static int eff_list(const char *opt, const char *v, int *out, int max, int (*parse)(const char *))
+{
+    char buf[256];
+    int n = 0;
+    if (snprintf(buf, sizeof buf, "%s", v) >= (int)sizeof buf)
+        return -1;
+    for (char *save = NULL, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        int x = parse(t);
+        if (x < 0 || n >= max) {
+            fprintf(stderr, "gibench bench: %s: '%s' %s\n", opt, t,
+                    x < 0 ? "not understood" : "one too many");
+            return -1;
+        }
+        out[n++] = x;
+    }
+    if (n == 0)
+        fprintf(stderr, "gibench bench: %s: empty list\n", opt);
+    return n > 0 ? n : -1;
+}
+
+static int eff_parse_spp(const char *t)
+{
+    char *end;
+    long v = strtol(t, &end, 10);
+    return *end || v < 2 || v > (1 << 20) ? -1 : (int)v;
+}
+
+static int eff_run(const char *scenes, const eff_opts *o, const char *out)
+{
+    char machine[256], list[1024], part[4096];
+    machine_name(machine, sizeof machine);
+    snprintf(list, sizeof list, "%s", scenes);
+    if (out && snprintf(part, sizeof part, "%s.part", out) >= (int)sizeof part) {
+        fprintf(stderr, "gibench bench: --out path too long\n");
+        return 2;
+    }
+    FILE *f = out ? fopen(part, "w") : NULL;
+    if (out && !f) {
+        fprintf(stderr, "gibench bench: cannot write %s\n", part);
+        return 1;
+    }
+    if (f)
+        fprintf(f, "scene,triangles,component,width,height,spp,truth_spp,cores,machine,sampler,"
+                   "repeats,seconds_median,seconds_max,truth_mean,rel_rmse_actual,"
+                   "rel_noise_reported,reported_over_actual,efficiency,efficiency_reported,"
+                   "efficiency_vs_random\n");
+    int ran = 0, failed = 0;
+    for (char *save = NULL, *name = strtok_r(list, ",", &save); name;
+         name = strtok_r(NULL, ",", &save)) {
+        int rc = eff_scene(name, o, f, machine);
+        ran += rc == 0;
+        failed += rc == 1;
+    }
+    if (f) {
+        int werr = ferror(f);
+        if (fclose(f) != 0 || werr || ran == 0) {
+            if (ran > 0)
+                fprintf(stderr, "gibench bench: writing %s failed\n", part);
+            remove(part);
+            return ran == 0 ? 3 : 1;
+        }
+        if (rename(part, out) != 0) {
+            fprintf(stderr, "gibench bench: cannot rename %s to %s\n", part, out);
+            return 1;
+        }
+        printf("-> %s\n", out);
+    }
+    return failed ? 1 : ran ? 0 : 3;
+}
+
 int gib_cmd_bench(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "reference") != 0) {
@@ -189,14 +393,20 @@ int gib_cmd_bench(int argc, char **argv)
         fprintf(stderr, "gibench bench: what to measure? ('reference')\n%s", help);
         return 2;
     }
-    const char *scene_name = NULL, *size = "256x256", *out = NULL, *comp = "full";
-    long spp = 16, threads = 0, repeat = 3;
+    const char *scene_name = NULL, *size = NULL, *out = NULL, *comp = NULL;
+    const char *samplers = "random,sobol", *spps = NULL;
+    long spp = 16, threads = 0, repeat = 3, truth_spp = 2048;
+    int efficiency = 0;
     gib_error err = {{0}};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(help, stdout);
             return 0;
+        }
+        if (!strcmp(a, "--efficiency")) {
+            efficiency = 1;
+            continue;
         }
         if (!v) {
             fprintf(stderr, "gibench bench: option %s needs a value\n%s", a, help);
@@ -208,7 +418,10 @@ int gib_cmd_bench(int argc, char **argv)
         else if (!strcmp(a, "--size")) size = v;
         else if (!strcmp(a, "--out")) out = v;
         else if (!strcmp(a, "--component")) comp = v;
-        else if (!strcmp(a, "--spp")) rc = gib_parse_int(a, v, 2, 1 << 20, &spp, &err);
+        else if (!strcmp(a, "--spp")) spps = v;
+        else if (!strcmp(a, "--sampler")) samplers = v;
+        else if (!strcmp(a, "--truth-spp"))
+            rc = gib_parse_int(a, v, 2, 1 << 20, &truth_spp, &err);
         else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &threads, &err);
         else if (!strcmp(a, "--repeat")) rc = gib_parse_int(a, v, 1, 100, &repeat, &err);
         else {
@@ -219,6 +432,32 @@ int gib_cmd_bench(int argc, char **argv)
             fprintf(stderr, "gibench bench: %s\n", err.msg);
             return 2;
         }
+    }
+    if (efficiency) {
+        eff_opts o = {.truth_spp = (int)truth_spp, .repeat = (int)repeat, .threads = (int)threads};
+        if (gib_parse_size("--size", size ? size : "128x128", &o.w, &o.h, &err) < 0) {
+            fprintf(stderr, "gibench bench: %s\n", err.msg);
+            return 2;
+        }
+        if ((o.nspp = eff_list("--spp", spps ? spps : "16,64", o.spp, 8, eff_parse_spp)) < 0 ||
+            (o.nsampler = eff_list("--sampler", samplers, o.sampler, 2, gib_ref_sampler_parse)) <
+                0 ||
+            (o.ncomp = eff_list("--component", comp ? comp : "full,indirect", o.comp,
+                                GIB_COMP_COUNT, gib_component_parse)) < 0)
+            return 2;
+        return eff_run(scene_name ? scene_name : "cornell,sibenik,sponza", &o, out);
+    }
+    if (!size)
+        size = "256x256";
+    if (!comp)
+        comp = "full";
+    if (spps && gib_parse_int("--spp", spps, 2, 1 << 20, &spp, &err) < 0) {
+        fprintf(stderr, "gibench bench: %s\n", err.msg);
+        return 2;
+    }
+    if (strcmp(samplers, "random,sobol") != 0) {
+        fprintf(stderr, "gibench bench: --sampler goes with --efficiency\n");
+        return 2;
     }
     int w, h, component = gib_component_parse(comp);
     if (component < 0) {
