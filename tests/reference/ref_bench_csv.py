@@ -13,6 +13,8 @@ that the numbers written are consistent with each other. Also: --repeat beyond 1
 with the parameter named, a camera that sees no surface (hard_empty) is an error naming
 the camera and scene, not a diffuse-ray figure of nothing, and a list of scenes writes one CSV
 (a failing scene keeps the others' rows; a run that measures nothing keeps an earlier file).
+--efficiency: its CSV's header and rows, and the reported noise within [0.75, 1.33] of the
+actual error for both samplers.
 Usage: ref_bench_csv.py GIBENCH WORKDIR."""
 import csv
 import math
@@ -183,4 +185,38 @@ with open(multi) as f:
 bad = subprocess.run([gib, "bench", "reference", "--scene", ",,"], capture_output=True, text=True)
 check("a --scene list of no names refused naming the parameter",
       bad.returncode == 2 and "--scene" in bad.stderr)
+
+# --efficiency: the CSV's structure, and the renderer's own noise against the actual error
+# (reported_over_actual). Cornell box indirect, 16x16, 64 spp against a 1024-spp truth, 4
+# repeats: the actual MSE averages 4 x 768 squared errors (~3% spread) and the prediction as
+# many variance estimates, so an honest estimate lands within [0.75, 1.33] (the truth's own
+# noise, 1/16 of the tests' variance, is removed by the command). No timing is asserted.
+EFF_HEADER = ("scene,triangles,component,width,height,spp,truth_spp,cores,machine,sampler,"
+              "repeats,seconds_median,seconds_max,truth_mean,rel_rmse_actual,"
+              "rel_noise_reported,reported_over_actual,efficiency,efficiency_reported,"
+              "efficiency_vs_random")
+eff = os.path.join(work, "bench_efficiency.csv")
+run = subprocess.run([gib, "bench", "reference", "--efficiency", "--scene", "cornell",
+                      "--component", "indirect", "--size", "16x16", "--spp", "64",
+                      "--truth-spp", "1024", "--repeat", "4", "--out", eff],
+                     capture_output=True, text=True)
+check("--efficiency exits 0 (%s)" % run.stderr.strip()[-200:], run.returncode == 0)
+with open(eff) as f:
+    check("--efficiency header", f.readline().strip() == EFF_HEADER)
+with open(eff) as f:
+    erows = list(csv.DictReader(f))
+check("--efficiency: one row per sampler, random first",
+      [r["sampler"] for r in erows] == ["random", "sobol"])
+for r in erows:
+    ratio = float(r["reported_over_actual"])
+    check("%s: reported noise / actual error %.3f within [0.75, 1.33]" % (r["sampler"], ratio),
+          0.75 <= ratio <= 1.33)
+    check("%s: efficiency positive and finite, spp 64, truth 1024" % r["sampler"],
+          math.isfinite(float(r["efficiency"])) and float(r["efficiency"]) > 0 and
+          r["spp"] == "64" and r["truth_spp"] == "1024")
+check("random's efficiency_vs_random is 1", erows[0]["efficiency_vs_random"] == "1.0000")
+bad = subprocess.run([gib, "bench", "reference", "--efficiency", "--sampler", "halton"],
+                     capture_output=True, text=True)
+check("an unknown sampler refused naming the parameter",
+      bad.returncode == 2 and "--sampler" in bad.stderr and "halton" in bad.stderr)
 sys.exit(1 if fails else 0)
