@@ -627,13 +627,15 @@ int gib_cmd_run(int argc, char **argv)
     make_columns(&cols);
     int status = 0;
     for (int i = 0; i < nfiles && !ctx.write_failed; i++) {
-        gib_csv csv, passes;
+        gib_csv csv = {.lock_fd = -1}, passes = {.lock_fd = -1};
         char path[2048], ppath[2048];
         snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
         snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
         if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
             gib_csv_open(&passes, ppath, pass_columns, 14, pass_key_columns, 8, &err) < 0) {
             fprintf(stderr, "gibench run: %s\n", err.msg);
+            gib_csv_close(&csv);
+            gib_csv_close(&passes);
             status = 1;
             continue;
         }

@@ -3,6 +3,8 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 /* Splits one CSV line (RFC 4180 quoting, no embedded newlines: gibench never writes them) into
@@ -120,6 +122,23 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
     memset(c, 0, sizeof *c);
     snprintf(c->path, sizeof c->path, "%s", path);
     c->ncols = ncols;
+    c->lock_fd = -1;
+    /* One writer a table: a second run of the same matrix into the same folder refuses before it
+     * reads or cuts anything, rather than append the same rows. The lock is PATH.lock's (kept
+     * open until gib_csv_close), so it goes with the process, even when that is killed. */
+    char lock[1100];
+    snprintf(lock, sizeof lock, "%s.lock", path);
+    c->lock_fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (c->lock_fd < 0)
+        return gib_fail(err, "cannot create the lock file %s", lock);
+    if (flock(c->lock_fd, LOCK_EX | LOCK_NB) != 0) {
+        int busy = errno == EWOULDBLOCK;
+        close(c->lock_fd);
+        c->lock_fd = -1;
+        return gib_fail(err, "%s: %s", path, busy ? "another gibench run is writing this table (one "
+                                                    "run a matrix and output folder at a time)"
+                                                  : "cannot lock it");
+    }
     if (nkey < 0 || nkey > (int)(sizeof c->key_cols / sizeof c->key_cols[0]))
         return gib_fail(err, "%s: %d key columns, at most 16", path, nkey);
     for (int k = 0; k < nkey; k++)
@@ -208,8 +227,11 @@ void gib_csv_close(gib_csv *c)
 {
     if (c->f)
         fclose(c->f);
+    if (c->lock_fd >= 0)
+        close(c->lock_fd); /* releases the lock */
     for (int i = 0; i < c->nkeys; i++)
         free(c->keys[i]);
     free(c->keys);
     memset(c, 0, sizeof *c);
+    c->lock_fd = -1;
 }

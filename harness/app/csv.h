@@ -19,6 +19,7 @@ typedef struct gib_csv {
     int nkeys;
     int key_cols[16]; /* the columns that make a row's identity key (none: every row is new) */
     int nkey;
+    int lock_fd;      /* PATH.lock, flock'ed while the table is open */
 } gib_csv;
 
 /* Opens for appending. An existing file with the same header is kept (its rows' identity keys are

@@ -9,6 +9,8 @@
 - A shader that fails to compile: GIBENCH_INJECT_SHADER_ERROR=hbao puts a line the GLSL compiler
   rejects into hbao's shaders: hbao's rows are `shader_failed` with the driver's log in the
   message, the other techniques' rows are `ok` and equal to a clean run's, the run exits 1.
+- Two runs of the same matrix into the same folder at once: the second refuses (a lock), the first
+  finishes, every row once.
 - A full disk (every file capped at 7,000 bytes): a clear error naming the file, the run stops,
   no temporary or truncated file is left, and the next run finishes with the clean run's rows."""
 import argparse
@@ -19,6 +21,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import time
 
 KEY = ("scene", "technique", "component", "params", "width", "height")
 failures = []
@@ -78,6 +81,24 @@ def main():
                                             for k in other),
           f"the matrix goes on: {len(other)} other rows ok and equal to the clean run's")
     check("shader_failed" in err, "the failure is reported on stderr as it happens")
+    # Two runs of the same matrix into the same folder at once: the second refuses at once (the
+    # table's lock), the first finishes, every row is there once.
+    two = os.path.join(a.work, "two")
+    first = subprocess.Popen([a.gibench, "run", matrix, "--out", two, "--cache", cache, "--no-images"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    while first.poll() is None and not os.path.exists(os.path.join(two, "faults.csv")):
+        time.sleep(0.01)
+    second = subprocess.run([a.gibench, "run", matrix, "--out", two, "--cache", cache, "--no-images"],
+                            capture_output=True, text=True)
+    first.communicate()
+    check(first.returncode == 0, f"two runs at once: the first finishes (exit {first.returncode})")
+    check(second.returncode == 1 and "another gibench run is writing" in second.stderr,
+          f"two runs at once: the second refuses (exit {second.returncode}): "
+          f"{second.stderr.strip().splitlines()[-1][:120] if second.stderr.strip() else ''}")
+    with open(os.path.join(two, "faults.csv"), newline="") as f:
+        keys = [tuple(r[k] for k in KEY) for r in csv.DictReader(f)]
+    check(len(keys) == len(set(keys)) == len(clean), f"two runs at once: {len(keys)} rows, each once")
+
     # A full disk: every file limited to 7,000 bytes (RLIMIT_FSIZE, SIGXFSZ ignored, so a write past
     # it fails with EFBIG as a full disk fails with ENOSPC; no privileges needed, unlike a tiny
     # tmpfs). With an empty reference cache the first 9 kB reference entry cannot be written; with
