@@ -54,6 +54,14 @@ int multires_create(multires *m, int width, int height, int levels, float depth_
     }
     if (stack > m->atlas_h)
         m->atlas_h = stack;
+    /* The flattened image (Fig. 3.3(a)) is 1.5x the image wide: refused in our words, before GL
+     * would refuse the texture (found by tests/hostile at 16384 wide). */
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (max_size > 0 && (m->atlas_w > max_size || m->atlas_h > max_size))
+        return gib_fail(err, "multires_ir: an image of %dx%d needs a flattened multi-resolution "
+                             "image of %dx%d, over this GL's GL_MAX_TEXTURE_SIZE %d",
+                        width, height, m->atlas_w, m->atlas_h, max_size);
     const char *names[5] = {"mips.min", "mips.max", "mips.mean_position", "mips.normal_sum",
                             "mips.irradiance"};
     unsigned *tex[5] = {&m->lo, &m->hi, &m->mean, &m->nsum, &m->irradiance};
