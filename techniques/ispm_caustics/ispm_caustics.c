@@ -288,22 +288,48 @@ static void list_uniforms(const caustics *c, const gib_view *v)
     glUniform3fv(11, 1, up);
 }
 
-/* The 4-layer variant: 4 peeling passes, then the layers as lists of at most 4 nodes. */
-static void build_layers(caustics *c, const gib_view *view, const float fwd[3])
+/* What both list builders share: the status cleared, the scene rasterised from the camera at the
+ * ray resolution with `prog` into `fbo`, every face kept (no culling, no blending). */
+static void camera_pass_begin(caustics *c, const gib_view *view, const float fwd[3], unsigned fbo,
+                              unsigned prog)
 {
     const uint32_t zero = 0;
     glClearNamedBufferData(c->status_buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, c->layer_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, c->ray_res, c->ray_res);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    glUseProgram(c->peel_prog);
+    glUseProgram(prog);
     gib_gpu_scene_bind(c->scene);
     glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
     glUniform3fv(6, 1, view->origin);
     glUniform3fv(7, 1, fwd);
+}
+
+/* Algorithm 3.4: every fragment of the scene seen from the camera into its pixel's list. */
+static void build_lists(caustics *c, const gib_view *view, const float fwd[3])
+{
+    const uint32_t ones = 0xffffffffu, zero = 0;
+    glClearNamedBufferData(c->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+    glClearNamedBufferData(c->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    camera_pass_begin(c, view, fwd, c->list_fbo, c->list_prog);
+    glDisable(GL_DEPTH_TEST);
+    glUniform1i(8, c->ray_res);
+    glUniform1ui(9, c->node_capacity);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, c->counts);
+    gib_gpu_scene_draw(c->scene);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The 4-layer variant: 4 peeling passes, then the layers as lists of at most 4 nodes. */
+static void build_layers(caustics *c, const gib_view *view, const float fwd[3])
+{
+    camera_pass_begin(c, view, fwd, c->layer_fbo, c->peel_prog);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
     const float none[4] = {0, 0, 0, 0};
     for (int k = 0; k < 4; k++) {
         glNamedFramebufferTexture(c->layer_fbo, GL_COLOR_ATTACHMENT0, c->layer_tex[k], 0);
@@ -336,7 +362,7 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
     const float *V = view->view;
     const float fwd[3] = {-V[2], -V[6], -V[10]};
     const uint32_t cmd[8] = {2, 0, 0, 0, 0, 1, 0, 0};
-    const uint32_t ones = 0xffffffffu, zero = 0;
+    const uint32_t ones = 0xffffffffu;
     const float tmax = 2.0f * c->diag;
 
     gib_gbuffer_render(&c->gbuffer, c->scene, view, timers, "gbuffer");
@@ -348,37 +374,14 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
     }
     gib_light_views_render(&c->views, c->scene, timers, "rsm");
 
-    /* Algorithm 3.4: the lists. */
+    /* Algorithm 3.4: the lists (or the 4 layers as lists). */
     gib_timer_begin(timers, "list_build");
-    if (c->layers) {
+    if (c->layers)
         build_layers(c, view, fwd);
-        gib_timer_end(timers);
-        goto lists_done;
-    }
-    glClearNamedBufferData(c->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
-    glClearNamedBufferData(c->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(c->status_buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, c->list_fbo);
-    glViewport(0, 0, c->ray_res, c->ray_res);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glUseProgram(c->list_prog);
-    gib_gpu_scene_bind(c->scene);
-    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
-    glUniform3fv(6, 1, view->origin);
-    glUniform3fv(7, 1, fwd);
-    glUniform1i(8, c->ray_res);
-    glUniform1ui(9, c->node_capacity);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, c->counts);
-    gib_gpu_scene_draw(c->scene);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    else
+        build_lists(c, view, fwd);
     gib_timer_end(timers);
 
-lists_done:
     gib_timer_begin(timers, "photon_tracing");
     /* The specular mask and its mips (Fig. 3.5). */
     gib_light_views_bind(&c->views);
