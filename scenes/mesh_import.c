@@ -365,8 +365,9 @@ static int has_suffix_ci(const char *s, const char *suffix)
     return n >= k && strcasecmp(s + n - k, suffix) == 0;
 }
 
-/* A PLY file on disk, checked whole as gib_ply_check says. */
-static int ply_file_check(const char *path, gib_error *err)
+/* A PLY or OBJ file on disk, checked whole (gib_ply_check, gib_obj_check) before assimp reads it. */
+static int file_check(const char *path, int (*check)(const char *, size_t, const char *, gib_error *),
+                      gib_error *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -377,7 +378,7 @@ static int ply_file_check(const char *path, gib_error *err)
     if (!buf || fseek(f, 0, SEEK_SET) != 0 || fread(buf, 1, (size_t)size, f) != (size_t)size)
         rc = gib_fail(err, "cannot read '%s'%s", path, buf ? "" : " (out of memory)");
     else
-        rc = gib_ply_check(buf, (size_t)size, path, err);
+        rc = check(buf, (size_t)size, path, err);
     fclose(f);
     free(buf);
     return rc;
@@ -434,7 +435,9 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
             sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags, hint,
                                                       props);
         free(buf);
-    } else if (has_suffix_ci(path, ".ply") && (rc = ply_file_check(path, err)) != 0) {
+    } else if (has_suffix_ci(path, ".ply") && (rc = file_check(path, gib_ply_check, err)) != 0) {
+        /* refused before assimp reads it */
+    } else if (has_suffix_ci(path, ".obj") && (rc = file_check(path, gib_obj_check, err)) != 0) {
         /* refused before assimp reads it */
     } else {
         io_state st;

@@ -174,6 +174,10 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
  * or crashes on some). */
 #define GIB_PLY_HEADER_MAX 65536
 int gib_ply_check(const char *data, size_t len, const char *path, gib_error *err);
+/* obj_check.c: 0 when every element statement (f, l, p) of data (a whole OBJ file, len bytes)
+ * refers to vertices as v, v/vt, v//vn or v/vt/vn with indices in the file; else -1 with err naming
+ * the file and line. assimp reads past its buffer on some that are not. */
+int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err);
 
 /* ---------------------------------------------------------------- textures */
 

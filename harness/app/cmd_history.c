@@ -1,6 +1,7 @@
 /* gibench history — questions asked of the results history (history.h), as airspeed velocity
  * answers them for Python benchmarks: how a row's error or time changed across revisions, on
  * which machine; which revision made it worse; as a table or a gnuplot plot. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,6 +88,20 @@ static void series_title(const gib_history_series *s, char *out, size_t len)
         snprintf(out + strlen(out), len - strlen(out), " camera %d t %g", s->camera, s->time);
 }
 
+/* Text from the history (revisions, scenes, parameters) and the user (the PNG's path) goes into
+ * gnuplot's script only as a single-quoted string: a quote doubled, a line break a space, so a
+ * damaged or foreign history can neither break the script nor run commands through it. */
+static void gnuplot_string(FILE *g, const char *s, size_t max)
+{
+    fputc('\'', g);
+    for (size_t i = 0; s[i] && i < max; i++) {
+        if (s[i] == '\'')
+            fputc('\'', g);
+        fputc(s[i] == '\n' || s[i] == '\r' ? ' ' : s[i], g);
+    }
+    fputc('\'', g);
+}
+
 static int plot(const char *png, const char *metric, const gib_history_series *s, int n)
 {
     char (*revs)[64];
@@ -119,24 +134,25 @@ static int plot(const char *png, const char *metric, const gib_history_series *s
         return 1;
     }
     /* The key below the plot, one line per series: room grows with the series count. */
-    fprintf(g, "set terminal pngcairo size 1200,%d noenhanced font ',10'\nset output '%s'\n",
-            560 + 18 * n, png);
-    fprintf(g, "set title 'gibench history: %s by revision'\nset ylabel '%s'\n", metric, metric);
+    fprintf(g, "set terminal pngcairo size 1200,%d noenhanced font ',10'\nset output ", 560 + 18 * n);
+    gnuplot_string(g, png, SIZE_MAX);
+    fprintf(g, "\nset title 'gibench history: %s by revision'\nset ylabel '%s'\n", metric, metric);
     fprintf(g, "set xlabel 'revision (in the order first run)'\nset grid\nset key outside below Left reverse\n");
     fprintf(g, "set xrange [-0.5:%d.5]\nset xtics rotate by -45 (", nrev - 1);
-    for (int k = 0; k < nrev; k++)
-        fprintf(g, "%s'%.24s' %d", k ? ", " : "", revs[k], k);
+    for (int k = 0; k < nrev; k++) {
+        fputs(k ? ", " : "", g);
+        gnuplot_string(g, revs[k], 24);
+        fprintf(g, " %d", k);
+    }
     fprintf(g, ")\nplot ");
     for (int i = 0; i < n; i++) {
         char t[1400];
         series_title(&s[i], t, sizeof t);
         if (strlen(t) > 110) /* long parameter lists: the table has them whole */
             strcpy(t + 104, " ...]");
-        for (char *c = t; *c; c++)
-            if (*c == '\'')
-                *c = '"';
-        fprintf(g, "%s'%s' index %d using 1:2 with linespoints title '%s [machine %lld]'",
-                i ? ", " : "", dat, i, t, s[i].machine);
+        snprintf(t + strlen(t), sizeof t - strlen(t), " [machine %lld]", s[i].machine);
+        fprintf(g, "%s'%s' index %d using 1:2 with linespoints title ", i ? ", " : "", dat, i);
+        gnuplot_string(g, t, SIZE_MAX);
     }
     fprintf(g, "\n");
     int rc = pclose(g);

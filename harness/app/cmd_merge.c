@@ -43,16 +43,22 @@ static int read_lines(const char *path, lines *l, gib_error *err)
     FILE *f = fopen(path, "rb");
     if (!f)
         return gib_fail(err, "cannot read %s", path);
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    l->buf = malloc((size_t)n + 1);
-    if (!l->buf || fread(l->buf, 1, (size_t)n, f) != (size_t)n) {
+    long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    if (n < 0 || fseek(f, 0, SEEK_SET) != 0 || !(l->buf = malloc((size_t)n + 1)) ||
+        fread(l->buf, 1, (size_t)n, f) != (size_t)n) {
         fclose(f);
         return gib_fail(err, "cannot read %s", path);
     }
     fclose(f);
     l->buf[n] = 0;
+    const char *nul = memchr(l->buf, 0, (size_t)n);
+    if (nul) { /* the lines below are C strings: a NUL would end one early */
+        int line = 1;
+        for (const char *c = l->buf; c < nul; c++)
+            line += *c == '\n';
+        return gib_fail(err, "%s:%d: a NUL byte: not a text file (not a gibench CSV or manifest)",
+                        path, line);
+    }
     if (n && l->buf[n - 1] != '\n')
         return gib_fail(err, "%s: the last line is cut off (was the shard killed while writing?)",
                         path);
@@ -343,7 +349,14 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
                                  "it did not finish, or its folder was not named)", name, s,
                             a->count, name);
     }
-    /* Every run of the expansion in exactly one shard. */
+    /* Every run of the expansion in exactly one shard; a count beyond the shards' runs is refused
+     * before anything of its size is allocated (a damaged manifest may claim billions). */
+    int listed = 0;
+    for (int i = 0; i < n; i++)
+        listed += sh[i].nruns;
+    if (a->runs > listed)
+        return gib_fail(err, "%s: %d runs in the matrix but %d in its shards' manifests: runs are "
+                             "missing", name, a->runs, listed);
     int *owner = calloc((size_t)a->runs, sizeof *owner);
     if (!owner)
         return gib_fail(err, "out of memory");
@@ -527,7 +540,8 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
             npass++;
         }
     }
-    qsort(passes, (size_t)npass, sizeof *passes, by_order);
+    if (npass) /* qsort of NULL, even with no element, is undefined */
+        qsort(passes, (size_t)npass, sizeof *passes, by_order);
     if (gib_mkdirs(out, err) < 0)
         goto done_passes;
     snprintf(path, sizeof path, "%s/%s.csv", out, name);

@@ -98,6 +98,14 @@ $G history --db "$W/h2.sqlite" --find --metric ssim >/dev/null 2>&1
 $G history --db "$W/h2.sqlite" --technique hbao --plot "$W/plot.png" >"$W/p.txt" 2>&1
 [ "$(head -c 4 "$W/plot.png" 2>/dev/null | od -An -c | tr -d ' ')" = "211PNG" ] && pass "--plot writes a PNG" \
   || fail "--plot: $(cat "$W/p.txt")"
+# A foreign history whose revision carries a gnuplot command, and a PNG path with a quote: the
+# plot is drawn and the command never runs (text reaches gnuplot only as a quoted string).
+cp "$W/h2.sqlite" "$W/evil.sqlite"
+py "import sqlite3; db = sqlite3.connect('$W/evil.sqlite'); db.execute(\"update result set revision = ? where revision = 'later'\", (\"x' ; system('touch $W/pwned') ; print '\",)); db.commit()"
+$G history --db "$W/evil.sqlite" --technique hbao --plot "$W/it's.png" >"$W/e.txt" 2>&1
+[ ! -e "$W/pwned" ] && [ "$(head -c 4 "$W/it's.png" 2>/dev/null | od -An -c | tr -d ' ')" = "211PNG" ] \
+  && pass "--plot: quotes in a revision and the path are text, not gnuplot commands" \
+  || fail "--plot with quotes: $(cat "$W/e.txt"); pwned: $(ls "$W/pwned" 2>&1)"
 $G history --db "$W/h.sqlite" --machines | grep -q "machine 1: .* 2 runs, 12 rows" && pass "--machines" \
   || fail "--machines: $($G history --db "$W/h.sqlite" --machines)"
 $G history --db "$W/h.sqlite" --metric "rmse;drop" >/dev/null 2>&1
