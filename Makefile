@@ -93,15 +93,17 @@ report: plots
 	python3 harness/report.py $(RESULTS)
 
 # libFuzzer over every parser of outside input (tests/fuzz/README.md): FUZZ_SECONDS and FUZZ_RUNS
-# per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv.
+# per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv;
+# FUZZ_TARGETS picks targets.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 120
 FUZZ_RUNS    ?= -1
+FUZZ_TARGETS ?= fuzz_scene fuzz_matrix fuzz_values fuzz_exr fuzz_mesh fuzz_merge fuzz_history fuzz_resume
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGIB_FUZZ=ON \
 	  -DGIB_WERROR=OFF -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ $(CMAKE_ARGS)
-	cmake --build $(FUZZ_BUILD) -j$(JOBS) --target fuzz_scene fuzz_matrix fuzz_values fuzz_exr fuzz_mesh
-	tests/fuzz/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_BUILD)/fuzz.csv
+	cmake --build $(FUZZ_BUILD) -j$(JOBS) --target $(FUZZ_TARGETS)
+	tests/fuzz/run_fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_RUNS) $(FUZZ_BUILD)/fuzz.csv $(FUZZ_TARGETS)
 
 # Accepts the current quality numbers as the new baselines: a deliberate step, never automatic.
 baselines: build

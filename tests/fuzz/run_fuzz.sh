@@ -5,9 +5,11 @@
 # Writes OUT (CSV: target, executions, coverage edges, features, corpus size, seconds, result) and
 # exits 1 when a target crashed, leaked, hung or tripped a sanitizer; its input is in
 # BUILD/fuzz-artifacts/<target>/ and belongs in tests/fuzz/regressions/<target>/ once fixed.
-# usage: run_fuzz.sh BUILD SECONDS RUNS OUT
+# usage: run_fuzz.sh BUILD SECONDS RUNS OUT [TARGET...]   (default: every target)
 set -u
 build=$1; seconds=$2; runs=$3; out=$4
+shift 4
+targets=${*:-fuzz_scene fuzz_matrix fuzz_values fuzz_exr fuzz_mesh fuzz_merge fuzz_history fuzz_resume}
 src=$(cd "$(dirname "$0")/../.." && pwd)
 fz="$src/tests/fuzz"
 # The targets' temporary files (the input as a file, merge's shard folders, a history) go to RAM
@@ -16,7 +18,7 @@ fz="$src/tests/fuzz"
 export LSAN_OPTIONS="suppressions=$fz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 echo "target,executions,cov_edges,features,corpus_inputs,seconds,result" > "$out"
 status=0
-for t in fuzz_scene fuzz_matrix fuzz_values fuzz_exr fuzz_mesh fuzz_merge fuzz_history; do
+for t in $targets; do
   exe="$build/tests/fuzz/$t"
   case $t in
     fuzz_scene)  seeds="$src/scenes"; dict="-dict=$fz/ini.dict" ;;
