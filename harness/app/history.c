@@ -399,6 +399,14 @@ int gib_history_add_row(gib_history *h, long long run_id, const char *const *nam
 
 /* --- queries --- */
 
+/* A column as text, "" for NULL: a damaged or foreign history may hold NULL anywhere, whatever
+ * the schema says (found by tests/fuzz/fuzz_history: --machines crashed on a NULL gpu). */
+static const char *col_text(sqlite3_stmt *st, int i)
+{
+    const unsigned char *t = sqlite3_column_text(st, i);
+    return t ? (const char *)t : "";
+}
+
 int gib_history_print_machines(gib_history *h, FILE *f, gib_error *err)
 {
     sqlite3_stmt *st;
@@ -412,11 +420,10 @@ int gib_history_print_machines(gib_history *h, FILE *f, gib_error *err)
     int rc;
     while ((rc = sqlite3_step(st)) == SQLITE_ROW)
         fprintf(f, "machine %lld: %s | %s | %s | cpu %s x %d | gpu %s | %d runs, %d rows\n",
-                (long long)sqlite3_column_int64(st, 0), sqlite3_column_text(st, 1),
-                sqlite3_column_text(st, 2), sqlite3_column_text(st, 3),
-                sqlite3_column_text(st, 4), sqlite3_column_int(st, 5),
-                sqlite3_column_text(st, 6)[0] ? (const char *)sqlite3_column_text(st, 6) : "none",
-                sqlite3_column_int(st, 7), sqlite3_column_int(st, 8));
+                (long long)sqlite3_column_int64(st, 0), col_text(st, 1), col_text(st, 2),
+                col_text(st, 3), col_text(st, 4), sqlite3_column_int(st, 5),
+                col_text(st, 6)[0] ? col_text(st, 6) : "none", sqlite3_column_int(st, 7),
+                sqlite3_column_int(st, 8));
     sqlite3_finalize(st);
     return rc == SQLITE_DONE ? 0 : db_fail(h, err, "machines");
 }
@@ -464,12 +471,6 @@ typedef struct vals {
     double *v;
     int n, cap;
 } vals;
-
-static const char *col_text(sqlite3_stmt *st, int i)
-{
-    const unsigned char *t = sqlite3_column_text(st, i);
-    return t ? (const char *)t : "";
-}
 
 int gib_history_query(gib_history *h, const gib_history_filter *f, const char *metric,
                       gib_history_series **out, int *count, gib_error *err)
