@@ -42,6 +42,14 @@ extern "C" int gib_oiio_read_rgba(const char *path, int *width, int *height, flo
             return shim_fail(errbuf, errbuf_len, "image '%s': invalid size %dx%d with %d channels",
                              path, w, h, nc);
         }
+        // A few bytes of header can claim any size: bounded before anything of that size is
+        // allocated (a 69-byte PNG claiming 60000x60000 asked for 58 GB).
+        if ((long long)w * h > GIB_IMAGE_MAX_PIXELS || nc > GIB_IMAGE_MAX_CHANNELS) {
+            in->close();
+            return shim_fail(errbuf, errbuf_len, "image '%s' claims %dx%d pixels with %d channels: "
+                             "over gibench's limit of %lld pixels and %d channels", path, w, h,
+                             nc, (long long)GIB_IMAGE_MAX_PIXELS, GIB_IMAGE_MAX_CHANNELS);
+        }
         std::vector<float> src((size_t)w * h * nc);
         // FLOAT conversion scales integer formats to [0,1] without touching the transfer curve.
         if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, src.data())) {
