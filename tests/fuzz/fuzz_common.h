@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 /* Writes data to a per-process file ending in ext ("scene", "matrix", "exr"...) under $TMPDIR
@@ -25,6 +26,28 @@ static inline const char *fuzz_temp_file(const uint8_t *data, size_t size, const
     if (fclose(f) != 0 || w != size)
         return NULL;
     return path;
+}
+
+/* Inputs that stand for several files are parts separated by "####\n". Returns the next part of
+ * [*p, end) with its length in *len and moves *p past its separator; after the last part (no
+ * separator follows it) *p is NULL, and a call then returns an empty part at end. */
+static inline const char *fuzz_next_part(const char **p, const char *end, size_t *len)
+{
+    const char *start = *p, *q = start;
+    if (!start) {
+        *len = 0;
+        return end;
+    }
+    while (q + 5 <= end && memcmp(q, "####\n", 5) != 0)
+        q++;
+    if (q + 5 > end) {
+        *len = (size_t)(end - start);
+        *p = NULL;
+    } else {
+        *len = (size_t)(q - start);
+        *p = q + 5;
+    }
+    return start;
 }
 
 #endif

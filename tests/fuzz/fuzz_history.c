@@ -20,6 +20,7 @@
 
 #include "harness/app/app.h"
 #include "harness/app/history.h"
+#include "tests/fuzz/fuzz_common.h"
 
 #define MAX_COLS 64
 
@@ -42,15 +43,6 @@ static int split_tabs(const char *p, const char *end, char *buf, char **field)
     }
     *buf = 0;
     return n;
-}
-
-static const char *part(const char **p, const char *end, size_t *len)
-{
-    const char *start = *p;
-    const char *sep = *p < end ? memmem(*p, (size_t)(end - *p), "####\n", 5) : NULL;
-    *len = (size_t)((sep ? sep : end) - start);
-    *p = sep ? sep + 5 : end;
-    return start;
 }
 
 /* The edits run with the limits of an untrusted script: no other files, no pragmas, bounded. */
@@ -135,11 +127,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     const char *p = (const char *)data, *end = p + size;
     size_t len;
-    const char *row = part(&p, end, &len), *row_end = row + len;
+    const char *row = fuzz_next_part(&p, end, &len), *row_end = row + len;
     const char *nl = memchr(row, '\n', len);
-    const char *sql = part(&p, end, &len);
+    const char *sql = fuzz_next_part(&p, end, &len);
     char *script = strndup(sql, len);
-    const char *opts = part(&p, end, &len), *opts_end = opts + len;
+    const char *opts = fuzz_next_part(&p, end, &len), *opts_end = opts + len;
 
     unlink(db_path);
     gib_history *h;

@@ -5,7 +5,6 @@
  * must refuse what it cannot trust with a message, never crash. When it does merge, the merged
  * table must hold every row of the shards' CSVs exactly once (checked here: a merge that drops or
  * repeats a row is a bug even without a crash). */
-#define _GNU_SOURCE
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +12,7 @@
 #include <unistd.h>
 
 #include "harness/app/app.h"
+#include "tests/fuzz/fuzz_common.h"
 
 static char base[512];
 
@@ -79,13 +79,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const char *part[6] = {0};
     size_t len[6] = {0};
     int nparts = 0;
-    while (nparts < 6 && p <= end) {
-        const char *sep = memmem(p, (size_t)(end - p), "####\n", 5);
-        part[nparts] = p;
-        len[nparts++] = (size_t)((sep ? sep : end) - p);
-        if (!sep)
-            break;
-        p = sep + 5;
+    while (nparts < 6 && p) {
+        part[nparts] = fuzz_next_part(&p, end, &len[nparts]);
+        nparts++;
     }
     char path[600];
     int csv_rows = 0;

@@ -4,7 +4,6 @@
  * separated by tabs (line breaks, quotes and commas allowed). gib_csv_open must keep, cut or move
  * the file aside, never crash; and every row exactly once holds: after the append, a reopened
  * table knows the row, appending it again writes nothing, and the file ends in a newline. */
-#define _GNU_SOURCE
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +11,7 @@
 #include <unistd.h>
 
 #include "harness/app/csv.h"
+#include "tests/fuzz/fuzz_common.h"
 
 static char path[512], lock[600], old[600];
 
@@ -31,19 +31,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         atexit(remove_files);
     }
     const char *p = (const char *)data, *end = p + size;
-    const char *sep = memmem(p, size, "####\n", 5);
+    size_t len;
+    const char *table = fuzz_next_part(&p, end, &len);
     remove_files();
     FILE *f = fopen(path, "wb");
     if (!f)
         return 0;
-    fwrite(p, 1, (size_t)((sep ? sep : end) - p), f);
+    fwrite(table, 1, len, f);
     fclose(f);
     /* The row: four values, tab-separated, NUL bytes dropped (values are C strings). */
     static char buf[1 << 15];
     char *vals[4] = {buf, "", "", ""};
     size_t o = 0;
     int nv = 1;
-    for (const char *q = sep ? sep + 5 : end; q < end && o + 1 < sizeof buf; q++) {
+    for (const char *q = p ? p : end; q < end && o + 1 < sizeof buf; q++) {
         if (*q == '\t' && nv < 4) {
             buf[o++] = 0;
             vals[nv++] = buf + o;
