@@ -19,7 +19,7 @@ static const char help[] =
     "                         [--dmax D] [--obscurance 0|1] [--max-depth N] [--min-depth N]\n"
     "                         [--max-specular N] [--target-noise X] [--max-spp N]\n"
     "                         [--camera I] [--seed N] [--threads N] [--stderr F.exr] [--quiet]\n"
-    "                         [--time T]\n"
+    "                         [--time T] [--sampler sobol|random]\n"
     "\n"
     "Components (paths in Heckbert notation, reference/reference.h):\n"
     "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
@@ -47,7 +47,10 @@ static const char help[] =
     "--stderr writes the standard error of each pixel, its header marked image: standard_error.\n"
     "--out and --stderr are EXR files, checked to be writable before rendering.\n"
     "--time T (seconds, default 0) renders a moving scene (scenes/FORMAT.md, Motion) as it is at\n"
-    "T; the cache key and header include it. A static scene is the same at every T.\n";
+    "T; the cache key and header include it. A static scene is the same at every T.\n"
+    "--sampler picks the camera samples' numbers: sobol (default; Owen-scrambled Sobol, noise from\n"
+    "8 independently scrambled batches) or random (PCG32, the renderer before version 6). With\n"
+    "--out only: the cache holds sobol renders. The header records it.\n";
 
 /* Ctrl-C: once a round is done, the first one asks the renderer to stop and keep the rounds
  * finished (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
@@ -130,6 +133,7 @@ int gib_cmd_reference(int argc, char **argv)
     const char *scene_name = NULL, *comp = NULL, *out = NULL, *size = "256x256", *se_out = NULL;
     const char *cache = NULL;
     long spp = 16, camera = 0, seed = 1, threads = 0, obsc = 0, max_depth = 0, min_depth = 0;
+    int sampler = GIB_REF_SAMPLER_DEFAULT;
     long max_spec = 0, max_spp = 0;
     int force = 0, quiet = 0;
     double dmax = INFINITY, target = 0.0, time = 0.0;
@@ -171,6 +175,10 @@ int gib_cmd_reference(int argc, char **argv)
         else if (!strcmp(a, "--max-spp")) rc = gib_parse_int(a, v, 2, 1 << 24, &max_spp, &err);
         else if (!strcmp(a, "--target-noise")) rc = gib_parse_float(a, v, 1e-9, 10, &target, &err);
         else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &time, &err);
+        else if (!strcmp(a, "--sampler")) {
+            if ((sampler = gib_ref_sampler_parse(v)) < 0)
+                rc = gib_fail(&err, "--sampler '%s': sobol or random", v);
+        }
         else if (!strcmp(a, "--dmax")) {
             if (!strcmp(v, "inf") || !strcmp(v, "unbounded"))
                 dmax = INFINITY;
@@ -214,6 +222,11 @@ int gib_cmd_reference(int argc, char **argv)
                         "--out only\n");
         return 2;
     }
+    if (cache && sampler == GIB_REF_SAMPLER_RANDOM) {
+        fprintf(stderr, "gibench reference: the cache holds sobol renders: --sampler random goes "
+                        "with --out only\n");
+        return 2;
+    }
     if (cache && se_out) {
         fprintf(stderr, "gibench reference: --stderr needs a fresh render: use --out without "
                         "--cache\n");
@@ -239,7 +252,7 @@ int gib_cmd_reference(int argc, char **argv)
                         .min_depth = (int)min_depth, .max_specular = (int)max_spec,
                         .target_noise = target, .max_spp = (int)max_spp, .seed = (uint64_t)seed,
                         .threads = (int)threads, .camera = (int)camera, .time = (float)time,
-                        .quiet = quiet};
+                        .sampler = sampler, .quiet = quiet};
     gib_image img = {0}, se = {0};
     gib_ref_stats st = {0};
     int status = 0;

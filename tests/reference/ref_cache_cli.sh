@@ -103,6 +103,17 @@ check "the --stderr header is marked" '"standard_error"' "$(attr "$D/se.exr" ima
 check "... and has no cache key" '"none"' "$(attr "$D/se.exr" cache_key)"
 check_not "the image's header is not marked" 'standard_error' "$(attr "$D/s.exr" image)"
 
+# --sampler: the header names it; random renders stay out of the cache (it holds sobol renders)
+check "the default sampler is sobol" '"sobol"' "$(attr "$D/s.exr" sampler)"
+ref --out "$D/random.exr" --sampler random > /dev/null
+check "--sampler random renders with PCG32 and says so" '"random"' "$(attr "$D/random.exr" sampler)"
+out=$(ref --cache "$D/cache" --sampler random); rc=$?
+check_eq "--sampler random with --cache: exit 2" "2" "$rc"
+check "... saying why" "--sampler random goes with --out only" "$out"
+out=$(ref --out "$D/h.exr" --sampler halton); rc=$?
+check_eq "an unknown sampler: exit 2" "2" "$rc"
+check "... naming it" "--sampler 'halton': sobol or random" "$out"
+
 # a target noise asked of a deterministic estimator is met at once (its noise is exactly 0)
 out=$("$G" reference --scene cornell --component direct --size 8x8 --target-noise 0.01 \
       --out "$D/d.exr" 2>&1)
