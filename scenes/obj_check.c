@@ -7,8 +7,9 @@
  * "Object Files (.obj)", Appendix B1 of the Advanced Visualizer manual): each vertex reference is
  * `v`, `v/vt`, `v//vn` or `v/vt/vn`, integers that are not 0, a positive one at most the file's
  * count of that kind, a negative one at most the count defined before it (relative indices).
- * Lines ending in a backslash continue on the next, as assimp reads them. Other statements are
- * assimp's to read. An error names the file and the line. */
+ * Lines end where assimp ends them ('\n', '\r', '\f'), and those ending in a backslash continue
+ * on the next; a NUL byte is refused (assimp's parser read past its buffer on one: fuzz_mesh).
+ * Other statements are assimp's to read. An error names the file and the line. */
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,9 +19,10 @@
 
 enum { KIND_V, KIND_VT, KIND_VN, NKINDS };
 
-/* The next logical line of [*p, end): physical lines joined where one ends in '\'. Its text is
- * copied into line (cap bytes, truncated: element statements beyond that are refused below), and
- * *lines counts the physical lines read. Returns 0 at the end of the data. */
+/* The next logical line of [*p, end), split where assimp splits lines (IsLineEnd: '\n', '\r',
+ * '\f'; a NUL is refused before) and joined where one ends in '\'. Its text is copied into line
+ * (cap bytes, truncated: element statements beyond that are refused below), and *lines counts
+ * the lines read ("\r\n", a lone '\r' and '\n' one each). Returns 0 at the end of the data. */
 static int next_line(const char **p, const char *end, char *line, size_t cap, size_t *len,
                      int *lines)
 {
@@ -29,11 +31,10 @@ static int next_line(const char **p, const char *end, char *line, size_t cap, si
     size_t n = 0;
     int truncated = 0;
     for (;;) {
-        const char *e = memchr(*p, '\n', (size_t)(end - *p));
-        const char *stop = e ? e : end;
-        size_t k = (size_t)(stop - *p);
-        if (k && (*p)[k - 1] == '\r')
-            k--;
+        const char *q = *p;
+        while (q < end && *q != '\n' && *q != '\r' && *q != '\f')
+            q++;
+        size_t k = (size_t)(q - *p);
         int cont = k && (*p)[k - 1] == '\\';
         if (cont)
             k--;
@@ -43,8 +44,13 @@ static int next_line(const char **p, const char *end, char *line, size_t cap, si
         }
         memcpy(line + n, *p, k);
         n += k;
-        (*lines)++;
-        *p = e ? e + 1 : end;
+        if (q < end) {
+            *lines += *q != '\f';
+            q += *q == '\r' && q + 1 < end && q[1] == '\n' ? 2 : 1;
+        } else {
+            (*lines)++;
+        }
+        *p = q;
         if (!cont || *p >= end)
             break;
         if (n < cap - 1)
@@ -90,6 +96,13 @@ int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err
     char kw[16];
     size_t n;
     int lines = 0;
+    const char *nul = memchr(data, 0, len);
+    if (nul) { /* OBJ is text; assimp reads on past a NUL as if it were a line end */
+        int at = 1;
+        for (const char *c = data; c < nul; c++)
+            at += *c == '\n';
+        return gib_fail(err, "'%s':%d: a NUL byte: not a text OBJ file", path, at);
+    }
     /* First the counts of the whole file: assimp resolves positive indices after reading it. */
     for (const char *p = data, *end = data + len; next_line(&p, end, line, sizeof line, &n, &lines);)
         if (keyword(line, kw, sizeof kw) > 0)

@@ -101,6 +101,16 @@ int main(void)
         snprintf(buf, sizeof buf, "%s%s\n", tri, bad[i].statement);
         expect_refused(buf, "t.obj':8:", bad[i].phrase);
     }
+    /* Lines end where assimp ends them: a CR-only file's faces are checked too. */
+    expect_ok("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r");
+    expect_refused("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 4\r", "t.obj':4:", "refers to a v");
+    expect_refused("v 0 0 0\fv 1 0 0\fv 0 1 0\ff 1 2 \v3\n", "t.obj':1:", "'\v3'");
+    /* The fuzzer's second input: a NUL hid the face from the check, and assimp's strtol ran on
+     * over vertical tabs past its buffer. */
+    static const char nul_face[] = "\0f 0/\v\v\v\n";
+    gib_error err = {{0}};
+    int rc = gib_obj_check(nul_face, sizeof nul_face - 1, "t.obj", &err);
+    CHECK(rc < 0 && strstr(err.msg, "t.obj':1: a NUL byte"), "a NUL byte refused: %s", err.msg);
     snprintf(buf, sizeof buf, "f -1 1 2\n%s", tri); /* relative before any vertex */
     expect_refused(buf, "t.obj':1:", "refers to a v");
     snprintf(buf, sizeof buf, "%sf 1 2 \\\n 3/1/1/1\nf 1 2 3\n", tri); /* the line counts both */
