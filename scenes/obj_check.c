@@ -88,11 +88,12 @@ static int index_ok(const char *s, long count_all, long count_before)
     return (int)(e - s);
 }
 
-int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err)
+/* gib_obj_check with a line buffer of cap bytes. */
+static int check_lines(const char *data, size_t len, const char *path, char *line, size_t cap,
+                       gib_error *err)
 {
     long total[NKINDS] = {0}, before[NKINDS] = {0};
     const char *const kinds[NKINDS] = {"v", "vt", "vn"};
-    static char line[1 << 16];
     char kw[16];
     size_t n;
     int lines = 0;
@@ -104,12 +105,12 @@ int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err
         return gib_fail(err, "'%s':%d: a NUL byte: not a text OBJ file", path, at);
     }
     /* First the counts of the whole file: assimp resolves positive indices after reading it. */
-    for (const char *p = data, *end = data + len; next_line(&p, end, line, sizeof line, &n, &lines);)
+    for (const char *p = data, *end = data + len; next_line(&p, end, line, cap, &n, &lines);)
         if (keyword(line, kw, sizeof kw) > 0)
             for (int k = 0; k < NKINDS; k++)
                 total[k] += !strcmp(kw, kinds[k]);
     lines = 0;
-    for (const char *p = data, *end = data + len; next_line(&p, end, line, sizeof line, &n, &lines);) {
+    for (const char *p = data, *end = data + len; next_line(&p, end, line, cap, &n, &lines);) {
         int at = lines;
         if (keyword(line, kw, sizeof kw) < 0)
             continue;
@@ -117,9 +118,9 @@ int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err
             before[k] += !strcmp(kw, kinds[k]);
         if (strcmp(kw, "f") && strcmp(kw, "l") && strcmp(kw, "p"))
             continue;
-        if (n >= sizeof line)
+        if (n >= cap)
             return gib_fail(err, "'%s':%d: an element statement over %zu bytes", path, at,
-                            sizeof line - 1);
+                            cap - 1);
         const char *s = strstr(line, kw) + strlen(kw);
         int refs = 0;
         for (;;) {
@@ -157,4 +158,15 @@ int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err
             return gib_fail(err, "'%s':%d: '%s' with no vertex", path, at, kw);
     }
     return 0;
+}
+
+int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err)
+{
+    const size_t cap = 1 << 16; /* a logical line; longer element statements are refused */
+    char *line = malloc(cap);
+    if (!line)
+        return gib_fail(err, "'%s': out of memory checking it", path);
+    int rc = check_lines(data, len, path, line, cap, err);
+    free(line);
+    return rc;
 }
