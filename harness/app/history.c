@@ -400,7 +400,7 @@ int gib_history_add_row(gib_history *h, long long run_id, const char *const *nam
 /* --- queries --- */
 
 /* A column as text, "" for NULL: a damaged or foreign history may hold NULL anywhere, whatever
- * the schema says (found by tests/fuzz/fuzz_history: --machines crashed on a NULL gpu). */
+ * the schema says (--machines crashed on a NULL gpu: tests/fuzz/regressions/fuzz_history). */
 static const char *col_text(sqlite3_stmt *st, int i)
 {
     const unsigned char *t = sqlite3_column_text(st, i);
