@@ -11,6 +11,16 @@
 #include <string.h>
 #include <unistd.h>
 
+/* The temporary files made so far, removed when the process exits normally. */
+static char fuzz_temp_paths[4][512];
+
+static inline void fuzz_temp_remove(void)
+{
+    for (int i = 0; i < 4; i++)
+        if (fuzz_temp_paths[i][0])
+            unlink(fuzz_temp_paths[i]);
+}
+
 /* Writes data to a per-process file ending in ext ("scene", "matrix", "exr"...) under $TMPDIR
  * (default /tmp); returns its path (static storage), or NULL when it cannot be written. */
 static inline const char *fuzz_temp_file(const uint8_t *data, size_t size, const char *ext)
@@ -19,6 +29,17 @@ static inline const char *fuzz_temp_file(const uint8_t *data, size_t size, const
     const char *dir = getenv("TMPDIR");
     snprintf(path, sizeof path, "%s/gibench-fuzz-%ld.%s", dir && *dir ? dir : "/tmp", (long)getpid(),
              ext);
+    int known = 0, free_slot = -1;
+    for (int i = 0; i < 4; i++) {
+        known |= !strcmp(fuzz_temp_paths[i], path);
+        if (free_slot < 0 && !fuzz_temp_paths[i][0])
+            free_slot = i;
+    }
+    if (!known && free_slot >= 0) {
+        if (free_slot == 0)
+            atexit(fuzz_temp_remove);
+        snprintf(fuzz_temp_paths[free_slot], sizeof fuzz_temp_paths[0], "%s", path);
+    }
     FILE *f = fopen(path, "wb");
     if (!f)
         return NULL;

@@ -3,17 +3,26 @@
  * Mesh and texture paths resolve under GIBENCH_SCENES, which the target points at an empty folder
  * so that a path in the input cannot read the machine's files. */
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "scenes/scene.h"
 #include "tests/fuzz/fuzz_common.h"
+
+static char empty_root[] = "/tmp/gibench-fuzz-scenes-XXXXXX";
+
+static void remove_empty_root(void)
+{
+    rmdir(empty_root);
+}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    static char dir[] = "/tmp/gibench-fuzz-scenes-XXXXXX"; /* left behind: empty */
-    if (mkdtemp(dir))
-        setenv("GIBENCH_SCENES", dir, 1);
+    if (mkdtemp(empty_root)) {
+        setenv("GIBENCH_SCENES", empty_root, 1);
+        atexit(remove_empty_root);
+    }
     return 0;
 }
 
