@@ -340,25 +340,61 @@ static int eff_parse_spp(const char *t)
     return *end || v < 2 || v > (1 << 20) ? -1 : (int)v;
 }
 
+/* The CSV of a bench is written to OUT.part and renamed over OUT once a scene has its rows: a run
+ * where no scene could be measured leaves an earlier file of that name as it was. Opens it with
+ * its header line into *f (NULL without --out); returns 0, or the exit status after a message. */
+static int part_open(const char *out, char *part, size_t cap, const char *header, FILE **f)
+{
+    *f = NULL;
+    if (!out)
+        return 0;
+    if (snprintf(part, cap, "%s.part", out) >= (int)cap) {
+        fprintf(stderr, "gibench bench: --out path too long (%zu characters)\n", strlen(out));
+        return 2;
+    }
+    if (!(*f = fopen(part, "w"))) {
+        fprintf(stderr, "gibench bench: cannot write %s\n", part);
+        return 1;
+    }
+    fputs(header, *f);
+    return 0;
+}
+
+/* Closes f and renames part over out when ran > 0 scenes gave rows (else removes it). Returns 0,
+ * or -1 after a message when writing or renaming failed. */
+static int part_finish(FILE *f, const char *part, const char *out, int ran)
+{
+    int werr = ferror(f);
+    if (fclose(f) != 0 || werr) {
+        fprintf(stderr, "gibench bench: writing %s failed\n", part);
+        remove(part);
+        return -1;
+    }
+    if (ran == 0) {
+        remove(part);
+        return 0;
+    }
+    if (rename(part, out) != 0) {
+        fprintf(stderr, "gibench bench: cannot rename %s to %s\n", part, out);
+        return -1;
+    }
+    printf("-> %s\n", out);
+    return 0;
+}
+
 static int eff_run(const char *scenes, const eff_opts *o, const char *out)
 {
     char machine[256], list[1024], part[4096];
     machine_name(machine, sizeof machine);
     snprintf(list, sizeof list, "%s", scenes);
-    if (out && snprintf(part, sizeof part, "%s.part", out) >= (int)sizeof part) {
-        fprintf(stderr, "gibench bench: --out path too long\n");
-        return 2;
-    }
-    FILE *f = out ? fopen(part, "w") : NULL;
-    if (out && !f) {
-        fprintf(stderr, "gibench bench: cannot write %s\n", part);
-        return 1;
-    }
-    if (f)
-        fprintf(f, "scene,triangles,component,width,height,spp,truth_spp,cores,machine,sampler,"
-                   "repeats,seconds_median,seconds_max,truth_mean,rel_rmse_actual,"
-                   "rel_noise_reported,reported_over_actual,efficiency,efficiency_reported,"
-                   "efficiency_vs_random\n");
+    FILE *f;
+    int st = part_open(out, part, sizeof part,
+                       "scene,triangles,component,width,height,spp,truth_spp,cores,machine,"
+                       "sampler,repeats,seconds_median,seconds_max,truth_mean,rel_rmse_actual,"
+                       "rel_noise_reported,reported_over_actual,efficiency,efficiency_reported,"
+                       "efficiency_vs_random\n", &f);
+    if (st)
+        return st;
     int ran = 0, failed = 0;
     for (char *save = NULL, *name = strtok_r(list, ",", &save); name;
          name = strtok_r(NULL, ",", &save)) {
@@ -366,20 +402,10 @@ static int eff_run(const char *scenes, const eff_opts *o, const char *out)
         ran += rc == 0;
         failed += rc == 1;
     }
-    if (f) {
-        int werr = ferror(f);
-        if (fclose(f) != 0 || werr || ran == 0) {
-            if (ran > 0)
-                fprintf(stderr, "gibench bench: writing %s failed\n", part);
-            remove(part);
-            return ran == 0 ? 3 : 1;
-        }
-        if (rename(part, out) != 0) {
-            fprintf(stderr, "gibench bench: cannot rename %s to %s\n", part, out);
-            return 1;
-        }
-        printf("-> %s\n", out);
-    }
+    if (f && part_finish(f, part, out, ran) < 0)
+        return 1;
+    if (f && ran == 0)
+        return 3;
     return failed ? 1 : ran ? 0 : 3;
 }
 
@@ -478,23 +504,15 @@ int gib_cmd_bench(int argc, char **argv)
     snprintf(list, sizeof list, "%s", scene_name ? scene_name : "sponza");
     gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
                         .seed = 1, .threads = (int)threads, .quiet = 1};
-    /* Written beside --out and renamed over it once a scene has its rows: a run where no scene
-     * could be measured leaves an earlier file of that name as it was. */
     char part[4096];
-    if (snprintf(part, sizeof part, "%s.part", out ? out : "") >= (int)sizeof part) {
-        fprintf(stderr, "gibench bench: --out path too long (%zu characters)\n", strlen(out));
-        return 2;
-    }
-    FILE *f = out ? fopen(part, "w") : NULL;
-    if (out && !f) {
-        fprintf(stderr, "gibench bench: cannot write %s\n", part);
-        return 1;
-    }
-    if (f)
-        fprintf(f, "scene,triangles,component,width,height,spp,cores,machine,embree,measure,api,"
-                   "rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,vs_raw_replay_best,"
-                   "repeats,seconds_median,seconds_max,vs_replay_paired_median,"
-                   "vs_replay_paired_min,vs_replay_paired_max\n");
+    FILE *f;
+    int st = part_open(out, part, sizeof part,
+                       "scene,triangles,component,width,height,spp,cores,machine,embree,measure,"
+                       "api,rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,"
+                       "vs_raw_replay_best,repeats,seconds_median,seconds_max,"
+                       "vs_replay_paired_median,vs_replay_paired_min,vs_replay_paired_max\n", &f);
+    if (st)
+        return st;
     /* Scenes one after another, each row written as soon as its scene is done: a scene that
      * fails keeps the others' rows. In a list, a scene whose data is absent is skipped. */
     int nlist = 1, ran = 0, failed = 0, unavailable = 0;
@@ -515,22 +533,8 @@ int gib_cmd_bench(int argc, char **argv)
             failed++;
         }
     }
-    if (f) {
-        int werr = ferror(f);
-        if (fclose(f) != 0 || werr) {
-            fprintf(stderr, "gibench bench: writing %s failed\n", part);
-            remove(part);
-            return 1;
-        }
-        if (ran == 0) {
-            remove(part);
-        } else if (rename(part, out) != 0) {
-            fprintf(stderr, "gibench bench: cannot rename %s to %s\n", part, out);
-            return 1;
-        } else {
-            printf("-> %s\n", out);
-        }
-    }
+    if (f && part_finish(f, part, out, ran) < 0)
+        return 1;
     if (nsum > 1) {
         printf("path tracer against the fastest replay of its own rays, by scene (paired "
                "median [least, greatest]; Embree's speed inside it; the lean tracer's ratio):\n");
