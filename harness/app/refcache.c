@@ -8,7 +8,9 @@
  * key, renderer version, scene hash, component or size do not match the request, whose seal does
  * not match its pixels and header (edited or corrupted since it was written: a wrong spp or noise
  * figure would go into every results table), or that holds NaN or Inf, is rendered again and
- * overwritten, never used. */
+ * overwritten, never used. A new entry is read back and held to the same tests right after it is
+ * written: one that fails them (an EXR writer that corrupted a chunk) is an error naming the file,
+ * not an entry that every later request would silently render again. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -79,6 +81,40 @@ static int attr_is(const gib_kv *attrs, int n, const char *key, const char *want
     return v && !strcmp(v, want);
 }
 
+/* Why an entry's header and pixels do not serve the request (a phrase completing "does not
+ * match ..."), or NULL when they do. */
+static const char *entry_mismatch(const gib_ref_request *rq, const char *key_hex,
+                                  const gib_image *img, const gib_kv *attrs, int n)
+{
+    char scene_hex[17], num[32];
+    gib_hash_hex(rq->scene->content_hash, scene_hex);
+    snprintf(num, sizeof num, "%d", rq->width);
+    gib_ref_params p = gib_ref_request_params(rq);
+    gib_kv want[GIB_REF_ATTR_COUNT];
+    if (!attr_is(attrs, n, "cache_key", key_hex))
+        return "its key";
+    if (!attr_is(attrs, n, "renderer_version", GIB_REFERENCE_VERSION))
+        return "the renderer version";
+    if (!attr_is(attrs, n, "scene_hash", scene_hex))
+        return "the scene";
+    if (!attr_is(attrs, n, "component", gib_component_name(rq->component)))
+        return "the component";
+    if (!attr_is(attrs, n, "width", num) || img->width != rq->width || img->height != rq->height)
+        return "the image size";
+    if (!gib_kv_get(attrs, n, "noise_rmse") || !gib_kv_get(attrs, n, "spp"))
+        return "its header (no noise_rmse or spp)";
+    if (attr_is(attrs, n, "stop", "interrupted"))
+        return "a finished render (it holds the rounds done of an interrupted one)";
+    int want_n = gib_reference_attrs(rq->scene, &p, NULL, want, GIB_REF_ATTR_COUNT);
+    if (!gib_ref_seal_ok(img, want, want_n, attrs, n))
+        return "its seal (pixels or header changed since it was written, or written before seals)";
+    if (gib_image_count_nonfinite(img) != 0)
+        return "finite pixels (it holds NaN or Inf)";
+    return NULL;
+}
+
+/* Reads the entry at path into img and out's figures when it serves the request; otherwise says
+ * why on stderr (the caller renders again) and returns 0. */
 static int entry_valid(const char *path, const gib_ref_request *rq, const char *key_hex,
                        gib_image *img, gib_ref_result *out)
 {
@@ -92,38 +128,11 @@ static int entry_valid(const char *path, const gib_ref_request *rq, const char *
                 path, e.msg);
         return 0;
     }
-    char scene_hex[17], num[32];
-    gib_hash_hex(rq->scene->content_hash, scene_hex);
-    gib_ref_params p = gib_ref_request_params(rq);
-    gib_kv want[GIB_REF_ATTR_COUNT];
-    int want_n = 0;
-    const char *noise = gib_kv_get(attrs, n, "noise_rmse");
-    const char *spp = gib_kv_get(attrs, n, "spp");
-    const char *secs = gib_kv_get(attrs, n, "seconds");
-    const char *why = NULL;
-    if (!attr_is(attrs, n, "cache_key", key_hex))
-        why = "its key";
-    else if (!attr_is(attrs, n, "renderer_version", GIB_REFERENCE_VERSION))
-        why = "the renderer version";
-    else if (!attr_is(attrs, n, "scene_hash", scene_hex))
-        why = "the scene";
-    else if (!attr_is(attrs, n, "component", gib_component_name(rq->component)))
-        why = "the component";
-    else if (snprintf(num, sizeof num, "%d", rq->width), !attr_is(attrs, n, "width", num) ||
-             img->width != rq->width || img->height != rq->height)
-        why = "the image size";
-    else if (!noise || !spp)
-        why = "its header (no noise_rmse or spp)";
-    else if (attr_is(attrs, n, "stop", "interrupted"))
-        why = "a finished render (it holds the rounds done of an interrupted one)";
-    else if (want_n = gib_reference_attrs(rq->scene, &p, NULL, want, GIB_REF_ATTR_COUNT),
-             !gib_ref_seal_ok(img, want, want_n, attrs, n))
-        why = "its seal (pixels or header changed since it was written, or written before seals)";
-    else if (gib_image_count_nonfinite(img) != 0)
-        why = "finite pixels (it holds NaN or Inf)";
+    const char *why = entry_mismatch(rq, key_hex, img, attrs, n);
     if (!why) {
-        out->noise_rmse = strtod(noise, NULL);
-        out->spp = (int)strtol(spp, NULL, 10);
+        const char *secs = gib_kv_get(attrs, n, "seconds");
+        out->noise_rmse = strtod(gib_kv_get(attrs, n, "noise_rmse"), NULL);
+        out->spp = (int)strtol(gib_kv_get(attrs, n, "spp"), NULL, 10);
         out->seconds = secs ? strtod(secs, NULL) : 0;
     } else {
         fprintf(stderr, "gibench: reference cache entry %s does not match %s; rendering again\n",
@@ -132,6 +141,28 @@ static int entry_valid(const char *path, const gib_ref_request *rq, const char *
     }
     free(attrs);
     return !why;
+}
+
+/* Reads back the entry just written to path and holds it to what a later request will: an entry
+ * that would be refused (a writer that corrupts pixels, say) is an error naming the file, not an
+ * entry every later request renders again. The file is left for inspection. */
+static int entry_check_written(const char *path, const gib_ref_request *rq, const char *key_hex,
+                               gib_error *err)
+{
+    gib_image img;
+    gib_kv *attrs = NULL;
+    int n = 0;
+    gib_error e;
+    if (gib_exr_read(path, &img, &attrs, &n, &e) < 0)
+        return gib_fail(err, "reference cache entry %s does not read back right after it was "
+                             "written: %s", path, e.msg);
+    const char *why = entry_mismatch(rq, key_hex, &img, attrs, n);
+    gib_image_free(&img);
+    free(attrs);
+    if (why)
+        return gib_fail(err, "reference cache entry %s does not match %s right after it was "
+                             "written: no request could use it", path, why);
+    return 0;
 }
 
 int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err)
@@ -183,6 +214,10 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
         gib_image_free(&out->image);
         gib_error_prefix(err, "writing reference cache entry %s", out->path);
         return GIB_REF_WRITE_FAILED;
+    }
+    if (entry_check_written(out->path, rq, key_hex, err) < 0) {
+        gib_image_free(&out->image);
+        return -1;
     }
     out->spp = st.spp;
     out->noise_rmse = st.noise_rmse;

@@ -45,6 +45,40 @@ static const char *channel_names(int channels, int k)
     return channels == 1 ? "Y" : rgba[k];
 }
 
+/* A ZIP chunk whose zlib stream is exactly as long as its pixels is stored as raw pixels.
+ *
+ * The format tells a reader that a chunk is stored uncompressed by its size alone: a chunk as long
+ * as its raw pixels is read as raw pixels. OpenEXR 3.1's core ZIP compressor (internal_zip.c,
+ * apply_zip_impl) falls back to the raw pixels only when the zlib stream is LONGER than them
+ * (`compbufsz > packed_bytes`), so a stream of exactly that length is written as it is and read
+ * back as raw floats: values up to 3.4e38 and NaNs over the whole chunk. It happens to a chunk of
+ * noisy floats now and then (a 16-line chunk of a 64x64 `indirect` reference; small partial chunks
+ * of smooth images too). The library's transform itself is sound: it works in a scratch buffer and
+ * leaves the packed pixels untouched, so its fallback copies the right bytes. Upstream made the
+ * comparison `>=` in 3.4.8; every 3.1 release (Debian's 3.1.5 here) has `>`, so the write path
+ * wraps the library's compress step (the pipeline's compress_fn hook) and applies `>=` after it.
+ * tests/imaging/test_exr_roundtrip.c builds such chunks on purpose. */
+typedef struct exr_writer {
+    exr_encode_pipeline_t enc; /* first: the hook receives &enc and finds the rest from it */
+    exr_result_t (*library_compress)(exr_encode_pipeline_t *enc);
+} exr_writer;
+
+static exr_result_t compress_chunk(exr_encode_pipeline_t *enc)
+{
+    exr_writer *w = (exr_writer *)enc;
+    exr_result_t rv = w->library_compress(enc);
+    if (rv != EXR_ERR_SUCCESS || enc->compressed_bytes < enc->packed_bytes)
+        return rv;
+    /* Not smaller than the pixels: store the pixels, which the reader then takes as they are. */
+    if (enc->compressed_buffer != enc->packed_buffer) {
+        if (enc->compressed_alloc_size < enc->packed_bytes)
+            return EXR_ERR_OUT_OF_MEMORY;
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    }
+    enc->compressed_bytes = enc->packed_bytes;
+    return EXR_ERR_SUCCESS;
+}
+
 int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, int nattrs,
                   gib_error *err)
 {
@@ -89,8 +123,9 @@ int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, i
 
     int32_t lines = 1;
     rv = exr_get_scanlines_per_chunk(ctxt, part, &lines);
-    exr_encode_pipeline_t enc;
-    memset(&enc, 0, sizeof enc);
+    exr_writer writer;
+    memset(&writer, 0, sizeof writer);
+    exr_encode_pipeline_t *const enc = &writer.enc;
     int have_enc = 0;
     const int32_t pixel_stride = (int32_t)(c * sizeof(float));
     const int32_t line_stride = pixel_stride * img->width;
@@ -99,13 +134,13 @@ int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, i
         rv = exr_write_scanline_chunk_info(ctxt, part, y, &cinfo);
         if (rv != EXR_ERR_SUCCESS)
             break;
-        rv = have_enc ? exr_encoding_update(ctxt, part, &cinfo, &enc)
-                      : exr_encoding_initialize(ctxt, part, &cinfo, &enc);
+        rv = have_enc ? exr_encoding_update(ctxt, part, &cinfo, enc)
+                      : exr_encoding_initialize(ctxt, part, &cinfo, enc);
         if (rv != EXR_ERR_SUCCESS)
             break;
         /* The pipeline lists channels alphabetically (A, B, G, R), so match them by name. */
-        for (int ch = 0; ch < enc.channel_count; ++ch) {
-            exr_coding_channel_info_t *info = &enc.channels[ch];
+        for (int ch = 0; ch < enc->channel_count; ++ch) {
+            exr_coding_channel_info_t *info = &enc->channels[ch];
             int k = 0;
             while (k < c && strcmp(info->channel_name, channel_names(c, k)) != 0)
                 ++k;
@@ -117,15 +152,21 @@ int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, i
                 (const uint8_t *)(img->px + ((size_t)cinfo.start_y * img->width) * c + k);
         }
         if (!have_enc) {
-            rv = exr_encoding_choose_default_routines(ctxt, part, &enc);
+            rv = exr_encoding_choose_default_routines(ctxt, part, enc);
             have_enc = 1;
             if (rv != EXR_ERR_SUCCESS)
                 break;
+            if (!enc->compress_fn) { /* every chunk is ZIP: the library always sets one */
+                rv = EXR_ERR_INVALID_ARGUMENT;
+                break;
+            }
+            writer.library_compress = enc->compress_fn;
+            enc->compress_fn = compress_chunk;
         }
-        rv = exr_encoding_run(ctxt, part, &enc);
+        rv = exr_encoding_run(ctxt, part, enc);
     }
     if (have_enc)
-        exr_encoding_destroy(ctxt, &enc);
+        exr_encoding_destroy(ctxt, enc);
     if (rv != EXR_ERR_SUCCESS) {
         exr_fail(err, "cannot write exr", path, rv);
         exr_finish(&ctxt);
