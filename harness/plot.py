@@ -2,8 +2,10 @@
 """gibench plots, drawn with gnuplot from the result CSVs (ARCHITECTURE.md, "Matrices, CSV and reproduction"):
 
 - speed against error, one plot per (matrix, scene, component): each point is one run (technique +
-  parameters) at its median GPU frame time and relative RMSE against the reference; the line joins
-  the Pareto front (runs no other run beats in both);
+  parameters) at its median GPU frame time (bar: its interquartile range) and relative RMSE with the
+  reference's noise taken out (bar: its 95% interval; overlapping bars are a tie); the line joins
+  the Pareto front (runs no other run beats in both); a dotted line marks what an all-black image
+  scores, and a red ring every run worse than it (harness/uncertainty.py);
 - sweeps: for every parameter a matrix varies over three or more values, GPU time and relative RMSE
   against that parameter, one line per technique and setting of the other parameters (scaling curves:
   time against LDM count, resolution, dmax...). An unbounded value (inf) is drawn at the right end;
@@ -28,6 +30,9 @@ import os
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from uncertainty import error_interval, worse_than_black  # noqa: E402
 
 
 def pareto(points):
@@ -60,6 +65,16 @@ def error_metric(rows):
     return "rmse", "RMSE against the reference (its mean is 0: relative error undefined)"
 
 
+def black_level(r, metric):
+    """What an all-black image scores against the row's reference, in the plot's metric."""
+    black, rmse, rel = (finite_num(r.get(k)) for k in ("black_rmse", "rmse", "rel_rmse"))
+    if black is None:
+        return None
+    if metric == "rmse":
+        return black
+    return black * rel / rmse if rel and rmse else None
+
+
 X_AXES = {"time": ("gpu_ms_median", 1.0, "GPU time per frame, median (ms)"),
           "memory": ("mem_bytes", 1e-6, "technique memory, peak (MB, ledger)")}
 
@@ -76,17 +91,24 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
     for r in rows:
         for k, v in parse_params(r["params"]).items():
             varying.setdefault((r["technique"], k), set()).add(v)
-    by_tech = {}
+    by_tech, worse, blacks = {}, [], []
     for r in rows:
         short = ";".join(f"{k}={v:g}" for k, v in parse_params(r["params"]).items()
                          if len(varying[(r["technique"], k)]) > 1)
-        xv, yv = finite_num(r.get(col)), finite_num(r[metric])
-        if xv is None or yv is None or xv <= 0:
+        xv, iv = finite_num(r.get(col)), error_interval(r, relative=metric == "rel_rmse")
+        if xv is None or iv is None or xv <= 0:
             continue  # unplottable (no memory figure, an infinite error): the CSV keeps the row
+        spread = (finite_num(r.get("gpu_ms_iqr")) or 0.0) if x == "time" else 0.0
         tech = r["technique"] + (f" ({r['matrix']})" if label_matrix else "")
-        by_tech.setdefault(tech, []).append(
-            (xv * scale, yv, short,
-             r["width"] + "x" + r["height"] + (f" t={r['time']}" if r.get("time", "0") != "0" else "")))
+        point = (xv * scale, iv[1], short,
+                 r["width"] + "x" + r["height"] + (f" t={r['time']}" if r.get("time", "0") != "0" else ""),
+                 max(xv - spread / 2, xv * 0.5) * scale, (xv + spread / 2) * scale, iv[0], iv[2])
+        by_tech.setdefault(tech, []).append(point)
+        if worse_than_black(r):
+            worse.append(point)
+        black = black_level(r, metric)
+        if black is not None:
+            blacks.append(black)
     if not by_tech or all(p[1] == 0 for pts in by_tech.values() for p in pts):
         return None  # nothing to compare: every run exact (a component the scene lacks: black)
     data_path = base + ".dat"
@@ -95,26 +117,37 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
         for tech, pts in sorted(by_tech.items()):
             f.write(f"# {tech}\n")
             for p in pts:
-                f.write(f"{p[0]:.6g} {p[1]:.6g} \"{p[2]} {p[3]}\"\n")
+                f.write(f"{p[0]:.6g} {p[1]:.6g} \"{p[2]} {p[3]}\" {p[4]:.6g} {p[5]:.6g} {p[6]:.6g} {p[7]:.6g}\n")
             f.write("\n\n")
             blocks.append(tech)
         f.write("# pareto front\n")
         for p in pareto([p for pts in by_tech.values() for p in pts]):
             f.write(f"{p[0]:.6g} {p[1]:.6g}\n")
-    plots = [f"{gp_quote(data_path)} index {i} using 1:2 with points pt 7 ps 1.2 title {gp_quote(t)}"
-             for i, t in enumerate(blocks)]
+        f.write("\n\n# worse than a black image\n")
+        for p in worse or [(float("nan"), float("nan"))]:
+            f.write(f"{p[0]:.6g} {p[1]:.6g}\n")
+    # Each run with its spread: the time's interquartile range, the error's 95% interval with the
+    # reference's noise accounted for (bars that overlap are a tie, not a rank).
+    plots = [f"{gp_quote(data_path)} index {i} using 1:2:4:5:6:7 with xyerrorbars pt 7 ps 1.1 "
+             f"title {gp_quote(t)}" for i, t in enumerate(blocks)]
     # Each point labelled with its parameters, small, so the plot can be read without the CSV.
     plots += [f"{gp_quote(data_path)} index {i} using 1:2:3 with labels font ',6' offset char 0.6,0.6 "
               "left noenhanced notitle" for i in range(len(blocks))]
     plots.append(f"{gp_quote(data_path)} index {len(blocks)} using 1:2 with lines lw 1.5 dt 2 lc rgb 'gray40' "
                  "title 'Pareto front'")
+    if worse:
+        plots.append(f"{gp_quote(data_path)} index {len(blocks) + 1} using 1:2 with points pt 6 ps 2.6 lw 2 "
+                     "lc rgb 'red' title 'worse than a black image'")
+    if blacks:
+        level = sorted(blacks)[len(blacks) // 2]
+        plots.append(f"{level:.6g} with lines lw 2 dt 3 lc rgb 'black' title 'a black image scores'")
     title = f"{matrix}: {scene}, component {component} ({renderer})"
     script = []
     for term, ext in (("pngcairo size 900,600 font 'sans,10'", "png"), ("svg size 900,600", "svg")):
         script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
                    f"set title {gp_quote(title)} noenhanced",
                    f"set xlabel {gp_quote(xlabel)}",
-                   f"set ylabel {gp_quote(ylabel)}",
+                   f"set ylabel {gp_quote(ylabel + ', reference noise removed (bars: 95% interval)')}",
                    "set logscale x", "set grid", "set key outside right top noenhanced",
                    "plot " + ", ".join(plots), "unset output"]
     subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)

@@ -25,6 +25,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from claims import COLUMNS as CLAIM_COLUMNS  # noqa: E402
+from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
+                         time_resolution, worse_than_black)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROW_KEY = ("matrix", "profile", "scene", "technique", "component")
@@ -91,12 +93,55 @@ def num(text, digits=4):
     return f"{x:.{digits}g}"
 
 
-def row_numbers(r):
+def group_ranks(rows, resolution):
+    """{id(row): (error rank, time rank)} within each (scene, component, size, instant) of a
+    matrix: ordered by the de-noised error and by the median time, rows whose intervals overlap
+    share a rank ("2="), so the reader sees ties, not an order the noise made."""
+    groups = {}
+    for r in rows:
+        if r["status"] == "ok":
+            groups.setdefault((r["scene"], r["component"], r["width"], r["height"], r.get("time")), []).append(r)
+    out = {}
+    for g in groups.values():
+        errs = [(id(r), error_interval(r)) for r in g if error_interval(r)]
+        times = [(id(r), time_interval(fnum(r.get("gpu_ms_median")), resolution)) for r in g
+                 if fnum(r.get("gpu_ms_median")) is not None]
+        er, tr = ranks(errs), ranks(times)
+        for r in g:
+            out[id(r)] = (er.get(id(r), ""), tr.get(id(r), ""))
+    return out
+
+
+def error_text(r):
+    """The RMSE with the reference's noise taken out and its 95% interval."""
+    iv = error_interval(r)
+    if iv is None:
+        return num(r.get("rmse"))
+    return f"{num(iv[1])} [{num(iv[0], 3)}, {num(iv[2], 3)}]"
+
+
+def black_text(r):
+    ratio = over_black(r)
+    if ratio is None:
+        return ""
+    return f"{ratio:.3g}" + (" WORSE THAN BLACK" if ratio > 1 else "")
+
+
+def time_text(r):
+    iqr = r.get("gpu_ms_iqr")
+    return num(r.get("gpu_ms_median")) + (f" (IQR {num(iqr, 2)})" if iqr else "")
+
+
+def row_numbers(r, rank=("", "")):
     """(label, value) pairs shown with each row; the reference's noise beside every error."""
     noise = num(r.get("ref_noise_rmse"))
-    out = [("GPU ms", num(r.get("gpu_ms_median"))), ("CPU ms", num(r.get("cpu_ms"))),
+    out = [("GPU ms (warm median)", time_text(r)), ("first frame ms", num(r.get("first_frame_ms"))),
+           ("CPU ms", num(r.get("cpu_ms"))),
            ("memory MB", num(float(r["mem_bytes"]) / 1e6) if r.get("mem_bytes") else ""),
            ("RMSE", f"{num(r.get('rmse'))} (ref noise {noise})"),
+           ("RMSE without the noise [95%]", error_text(r)),
+           ("RMSE / black image's", black_text(r)),
+           ("rank: error, time", f"{rank[0]}, {rank[1]}" if rank[0] or rank[1] else ""),
            ("rel RMSE", num(r.get("rel_rmse"))), ("SSIM", num(r.get("ssim")))]
     for col, label in (("flip", "FLIP"), ("hdrflip", "HDR-FLIP")):
         if col in r:
@@ -191,8 +236,9 @@ def figure(src, caption, page_dir, cls=""):
             f'loading="lazy"><figcaption>{esc(caption)}</figcaption></figure>')
 
 
-def matrix_html(results, page_dir, name, rows, plots):
+def matrix_html(results, page_dir, name, rows, plots, resolution):
     img_dir = os.path.join(results, "images", name)
+    rank = group_ranks(rows, resolution)
     ok = sum(1 for r in rows if r["status"] == "ok")
     renderers = sorted({r.get("renderer", "") for r in rows if r.get("renderer")})
     out = [f'<details class="matrix" id="m-{esc(name)}"><summary><b>{esc(name)}</b> — {len(rows)} rows, '
@@ -209,7 +255,7 @@ def matrix_html(results, page_dir, name, rows, plots):
                    f'<div class="params">{esc(r["params"])}</div>')
         if r.get("message"):
             out.append(f'<div class="message">{esc(r["message"])}</div>')
-        out.append('<dl>' + "".join(f"<dt>{esc(k)}</dt><dd>{esc(v)}</dd>" for k, v in row_numbers(r))
+        out.append('<dl>' + "".join(f"<dt>{esc(k)}</dt><dd>{esc(v)}</dd>" for k, v in row_numbers(r, rank.get(id(r), ("", ""))))
                    + '</dl><div class="images">')
         ref, n = reference_png(img_dir, r)
         if ref:
@@ -246,7 +292,7 @@ def write_html(results, claims, mats, plots):
              f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
              f'{esc(", ".join(revs) or "unknown")}.</p>',
              '<pre id="image-check"></pre>',
-             '<nav><a href="#claims-h">Claims</a> · ' + " · ".join(
+             '<nav><a href="#claims-h">Claims</a> · <a href="#reading">Reading the numbers</a> · ' + " · ".join(
                  f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
              f'<h2 id="claims-h">Claims ({len(claims)}: {esc(summary_counts(claims))})</h2>',
              '<p>A verdict is <i>not measurable here</i> where the paper measured absolute times on its '
@@ -255,10 +301,14 @@ def write_html(results, claims, mats, plots):
              f'<label><input type="checkbox" onchange="toggleNa(this)"> show the '
              f'{sum(1 for c in claims if c["verdict"] == "not measurable here")} claims not measurable here '
              f'(their rows are in the table, hidden until asked)</label>',
-             claims_html(claims), '<h2>Matrices</h2>',
+             claims_html(claims),
+             '<h2 id="reading">How to read the numbers</h2><ul>'
+             + "".join(f"<li>{esc(x)}</li>" for x in reading_guide(results, mats)) + '</ul>',
+             '<h2>Matrices</h2>',
              '<p>Each row: reference, technique and false-colour error map side by side; the RMSE with the '
              'reference\'s own noise beside it (an error near that noise cannot rank techniques).</p>']
-    parts += [matrix_html(results, page_dir, m, rows, plots[m]) for m, rows in mats.items()]
+    parts += [matrix_html(results, page_dir, m, rows, plots[m], time_resolution(results))
+              for m, rows in mats.items()]
     parts.append(f"<script>{CHECK_SCRIPT}</script></body></html>")
     path = os.path.join(page_dir, "index.html")
     with open(path, "w") as f:
@@ -285,26 +335,67 @@ def write_md(results, claims, mats, plots):
                       "|---|---|---|---|---|---|"]
         lines.append("| " + " | ".join(md(c[k]) for k in ("claim", "paper_value", "our_value", "renderer",
                                                               "verdict", "reason")) + " |")
+    lines += ["", "## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
     lines += ["", "## Matrices", ""]
+    resolution = time_resolution(results)
     for m, rows in mats.items():
+        rank = group_ranks(rows, resolution)
         lines += [f"### {m}", ""]
         lines += [f"![{p[:-4]}](plots/{p})" for p in plots[m] if "_memory" not in p and "_sweep_" not in p]
-        lines += ["", "| scene | technique | component | size | params | GPU ms | RMSE (ref noise) | rel RMSE "
-                  "| SSIM | status | images |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+        lines += ["", "| scene | technique | component | size | params | GPU ms (IQR) | first frame ms "
+                  "| RMSE (ref noise) | RMSE without noise [95%] | / black | rank: error, time | rel RMSE "
+                  "| SSIM | status | images |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in rows:
+            rk = rank.get(id(r), ("", ""))
             name = image_name(r)
             imgs = ""
             if os.path.exists(os.path.join(results, "images", m, name + ".png")):
                 imgs = f"[image](images/{m}/{name}.png) [error](images/{m}/{name}_error.png)"
             lines.append("| " + " | ".join(md(x) for x in (
                 r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']}", r["params"],
-                num(r.get("gpu_ms_median")), f"{num(r.get('rmse'))} ({num(r.get('ref_noise_rmse'))})",
+                time_text(r), num(r.get("first_frame_ms")),
+                f"{num(r.get('rmse'))} ({num(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
+                f"{rk[0]}, {rk[1]}" if rk[0] or rk[1] else "",
                 num(r.get("rel_rmse")), num(r.get("ssim")), r["status"], imgs)) + " |")
         lines.append("")
     path = os.path.join(results, "REPORT.md")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return path
+
+
+def reading_guide(results, mats):
+    """The facts a reader needs before comparing two rows: how times were taken and what this
+    machine can resolve, what the errors are measured against, and how many rows cannot be ranked."""
+    ok = [r for rows in mats.values() for r in rows if r["status"] == "ok"]
+    noisy = sum(1 for r in ok if r.get("ref_noisy") == "1")
+    worse = [r for r in ok if worse_than_black(r)]
+    warm = sorted({(r.get("warmup"), r.get("frames")) for r in ok})
+    res = time_resolution(results)
+    out = ["Times are medians of warm frames (warm-up, timed frames: "
+           + ", ".join(f"{w}, {f}" for w, f in warm)
+           + "), with their interquartile range; every run's cold first frame (shader compiles, first "
+           "use) is rendered before the warm-up and reported apart (first frame ms, create included)."]
+    if res is not None:
+        out.append(f"This machine resolves time differences of {100 * res:.1f}% (the 95th percentile of "
+                   "the run-to-run difference of the same runs, timing_resolution.csv, "
+                   "harness/bench_timing.py): two medians closer than that are a tie (rank 'n=').")
+    else:
+        out.append("The timing benchmark (harness/bench_timing.py) has not been run into this folder: no "
+                   "time difference is called a tie, and small ones may be noise.")
+    out.append("Every error stands beside what an all-black image scores against the same reference "
+               "(RMSE / black image's): above 1, the technique is further from the reference than "
+               f"leaving the component out. {len(worse)} of {len(ok)} ok rows are worse than black"
+               + (": " + "; ".join(sorted({f"{r['matrix']} {r['scene']} {r['technique']} {r['component']}"
+                                           for r in worse})[:12]) + (" ..." if len(worse) > 12 else "")
+                  if worse else "") + ".")
+    out.append("The RMSE without the noise takes the reference's own noise out of the error "
+               "(sqrt(rmse^2 - noise^2)) with a 95% interval (metrics.h, gib_rmse_interval); rows whose "
+               "intervals overlap share a rank ('n='): a tie, not an order.")
+    out.append(f"{noisy} of {len(ok)} ok rows ({100 * noisy / max(len(ok), 1):.1f}%) are ref_noisy (the "
+               "reference's noise above a fifth of the row's error even after its samples were raised "
+               "to rank its rows, up to ref_spp_growth times the matrix's).")
+    return out
 
 
 def main():

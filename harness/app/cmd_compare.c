@@ -85,6 +85,9 @@ int gib_cmd_compare(int argc, char **argv)
         const char *e = gib_kv_get(attrs, nattrs, "exposure");
         exposure = e ? strtod(e, NULL) : 1.0;
     }
+    /* A reference of ours names its own noise; any other image is taken as exact. */
+    const char *noise_attr = gib_kv_get(attrs, nattrs, "noise_rmse");
+    const double noise = noise_attr ? strtod(noise_attr, NULL) : 0.0;
     free(attrs);
     gib_metrics m;
     int status = 0;
@@ -95,10 +98,18 @@ int gib_cmd_compare(int argc, char **argv)
     } else {
         int fail = m.nonfinite > 0 || !(m.rmse <= fail_rmse) || !(m.rel_rmse <= fail_rel) ||
                    !(m.ssim >= fail_ssim);
+        gib_rmse_bounds b;
+        gib_rmse_interval(m.rmse, noise, (long)ref.width * ref.height, &b);
         if (json) {
             printf("{");
             json_num("rmse", m.rmse, 0);
             json_num("rel_rmse", m.rel_rmse, 0);
+            json_num("black_rmse", m.black_rmse, 0);
+            json_num("rmse_over_black", m.rmse / m.black_rmse, 0);
+            json_num("ref_noise_rmse", noise, 0);
+            json_num("rmse_denoised", b.denoised, 0);
+            json_num("rmse_lo", b.lo, 0);
+            json_num("rmse_hi", b.hi, 0);
             json_num("psnr", m.psnr, 0);
             json_num("ssim", m.ssim, 0);
             json_num("flip", m.flip, 0);
@@ -109,6 +120,11 @@ int gib_cmd_compare(int argc, char **argv)
                    "nonfinite %ld  -> %s\n",
                    m.rmse, m.rel_rmse, m.psnr, m.ssim, m.flip, m.hdrflip, m.nonfinite,
                    fail ? "FAIL" : "PASS");
+            printf("black image: rmse %.6g; this image scores %.4g of it%s\n", m.black_rmse,
+                   m.rmse / m.black_rmse, m.rmse > m.black_rmse ? " (WORSE THAN BLACK)" : "");
+            printf("reference noise rmse %.6g%s: rmse without it %.6g, 95%% interval [%.6g, %.6g]\n",
+                   noise, noise_attr ? "" : " (not a gibench reference: taken as exact)",
+                   b.denoised, b.lo, b.hi);
         }
         status = fail;
         if (map && gib_png_write_error_map(map, &ref, &test, 0.0f, &err) < 0) {

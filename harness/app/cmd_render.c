@@ -17,7 +17,11 @@ static const char help[] =
     "results/cache) and writes an error map. --time T (seconds, default 0): the instant a moving\n"
     "scene (scenes/FORMAT.md, Motion) is shown at, in the image and in the reference; --dt DT\n"
     "(default 0): the frames before the last are DT apart (frame f of n at T - (n-1-f) DT), so\n"
-    "every frame is a new instant.\n";
+    "every frame is a new instant.\n"
+    "\n"
+    "Timing: a cold first frame (shader compiles and first uses; reported apart, with the time\n"
+    "from create to its image), then W warm-up frames (default 2), then F timed frames (default\n"
+    "5): their median, interquartile range, min and max per pass.\n";
 
 int gib_cmd_render(int argc, char **argv)
 {
@@ -114,12 +118,17 @@ int gib_cmd_render(int argc, char **argv)
         fprintf(stderr, "gibench render: %s: status %s: %s\n", t->name, r.status, r.err.msg);
         status = 1;
     } else {
-        printf("%s on %s at %dx%d, %d timed frames: gpu %.3f ms (min %.3f, max %.3f), cpu %.3f ms\n",
-               t->name, scene.name, w, h, r.frames, r.gpu_total.median_ms, r.gpu_total.min_ms,
-               r.gpu_total.max_ms, r.cpu_total.median_ms);
+        printf("%s on %s at %dx%d, %d timed frames after %ld warm-up: gpu %.3f ms (IQR %.3f, "
+               "min %.3f, max %.3f), cpu %.3f ms (IQR %.3f)\n",
+               t->name, scene.name, w, h, r.frames, warmup, r.gpu_total.median_ms,
+               r.gpu_total.iqr_ms, r.gpu_total.min_ms, r.gpu_total.max_ms, r.cpu_total.median_ms,
+               r.cpu_total.iqr_ms);
+        printf("  cold first frame: %.3f ms to the first image (create included), gpu %.3f ms\n",
+               r.first_frame_ms, r.gpu_total.first_ms);
         for (int i = 0; i < r.pass_count; i++)
-            printf("  pass %-12s %.3f ms (min %.3f, max %.3f)\n", r.passes[i].name,
-                   r.passes[i].median_ms, r.passes[i].min_ms, r.passes[i].max_ms);
+            printf("  pass %-12s %.3f ms (IQR %.3f, min %.3f, max %.3f; cold %.3f)\n",
+                   r.passes[i].name, r.passes[i].median_ms, r.passes[i].iqr_ms,
+                   r.passes[i].min_ms, r.passes[i].max_ms, r.passes[i].first_ms);
         printf("  memory: technique %.3f MB (%s), scene %.3f MB\n", r.technique_bytes / 1e6,
                r.memory_by_label, gpu.ledger.peak_bytes / 1e6);
     }
@@ -143,9 +152,15 @@ int gib_cmd_render(int argc, char **argv)
                 status = 1;
                 continue;
             }
+            gib_rmse_bounds b;
+            gib_rmse_interval(m.rmse, ref.noise_rmse, (long)w * h, &b);
             printf("  %s: rmse %.6g rel_rmse %.6g psnr %.3f ssim %.6f nonfinite %ld (reference "
                    "%d spp, noise rmse %.3g)\n", comp, m.rmse, m.rel_rmse, m.psnr, m.ssim,
                    m.nonfinite, ref.spp, ref.noise_rmse);
+            printf("  %s: a black image scores rmse %.6g (this image %.3g of it%s); without the "
+                   "reference's noise rmse %.6g [%.6g, %.6g] (95%%)\n", comp, m.black_rmse,
+                   m.rmse / m.black_rmse, m.rmse > m.black_rmse ? ": WORSE THAN BLACK" : "",
+                   b.denoised, b.lo, b.hi);
             gib_image_free(&ref.image);
         } else {
             char path[4096];

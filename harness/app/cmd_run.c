@@ -15,12 +15,13 @@
 #include "history.h"
 #include "harness/base/hash.h"
 #include "matrix.h"
+#include "refrank.h"
 #include "shard.h"
 
 static const char help[] =
     "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
     "                   [--backend egl|osmesa|auto] [--no-images] [--shard I/N]\n"
-    "                   [--history PATH | --no-history]\n"
+    "                   [--history PATH | --no-history] [--warmup W] [--frames F]\n"
     "\n"
     "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
     "it: DIR/<matrix>.csv gets one row per run and component, DIR/<matrix>_passes.csv the per-pass\n"
@@ -36,20 +37,27 @@ static const char help[] =
     "--shard I/N runs share I of N of each matrix's runs (with the references they need): a\n"
     "deterministic, balanced split by scene, size and instant that every shard computes alike.\n"
     "Each shard writes into its own DIR, plus DIR/<matrix>.shard, the manifest `gibench merge`\n"
-    "checks when it combines the shards' CSVs into the table one run would write.\n";
+    "checks when it combines the shards' CSVs into the table one run would write.\n"
+    "\n"
+    "Timing: every run renders a cold first frame (its time to the first image, compiles\n"
+    "included, is the column first_frame_ms), then the profile's warm-up frames, then its timed\n"
+    "frames: median, interquartile range, min and max. --warmup W and --frames F replace the\n"
+    "profile's counts (the timing benchmark's longer warm-up, harness/bench_timing.py).\n";
 
 enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
-       C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_CPU,
-       C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
-       C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_PSNR, C_SSIM, C_FLIP, C_HDRFLIP, C_NONFINITE, C_REF_SPP,
+       C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_GPU_IQR,
+       C_CPU, C_CPU_IQR, C_FIRST_FRAME, C_FIRST_GPU, C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
+       C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_BLACK_RMSE, C_OVER_BLACK, C_RMSE_DENOISED, C_RMSE_LO,
+       C_RMSE_HI, C_PSNR, C_SSIM, C_FLIP, C_HDRFLIP, C_NONFINITE, C_REF_SPP,
        C_REF_NOISE, C_REF_NOISY,
        C_STATUS, C_MESSAGE, C_COUNTERS, C_IMAGE, C_REF_IMAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
 
 static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
-    "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms",
-    "mem_bytes", "mem_by_structure",
-    "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "psnr", "ssim", "flip", "hdrflip",
+    "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "gpu_ms_iqr",
+    "cpu_ms", "cpu_ms_iqr", "first_frame_ms", "first_frame_gpu_ms", "mem_bytes", "mem_by_structure",
+    "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "black_rmse", "rmse_over_black",
+    "rmse_denoised", "rmse_lo", "rmse_hi", "psnr", "ssim", "flip", "hdrflip",
     "nonfinite", "ref_spp",
     "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "image", "ref_image", "backend", "renderer", "gl_version",
     "git_revision", "timestamp"};
@@ -61,7 +69,9 @@ static const int pass_key_columns[] = {1, 2, 3, 4, 5, 6, 7, 8};
 
 static const char *const pass_columns[] = {"matrix", "profile", "scene", "technique", "params",
                                            "width", "height", "time", "pass", "ms_median", "ms_min",
-                                           "ms_max", "renderer", "git_revision"};
+                                           "ms_max", "ms_iqr", "ms_first", "renderer",
+                                           "git_revision"};
+#define PASS_COLUMNS ((int)(sizeof pass_columns / sizeof pass_columns[0]))
 
 #define MAX_COLS 96
 typedef struct columns {
@@ -238,6 +248,56 @@ static void append_row(run_ctx *ctx, row *r)
         ctx->rows_failed++;
 }
 
+/* The reference request of a row (component GIB_OUT_* bit `bit` of run mr), at the matrix's spp.
+ * Returns the reference component, -1 when there is no estimator for it. */
+static int row_request(const run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
+                       unsigned bit, gib_ref_request *rq)
+{
+    int component = gib_component_parse(gib_output_name(bit));
+    *rq = (gib_ref_request){.scene = scene, .camera = ctx->m->camera, .width = mr->width,
+                            .height = mr->height, .time = (float)mr->time, .component = component,
+                            .spp = component >= 0 && ctx->m->ref_spp[component]
+                                       ? ctx->m->ref_spp[component] : 64,
+                            .cache_dir = ctx->cache};
+    gib_ref_request_match(rq, mr->technique, &mr->params, bit);
+    return component;
+}
+
+/* The reference a row is scored against (refrank.h): the matrix's, or where its noise is over a
+ * fifth of the row's error, one with more samples. Returns what gib_reference_get returns. */
+static int reference_to_rank(const run_ctx *ctx, gib_ref_request *rq, const gib_image *img,
+                             float exposure, gib_ref_result *ref, gib_error *err)
+{
+    int grc = gib_reference_get(rq, ref, err);
+    gib_metrics m;
+    if (grc < 0 || gib_metrics_compute(&ref->image, img, exposure, &m, err) < 0 || m.nonfinite)
+        return grc;
+    int spp = gib_ref_spp_to_rank(rq->spp, ref->noise_rmse, m.rmse, (long)rq->width * rq->height,
+                                  ctx->m->ref_spp_growth);
+    if (spp == rq->spp)
+        return grc;
+    printf("    reference %s %dx%d: noise %.3g at %d spp is over a fifth of the row's error %.3g: "
+           "scored at %d spp\n", gib_component_name(rq->component), rq->width, rq->height,
+           ref->noise_rmse, rq->spp, m.rmse, spp);
+    gib_image_free(&ref->image);
+    rq->spp = spp;
+    return gib_reference_get(rq, ref, err);
+}
+
+/* The row's error beside what a black image scores and with the reference's noise taken out
+ * (metrics.h, gib_rmse_interval). */
+static void set_error_scale(row *r, const gib_metrics *m, double noise_rmse, long pixels)
+{
+    gib_rmse_bounds b;
+    gib_rmse_interval(m->rmse, noise_rmse, pixels, &b);
+    fmt_num(r, C_BLACK_RMSE, m->black_rmse);
+    fmt_num(r, C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
+                                               : m->rmse > 0 ? INFINITY : 0.0);
+    fmt_num(r, C_RMSE_DENOISED, b.denoised);
+    fmt_num(r, C_RMSE_LO, b.lo);
+    fmt_num(r, C_RMSE_HI, b.hi);
+}
+
 static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
                       const gib_matrix_run *mr, gib_run_result *res)
 {
@@ -252,8 +312,8 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
     /* The passes first: a run whose rows are all in the CSV (run_done) then has its passes too,
      * whenever the process is stopped. */
     for (int p = 0; res->ok && p < res->pass_count; p++) {
-        char v[14][256];
-        const char *ptr[14];
+        char v[PASS_COLUMNS][256];
+        const char *ptr[PASS_COLUMNS];
         snprintf(v[0], 256, "%s", ctx->m->name);
         snprintf(v[1], 256, "%s", ctx->m->profile);
         snprintf(v[2], 256, "%s", mr->scene);
@@ -266,9 +326,11 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         snprintf(v[9], 256, "%.6g", res->passes[p].median_ms);
         snprintf(v[10], 256, "%.6g", res->passes[p].min_ms);
         snprintf(v[11], 256, "%.6g", res->passes[p].max_ms);
-        snprintf(v[12], 256, "%s", ctx->info.renderer);
-        snprintf(v[13], 256, "%s", gib_git_revision());
-        for (int k = 0; k < 14; k++)
+        snprintf(v[12], 256, "%.6g", res->passes[p].iqr_ms);
+        snprintf(v[13], 256, "%.6g", res->passes[p].first_ms);
+        snprintf(v[14], 256, "%s", ctx->info.renderer);
+        snprintf(v[15], 256, "%s", gib_git_revision());
+        for (int k = 0; k < PASS_COLUMNS; k++)
             ptr[k] = v[k];
         if (gib_csv_append(ctx->passes, ptr, &err) < 0) {
             fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
@@ -297,19 +359,17 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         fmt_num(&r, C_GPU_MED, res->gpu_total.median_ms);
         fmt_num(&r, C_GPU_MIN, res->gpu_total.min_ms);
         fmt_num(&r, C_GPU_MAX, res->gpu_total.max_ms);
+        fmt_num(&r, C_GPU_IQR, res->gpu_total.iqr_ms);
         fmt_num(&r, C_CPU, res->cpu_total.median_ms);
+        fmt_num(&r, C_CPU_IQR, res->cpu_total.iqr_ms);
+        fmt_num(&r, C_FIRST_FRAME, res->first_frame_ms);
+        fmt_num(&r, C_FIRST_GPU, res->gpu_total.first_ms);
         const gib_image *img = &res->images[i++];
         const char *comp = gib_output_name(bit);
-        int component = gib_component_parse(comp);
-        gib_ref_request rq = {.scene = scene, .camera = ctx->m->camera, .width = mr->width,
-                              .height = mr->height, .time = (float)mr->time,
-                              .component = component,
-                              .spp = component >= 0 && ctx->m->ref_spp[component]
-                                         ? ctx->m->ref_spp[component] : 64,
-                              .cache_dir = ctx->cache};
-        gib_ref_request_match(&rq, t, &mr->params, bit);
+        gib_ref_request rq;
+        int component = row_request(ctx, scene, mr, bit, &rq);
         gib_ref_result ref;
-        int grc = component < 0 ? -1 : gib_reference_get(&rq, &ref, &err);
+        int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
         if (grc == GIB_REF_WRITE_FAILED) {
             /* The disk is full: no row (a rerun redoes this run), the run stops as for a table. */
             fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
@@ -370,6 +430,7 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         } else {
             fmt_num(&r, C_RMSE, m.rmse);
             fmt_num(&r, C_REL_RMSE, m.rel_rmse);
+            set_error_scale(&r, &m, ref.noise_rmse, (long)mr->width * mr->height);
             fmt_num(&r, C_PSNR, m.psnr);
             fmt_num(&r, C_SSIM, m.ssim);
             fmt_num(&r, C_FLIP, m.flip);
@@ -534,6 +595,7 @@ int gib_cmd_run(int argc, char **argv)
     const char *files[64];
     int nfiles = 0, backend = GIB_BACKEND_AUTO, images = 1;
     gib_shard shard = {0, 0};
+    long warmup = -1, frames = -1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -569,6 +631,15 @@ int gib_cmd_run(int argc, char **argv)
             }
         }
         else if (!strcmp(a, "--history")) history = v;
+        else if (!strcmp(a, "--warmup") || !strcmp(a, "--frames")) {
+            gib_error verr;
+            int warm = !strcmp(a, "--warmup");
+            if (gib_parse_int(a, v, warm ? 0 : 1, warm ? 100 : GIB_TIMER_MAX_FRAMES,
+                              warm ? &warmup : &frames, &verr) < 0) {
+                fprintf(stderr, "gibench run: %s\n", verr.msg);
+                return 2;
+            }
+        }
         else if (!strcmp(a, "--backend")) {
             if ((backend = gib_backend_parse(v)) < 0) {
                 fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
@@ -596,6 +667,10 @@ int gib_cmd_run(int argc, char **argv)
             return 2;
         }
         total += ms[i].run_count;
+        if (warmup >= 0)
+            ms[i].warmup = (int)warmup;
+        if (frames >= 0)
+            ms[i].frames = (int)frames;
     }
     char cache_dir[2048];
     snprintf(cache_dir, sizeof cache_dir, "%s", cache ? cache : GIB_PROJECT_ROOT "/results/cache");
@@ -632,7 +707,7 @@ int gib_cmd_run(int argc, char **argv)
         snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
         snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
         if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
-            gib_csv_open(&passes, ppath, pass_columns, 14, pass_key_columns, 8, &err) < 0) {
+            gib_csv_open(&passes, ppath, pass_columns, PASS_COLUMNS, pass_key_columns, 8, &err) < 0) {
             fprintf(stderr, "gibench run: %s\n", err.msg);
             gib_csv_close(&csv);
             gib_csv_close(&passes);

@@ -107,7 +107,8 @@ static const raw_value *lookup(const parse_state *s, const char *profile_section
 }
 
 static const char *const matrix_keys[] = {"description", "scenes", "techniques", "sizes", "camera",
-                                          "frames", "warmup", "times", "dt", NULL};
+                                          "frames", "warmup", "times", "dt", "ref_spp_growth",
+                                          NULL};
 
 /* ref_spp_<component>: samples per pixel of that component's reference. */
 static int ref_spp_component(const char *k)
@@ -185,9 +186,11 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
     const raw_value *v;
     m->frames = 5;
     m->warmup = 2;
+    m->ref_spp_growth = 16;
     struct { char key[48]; int *dst; long min, max; } ints[4 + GIB_MATRIX_MAX_COMPONENTS] = {
-        {"camera", &m->camera, 0, 64}, {"frames", &m->frames, 1, 256}, {"warmup", &m->warmup, 0, 100}};
-    size_t nints = 3;
+        {"camera", &m->camera, 0, 64}, {"frames", &m->frames, 1, 256}, {"warmup", &m->warmup, 0, 100},
+        {"ref_spp_growth", &m->ref_spp_growth, 1, 1024}};
+    size_t nints = 4;
     for (int c = 0; c < GIB_COMP_COUNT && c < GIB_MATRIX_MAX_COMPONENTS; c++, nints++) {
         snprintf(ints[nints].key, sizeof ints[nints].key, "ref_spp_%s", gib_component_name(c));
         ints[nints].dst = &m->ref_spp[c];

@@ -12,6 +12,7 @@
  *   dt = 0.0167            ; frames before the last are dt apart (default 0: all at the instant)
  *   ref_spp_direct = 4     ; reference samples per pixel, per component (ref_spp_<component>)
  *   ref_spp_ao = 256
+ *   ref_spp_growth = 16    ; a reference too noisy to rank its rows gets up to 16x those samples
  *   [params.direct]        ; comma-separated lists; the cross product is run
  *   shadow_res = 512, 1024
  *   [scene_scale]          ; optional: a scene's length parameters (dmax: GIB_PARAM_LENGTH)
@@ -47,6 +48,8 @@ typedef struct gib_matrix {
     int camera, frames, warmup;
     double dt;              /* seconds between frames (the last at the run's time) */
     int ref_spp[GIB_MATRIX_MAX_COMPONENTS]; /* by enum gib_component; 0 = not set */
+    int ref_spp_growth;     /* the most a reference's spp is multiplied by so that its noise is at
+                               most a fifth of the smallest error it scores (1: never) */
     gib_matrix_run *runs;
     int run_count;
 } gib_matrix;

@@ -80,7 +80,7 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
                           const gib_params *params, int camera, int w, int h, int warmup,
                           int frames, double time, double dt, gib_run_result *r)
 {
-    const int moves = scene->scene->motion_count > 0, nf = warmup + frames;
+    const int moves = scene->scene->motion_count > 0, nf = 1 + warmup + frames;
     memset(r, 0, sizeof *r);
     set_status(r, "ok");
     gib_ledger ledger;
@@ -129,6 +129,7 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
         set_status(r, "scene_update_failed");
         goto done;
     }
+    const double create_start = gib_now_ms();
     self = t->create(scene, params, w, h, &ledger, &r->err);
     if (!self) {
         set_status(r, strstr(r->err.msg, "out of memory") ? "out_of_memory"
@@ -140,7 +141,7 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
     for (int f = 0; f < nf; f++) {
         const double tf = frame_time(time, dt, f, nf);
         gib_view_make(scene->scene, &scene->scene->cameras[camera], w, h, (float)tf, &view);
-        gib_timers_frame_begin(&timers, f >= warmup);
+        gib_timers_frame_begin(&timers, f > warmup); /* f = 0 is the cold frame */
         /* A moving scene's vertices for this frame, in a pass of their own (static: no pass). */
         if (moves) {
             gib_timer_begin(&timers, "scene_update");
@@ -154,6 +155,8 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
         }
         int rc = t->render(self, &view, &timers, targets, nt, &r->err);
         gib_timers_frame_end(&timers);
+        if (f == 0)
+            r->first_frame_ms = gib_now_ms() - create_start;
         if (rc < 0) {
             set_status(r, "render_failed");
             goto done;

@@ -1,6 +1,7 @@
 /* gibench — one run: a technique with validated parameters on an uploaded scene at one size.
- * create → W warm-up frames → F timed frames → read back each component image (ARCHITECTURE.md, data
- * flow). The result carries everything a CSV row needs except the metrics. */
+ * create → the cold first frame → W warm-up frames → F timed frames → read back each component
+ * image (ARCHITECTURE.md, data flow). The result carries everything a CSV row needs except the
+ * metrics. */
 #ifndef GIB_RUNNER_H
 #define GIB_RUNNER_H
 
@@ -21,6 +22,8 @@ typedef struct gib_run_result {
     gib_pass_stats passes[GIB_TIMER_MAX_PASSES];
     gib_pass_stats gpu_total, cpu_total;
     int frames;
+    double first_frame_ms;          /* wall time from create to the cold first frame's image
+                                       (glFinish): compiles and first uses included */
     uint64_t technique_bytes;       /* peak bytes the technique's ledger held */
     long long driver_bytes;         /* what the driver says the run took (GL_NVX_gpu_memory_info:
                                        drop in available video memory from before create to after
@@ -31,12 +34,13 @@ typedef struct gib_run_result {
     gib_error err;
 } gib_run_result;
 
-/* Never fails outright: problems are reported in result->status and result->err. */
+/* Never fails outright: problems are reported in result->status and result->err. The cold first
+ * frame is rendered before the `warmup` warm-up frames, so warmup 0 still times no cold frame. */
 void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
                        int camera, int width, int height, int warmup, int frames,
                        gib_run_result *result);
 /* The same on a scene that may move: the last frame (the image read back) shows instant `time`
- * (seconds), each frame before it dt earlier (dt = 0: all at `time`). For a moving scene every
+ * (seconds), each frame before it (the cold one included) dt earlier (dt = 0: all at `time`). For a moving scene every
  * frame first uploads its vertices in a timed pass "scene_update"; gib_run_technique is this at
  * time 0, dt 0. */
 void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,

@@ -141,8 +141,11 @@ const char *gib_git_revision(void)
                 snprintf(rev, sizeof rev, "%s", line);
         }
         pclose(p);
-        /* A dirty tree is marked, so a result is never attributed to a commit it did not come from. */
-        p = popen("git -C '" GIB_PROJECT_ROOT "' status --porcelain --untracked-files=no 2>/dev/null", "r");
+        /* A dirty tree is marked, so a result is never attributed to a commit it did not come from.
+         * results/ is left out: it holds what gibench writes (make reproduce moves the committed
+         * tables aside before it runs), never what the numbers are computed by. */
+        p = popen("git -C '" GIB_PROJECT_ROOT "' status --porcelain --untracked-files=no -- . "
+                  "':(exclude)results' 2>/dev/null", "r");
         if (p) {
             char l2[8];
             if (fgets(l2, sizeof l2, p) && strcmp(rev, "unknown"))

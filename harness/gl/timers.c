@@ -1,6 +1,7 @@
 #include "timers.h"
 
 #include <glad/gl.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -59,6 +60,8 @@ void gib_timer_end(gib_timers *t)
      * pass can only hold one result. The wait costs CPU time, not GPU time. */
     GLuint64 ns = 0;
     glGetQueryObjectui64v(t->queries[t->active], GL_QUERY_RESULT, &ns);
+    if (t->cold)
+        t->first_ms[t->active] += ns * 1e-6;
     if (t->recording && t->frames < GIB_TIMER_MAX_FRAMES) {
         t->ms[t->active][t->frames] += ns * 1e-6;
         t->used_in_frame[t->active] = 1;
@@ -68,7 +71,8 @@ void gib_timer_end(gib_timers *t)
 
 void gib_timers_frame_begin(gib_timers *t, int record)
 {
-    t->recording = record && t->frames < GIB_TIMER_MAX_FRAMES;
+    t->cold = t->begun++ == 0;
+    t->recording = !t->cold && record && t->frames < GIB_TIMER_MAX_FRAMES;
     if (t->recording)
         for (int i = 0; i < GIB_TIMER_MAX_PASSES; i++)
             t->ms[i][t->frames] = 0;
@@ -80,6 +84,12 @@ void gib_timers_frame_end(gib_timers *t)
     if (t->active >= 0)
         gib_timer_end(t);
     glFinish();
+    if (t->cold) {
+        t->first_cpu_ms = gib_now_ms() - t->frame_cpu_start;
+        for (int i = 0; i < t->pass_count; i++)
+            t->first_total_ms += t->first_ms[i];
+        t->cold = 0;
+    }
     if (!t->recording)
         return;
     double total = 0;
@@ -113,24 +123,38 @@ void gib_stats_median(const double *v, int n, double *median, double *min, doubl
     free(s);
 }
 
+double gib_stats_quantile(const double *v, int n, double q)
+{
+    double *s = n > 0 ? malloc(sizeof(double) * n) : NULL;
+    if (!s)
+        return 0;
+    memcpy(s, v, sizeof(double) * n);
+    qsort(s, n, sizeof(double), cmp_double);
+    double h = q * (n - 1);
+    int lo = (int)h;
+    double x = lo + 1 < n ? s[lo] + (h - lo) * (s[lo + 1] - s[lo]) : s[n - 1];
+    free(s);
+    return x;
+}
+
+/* Median, spread and extremes of n timed values, and the cold frame's value beside them. */
+static void fill_stats(gib_pass_stats *st, const char *name, const double *v, int n, double first)
+{
+    snprintf(st->name, sizeof st->name, "%s", name);
+    gib_stats_median(v, n, &st->median_ms, &st->min_ms, &st->max_ms);
+    st->iqr_ms = gib_stats_quantile(v, n, 0.75) - gib_stats_quantile(v, n, 0.25);
+    st->first_ms = first;
+}
+
 int gib_timers_stats(const gib_timers *t, gib_pass_stats *stats, int max, gib_pass_stats *gpu_total,
                      gib_pass_stats *cpu_total)
 {
     int n = t->pass_count < max ? t->pass_count : max;
-    for (int i = 0; i < n; i++) {
-        strcpy(stats[i].name, t->names[i]);
-        gib_stats_median(t->ms[i], t->frames, &stats[i].median_ms, &stats[i].min_ms,
-                         &stats[i].max_ms);
-    }
-    if (gpu_total) {
-        strcpy(gpu_total->name, "total");
-        gib_stats_median(t->total_ms, t->frames, &gpu_total->median_ms, &gpu_total->min_ms,
-                         &gpu_total->max_ms);
-    }
-    if (cpu_total) {
-        strcpy(cpu_total->name, "cpu");
-        gib_stats_median(t->cpu_ms, t->frames, &cpu_total->median_ms, &cpu_total->min_ms,
-                         &cpu_total->max_ms);
-    }
+    for (int i = 0; i < n; i++)
+        fill_stats(&stats[i], t->names[i], t->ms[i], t->frames, t->first_ms[i]);
+    if (gpu_total)
+        fill_stats(gpu_total, "total", t->total_ms, t->frames, t->first_total_ms);
+    if (cpu_total)
+        fill_stats(cpu_total, "cpu", t->cpu_ms, t->frames, t->first_cpu_ms);
     return n;
 }

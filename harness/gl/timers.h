@@ -2,7 +2,8 @@
  *
  * A technique brackets each pass with gib_timer_begin/end. The harness marks frames; results are
  * collected after each frame (queries are read back then, so they never overlap: TIME_ELAPSED
- * queries cannot nest). Statistics are over the timed frames only; warm-up frames are discarded. */
+ * queries cannot nest). The first frame (shader JIT, first use of every resource) is kept apart as
+ * the cold frame; statistics are over the timed frames only, warm-up frames are discarded. */
 #ifndef GIB_TIMERS_H
 #define GIB_TIMERS_H
 
@@ -11,7 +12,9 @@
 
 typedef struct gib_pass_stats {
     char name[48];
-    double median_ms, min_ms, max_ms;
+    double median_ms, min_ms, max_ms; /* over the timed frames */
+    double iqr_ms;                    /* their interquartile range (quartiles interpolated) */
+    double first_ms;                  /* the cold first frame: never among the timed ones */
 } gib_pass_stats;
 
 struct gib_timers {
@@ -22,6 +25,9 @@ struct gib_timers {
     int active;                    /* pass index with an open query, -1 when none */
     int frames;                    /* recorded (timed) frames */
     int recording;                 /* 0 during warm-up */
+    int begun;                     /* frames begun, the cold one included */
+    int cold;                      /* 1 during the first frame */
+    double first_ms[GIB_TIMER_MAX_PASSES], first_total_ms, first_cpu_ms;
     double ms[GIB_TIMER_MAX_PASSES][GIB_TIMER_MAX_FRAMES];
     double total_ms[GIB_TIMER_MAX_FRAMES];
     double cpu_ms[GIB_TIMER_MAX_FRAMES];
@@ -36,8 +42,9 @@ void gib_timers_destroy(gib_timers *t);
 void gib_timer_begin(gib_timers *t, const char *pass);
 void gib_timer_end(gib_timers *t);
 
-/* Used by the harness around each render() call. `record` = 0 for warm-up frames. frame_end waits
- * for the GPU (glFinish), so the CPU time is the full frame's wall time. */
+/* Used by the harness around each render() call. `record` = 0 for warm-up frames; the first frame
+ * begun is the cold one and is never recorded as timed. frame_end waits for the GPU (glFinish), so
+ * the CPU time is the full frame's wall time. */
 void gib_timers_frame_begin(gib_timers *t, int record);
 void gib_timers_frame_end(gib_timers *t);
 
@@ -47,6 +54,9 @@ int gib_timers_stats(const gib_timers *t, gib_pass_stats *stats, int max, gib_pa
 
 /* Median, min, max of n values (n >= 1). */
 void gib_stats_median(const double *v, int n, double *median, double *min, double *max);
+/* Quantile q in [0, 1] of n values, linearly interpolated between order statistics (Hyndman and
+ * Fan's type 7, numpy's default); 0 for n < 1. */
+double gib_stats_quantile(const double *v, int n, double q);
 
 double gib_now_ms(void);
 

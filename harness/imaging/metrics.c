@@ -120,7 +120,7 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
 
     const size_t n = (size_t)ref->width * (size_t)ref->height;
     const int rc = ref->channels, tc = test->channels;
-    double sum_sq = 0.0, sum_ref = 0.0, peak = -INFINITY;
+    double sum_sq = 0.0, sum_ref = 0.0, sum_ref_sq = 0.0, peak = -INFINITY;
     size_t npairs = 0;
     long nonfinite = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -134,6 +134,7 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
             double d = t - r;
             sum_sq += d * d;
             sum_ref += r;
+            sum_ref_sq += r * r;
             if (r > peak)
                 peak = r;
             ++npairs;
@@ -141,9 +142,10 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
     }
     out->nonfinite = nonfinite;
     if (npairs == 0) {
-        out->rmse = out->rel_rmse = out->psnr = out->ref_mean = NAN;
+        out->rmse = out->rel_rmse = out->psnr = out->ref_mean = out->black_rmse = NAN;
     } else {
         out->rmse = sqrt(sum_sq / (double)npairs);
+        out->black_rmse = sqrt(sum_ref_sq / (double)npairs);
         out->ref_mean = sum_ref / (double)npairs;
         if (out->ref_mean > 0.0)
             out->rel_rmse = out->rmse / out->ref_mean;
@@ -166,4 +168,18 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
     free(ga);
     free(gb);
     return 0;
+}
+
+void gib_rmse_interval(double rmse, double noise_rmse, long pixels, gib_rmse_bounds *out)
+{
+    const double mse = rmse * rmse, noise = noise_rmse * noise_rmse;
+    const double d = mse - noise; /* unbiased: E[mse] = true mse + noise */
+    const double n = pixels > 0 ? (double)pixels : 1.0;
+    const double dpos = d > 0.0 ? d : 0.0;
+    /* var(mse) = (4 D S + 2 S^2) / N for Gaussian noise of variance S over N pixels, plus the
+     * variance of S itself, estimated from 8 batches (7 degrees of freedom): 2 S^2 / (7 N). */
+    const double se = sqrt((4.0 * dpos * noise + 2.0 * noise * noise * (1.0 + 1.0 / 7.0)) / n);
+    out->denoised = sqrt(dpos);
+    out->lo = d - 1.96 * se > 0.0 ? sqrt(d - 1.96 * se) : 0.0;
+    out->hi = d + 1.96 * se > 0.0 ? sqrt(d + 1.96 * se) : 0.0;
 }

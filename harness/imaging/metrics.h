@@ -16,6 +16,7 @@
 typedef struct gib_metrics {
     double rmse, rel_rmse, psnr, ssim;
     double ref_mean;
+    double black_rmse; /* what an all-black image scores: sqrt(mean of ref^2) over the same samples */
     /* LDR-FLIP and HDR-FLIP means (harness/imaging/flip.h); gib_metrics_compute leaves them 0,
      * gib_score_flip (harness/app) fills them. */
     double flip, hdrflip;
@@ -34,5 +35,19 @@ double gib_ssim_gray(const float *a, const float *b, int width, int height);
 
 /* The SSIM channel of a linear RGB image: srgb_encode(clamp(exposure * Y, 0, 1)). out: w*h floats. */
 void gib_ssim_channel(const gib_image *img, float exposure, float *out);
+
+/* The error against the truth a noisy reference estimates, with a 95% interval. A reference with
+ * per-pixel noise n (mean variance S = noise_rmse^2) adds S to the expected squared error:
+ * E[rmse^2] = D + S, D the technique's true mean squared error. So D is estimated by rmse^2 - S;
+ * its standard error, for Gaussian noise spread evenly over `pixels` independent pixels, is
+ * sqrt((4 D S + 2 S^2 + 2 S^2 / 7) / pixels) (the last term: S itself is estimated from 8
+ * batches, 7 degrees of freedom). Channels of a pixel share their paths, so pixels, not samples,
+ * are the independent units (conservative). Noise concentrated in few pixels widens the true
+ * interval beyond this one. denoised = sqrt(max(D, 0)); lo and hi the roots of D -/+ 1.96 se,
+ * clamped at 0. A deterministic reference (noise 0) gives lo = denoised = hi = rmse. */
+typedef struct gib_rmse_bounds {
+    double denoised, lo, hi;
+} gib_rmse_bounds;
+void gib_rmse_interval(double rmse, double noise_rmse, long pixels, gib_rmse_bounds *out);
 
 #endif

@@ -18,8 +18,9 @@ import subprocess
 import sys
 import tempfile
 
-TIME_COLUMNS = {"gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms", "timestamp"}
-PASS_TIME_COLUMNS = {"ms_median", "ms_min", "ms_max"}
+TIME_COLUMNS = {"gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "gpu_ms_iqr", "cpu_ms", "cpu_ms_iqr",
+                "first_frame_ms", "first_frame_gpu_ms", "timestamp"}
+PASS_TIME_COLUMNS = {"ms_median", "ms_min", "ms_max", "ms_iqr", "ms_first"}
 SHARDS = 3
 failures = []
 

@@ -22,7 +22,8 @@ import time
 
 KEY = ("profile", "scene", "camera", "technique", "component", "params", "width", "height", "time")
 PASS_KEY = ("profile", "scene", "technique", "params", "width", "height", "time", "pass")
-TIMES = {"gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "cpu_ms", "timestamp", "driver_mem_bytes"}
+TIMES = {"gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "gpu_ms_iqr", "cpu_ms", "cpu_ms_iqr", "first_frame_ms",
+         "first_frame_gpu_ms", "timestamp", "driver_mem_bytes"}
 KILLS = 10
 failures = []
 
