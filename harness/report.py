@@ -39,15 +39,16 @@ def read_csv(path):
 
 
 def matrices(results):
-    """{matrix name: rows} for every runner CSV (the ones with a `matrix` column; not *_passes)."""
+    """{matrix name: rows} for every runner CSV (first column `matrix`, a `status` column; not
+    *_passes, nor the timing benchmark's table)."""
     out = {}
     for path in sorted(glob.glob(os.path.join(results, "*.csv"))):
         name = os.path.basename(path)[:-4]
         if name.endswith("_passes"):
             continue
         with open(path, newline="") as f:
-            header = f.readline()
-        if not header.startswith("matrix,"):
+            header = next(csv.reader(f), [])
+        if header[:1] != ["matrix"] or "status" not in header:  # runner tables only (not bench_*)
             continue
         out[name] = read_csv(path)
     return out

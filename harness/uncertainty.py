@@ -42,9 +42,13 @@ def error_interval(r, relative=False):
 
 
 def over_black(r):
-    """The row's RMSE over the black image's, or None where the table has no black column."""
-    ratio = fnum(r.get("rmse_over_black"))
-    if ratio is not None:
+    """The row's RMSE over the black image's, or None where the table has no black column. A black
+    reference (a view that should be dark, thin_wall_leak's) makes any light infinitely worse."""
+    try:
+        ratio = float(r.get("rmse_over_black"))
+    except (TypeError, ValueError):
+        ratio = None
+    if ratio is not None and ratio == ratio:
         return ratio
     rmse, black = fnum(r.get("rmse")), fnum(r.get("black_rmse"))
     return rmse / black if rmse is not None and black else None

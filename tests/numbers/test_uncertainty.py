@@ -28,6 +28,8 @@ check(error_interval(row) == (0.18, 0.19, 0.2), f"interval read: {error_interval
 lo, est, hi = error_interval(row, relative=True)
 check(abs(est - 1.9) < 1e-12 and abs(lo - 1.8) < 1e-12, f"relative to the mean 0.1: {est}")
 check(worse_than_black(row) and over_black(row) == 2.0, "twice the black image's error: worse than black")
+check(worse_than_black({"rmse": "0.1", "rel_rmse": "inf", "black_rmse": "0", "rmse_over_black": "inf"}),
+      "light where the reference is black: worse than black")
 old = {"rmse": "0.3", "rel_rmse": "1"}
 check(error_interval(old) == (0.3, 0.3, 0.3) and over_black(old) is None,
       "a table from before the interval: the plain RMSE, no black ratio")
