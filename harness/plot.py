@@ -33,6 +33,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from uncertainty import error_interval, worse_than_black  # noqa: E402
+from uncertainty import fnum as finite_num  # noqa: E402
 
 
 def pareto(points):
@@ -47,14 +48,6 @@ def pareto(points):
 
 def gp_quote(s):
     return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
-
-
-def finite_num(text):
-    try:
-        x = float(text)
-    except (TypeError, ValueError):
-        return None
-    return x if x == x and abs(x) != float("inf") else None
 
 
 def error_metric(rows):

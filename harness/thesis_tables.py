@@ -24,6 +24,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot import parse_params  # noqa: E402
+from uncertainty import fnum  # noqa: E402,F401  (a finite float or None)
 
 MISSING = "missing"
 
@@ -49,14 +50,6 @@ NO_STANDIN = {"4.5": "the thesis' 16,384-photon set (a 128^2 grid): no mask leve
 # linked lists' at every setting.
 R2_MIN, RATIO_LO, RATIO_HI, SPEEDUP_MIN, ERR_ABS, ERR_REL, LEAK_MIN = 0.9, 1.5, 2.7, 2.0, 0.05, 0.25, 1.1
 FPS_GAP = 0.06  # a thesis row's 1000/fps more than 6% from its frame ms is flagged on its own
-
-
-def fnum(text):
-    try:
-        x = float(text)
-    except (TypeError, ValueError):
-        return None
-    return x if x == x and abs(x) != float("inf") else None
 
 
 def fmt(x, digits=4):
