@@ -19,14 +19,17 @@ PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libsqlite3-dev \
   chromium
 
+# The papers' figures and tables (make reproduce, ~20 min on 2 cores) and our own parameter studies
+# beyond them (make reproduce-studies, ~10 min): the report reads the committed CSVs of both.
 MATRICES = $(wildcard harness/matrices/*.matrix)
+STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce plots report baselines fuzz bench bench-timing clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies plots report baselines fuzz bench bench-timing clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make clean"
+	@echo "make reproduce | make reproduce-studies | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -79,6 +82,9 @@ reproduce: build
 	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
 	  rc=$$?; \
 	  $(MAKE) --no-print-directory report || rc=1; exit $$rc
+
+reproduce-studies:
+	$(MAKE) --no-print-directory reproduce MATRICES="$(STUDIES)"
 
 # The project's own benchmarks, apart from the papers' results (their CSVs are committed and the
 # report reads them): the reference's ray throughput against Embree alone (~10 min on 2 cores with
