@@ -104,6 +104,7 @@ int gib_cmd_compare(int argc, char **argv)
             printf("{");
             json_num("rmse", m.rmse, 0);
             json_num("rel_rmse", m.rel_rmse, 0);
+            json_num("mean_ratio", m.mean_ratio, 0);
             json_num("black_rmse", m.black_rmse, 0);
             json_num("rmse_over_black", m.rmse / m.black_rmse, 0);
             json_num("ref_noise_rmse", noise, 0);
@@ -120,6 +121,7 @@ int gib_cmd_compare(int argc, char **argv)
                    "nonfinite %ld  -> %s\n",
                    m.rmse, m.rel_rmse, m.psnr, m.ssim, m.flip, m.hdrflip, m.nonfinite,
                    fail ? "FAIL" : "PASS");
+            printf("mean %.4g of the reference's\n", m.mean_ratio);
             printf("black image: rmse %.6g; this image scores %.4g of it%s\n", m.black_rmse,
                    m.rmse / m.black_rmse, m.rmse > m.black_rmse ? " (WORSE THAN BLACK)" : "");
             printf("reference noise rmse %.6g%s: rmse without it %.6g, 95%% interval [%.6g, %.6g]\n",

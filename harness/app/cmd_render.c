@@ -154,13 +154,18 @@ int gib_cmd_render(int argc, char **argv)
             }
             gib_rmse_bounds b;
             gib_rmse_interval(m.rmse, ref.noise_rmse, (long)w * h, &b);
-            printf("  %s: rmse %.6g rel_rmse %.6g psnr %.3f ssim %.6f nonfinite %ld (reference "
-                   "%d spp, noise rmse %.3g)\n", comp, m.rmse, m.rel_rmse, m.psnr, m.ssim,
+            printf("  %s: rmse %.6g rel_rmse %.6g mean %.4g of the reference's psnr %.3f ssim %.6f "
+                   "nonfinite %ld (reference %d spp, noise rmse %.3g)\n", comp, m.rmse, m.rel_rmse,
+                   m.mean_ratio, m.psnr, m.ssim,
                    m.nonfinite, ref.spp, ref.noise_rmse);
-            printf("  %s: a black image scores rmse %.6g (this image %.3g of it%s); without the "
-                   "reference's noise rmse %.6g [%.6g, %.6g] (95%%)\n", comp, m.black_rmse,
-                   m.rmse / m.black_rmse, m.rmse > m.black_rmse ? ": WORSE THAN BLACK" : "",
-                   b.denoised, b.lo, b.hi);
+            if (m.black_rmse > 0)
+                printf("  %s: a black image scores rmse %.6g (this image %.3g of it%s)", comp,
+                       m.black_rmse, m.rmse / m.black_rmse,
+                       m.rmse > m.black_rmse ? ": WORSE THAN BLACK" : "");
+            else
+                printf("  %s: the reference is black (any light here is error)", comp);
+            printf("; without the reference's noise rmse %.6g [%.6g, %.6g] (95%%)\n", b.denoised,
+                   b.lo, b.hi);
             gib_image_free(&ref.image);
         } else {
             char path[4096];

@@ -120,7 +120,7 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
 
     const size_t n = (size_t)ref->width * (size_t)ref->height;
     const int rc = ref->channels, tc = test->channels;
-    double sum_sq = 0.0, sum_ref = 0.0, sum_ref_sq = 0.0, peak = -INFINITY;
+    double sum_sq = 0.0, sum_ref = 0.0, sum_test = 0.0, sum_ref_sq = 0.0, peak = -INFINITY;
     size_t npairs = 0;
     long nonfinite = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -134,6 +134,7 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
             double d = t - r;
             sum_sq += d * d;
             sum_ref += r;
+            sum_test += t;
             sum_ref_sq += r * r;
             if (r > peak)
                 peak = r;
@@ -143,10 +144,12 @@ int gib_metrics_compute(const gib_image *ref, const gib_image *test, float expos
     out->nonfinite = nonfinite;
     if (npairs == 0) {
         out->rmse = out->rel_rmse = out->psnr = out->ref_mean = out->black_rmse = NAN;
+        out->mean_ratio = NAN;
     } else {
         out->rmse = sqrt(sum_sq / (double)npairs);
         out->black_rmse = sqrt(sum_ref_sq / (double)npairs);
         out->ref_mean = sum_ref / (double)npairs;
+        out->mean_ratio = sum_ref > 0.0 ? sum_test / sum_ref : sum_test == 0.0 ? 1.0 : INFINITY;
         if (out->ref_mean > 0.0)
             out->rel_rmse = out->rmse / out->ref_mean;
         else

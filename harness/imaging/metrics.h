@@ -16,6 +16,10 @@
 typedef struct gib_metrics {
     double rmse, rel_rmse, psnr, ssim;
     double ref_mean;
+    /* The image's energy against the reference's: mean of the test's samples over the reference's,
+     * over the same samples (1 = the reference's energy; 0 for black; +inf when only the
+     * reference is black). */
+    double mean_ratio;
     double black_rmse; /* what an all-black image scores: sqrt(mean of ref^2) over the same samples */
     /* LDR-FLIP and HDR-FLIP means (harness/imaging/flip.h); gib_metrics_compute leaves them 0,
      * gib_score_flip (harness/app) fills them. */

@@ -36,6 +36,9 @@ static const gib_param_spec vct_params[] = {
      "touch, Fig. 4; as common/voxel_cone.glsl's shadow_cone)"},
     {"start_offset", GIB_PARAM_FLOAT, 1.5, 0, 8, "cone start offset along the normal, in voxels"},
     {"max_distance", GIB_PARAM_FLOAT, 1, 0.01, 2, "longest cone, as a fraction of the grid side"},
+    {"sample_level", GIB_PARAM_INT, 1, 0, 2,
+     "levels finer than the paper's log2(d) a sample of diameter d reads (0: the paper's "
+     "mipLevel, whose trilinear footprint reaches the receiver's own cells; vct_trace.glsl)"},
     {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
     {"memory_budget_mb", GIB_PARAM_FLOAT, 0, 0, 1e7,
      "memory budget for the voxels (decimal MB); 0 = the device's (NVX_gpu_memory_info, else "
@@ -52,7 +55,8 @@ typedef struct vct {
     vct_volume vol;
     gib_fullscreen direct, indirect, glossy;
     int inject_res;
-    float step_factor, start_offset, max_distance;
+    vct_cone_settings cones;
+    float max_distance;
     float tan_diffuse, tan_specular, tan_shadow;
 } vct;
 
@@ -88,8 +92,9 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->scene = scene;
     a->ledger = ledger;
     a->inject_res = gib_param_int(t, p, "inject_res");
-    a->step_factor = (float)gib_param_float(t, p, "step_factor");
-    a->start_offset = (float)gib_param_float(t, p, "start_offset");
+    a->cones.step_factor = (float)gib_param_float(t, p, "step_factor");
+    a->cones.start_offset = (float)gib_param_float(t, p, "start_offset");
+    a->cones.sample_level = gib_param_int(t, p, "sample_level");
     a->max_distance = (float)gib_param_float(t, p, "max_distance");
     a->tan_diffuse = tan_half_deg(gib_param_float(t, p, "diffuse_aperture"));
     a->tan_specular = tan_half_deg(gib_param_float(t, p, "specular_aperture"));
@@ -130,18 +135,11 @@ static void cone_pass(vct *a, const gib_fullscreen *fs, const char *pass, unsign
     gib_fullscreen_begin(fs, fbo, view->width, view->height, 0);
     gib_gpu_scene_bind(a->scene);
     gib_gbuffer_bind(&a->gbuffer);
-    glBindTextureUnit(GIB_UNIT_VOXELS, a->vol.radiance);
-    for (int d = 0; d < VCT_DIRECTIONS; d++)
-        glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, a->vol.aniso[d]);
-    glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, a->vol.origin);
-    glUniform1f(GIB_LOC_VOXEL_FIRST + 1, a->vol.size);
-    glUniform1i(GIB_LOC_VOXEL_FIRST + 2, a->vol.res);
+    vct_volume_bind_cones(&a->vol, &a->cones);
     glUniform3fv(2, 1, view->camera->eye);
     glUniform1i(3, (int)a->scene->scene->light_count);
     glUniform1f(4, tan_half);
     glUniform1f(5, a->max_distance * a->vol.size);
-    glUniform1f(7, a->step_factor);
-    glUniform1f(8, a->start_offset);
     gib_fullscreen_draw(fs);
     gib_fullscreen_end();
     gib_timer_end(timers);

@@ -68,6 +68,14 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
  * voxels, level k+1 from level k, by compositing the 2 voxels along the direction front to back
  * and averaging the 4 pairs. */
 void vct_volume_mips(vct_volume *v);
+/* How cones march (vct_trace.glsl): the step as a multiple of the sample's diameter, the start
+ * along the normal in voxels, and the levels finer than the paper's log2(d) a sample reads. */
+typedef struct vct_cone_settings {
+    float step_factor, start_offset;
+    int sample_level;
+} vct_cone_settings;
+/* Binds the volume and the cone settings for vct_trace.glsl on the current program. */
+void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c);
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger);
 
 #endif

@@ -5,13 +5,13 @@
 //     C = C_front + (1 - a_front) C_back,   a = a_front + (1 - a_front) a_back
 // (premultiplied radiance C, occlusion a; Eq. 1 over two samples), and the 4 lines averaged.
 // FROM_BASE builds level 0 (res/2) from the base voxels, where a lit voxel shows its radiance only
-// to cones that do not meet its surface from behind: hidden when dot(n, direction) > 0.5 (the
-// surface faces away by more than 60 degrees); it still occludes. The per-axis test is lenient
-// because a cone between the axes reads three axis textures: a surface facing the cone can face
-// away from one of the axes (a stricter 0.1 lost a further 15% of the furnace's answer). This keeps
-// the light of one side of a wall from its other side when the two sides are in different voxels;
-// a wall thinner than a voxel lit on both sides has one averaged normal and leaks (stated in
-// vct.h).
+// to cones that do not meet its surface from behind: hidden when dot(n, direction) > 0 (the
+// surface faces away from a cone travelling along the axis); it still occludes. A surface seen
+// edge-on (dot = 0) is shown: voxelised, it is a voxel thick, its line along the axis is opaque,
+// and hiding its light there turns every wall into a black occluder for the cones that run along
+// it (the Cornell box's indirect mean halves). This keeps the light of one side of a wall from its
+// other side when the two sides are in different voxels; a wall thinner than a voxel lit on both
+// sides has one averaged normal and leaks (stated in vct.h).
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(location = 2) uniform int u_level; // level written
 #ifdef FROM_BASE
@@ -30,7 +30,7 @@ vec4 child(int d, ivec3 p)
 #ifdef FROM_BASE
     vec4 r = texelFetch(u_radiance, p, 0); // rgb is premultiplied: 0 where empty, alpha 0 or 1
     vec4 n = texelFetch(u_normal, p, 0);
-    if (n.w > 0.5 && dot(n.xyz, DIRECTION[d]) > 0.5)
+    if (n.w > 0.5 && dot(n.xyz, DIRECTION[d]) > 0.0)
         r.rgb = vec3(0.0);
     return r;
 #else

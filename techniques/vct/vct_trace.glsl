@@ -6,12 +6,26 @@
 // level m >= 1 = anisotropic level m - 1, trilinear between levels), and the next sample is
 // step_factor x d further (spheres that touch, Fig. 4). A sample of a cone of direction D is the
 // three directional textures facing D's signs weighted by D^2 (Crassin et al. 2011, Sec. 4). Its
-// occlusion, pre-integrated over one voxel of its level (d voxels), is corrected to the step,
-// a' = 1 - (1 - a)^step_factor, and its premultiplied radiance scaled alike; then Eq. 1 front to
-// back.
+// occlusion, pre-integrated over one cell of the level it is read from (c voxels), is corrected to
+// the step, a' = 1 - (1 - a)^(step_factor d / c), and its premultiplied radiance scaled alike;
+// then Eq. 1 front to back.
+//
+// The level read: u_level_bias levels finer than the paper's log2(d) (vct's `sample_level`).
+// At the paper's level (bias 0) the cells are as wide as the sample, so the trilinear footprint
+// spans up to two cells, 2d: the first samples reach behind the cone's start into the receiver's
+// own cells, pre-integrated as seen from outside (opaque along +n), and an upward cone over open
+// ground reads most of its opacity from the ground it leaves (0.8-0.99 at 64^3-256^3), which
+// darkens every diffuse bounce by half and more as the voxels get finer. One level finer
+// (bias 1, the default) the footprint is the sample's own width, and the step crosses 2 cells.
+// A sample is also kept in front of the receiver's plane: its diameter at most twice its centre's
+// height above it. A 60-degree cone tilted 60 degrees from n grazes that plane, and samples of
+// diameter 2 t tan(30) (wider than the cone's inscribed sphere) would otherwise reach, from ~20
+// voxels on, the receiver's own surface, the ground around it and, through a wall, the other
+// side's light.
 #include "common/voxel_cone.glsl"
 layout(location = 7) uniform float u_step_factor;
 layout(location = 8) uniform float u_start_offset; // voxels, along the surface normal
+layout(location = 9) uniform float u_level_bias;   // levels finer than log2(d)
 layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler3D u_aniso[6];   // +x -x +y -y +z -z
 
 vec4 vct_sample(vec3 uvw, vec3 D, float mip)
@@ -42,12 +56,14 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
     float t = 1.0;
     for (int i = 0; i < 1024 && A < 0.995 && t <= tmax; i++) {
         float d = max(2.0 * (taper ? min(t, tmax - t) : t) * tan_half, 1.0);
+        d = min(d, max(2.0 * (u_start_offset + t * dot(D, n)), 1.0));
         vec3 uvw = (o + D * (t * vs) - u_voxel_origin) / u_voxel_size;
         float r = d / float(u_voxel_res); // the sample's diameter as a fraction of the grid
         if (any(lessThan(uvw, vec3(-r))) || any(greaterThan(uvw, vec3(1.0 + r))))
             break; // the sphere has left the grid (as shadow_cone)
-        vec4 s = vct_sample(uvw, D, log2(d));
-        float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor);
+        float level = max(log2(d) - u_level_bias, 0.0);
+        vec4 s = vct_sample(uvw, D, level);
+        float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor * d / exp2(level));
         vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
         I += (1.0 - A) * c;
         A += (1.0 - A) * a;

@@ -205,6 +205,17 @@ void vct_volume_mips(vct_volume *v)
         glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, 0);
 }
 
+void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
+{
+    glBindTextureUnit(GIB_UNIT_VOXELS, v->radiance);
+    for (int d = 0; d < VCT_DIRECTIONS; d++)
+        glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, v->aniso[d]);
+    grid_uniforms(v);
+    glUniform1f(7, c->step_factor);
+    glUniform1f(8, c->start_offset);
+    glUniform1f(9, (float)c->sample_level);
+}
+
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
 {
     const unsigned progs[] = {v->mip_base_program, v->inject_program, v->resolve_program,

@@ -1,5 +1,6 @@
 /* What makes a number trustworthy, checked on constructed cases with known answers:
- * - black_rmse is sqrt(mean ref^2) over the samples the RMSE uses;
+ * - black_rmse is sqrt(mean ref^2) over the samples the RMSE uses; mean_ratio is the test's mean
+ *   over the reference's (0 for black, 0.5 for the reference halved);
  * - gib_rmse_interval removes a noisy reference's bias from the RMSE and its 95% interval covers
  *   the true error: a truth G, a reference R = G + noise estimated from 8 batches (as the path
  *   tracer does), a technique T = G + d with a known true RMSE; over 300 trials the de-noised
@@ -57,6 +58,12 @@ static void test_black(void)
           sqrt(sum / 24));
     CHECK(fabs(m.rmse - m.black_rmse) < 1e-9, "a black test image scores black_rmse (%.9g vs %.9g)",
           m.rmse, m.black_rmse);
+    CHECK(m.mean_ratio == 0.0, "a black test image's mean_ratio %.9g, want 0", m.mean_ratio);
+    for (int i = 0; i < 24; i++)
+        test.px[i] = 0.5f * ref.px[i];
+    gib_metrics_compute(&ref, &test, 1.0f, &m, &err);
+    CHECK(fabs(m.mean_ratio - 0.5) < 1e-6, "the reference halved: mean_ratio %.9g, want 0.5",
+          m.mean_ratio);
     gib_image_free(&ref);
     gib_image_free(&test);
 }

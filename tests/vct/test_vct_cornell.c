@@ -7,17 +7,17 @@
  *    centre; one bounce = 0.25 / pi = 0.079577 everywhere): the mean within FURNACE_LO..HI of the
  *    closed form, and the direct light within DIRECT_TOL of 0.5 / pi (no occluder between the
  *    light and any wall: a shadow cone that meets its own wall fails; measured 8.9e-5).
- *    Measured 0.42: a 1-voxel wall sampled trilinearly lets ~14% through (optical depth 2 of a
- *    tent), and the coarse levels pre-integrate cells that hold the cone's own wall (dark, seen
- *    from behind), which the 60-degree cones reach within a few samples. Radiance injected
- *    without its 1/pi (x3.1) or the cone weights not summing to 1 fall outside;
+ *    Measured 0.53: the sphere's shell is one voxel thick, so a coarse cell that holds it is
+ *    mostly empty and pre-integrates to a fraction of its opacity and radiance, and the cone then
+ *    leaves the sphere through it with the rest (VCT's thin-shell loss; the paper's own reading of
+ *    the mip level, sample_level 0, measured 0.42). Radiance injected without its 1/pi (x3.1) or
+ *    the cone weights not summing to 1 fall outside;
  *  - the Cornell box against the `indirect` reference (REF_SPP): the mean of each channel within
- *    MEAN_LO..HI of the reference's (measured 0.62-0.64, the same darkening in a closed room: the
- *    paper's "over conservative" anisotropic mips), 8x8-block relative RMSE below BLOCK_TOL
- *    (measured 0.81-1.03: the ceiling, lit only indirectly from the floor, gets ~0.15 of the
- *    reference through the coarse cells that hold the ceiling itself), and the colour bleeding on
- *    the right sides: the left third (red wall) redder than the right third (green wall), as in
- *    the reference (mirrored anisotropic directions fail this). */
+ *    15% of the reference's (MEAN_LO..HI; measured 0.95-1.00; the paper's level measured
+ *    0.62-0.64: its samples read the receiver's own cells, vct_trace.glsl), 8x8-block relative
+ *    RMSE below BLOCK_TOL (measured 0.36-0.50; 0.81-1.03 at the paper's level), and the colour
+ *    bleeding on the right sides: the left third (red wall) redder than the right third (green
+ *    wall), as in the reference (mirrored anisotropic directions fail this). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,12 +32,12 @@
 #define H 64
 #define BLOCK 8
 #define REF_SPP 1024
-#define MEAN_LO 0.45
-#define MEAN_HI 0.75
-#define BLOCK_TOL 1.2
+#define MEAN_LO 0.85
+#define MEAN_HI 1.15
+#define BLOCK_TOL 0.6
 #define FURNACE 0.079577
-#define FURNACE_LO 0.30
-#define FURNACE_HI 0.50
+#define FURNACE_LO 0.45
+#define FURNACE_HI 0.65
 #define DIRECT_TOL 5e-4
 
 /* Runs vct at the test's settings on the open fixture. */
