@@ -44,8 +44,9 @@ void lrsm_layers_bind(const lrsm_layers *L);
 void lrsm_layers_destroy(lrsm_layers *L, gib_ledger *ledger);
 
 /* Test hook: lrsm_sample() (lrsm_sample.glsl) at n cone samples, in[2i] = (x_c, r_c), in[2i + 1] =
- * (v_c, 0), out[i] = (L, 0): the LRSM's radiance lookup apart from the voxels. */
+ * (v_c, 0), out[i] = (L, the lit coverage sum A V): the LRSM's radiance lookup apart from the
+ * voxels; `seams` as lrsm's parameter (1: every face a footprint overlaps). */
 int lrsm_layers_probe(const lrsm_layers *L, const gib_light_views *views, float mip_clamp,
-                      const float *in, int n, float *out, gib_error *err);
+                      int seams, const float *in, int n, float *out, gib_error *err);
 
 #endif

@@ -168,7 +168,7 @@ void lrsm_layers_destroy(lrsm_layers *L, gib_ledger *ledger)
 }
 
 int lrsm_layers_probe(const lrsm_layers *L, const gib_light_views *views, float mip_clamp,
-                      const float *in, int n, float *out, gib_error *err)
+                      int seams, const float *in, int n, float *out, gib_error *err)
 {
     const char *files[] = {"lrsm/lrsm_probe.comp"};
     unsigned program = gib_program(files, 1, NULL, err);
@@ -186,6 +186,7 @@ int lrsm_layers_probe(const lrsm_layers *L, const gib_light_views *views, float 
     glUniform1f(7, mip_clamp);
     glUniform1i(8, L->lights);
     glUniform1i(9, n);
+    glUniform1i(15, seams);
     glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(sizeof(float) * 4 * (size_t)n), out);

@@ -3,7 +3,7 @@
 #include "lrsm/lrsm_sample.glsl"
 // Test hook (tests/lrsm): lrsm_sample() at given cone samples, so that tests check the LRSM's
 // radiance lookup (Algorithm 1) apart from the voxels. In: (x_c, r_c) and (v_c, 0) per sample; out:
-// (L, 0).
+// (L, the lit coverage).
 layout(local_size_x = 64) in;
 layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer ProbeIn { vec4 probe_in[]; };
 layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) writeonly buffer ProbeOut { vec4 probe_out[]; };
@@ -14,5 +14,5 @@ void main()
     if (i >= u_count)
         return;
     vec4 s = probe_in[2 * i], v = probe_in[2 * i + 1];
-    probe_out[i] = vec4(lrsm_sample(s.xyz, s.w, v.xyz), 0.0);
+    probe_out[i] = lrsm_sample(s.xyz, s.w, v.xyz);
 }

@@ -1,6 +1,8 @@
 // gibench technique `lrsm` — sampling the layered reflective shadow maps (Algorithm 1, Eq. 5-15):
 // the outgoing radiance toward v_c of the surfaces inside the cone sample (x_c, r_c), from every
-// light's LRSM. Needs common/light_view.glsl and lrsm/lrsm_common.glsl.
+// light's LRSM (rgb: Eq. 5 summed over the layers, Eq. 14), and the coverage those lit surfaces
+// have in the footprint (a: sum A V; lrsm_cone.frag's `coverage`). Needs common/light_view.glsl
+// and lrsm/lrsm_common.glsl.
 // Choices the paper leaves open (or where it was changed), each with its reason:
 //  - Layer selection: the paper samples the layers whose depth range holds z_c (as LVSM). A cone's
 //    samples grow to a fraction of the scene (a 60-degree cone's diameter is 1.15 t), and a sphere
@@ -16,73 +18,107 @@
 //    normalisation) and the voxel alpha already holds the coverage: u_backface 1 (the default) keeps
 //    Eq. 8 as the backface test only, N = 1 where <n_mean . v_c> > 0.
 //  - The footprint's mip is log2 of the projected diameter in layer texels at the sample centre's
-//    distance along the view axis, clamped below by u_mip_clamp (Sec. 7); a sample is looked up in
-//    the face of a cube light view its centre falls in (spheres across a cube seam read one face).
+//    distance along the face's axis, clamped below by u_mip_clamp (Sec. 7).
+//  - The faces a footprint overlaps (u_seams 1, the default): the paper has one view per light; a
+//    point light's cube has six, and a diffuse sample spans 1x1 to 4x4 texels of a coarse mip, so
+//    most samples near a seam straddle it. Looking up only the face that holds the centre switches
+//    a sample's whole contribution from one face's filtered texels to the other's when the centre
+//    crosses the seam plane: one straight edge per sample per seam, facets on every wall. Every
+//    face the footprint (a square of the projected diameter) overlaps is read instead, weighted by
+//    the fraction of the footprint inside it; a cube's weights are normalised to sum to 1 (its
+//    faces tile every direction). A spot's single view is weighted alike without normalising:
+//    outside its view there is no light, so a sample at the border fades with the fraction inside
+//    instead of being dropped whole when its centre leaves. u_seams 0: the centre's face only,
+//    dropped outside it (the literal reading).
 layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler2DArray u_lrsm_radiance;
 layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2DArray u_lrsm_normal;
 layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2DArray u_lrsm_depth;
 layout(location = 7) uniform float u_mip_clamp;
 layout(location = 8) uniform int u_lrsm_lights;   // lights in the table (the scene's)
 layout(location = 14) uniform int u_backface;     // 0: Eq. 8's cosine; 1: Eq. 8 as a test only
+layout(location = 15) uniform int u_seams;        // 1: every face the footprint overlaps
 
-vec3 lrsm_sample(vec3 xc, float rc, vec3 vc)
+// Algorithm 1 in one face of light i: the layers met by [z_c - r_c, z_c + r_c] at uv, at mip level
+// `mip` (Eq. 5-15): rgb = sum f A R V N, a = sum f A V (the coverage of the lit surfaces inside
+// the sample).
+vec4 lrsm_sample_face(int i, int face, vec2 uv, float zc, float rc, vec3 vc, float mip)
 {
-    vec3 L = vec3(0.0);
+    vec4 L = vec4(0.0);
     int layers = u_depth_parts * u_normal_parts;
+    for (int d = 0; d < u_depth_parts; d++) {
+        float lo, hi;
+        lrsm_layer_range(i, d, lo, hi);
+        if (!lrsm_layer_overlaps(i, d, zc - rc, zc + rc))
+            continue;
+        float zw = (zc - lo) / (hi - lo), rw = rc / (hi - lo);
+        for (int k = 0; k < u_normal_parts; k++) {
+            vec3 at = vec3(uv, float(face * layers + d * u_normal_parts + k));
+            vec4 nt = textureLod(u_lrsm_normal, at, mip);
+            if (nt.w < 1e-4)
+                continue;
+            float N = dot(nt.xyz / nt.w, vc);  // Eq. 8: mean normal, not renormalised
+            if (N <= 0.0)                      // backface culling
+                continue;
+            if (u_backface != 0)
+                N = 1.0;
+            vec4 dt = textureLod(u_lrsm_depth, at, mip);
+            if (dt.z < 1e-4)
+                continue;
+            float mu = dt.x / dt.z;                         // Eq. 10
+            float var = dt.y / dt.z - mu * mu;              // Eq. 11
+            float V = lrsm_visibility(zw, rw, mu, var);     // Eq. 12
+            if (V <= 0.0)
+                continue;
+            vec3 AR = textureLod(u_lrsm_radiance, at, mip).rgb; // unnormalised: A R (Eq. 14)
+            float f = lrsm_decay(i, d, lo + mu * (hi - lo));    // Eq. 15 at the layer's mean depth
+            L += f * vec4(AR * (V * N), dt.z * V);
+        }
+    }
+    return L;
+}
+
+// The fraction of [c - r, c + r] inside [0, 1].
+float lrsm_inside(float c, float r)
+{
+    return clamp((min(c + r, 1.0) - max(c - r, 0.0)) / (2.0 * r), 0.0, 1.0);
+}
+
+vec4 lrsm_sample(vec3 xc, float rc, vec3 vc)
+{
+    vec4 L = vec4(0.0);
     for (int i = 0; i < u_lrsm_lights; i++) {
         int kind = lv_kind(i);
         if (kind < 0)
             continue;
         vec3 rel = xc - lv_origin(i);
-        int face = lv_face(i, rel);
-        vec3 axis = lv_axis(face);
-        // The sample's depth as the light view measures it, and its projected diameter in layer
-        // texels (a layer texel is 2 light-view texels): 2 r_c over 2 s z_axis (s: a texel's side
-        // on the unit-distance plane), or 2 r_c over 2 s (orthographic, s in world units).
-        float zc, diameter;
-        if (kind == 2) {
-            zc = dot(rel, axis);
-            diameter = rc / lv_texel(i);
-        } else {
-            float za = dot(rel, axis);
-            if (za <= 0.0)
+        // The sample's depth as the light view measures it: along the axis (ortho) or from the
+        // light (cube, perspective).
+        float zc = kind == 2 ? dot(rel, lv_axis(lv_first_face(i))) : length(rel);
+        int centre = lv_face(i, rel);
+        int first = u_seams != 0 ? lv_first_face(i) : centre;
+        int last = u_seams != 0 ? first + (kind == 0 ? 5 : 0) : centre;
+        vec4 Li = vec4(0.0);
+        float wsum = 0.0;
+        for (int face = first; face <= last; face++) {
+            float za = dot(rel, lv_axis(face));
+            if (kind != 2 && za <= 0.0)
                 continue;
-            zc = length(rel);
-            diameter = rc / (za * lv_texel(i));
-        }
-        vec3 uv = lv_project(face, rel);
-        if (any(lessThan(uv.xy, vec2(0.0))) || any(greaterThan(uv.xy, vec2(1.0))))
-            continue;
-        float mip = max(log2(max(diameter, 1e-30)), u_mip_clamp);
-        for (int d = 0; d < u_depth_parts; d++) {
-            float lo, hi;
-            lrsm_layer_range(i, d, lo, hi);
-            if (!lrsm_layer_overlaps(i, d, zc - rc, zc + rc))
+            // The projected diameter in layer texels (a layer texel is 2 light-view texels):
+            // 2 r_c over 2 s z_a (s: a texel's side on the unit-distance plane), or over 2 s
+            // (orthographic, s in world units); as a fraction of the face, half-width r_uv.
+            float diameter = kind == 2 ? rc / lv_texel(i) : rc / (za * lv_texel(i));
+            float r_uv = max(diameter, 1e-6) / float(lv_res());
+            vec2 uv = lv_project(face, rel).xy;
+            bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+            float w = u_seams != 0 ? lrsm_inside(uv.x, r_uv) * lrsm_inside(uv.y, r_uv)
+                                   : (inside ? 1.0 : 0.0);
+            if (w <= 0.0)
                 continue;
-            float zw = (zc - lo) / (hi - lo), rw = rc / (hi - lo);
-            for (int k = 0; k < u_normal_parts; k++) {
-                vec3 at = vec3(uv.xy, float(face * layers + d * u_normal_parts + k));
-                vec4 nt = textureLod(u_lrsm_normal, at, mip);
-                if (nt.w < 1e-4)
-                    continue;
-                float N = dot(nt.xyz / nt.w, vc);  // Eq. 8: mean normal, not renormalised
-                if (N <= 0.0)                      // backface culling
-                    continue;
-                if (u_backface != 0)
-                    N = 1.0;
-                vec4 dt = textureLod(u_lrsm_depth, at, mip);
-                if (dt.z < 1e-4)
-                    continue;
-                float mu = dt.x / dt.z;                         // Eq. 10
-                float var = dt.y / dt.z - mu * mu;              // Eq. 11
-                float V = lrsm_visibility(zw, rw, mu, var);     // Eq. 12
-                if (V <= 0.0)
-                    continue;
-                vec3 AR = textureLod(u_lrsm_radiance, at, mip).rgb; // unnormalised: A R (Eq. 14)
-                float f = lrsm_decay(i, d, lo + mu * (hi - lo));    // Eq. 15 at the layer's mean depth
-                L += f * AR * (V * N);
-            }
+            float mip = max(log2(max(diameter, 1e-30)), u_mip_clamp);
+            Li += w * lrsm_sample_face(i, face, clamp(uv, 0.0, 1.0), zc, rc, vc, mip);
+            wsum += w;
         }
+        L += kind == 0 && u_seams != 0 && wsum > 0.0 ? Li / wsum : Li;
     }
     return L;
 }

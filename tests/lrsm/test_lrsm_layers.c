@@ -100,7 +100,7 @@ static void probe_check(const lrsm_layers *L, const gib_light_views *lv, const f
 {
     float out[4 * 8];
     gib_error err;
-    if (lrsm_layers_probe(L, lv, 0, in, n, out, &err) < 0) {
+    if (lrsm_layers_probe(L, lv, 0, 1, in, n, out, &err) < 0) {
         printf("FAIL: probe: %s\n", err.msg);
         failures++;
         return;
