@@ -26,8 +26,7 @@
 #include <stdlib.h>
 
 #include "harness/app/runner.h"
-#include "techniques/lrsm/lrsm.h"
-#include "tests/common/gl_fixture.h"
+#include "tests/lrsm/lrsm_setup.h"
 
 #define LOOKUP_TOL 0.01
 #define DIRECT_TOL 0.002
@@ -55,23 +54,9 @@ int main(int argc, char **argv)
     int failures = 0;
 
     /* 1. */
-    gib_ledger ledger;
-    gib_ledger_init(&ledger);
-    gib_light_views lv;
-    lrsm_layers L;
-    gib_timers timers;
-    gib_timers_init(&timers);
-    if (gib_light_views_create(&lv, &fx.gpu, 512, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm",
-                               &ledger, &err) < 0 ||
-        lrsm_layers_create(&L, &lv, 2, 2, 0.1f, &ledger, &err) < 0) {
-        printf("FAIL: set-up: %s\n", err.msg);
+    lrsm_setup s;
+    if (lrsm_setup_build(&s, &fx, 512) < 0)
         return 1;
-    }
-    lrsm_layers_partition(&L, &lv, fx.gpu.scene);
-    gib_timers_frame_begin(&timers, 0);
-    gib_light_views_render(&lv, &fx.gpu, &timers, "rsm");
-    gib_timers_frame_end(&timers);
-    lrsm_layers_build(&L, &lv);
     static float in[8 * PROBES], out[4 * PROBES];
     srand(3);
     for (int i = 0; i < PROBES; i++) {
@@ -97,7 +82,7 @@ int main(int argc, char **argv)
         in[8 * i + 3] = 0.05f;
         in[8 * i + 7] = 0;
     }
-    if (lrsm_layers_probe(&L, &lv, 0, 1, in, PROBES, out, &err) < 0) {
+    if (lrsm_layers_probe(&s.L, &s.lv, 0, 1, in, PROBES, out, &err) < 0) {
         printf("FAIL: probe: %s\n", err.msg);
         return 1;
     }
@@ -112,9 +97,7 @@ int main(int argc, char **argv)
            "= %.6f (tolerance %.0f%%)\n", ok ? "PASS" : "FAIL", spot ? "perspective" : "cube", PROBES, mean, 100 * worst, wall,
            100 * LOOKUP_TOL);
     failures += !ok;
-    lrsm_layers_destroy(&L, &ledger);
-    gib_light_views_destroy(&lv, &ledger);
-    gib_timers_destroy(&timers);
+    lrsm_setup_destroy(&s);
     if (spot) {
         gib_fixture_close(&fx);
         printf("%s: lrsm lookup in the furnace lit by a spot\n", failures ? "FAIL" : "PASS");

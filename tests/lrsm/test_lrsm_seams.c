@@ -21,8 +21,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "techniques/lrsm/lrsm.h"
-#include "tests/common/gl_fixture.h"
+#include "tests/lrsm/lrsm_setup.h"
 
 #define PROBES 161
 #define X0 0.6
@@ -62,23 +61,9 @@ int main(void)
     }
     if (gib_fixture_open_text(&fx, dir, "seams", scene_text) < 0)
         return 1;
-    gib_ledger ledger;
-    gib_ledger_init(&ledger);
-    gib_light_views lv;
-    lrsm_layers L;
-    gib_timers timers;
-    gib_timers_init(&timers);
-    if (gib_light_views_create(&lv, &fx.gpu, 512, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm",
-                               &ledger, &err) < 0 ||
-        lrsm_layers_create(&L, &lv, 2, 2, 0.1f, &ledger, &err) < 0) {
-        printf("FAIL: set-up: %s\n", err.msg);
+    lrsm_setup s;
+    if (lrsm_setup_build(&s, &fx, 512) < 0)
         return 1;
-    }
-    lrsm_layers_partition(&L, &lv, fx.gpu.scene);
-    gib_timers_frame_begin(&timers, 0);
-    gib_light_views_render(&lv, &fx.gpu, &timers, "rsm");
-    gib_timers_frame_end(&timers);
-    lrsm_layers_build(&L, &lv);
     static float in[8 * PROBES], out[2][4 * PROBES];
     for (int i = 0; i < PROBES; i++) {
         const float p[8] = {(float)(X0 + i * DX), 0.0f, 0.3f, RC, 0, 1, 0, 0};
@@ -87,7 +72,7 @@ int main(void)
     }
     int failures = 0;
     for (int seams = 0; seams <= 1; seams++)
-        if (lrsm_layers_probe(&L, &lv, 0, seams, in, PROBES, out[seams], &err) < 0) {
+        if (lrsm_layers_probe(&s.L, &s.lv, 0, seams, in, PROBES, out[seams], &err) < 0) {
             printf("FAIL: probe: %s\n", err.msg);
             return 1;
         }
@@ -115,9 +100,7 @@ int main(void)
     printf("%s away from the seam: the blend against the centre's face, largest difference %.2g "
            "(tolerance %.0e); within the seam band the lookups dip %.1f%% below the line between "
            "its ends\n", good ? "PASS" : "FAIL", away, AWAY_TOL, 100 * dip);
-    lrsm_layers_destroy(&L, &ledger);
-    gib_light_views_destroy(&lv, &ledger);
-    gib_timers_destroy(&timers);
+    lrsm_setup_destroy(&s);
     gib_fixture_close(&fx);
     char path[600];
     snprintf(path, sizeof path, "%s/seams.scene", dir);
