@@ -63,7 +63,7 @@ vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
     float t = vs;
     for (int i = 0; i < 512 && t < tmax && A < 255.0 / 256.0; i++) {
         float d = max(vs, 2.0 * t * tan_half);
-        d = min(d, max(1.0 * (u_start_offset * vs + t * dot(dir, n)), vs));
+        d = min(d, max(u_start_offset * vs + t * dot(dir, n), vs));
         vec3 c = q + dir * t;
         if (any(lessThan(c, u_voxel_origin - d)) ||
             any(greaterThan(c, u_voxel_origin + u_voxel_size + d)))
