@@ -27,6 +27,8 @@
 #define GIB_UNIT_LV_NORMAL 6
 #define GIB_UNIT_LV_FLUX 7
 #define GIB_UNIT_LV_SPECULAR 8
+#define GIB_UNIT_LV_PACKED0 4     // packed views (GIB_LV_PACKED16): rgb reflected radiance, a depth
+#define GIB_UNIT_LV_PACKED1 5     //   xyz normal facing the light, w <n.l>
 #define GIB_UNIT_VOXELS 9         // occlusion voxels, R8 3D with mips (common/voxels.h)
 #define GIB_UNIT_OWN_FIRST 10     // 10..15: a pass's own textures
 

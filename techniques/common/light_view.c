@@ -14,6 +14,8 @@
 static const float face_dir[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 static const float face_up[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
 
+static const char *const packed_name[2] = {"radiance_depth", "normal_nl"};
+
 static const struct {
     unsigned bit, format;
     const char *name;
@@ -135,7 +137,8 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     memset(lv, 0, sizeof *lv);
     const gib_scene *s = gpu->scene;
     lv->res = res;
-    lv->attributes = (attributes | GIB_LV_DEPTH) & ((1u << GIB_LV_ATTRIBUTE_COUNT) - 1);
+    lv->packed = (attributes & GIB_LV_PACKED16) != 0;
+    lv->attributes = lv->packed ? 0 : (attributes | GIB_LV_DEPTH) & ((1u << GIB_LV_ATTRIBUTE_COUNT) - 1);
     uint32_t n = s->light_count;
     lv->first_face = calloc(n ? n : 1, sizeof *lv->first_face);
     lv->faces_of = calloc(n ? n : 1, sizeof *lv->faces_of);
@@ -155,7 +158,7 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     if (!lv->faces || !lv->texel || !lv->table_data)
         return gib_fail(err, "out of memory");
     const char *files[] = {"common/gbuffer.vert", "common/light_view.frag"};
-    if (!(lv->program = gib_program(files, 2, NULL, err)))
+    if (!(lv->program = gib_program(files, 2, lv->packed ? "#define PACKED16 1\n" : NULL, err)))
         return -1;
     char name[96];
     snprintf(name, sizeof name, "%s.table", label);
@@ -169,11 +172,12 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     glCreateFramebuffers(1, &lv->fbo);
     for (int a = 0; a < GIB_LV_ATTRIBUTE_COUNT; a++) {
         draw[a] = GL_NONE;
-        if (!(lv->attributes & attribute[a].bit))
+        if (lv->packed ? a >= 2 : !(lv->attributes & attribute[a].bit))
             continue;
-        snprintf(name, sizeof name, "%s.%s", label, attribute[a].name);
-        if (!(lv->textures[a] = gib_gpu_texture(ledger, name, GL_TEXTURE_2D_ARRAY, side, side,
-                                                layers, attribute[a].format, 1, err)))
+        snprintf(name, sizeof name, "%s.%s", label, lv->packed ? packed_name[a] : attribute[a].name);
+        if (!(lv->textures[a] = gib_gpu_texture(ledger, name, GL_TEXTURE_2D_ARRAY, side, side, layers,
+                                                lv->packed ? GL_RGBA16F : attribute[a].format,
+                                                lv->packed ? 0 : 1, err)))
             return -1;
         /* Nearest: shadow lookups filter binary comparisons (PCF), and RSM texels are samples. */
         glTextureParameteri(lv->textures[a], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -183,7 +187,7 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
         draw[a] = GL_COLOR_ATTACHMENT0 + (GLenum)a;
     }
     glNamedFramebufferDrawBuffers(lv->fbo, GIB_LV_ATTRIBUTE_COUNT, draw);
-    snprintf(name, sizeof name, "%s.zbuffer", label);
+    snprintf(name, sizeof name, lv->packed ? "%s_raster.zbuffer" : "%s.zbuffer", label);
     if (!(lv->depth = gib_gpu_renderbuffer(ledger, name, GL_DEPTH_COMPONENT24, res, res, err)))
         return -1;
     glNamedFramebufferRenderbuffer(lv->fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, lv->depth);
@@ -207,7 +211,9 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
     glUseProgram(lv->program);
     gib_gpu_scene_bind(gpu);
     glBindFramebuffer(GL_FRAMEBUFFER, lv->fbo);
-    const float far[4] = {INFINITY, INFINITY, INFINITY, INFINITY}, zero[4] = {0, 0, 0, 0};
+    /* Empty texels: depth +inf (the first attribute, or the packed depth in w), the rest 0. */
+    const float far[4] = {INFINITY, INFINITY, INFINITY, INFINITY}, zero[4] = {0, 0, 0, 0},
+                far_packed[4] = {0, 0, 0, INFINITY};
     for (int f = 0; f < lv->face_count; f++) {
         const gib_lv_face *face = &lv->faces[f];
         for (int a = 0; a < GIB_LV_ATTRIBUTE_COUNT; a++)
@@ -216,7 +222,7 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
                                                lv->textures[a], 0, f);
         for (int a = 0; a < GIB_LV_ATTRIBUTE_COUNT; a++)
             if (lv->textures[a])
-                glClearBufferfv(GL_COLOR, a, a == 0 ? far : zero);
+                glClearBufferfv(GL_COLOR, a, a > 0 ? zero : lv->packed ? far_packed : far);
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
         glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, face->view_proj);
         glUniform3fv(GIB_LOC_ORIGIN, 1, face->origin);

@@ -15,11 +15,20 @@ layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
+#ifdef PACKED16
+// The LRSM paper's format (light_view.h, GIB_LV_PACKED16): the reflected radiance
+// rho E <n.l> / pi with the depth, the normal with <n.l>. E <n.l> is the irradiance the flux per
+// texel gives over the texel's area on the surface, so this is the radiance the LRSM's
+// construction derived from FLUX before (Table 1).
+layout(location = 0) out vec4 o_radiance_depth;
+layout(location = 1) out vec4 o_normal_nl;
+#else
 layout(location = 0) out float o_depth;
 layout(location = 1) out vec4 o_position;
 layout(location = 2) out vec4 o_normal;
 layout(location = 3) out vec4 o_flux;
 layout(location = 4) out vec4 o_specular;
+#endif
 void main()
 {
     Material m = materials[u_material];
@@ -29,18 +38,21 @@ void main()
     vec3 rel = v_position - u_origin;
     vec3 flux_in;
     vec3 to_light;
+    vec3 E;       // irradiance on a surface facing the light
+    float depth;
     if (u_kind == 2) {
-        o_depth = dot(rel, u_forward);
+        depth = dot(rel, u_forward);
         to_light = -u_forward;
-        flux_in = lights[u_light].intensity_outer.rgb * (u_texel * u_texel);
+        E = lights[u_light].intensity_outer.rgb;
+        flux_in = E * (u_texel * u_texel);
     } else {
         float dist = length(rel);
-        o_depth = dist;
+        depth = dist;
         to_light = -rel / max(dist, 1e-30);
         float c = dot(rel, u_forward) / max(dist, 1e-30);
         vec3 wi;
         float d;
-        vec3 E = light_eval(lights[u_light], v_position, wi, d); // I(w) / d^2
+        E = light_eval(lights[u_light], v_position, wi, d); // I(w) / d^2
         flux_in = E * (d * d) * (u_texel * u_texel * c * c * c);
     }
     // Facing as in the G-buffer with the light as the viewer: two-sided materials turn the normal
@@ -57,8 +69,19 @@ void main()
         albedo = vec3(0.0);
         spec = vec3(0.0);
     }
+#ifdef PACKED16
+    float cosnl = dot(n, to_light);
+    // Clamped to the half float's largest value: next to a light that touches a surface the
+    // irradiance grows without bound (1e11 W/m^2 a micrometre away), and an overflow to +inf
+    // would turn every filtered texel it reaches into NaN.
+    o_radiance_depth = vec4(min(albedo * E * (max(cosnl, 0.0) / 3.14159265358979), vec3(65504.0)),
+                            depth);
+    o_normal_nl = vec4(n, cosnl);
+#else
+    o_depth = depth;
     o_position = vec4(v_position, 1.0);
     o_normal = vec4(n, float(m.flags.x));
     o_flux = vec4(albedo * flux_in, 1.0);
     o_specular = vec4(spec, m.specular.w);
+#endif
 }

@@ -27,6 +27,14 @@ enum gib_lv_attribute {
 /* Not an attribute: views of point and spot lights only (techniques that emit photons from local
  * lights allocate and render nothing for directional ones). */
 #define GIB_LV_LOCAL_LIGHTS_ONLY (1u << 8)
+/* Not an attribute: the LRSM paper's RSM format (Sec. 6: reflected radiance, depth, normal and
+ * <n.l> "packed in two 16-bit per component textures"; Table 2: 16 bytes a texel with mips, 22.37
+ * MB at 1024^2) instead of the attributes: textures[0] RGBA16F rgb = the reflected radiance
+ * rho E <n.l> / pi, a = the depth (+inf where empty); textures[1] RGBA16F xyz = the normal facing
+ * the light, w = <n.l>. Both are allocated with full mip chains, as the paper's figure counts them
+ * (the chains are not built: the LRSM is the RSM's filtered form); the z-buffer the rasteriser
+ * needs is labelled "<label>_raster.zbuffer", a structure apart, which Table 2 does not list. */
+#define GIB_LV_PACKED16 (1u << 9)
 
 enum gib_lv_kind { GIB_LV_CUBE = 0, GIB_LV_PERSPECTIVE = 1, GIB_LV_ORTHO = 2 };
 
@@ -41,6 +49,7 @@ typedef struct gib_lv_face {
 typedef struct gib_light_views {
     int res;
     unsigned attributes;           /* GIB_LV_* bits rendered */
+    int packed;                    /* GIB_LV_PACKED16: textures[0..1] hold the packed format */
     int face_count;
     gib_lv_face *faces;
     int *first_face;               /* per light */

@@ -118,8 +118,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
                           err) < 0)
         goto fail;
     s->voxels_up = 1;
-    if (gib_light_views_create(&s->views, scene, rsm_res, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX,
-                               "rsm", ledger, err) < 0)
+    if (gib_light_views_create(&s->views, scene, rsm_res, GIB_LV_PACKED16, "rsm", ledger, err) < 0)
         goto fail;
     if (lrsm_layers_create(&s->layers, &s->views, gib_param_int(t, p, "layers_depth"),
                            gib_param_int(t, p, "layers_normal"),

@@ -22,8 +22,7 @@ static inline int lrsm_setup_build(lrsm_setup *s, gib_gl_fixture *fx, int res)
     gib_error err;
     gib_ledger_init(&s->ledger);
     gib_timers_init(&s->timers);
-    if (gib_light_views_create(&s->lv, &fx->gpu, res, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX,
-                               "rsm", &s->ledger, &err) < 0 ||
+    if (gib_light_views_create(&s->lv, &fx->gpu, res, GIB_LV_PACKED16, "rsm", &s->ledger, &err) < 0 ||
         lrsm_layers_create(&s->L, &s->lv, 2, 2, 0.1f, &s->ledger, &err) < 0) {
         printf("FAIL: set-up: %s\n", err.msg);
         return -1;

@@ -1,9 +1,10 @@
 /* The LRSM's layers and their sampling, on the GPU, from a synthetic light view (the real
  * construction pass lrsm_build.comp and the real lookup lrsm_sample.glsl through a probe):
- *  1. random texels (depths, <n.l>, flux, a tenth empty): every layer texel of level 0 equals the
- *     CPU mirror lrsm_build_block() (radiance = FLUX <n.l> / (pi s^2) for an orthographic view),
- *     within the storage formats' rounding: half floats (relative 2^-11 a value, RAD_TOL 2e-3 for a
- *     sum of 4) and 16-bit UNORM (2^-16, DEPTH_TOL 3e-5);
+ *  1. random texels (depths, <n.l>, radiance, a tenth empty) in the paper's packed RSM format
+ *     (two RGBA16F textures, light_view.h): every layer texel of level 0 equals the CPU mirror
+ *     lrsm_build_block() run on the texels as the half floats hold them (read back), within the
+ *     layers' formats' rounding: half floats (relative 2^-11 a value, RAD_TOL 2e-3 for a sum of 4)
+ *     and 16-bit UNORM (2^-16, DEPTH_TOL 3e-5);
  *  2. a depth discontinuity (z = 2 left of column 37 of 64, z = 8 right of it, partitions [0, 5]
  *     and [5, 10]): at EVERY mip level each layer texel holds one side only (mean depth within
  *     0.02 of 2 or 8, variance below 1e-4 of the layer's range squared); the same check run on a
@@ -34,30 +35,36 @@
 
 static int failures;
 
+/* The light view in the paper's packed format (light_view.h, GIB_LV_PACKED16). */
 typedef struct synth {
-    float depth[RES * RES], normal[RES * RES * 4], flux[RES * RES * 4];
+    float radiance_depth[RES * RES * 4], normal_nl[RES * RES * 4];
 } synth;
+
+/* The side of a light-view texel (the orthographic view's, world units). */
+static double texel_side;
 
 static void upload(const gib_light_views *lv, const synth *s)
 {
-    glTextureSubImage3D(lv->textures[0], 0, 0, 0, 0, RES, RES, 1, GL_RED, GL_FLOAT, s->depth);
-    glTextureSubImage3D(lv->textures[2], 0, 0, 0, 0, RES, RES, 1, GL_RGBA, GL_FLOAT, s->normal);
-    glTextureSubImage3D(lv->textures[3], 0, 0, 0, 0, RES, RES, 1, GL_RGBA, GL_FLOAT, s->flux);
+    glTextureSubImage3D(lv->textures[0], 0, 0, 0, 0, RES, RES, 1, GL_RGBA, GL_FLOAT,
+                        s->radiance_depth);
+    glTextureSubImage3D(lv->textures[1], 0, 0, 0, 0, RES, RES, 1, GL_RGBA, GL_FLOAT, s->normal_nl);
 }
 
-/* A texel facing the light at <n.l> = c (l = -forward), flux f, depth z. */
+/* A texel facing the light at <n.l> = c (l = -forward) at depth z, reflecting the radiance of a
+ * flux f per texel: f (k + 1) / 3 c / (pi s^2) in channel k (what the light view writes for an
+ * orthographic view of texels of side s). */
 static void set_texel(synth *s, const gib_lv_face *face, int i, float z, float c, float f)
 {
     float t[3], b[3], l[3] = {-face->forward[0], -face->forward[1], -face->forward[2]};
     gib_ortho_basis(l, t, b);
     float sn = sqrtf(fmaxf(0.0f, 1 - c * c));
-    s->depth[i] = z;
-    for (int k = 0; k < 3; k++)
-        s->normal[4 * i + k] = c * l[k] + sn * t[k];
-    s->normal[4 * i + 3] = 0;
-    for (int k = 0; k < 3; k++)
-        s->flux[4 * i + k] = f * (float)(k + 1) / 3;
-    s->flux[4 * i + 3] = 1;
+    for (int k = 0; k < 3; k++) {
+        s->normal_nl[4 * i + k] = c * l[k] + sn * t[k];
+        s->radiance_depth[4 * i + k] =
+            (float)(f * (k + 1) / 3.0 * c / (M_PI * texel_side * texel_side));
+    }
+    s->normal_nl[4 * i + 3] = c;
+    s->radiance_depth[4 * i + 3] = z;
 }
 
 static void read_level(unsigned tex, int level, float *out, int side, int layers)
@@ -123,41 +130,41 @@ int main(void)
     gib_ledger_init(&ledger);
     gib_light_views lv;
     lrsm_layers L;
-    if (gib_light_views_create(&lv, &fx.gpu, RES, GIB_LV_DEPTH | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm",
-                               &ledger, &err) < 0 ||
+    if (gib_light_views_create(&lv, &fx.gpu, RES, GIB_LV_PACKED16, "rsm", &ledger, &err) < 0 ||
         lrsm_layers_create(&L, &lv, 2, 2, 0.2f, &ledger, &err) < 0) {
         printf("FAIL: set-up: %s\n", err.msg);
         return 1;
     }
     const gib_lv_face *face = &lv.faces[0];
     double s = lv.texel[0];
+    texel_side = s;
     lrsm_layers_set_range(&L, 0, 0, 10);
     lrsm_partition p = {.z0 = 0, .z1 = 10, .parts = 2, .overlap = 0.2};
     static synth sy;
 
     /* 1. Random texels against the CPU mirror. */
     srand(7);
-    lrsm_texel cpu[RES * RES];
     for (int i = 0; i < RES * RES; i++) {
         float z = 0.5f + 9 * (float)rand() / RAND_MAX, c = 0.02f + 0.98f * (float)rand() / RAND_MAX;
         float f = 0.1f + (float)rand() / RAND_MAX;
-        int empty = rand() % 10 == 0;
-        set_texel(&sy, face, i, empty ? INFINITY : z, c, f);
-        if (empty)
-            sy.flux[4 * i + 3] = 0;
-        lrsm_texel t = {.valid = !empty, .z = z, .cosnl = c};
-        for (int k = 0; k < 3; k++) {
-            t.n[k] = sy.normal[4 * i + k];
-            t.radiance[k] = sy.flux[4 * i + k] * c / (M_PI * s * s);
-        }
-        /* the GPU's <n.l> is dot(n, -forward) of the stored (float) normal */
-        t.cosnl = -(sy.normal[4 * i] * face->forward[0] + sy.normal[4 * i + 1] * face->forward[1] +
-                    sy.normal[4 * i + 2] * face->forward[2]);
-        for (int k = 0; k < 3; k++)
-            t.radiance[k] = sy.flux[4 * i + k] * t.cosnl / (M_PI * s * s);
-        cpu[i] = t;
+        set_texel(&sy, face, i, rand() % 10 == 0 ? INFINITY : z, c, f);
     }
     upload(&lv, &sy);
+    /* The CPU mirror reads what the half floats hold: the texels read back. */
+    static synth held;
+    glGetTextureImage(lv.textures[0], 0, GL_RGBA, GL_FLOAT, sizeof held.radiance_depth,
+                      held.radiance_depth);
+    glGetTextureImage(lv.textures[1], 0, GL_RGBA, GL_FLOAT, sizeof held.normal_nl, held.normal_nl);
+    lrsm_texel cpu[RES * RES];
+    for (int i = 0; i < RES * RES; i++) {
+        const float *rz = &held.radiance_depth[4 * i], *nl = &held.normal_nl[4 * i];
+        lrsm_texel t = {.valid = !isinf(rz[3]), .z = rz[3], .cosnl = nl[3]};
+        for (int k = 0; k < 3; k++) {
+            t.n[k] = nl[k];
+            t.radiance[k] = rz[k];
+        }
+        cpu[i] = t;
+    }
     lrsm_layers_build(&L, &lv);
     static float rad[4 * HALF * HALF * 4], nrm[4 * HALF * HALF * 4], dep[4 * HALF * HALF * 4];
     read_level(L.radiance, 0, rad, HALF, 4);

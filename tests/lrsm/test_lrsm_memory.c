@@ -3,10 +3,12 @@
  * one directional light (one light-view face, as SPONZA's sun), and the bytes the ledger holds
  * compared, exactly, with the formulas computed here level by level:
  *   voxels.occupancy R8 (the voxels' work list, 8 B a triangle, is apart): sum over the chain of (256 / 2^k)^3 x 1 B                  = 19,173,961 B
+ *   rsm     two RGBA16F with mips (rsm.radiance_depth, rsm.normal_nl; the paper's packed RSM):
+ *           sum of (1024 / 2^k)^2 x 16 B                                    = 22,369,616 B
  *   layers  RGBA16F + RGBA16F + RGBA16: sum of (512 / 2^k)^2 x 24 B x layers = 33,554,400 B (4)
  *                                                                           = 50,331,600 B (6)
  * and the 512^3 voxels of SPONZA through the plan only (153,391,689 B; not allocated on llvmpipe).
- * The paper's figures: 19.2, 156.4 (3.0 MB over its own formats), 33.6 and 50.4 MB. */
+ * The paper's figures: 19.2, 156.4 (3.0 MB over its own formats), 22.4, 33.6 and 50.4 MB. */
 #include <stdio.h>
 #include <string.h>
 
@@ -38,6 +40,14 @@ static uint64_t voxel_formula(int res)
     uint64_t b = 0;
     for (int s = res; s >= 1; s /= 2)
         b += (uint64_t)s * s * s;
+    return b;
+}
+
+static uint64_t rsm_formula(int side)
+{
+    uint64_t b = 0;
+    for (int s = side; s >= 1; s /= 2)
+        b += (uint64_t)s * s * 16;
     return b;
 }
 
@@ -95,6 +105,9 @@ int main(void)
             expect("voxels.occupancy 256^3", label_bytes(&ledger, "voxels.occupancy"),
                    voxel_formula(256));
             expect("gib_voxels_bytes(256) (the plan)", gib_voxels_bytes(256), voxel_formula(256));
+            expect("rsm 1024^2 (radiance_depth + normal_nl)",
+                   label_bytes(&ledger, "rsm.radiance_depth") + label_bytes(&ledger, "rsm.normal_nl"),
+                   rsm_formula(1024));
         }
         snprintf(what, sizeof what, "layers 512^2 x %d", layers);
         expect(what, structure_bytes(&ledger, "layers"), layer_formula(512, layers));
