@@ -31,7 +31,7 @@ typedef struct gib_param_spec {
     const char *help;
 } gib_param_spec;
 
-#define GIB_MAX_PARAMS 16
+#define GIB_MAX_PARAMS 24
 
 /* Validated values, in the order of the technique's spec list. */
 typedef struct gib_params {

@@ -44,6 +44,7 @@ typedef struct lrsm {
     int opacity, backface, seams;   /* voxel_step_alpha's model; Eq. 8 as cosine or test; the
                                        faces a sample reads (lrsm_sample.glsl) */
     int coverage;                   /* a sample's L over its lit coverage (lrsm_cone.frag) */
+    int visibility;                 /* Eq. 12's window: +-r_c or widened by 1/<n.l> */
     int width, height;
     unsigned targets[PASSES];    /* the last frame's output textures (NaN check) */
     int target_count;
@@ -66,13 +67,16 @@ static const gib_param_spec lrsm_params[] = {
     {"opacity", GIB_PARAM_INT, 1, 0, 1,
      "voxel alpha: 0 mean occupancy per sample (paper), 1 occupancy as a density over the step"},
     {"backface", GIB_PARAM_INT, 1, 0, 1, "Eq. 8: 0 the cosine <n.v> (paper), 1 a backface test only"},
-    {"coverage", GIB_PARAM_INT, 1, 0, 1,
+    {"coverage", GIB_PARAM_INT, 1, 0, 3,
      "1: a cone sample's radiance is the LRSM's over the coverage of the lit surfaces inside it "
      "(at least the voxels' alpha); 0: Eq. 5's R V N as it is, its coverage V counted again by "
      "the voxels' alpha in Eq. 1"},
     {"seams", GIB_PARAM_INT, 1, 0, 1,
      "1: a sample reads every light-view face its footprint overlaps, weighted by the overlap; 0: "
      "the face of its centre only (the paper's one view per light; facets at a cube's seams)"},
+    {"visibility", GIB_PARAM_INT, 1, 0, 1,
+     "Eq. 12's depth window: 0 the sample's +-r_c (paper), 1 widened to +-r_c / <n.l>, the depth "
+     "span a surface through the sample covers across its footprint"},
     {0},
 };
 
@@ -109,6 +113,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     s->backface = gib_param_int(t, p, "backface");
     s->seams = gib_param_int(t, p, "seams");
     s->coverage = gib_param_int(t, p, "coverage");
+    s->visibility = gib_param_int(t, p, "visibility");
     strcpy(s->status, "");
     static const char *const define[PASSES] = {"#define SHADOW 1\n", "#define DIFFUSE 1\n",
                                                "#define SPECULAR 1\n"};
@@ -157,6 +162,7 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     glUniform1i(14, s->backface);
     glUniform1i(15, s->seams);
     glUniform1i(16, s->coverage);
+    glUniform1i(17, s->visibility);
     glUniform1i(GIB_LOC_VOXEL_FIRST + 3, which == PASS_SHADOW ? 0 : s->opacity);
     gib_fullscreen_draw(&s->pass[which]);
     gib_fullscreen_end();

@@ -10,6 +10,9 @@ layout(location = GIB_LOC_OWN_FIRST + 0) uniform int u_depth_parts;   // D
 layout(location = GIB_LOC_OWN_FIRST + 1) uniform int u_normal_parts;  // N
 
 const float LRSM_MIN_VARIANCE = 1.0 / 32768.0;
+// The least <n.l> the widened Eq. 12 window divides by (lrsm_sample.glsl, u_visibility 1): a
+// surface lit at grazing (84 degrees) has a window 10 r_c deep at most.
+const float LRSM_MIN_COS_NL = 0.1;
 
 // erf by Abramowitz and Stegun 7.1.26, |error| < 1.5e-7.
 float lrsm_erf(float x)

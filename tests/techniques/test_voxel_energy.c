@@ -4,10 +4,13 @@
  * not drift with it. For each technique, the mean over the reference's (all channels) at
  * voxel_res 64, 128 and 256:
  *  - within [LO, HI] of the reference's at every resolution (per technique: vct 0.8-1.15, measured
- *    0.87-1.04 at 128x128; lrsm 0.6-1.05, measured 0.66-0.74: below the reference for the reasons
- *    tests/lrsm/test_lrsm_cornell.c gives, but never above it);
- *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.83 for vct, 0.89 for lrsm
- *    at 128x128). The paper's literal readings fell with the grid: vct 0.67 / 0.56 / 0.50 (ratio
+ *    0.97-1.13 at 64x64, above the reference at the coarse grid, where the short box's front face
+ *    reads the lit floor through samples whose trilinear data reaches 0.75 d from their centre;
+ *    lrsm 0.7-1.05, measured 0.76-0.85: below the reference for the reasons
+ *    tests/lrsm/test_lrsm_cornell.c gives, but never above it; Eq. 12's own window, visibility
+ *    0, measured 0.66-0.74 and fails);
+ *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.86 for vct, 0.90 for lrsm
+ *    at 64x64). The paper's literal readings fell with the grid: vct 0.67 / 0.56 / 0.50 (ratio
  *    0.75: sample_level 0 reads the receiver's own cells, more of them the finer the voxels), lrsm
  *    0.49 / 0.38 / 0.29 (ratio 0.59: its tilted cones' samples reached their own surface). */
 #include <math.h>
@@ -25,7 +28,7 @@
 static const struct {
     const char *technique;
     double lo, hi;
-} cases[] = {{"vct", 0.8, 1.15}, {"lrsm", 0.6, 1.05}};
+} cases[] = {{"vct", 0.8, 1.15}, {"lrsm", 0.7, 1.05}};
 static const char *const resolutions[] = {"64", "128", "256"};
 #define NRES ((int)(sizeof resolutions / sizeof resolutions[0]))
 
