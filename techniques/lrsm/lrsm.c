@@ -77,6 +77,9 @@ static const gib_param_spec lrsm_params[] = {
     {"visibility", GIB_PARAM_INT, 1, 0, 1,
      "Eq. 12's depth window: 0 the sample's +-r_c (paper), 1 widened to +-r_c / <n.l>, the depth "
      "span a surface through the sample covers across its footprint"},
+    {"jacobian", GIB_PARAM_INT, 1, 0, 1,
+     "LRSM radiance filtered over: 1 the surface area each RSM texel sees (Eq. 3's Jacobian "
+     "r^2/<n.l>), 0 the light's solid angle (paper, Sec. 4.2: the Jacobian taken as constant)"},
     {0},
 };
 
@@ -129,6 +132,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
                            gib_param_int(t, p, "layers_normal"),
                            (float)gib_param_float(t, p, "overlap"), ledger, err) < 0)
         goto fail;
+    s->layers.jacobian = gib_param_int(t, p, "jacobian");
     lrsm_layers_partition(&s->layers, &s->views, scene->scene);
     for (int i = 0; i < PASSES; i++)
         if (gib_fullscreen_create(&s->pass[i], "lrsm/lrsm_cone.frag", define[i], err) < 0)

@@ -18,6 +18,7 @@ typedef struct lrsm_layers {
     int half;                 /* layer side: light-view res / 2 */
     int depth_parts, normal_parts, faces, lights;
     float overlap;            /* delta as a fraction of a depth partition */
+    int jacobian;             /* 1: radiance filtered over surface area (lrsm_build.comp); 0 */
     unsigned radiance, normal, depth;  /* 2D arrays, full chains */
     unsigned table;           /* SSBO (GIB_SSBO_OWN_FIRST): per light (z0, z1, delta, 0) */
     float *table_data;

@@ -4,7 +4,14 @@
 // Each RSM texel goes to the layer of its depth partition (both layers inside an overlap band) and
 // its <n.l> partition; the texels of the block that share a layer are merged into that layer's
 // texel, every value premultiplied by the opacity alpha = members / 4 (lrsm_build_block() in
-// lrsm_math.c is the CPU mirror). Every layer texel of the block is written, empty ones as 0, so
+// lrsm_math.c is the CPU mirror). The radiance texel holds the members' radiance weighted by the
+// area of surface each sees (u_jacobian 1: rgb = sum R w / 4, a = sum w / 4; lrsm_math.h's
+// lrsm_area_weight), so that its mips average radiance over surface area, as Eq. 2 integrates it,
+// not over the light's solid angle: Sec. 4.2 takes Eq. 3's Jacobian r^2 / <n.l> as constant and
+// drops it, which lets a texel a light almost touches (a patch micrometres wide, its radiance at
+// the half float's limit) outweigh metres of lit surface in every footprint that holds it
+// (hard_light_touching). With u_jacobian 0 (the paper) w = 1 and a = alpha. Table 1 leaves the
+// radiance texel's alpha free (opacity is in the normal and depth textures). Every layer texel of the block is written, empty ones as 0, so
 // the arrays need no clear.
 //
 // The light view is the paper's RSM (light_view.h, GIB_LV_PACKED16): each texel's reflected
@@ -18,8 +25,18 @@ layout(binding = 2, rgba16) writeonly uniform image2DArray o_depth;
 layout(location = GIB_LOC_OWN_FIRST + 2) uniform int u_face;
 layout(location = GIB_LOC_OWN_FIRST + 3) uniform int u_light;
 layout(location = GIB_LOC_OWN_FIRST + 4) uniform int u_half;   // layer side: light-view res / 2
+layout(location = GIB_LOC_OWN_FIRST + 5) uniform int u_jacobian; // 1: texels weighted by area
 
 const int MAX_LAYERS = 16;
+
+// The texel's area weight (lrsm_area_weight): its direction's cosine to the face's axis from its
+// place on the face (side 2 u_half texels of lv_texel at unit distance, centred on the axis).
+float texel_area(ivec2 t, float z, float cosnl)
+{
+    vec2 p = (vec2(t) + 0.5 - float(u_half)) * lv_texel(u_light);
+    float cos_face = inversesqrt(1.0 + dot(p, p));
+    return lrsm_area_weight(lv_kind(u_light), z, lrsm_table[u_light].y, cos_face, cosnl);
+}
 
 void main()
 {
@@ -27,11 +44,11 @@ void main()
     if (b.x >= u_half || b.y >= u_half)
         return;
     int layers = u_depth_parts * u_normal_parts;
-    vec3 rad[MAX_LAYERS];
+    vec4 rad[MAX_LAYERS]; // sum of radiance x area weight, of area weights
     vec3 nrm[MAX_LAYERS];
     vec3 dep[MAX_LAYERS]; // sum of warped z, of warped z^2, member count
     for (int l = 0; l < layers; l++) {
-        rad[l] = vec3(0.0);
+        rad[l] = vec4(0.0);
         nrm[l] = vec3(0.0);
         dep[l] = vec3(0.0);
     }
@@ -46,7 +63,8 @@ void main()
         int k = lrsm_normal_part(nl.w, u_normal_parts);
         if (k < 0)
             continue;
-        vec3 r = rz.rgb;
+        float w = u_jacobian != 0 ? texel_area(t.xy, z, nl.w) : 1.0;
+        vec4 r = vec4(rz.rgb * w, w);
         for (int d = 0; d < u_depth_parts; d++) {
             if (!lrsm_in_depth_layer(u_light, d, z))
                 continue;
@@ -62,7 +80,7 @@ void main()
     for (int l = 0; l < layers; l++) {
         ivec3 o = ivec3(b, u_face * layers + l);
         float alpha = dep[l].z * 0.25;
-        imageStore(o_radiance, o, vec4(rad[l] * 0.25, alpha));
+        imageStore(o_radiance, o, rad[l] * 0.25);
         imageStore(o_normal, o, vec4(nrm[l] * 0.25, alpha));
         imageStore(o_depth, o, vec4(dep[l].xy * 0.25, alpha, 0.0));
     }

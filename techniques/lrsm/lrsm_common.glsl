@@ -79,6 +79,16 @@ float lrsm_decay(int light, int d, float zc)
     return 1.0;
 }
 
+const float LRSM_JACOBIAN_COS = 0.1;
+float lrsm_area_weight(int kind, float z, float zfar, float cos_face, float cosnl)
+{
+    float tilt = cosnl > LRSM_JACOBIAN_COS ? LRSM_JACOBIAN_COS / cosnl : 1.0;
+    if (kind == 2)
+        return tilt;
+    float r = z / zfar;
+    return r * r * cos_face * cos_face * cos_face * tilt;
+}
+
 int lrsm_normal_part(float cosnl, int parts)
 {
     if (!(cosnl > 0.0))

@@ -134,6 +134,7 @@ void lrsm_layers_build(lrsm_layers *L, const gib_light_views *views)
     glUniform1i(GIB_LOC_OWN_FIRST + 0, L->depth_parts);
     glUniform1i(GIB_LOC_OWN_FIRST + 1, L->normal_parts);
     glUniform1i(GIB_LOC_OWN_FIRST + 4, L->half);
+    glUniform1i(GIB_LOC_OWN_FIRST + 5, L->jacobian);
     glBindImageTexture(0, L->radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, L->normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(2, L->depth, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16);

@@ -83,7 +83,7 @@ void lrsm_build_block(const lrsm_partition *p, int normal_parts, const lrsm_texe
         lrsm_layer_range(p, d, &lo, &hi);
         for (int k = 0; k < normal_parts; k++) {
             lrsm_layer_texel *o = &out[d * normal_parts + k];
-            double r[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z = 0, z2 = 0, count = 0;
+            double r[3] = {0, 0, 0}, n[3] = {0, 0, 0}, z = 0, z2 = 0, count = 0, area = 0;
             for (int i = 0; i < 4; i++) {
                 const lrsm_texel *t = &block[i];
                 if (!t->valid || !lrsm_in_depth_layer(p, d, t->z) ||
@@ -92,9 +92,10 @@ void lrsm_build_block(const lrsm_partition *p, int normal_parts, const lrsm_texe
                 double zw = (t->z - lo) / (hi - lo);
                 zw = zw < 0 ? 0 : zw > 1 ? 1 : zw;
                 for (int c = 0; c < 3; c++) {
-                    r[c] += t->radiance[c];
+                    r[c] += t->radiance[c] * t->area;
                     n[c] += t->n[c];
                 }
+                area += t->area;
                 z += zw;
                 z2 += zw * zw;
                 count += 1;
@@ -103,12 +104,22 @@ void lrsm_build_block(const lrsm_partition *p, int normal_parts, const lrsm_texe
                 o->radiance[c] = r[c] / 4;
                 o->normal[c] = n[c] / 4;
             }
+            o->radiance[3] = area / 4;
             o->normal[3] = count / 4;
             o->depth[0] = z / 4;
             o->depth[1] = z2 / 4;
             o->depth[2] = count / 4;
         }
     }
+}
+
+double lrsm_area_weight(int kind, double z, double zfar, double cos_face, double cosnl)
+{
+    double tilt = cosnl > LRSM_JACOBIAN_COS ? LRSM_JACOBIAN_COS / cosnl : 1;
+    if (kind == 2)
+        return tilt;
+    double r = z / zfar;
+    return r * r * cos_face * cos_face * cos_face * tilt;
 }
 
 double lrsm_mip(double diameter_texels, double clamp)

@@ -45,6 +45,14 @@ int lrsm_in_depth_layer(const lrsm_partition *p, int d, double z);
  * cosnl <= 0 (facing away from the light: no layer). */
 int lrsm_normal_part(double cosnl, int parts);
 
+/* The weight of an RSM texel in the filtered radiance: the area of surface it sees, Eq. 3's
+ * Jacobian dx = (r^2 / <n.l>) dw, in units that keep it in (0, 1]: (z / zfar)^2 cos_face^3 (the
+ * texel's solid angle on a perspective or cube face, times r^2; 1 for an orthographic view, kind 2)
+ * times min(LRSM_JACOBIAN_COS / <n.l>, 1) (surfaces lit at grazing counted up to 1 / 0.1 times a
+ * face-on one, not without bound). lrsm_common.glsl has the GLSL twin. */
+#define LRSM_JACOBIAN_COS 0.1
+double lrsm_area_weight(int kind, double z, double zfar, double cos_face, double cosnl);
+
 /* One RSM texel as the construction pass sees it, and one layer texel it writes (Table 1, each
  * value premultiplied by the layer's opacity alpha = members / 4 of the 2x2 block). */
 typedef struct lrsm_texel {
@@ -53,9 +61,10 @@ typedef struct lrsm_texel {
     double n[3];       /* normal facing the light */
     double cosnl;      /* <n.l> */
     double radiance[3];/* rho L_d <n.l> / pi */
+    double area;       /* its weight in the filtered radiance: lrsm_area_weight, or 1 (the paper) */
 } lrsm_texel;
 typedef struct lrsm_layer_texel {
-    double radiance[3];   /* sum of members' radiance / 4 (= A R) */
+    double radiance[4];   /* sum of members' radiance x area / 4, sum of their areas / 4 */
     double normal[4];     /* sum of members' normals / 4, alpha */
     double depth[3];      /* sum of warped z / 4, of warped z^2 / 4, alpha */
 } lrsm_layer_texel;

@@ -82,7 +82,9 @@ vec4 lrsm_sample_face(int i, int face, vec2 uv, float zc, float rc, vec3 vc, vec
             float V = lrsm_visibility(zw, rw / nl, mu, var);
             if (V <= 0.0)
                 continue;
-            vec3 AR = textureLod(u_lrsm_radiance, at, mip).rgb; // unnormalised: A R (Eq. 14)
+            // A R (Eq. 14): the area-weighted mean radiance (lrsm_build.comp) times A = alpha
+            vec4 rw = textureLod(u_lrsm_radiance, at, mip);
+            vec3 AR = rw.a > 0.0 ? rw.rgb * (dt.z / rw.a) : vec3(0.0);
             float f = lrsm_decay(i, d, lo + mu * (hi - lo));    // Eq. 15 at the layer's mean depth
             L += f * vec4(AR * (V * N), dt.z * V);
         }

@@ -1,7 +1,8 @@
 /* The LRSM's layers and their sampling, on the GPU, from a synthetic light view (the real
  * construction pass lrsm_build.comp and the real lookup lrsm_sample.glsl through a probe):
  *  1. random texels (depths, <n.l>, radiance, a tenth empty) in the paper's packed RSM format
- *     (two RGBA16F textures, light_view.h): every layer texel of level 0 equals the CPU mirror
+ *     (two RGBA16F textures, light_view.h): every layer texel of level 0, its radiance weighted by
+ *     each texel's area (lrsm_area_weight, `jacobian` 1), equals the CPU mirror
  *     lrsm_build_block() run on the texels as the half floats hold them (read back), within the
  *     layers' formats' rounding: half floats (relative 2^-11 a value, RAD_TOL 2e-3 for a sum of 4)
  *     and 16-bit UNORM (2^-16, DEPTH_TOL 3e-5);
@@ -138,6 +139,7 @@ int main(void)
     const gib_lv_face *face = &lv.faces[0];
     double s = lv.texel[0];
     texel_side = s;
+    L.jacobian = 1; /* texels weighted by area (an orthographic view: by 0.1 / <n.l> up to 1) */
     lrsm_layers_set_range(&L, 0, 0, 10);
     lrsm_partition p = {.z0 = 0, .z1 = 10, .parts = 2, .overlap = 0.2};
     static synth sy;
@@ -158,7 +160,8 @@ int main(void)
     lrsm_texel cpu[RES * RES];
     for (int i = 0; i < RES * RES; i++) {
         const float *rz = &held.radiance_depth[4 * i], *nl = &held.normal_nl[4 * i];
-        lrsm_texel t = {.valid = !isinf(rz[3]), .z = rz[3], .cosnl = nl[3]};
+        lrsm_texel t = {.valid = !isinf(rz[3]), .z = rz[3], .cosnl = nl[3],
+                        .area = lrsm_area_weight(2, rz[3], p.z1, 1.0, nl[3])};
         for (int k = 0; k < 3; k++) {
             t.n[k] = nl[k];
             t.radiance[k] = rz[k];
@@ -180,9 +183,11 @@ int main(void)
             lrsm_build_block(&p, 2, block, out);
             for (int l = 0; l < 4; l++) {
                 size_t g = 4 * ((size_t)l * HALF * HALF + by * HALF + bx);
-                for (int k = 0; k < 3; k++) {
+                for (int k = 0; k < 4; k++) {
                     double want = out[l].radiance[k];
                     wr = fmax(wr, fabs(rad[g + k] - want) / fmax(fabs(want), 1e-3));
+                }
+                for (int k = 0; k < 3; k++) {
                     wn = fmax(wn, fabs(nrm[g + k] - out[l].normal[k]));
                     wd = fmax(wd, fabs(dep[g + k] - out[l].depth[k]));
                 }

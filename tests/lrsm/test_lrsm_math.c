@@ -106,7 +106,7 @@ int main(void)
     lrsm_texel block[4];
     for (int i = 0; i < 4; i++) {
         lrsm_texel t = {.valid = 1, .z = i & 1 ? 8.0 : 2.0, .n = {0, 0, 1}, .cosnl = 1,
-                        .radiance = {1, 2, 3}};
+                        .radiance = {1, 2, 3}, .area = 1};
         block[i] = t;
     }
     lrsm_layer_texel out[4];
@@ -120,6 +120,21 @@ int main(void)
               fabs(o->radiance[1] - 1.0) < 1e-12 && fabs(o->normal[2] - 0.5) < 1e-12 &&
               out[d * 2].depth[2] == 0, "block across a discontinuity", mu, want);
     }
+    /* Area weights (Eq. 3's Jacobian): a texel three times the area of its neighbour counts three
+     * times in the filtered radiance; the weight's factors. */
+    lrsm_texel w2[4] = {{.valid = 1, .z = 2, .n = {0, 0, 1}, .cosnl = 1, .radiance = {1, 1, 1},
+                         .area = 1},
+                        {.valid = 1, .z = 2, .n = {0, 0, 1}, .cosnl = 1, .radiance = {5, 5, 5},
+                         .area = 3}};
+    lrsm_build_block(&p, 2, w2, out);
+    double mean = out[1].radiance[0] / out[1].radiance[3];
+    check(fabs(mean - 4.0) < 1e-12 && fabs(out[1].normal[3] - 0.5) < 1e-12,
+          "area-weighted radiance of a block", mean, 4.0);
+    check(fabs(lrsm_area_weight(2, 3, 10, 1, 0.5) - 0.2) < 1e-12 &&
+          fabs(lrsm_area_weight(0, 5, 10, 1, 1) - 0.025) < 1e-12 &&
+          fabs(lrsm_area_weight(0, 5, 10, 0.5, 0.01) - 0.25 * 0.125) < 1e-12,
+          "area weight: tilt 0.1 / <n.l> up to 1, (z / zfar)^2 cos^3", lrsm_area_weight(0, 5, 10, 1, 1),
+          0.025);
     if (failures) {
         printf("FAIL: %d check(s)\n", failures);
         return 1;
