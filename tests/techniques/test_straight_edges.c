@@ -1,0 +1,177 @@
+/* Straight edges that the reference does not have: the facets and seams a light view's faces or a
+ * voxel grid's cells print on smooth indirect light. Instantiated over the voxel techniques (lrsm,
+ * vct) with rsm_gather (VPLs, no grid, no faces) as the control, on the Cornell box (its spot
+ * light's hemisphere is a cube of six light-view faces) and, printed, on cornell_spot45 (one
+ * perspective view), `indirect` at 128x128 against a 1024-spp reference.
+ *
+ * The measure (straight_edges): among neighbouring pixel pairs where the reference is smooth
+ * (its 5x5 box-filtered luminance changes by under SMOOTH = 5%, and is above 5% of its mean, so
+ * that the path tracer's noise and the geometry's own edges are not counted), the share that
+ * jump by over JUMP = 20% in the image AND lie on an axis-aligned run of at least RUN = 6 such
+ * jumps: a straight edge across the image, not the ragged border of a blotch. Measured on the
+ * Cornell box at the defaults: lrsm 0.014, vct 0.006, rsm_gather 0.008; the cube's facets of
+ * lrsm's literal reading (seams = 0: a sample reads only the face holding its centre) 0.021. The
+ * bound STRAIGHT_MAX = 0.018 holds every technique at its defaults and fails the facets, which
+ * is asserted too, so that the measure keeps its power to see them. On cornell_spot45 (printed,
+ * not bounded): lrsm 0.030 (straight borders of the dark blotches Eq. 12 leaves under the ceiling
+ * and the voxel staircase of the turned boxes), vct 0.015, rsm_gather 0.004. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "harness/app/runner.h"
+#include "reference/reference.h"
+#include "tests/common/gl_fixture.h"
+
+#define W 128
+#define H 128
+#define REF_SPP 1024
+#define SMOOTH 0.05
+#define JUMP 0.2
+#define RUN 6
+#define STRAIGHT_MAX 0.018
+
+/* The mean of the three channels, one value a pixel. */
+static double *luminance(const gib_image *im)
+{
+    double *l = malloc(sizeof *l * W * H);
+    for (long i = 0; i < (long)W * H; i++)
+        l[i] = (im->px[i * im->channels] + im->px[i * im->channels + 1] +
+                im->px[i * im->channels + 2]) / 3;
+    return l;
+}
+
+/* A 5x5 box filter, the border clamped. */
+static double *box5(const double *l)
+{
+    double *b = malloc(sizeof *b * W * H);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            double s = 0;
+            for (int dy = -2; dy <= 2; dy++)
+                for (int dx = -2; dx <= 2; dx++) {
+                    int u = x + dx < 0 ? 0 : x + dx >= W ? W - 1 : x + dx;
+                    int v = y + dy < 0 ? 0 : y + dy >= H ? H - 1 : y + dy;
+                    s += l[v * W + u];
+                }
+            b[y * W + x] = s / 25;
+        }
+    return b;
+}
+
+static double rel_change(double a, double b)
+{
+    double m = fmax(a, b);
+    return m > 0 ? fabs(a - b) / m : 0;
+}
+
+/* The share of smooth pairs on straight runs of jumps (see the header). Pairs (p, p + step) for
+ * step along one axis; runs are counted along the other axis (a jump between rows y and y + 1 at
+ * consecutive x is a horizontal edge). */
+static double straight_edges(const double *img, const double *ref_blur, double ref_mean)
+{
+    long smooth = 0, straight = 0;
+    for (int axis = 0; axis < 2; axis++) {
+        int outer = axis == 0 ? H - 1 : W - 1, inner = axis == 0 ? W : H;
+        for (int a = 0; a < outer; a++) {
+            int run = 0;
+            for (int b = 0; b <= inner; b++) {
+                int bad = 0;
+                if (b < inner) {
+                    int x = axis == 0 ? b : a, y = axis == 0 ? a : b;
+                    int p = y * W + x, q = axis == 0 ? p + W : p + 1;
+                    int flat = rel_change(ref_blur[p], ref_blur[q]) < SMOOTH &&
+                               fmax(ref_blur[p], ref_blur[q]) > 0.05 * ref_mean;
+                    smooth += flat;
+                    bad = flat && rel_change(img[p], img[q]) > JUMP;
+                }
+                if (bad) {
+                    run++;
+                } else {
+                    if (run >= RUN)
+                        straight += run;
+                    run = 0;
+                }
+            }
+        }
+    }
+    return smooth ? (double)straight / (double)smooth : 0;
+}
+
+/* The technique's indirect image's measure, or -1 on failure. */
+static double measure(gib_gl_fixture *fx, const char *name, const char *param, const char *value,
+                      const double *ref_blur, double ref_mean)
+{
+    const gib_technique *t = gib_technique_find(name);
+    gib_params p;
+    gib_error err;
+    gib_params_default(t, &p);
+    if (param && gib_param_set(t, &p, param, value, &err) < 0) {
+        printf("FAIL: %s\n", err.msg);
+        return -1;
+    }
+    gib_run_result r;
+    gib_run_technique(&fx->gpu, t, &p, 0, W, H, 0, 1, &r);
+    if (!r.ok) {
+        printf("FAIL: %s: %s: %s\n", name, r.status, r.err.msg);
+        return -1;
+    }
+    double m = -1;
+    for (int o = 0; o < r.output_count; o++)
+        if (r.output_components[o] == GIB_OUT_INDIRECT && !gib_image_count_nonfinite(&r.images[o])) {
+            double *l = luminance(&r.images[o]);
+            m = straight_edges(l, ref_blur, ref_mean);
+            free(l);
+        }
+    gib_run_result_free(&r);
+    if (m < 0)
+        printf("FAIL: %s gave no finite indirect image\n", name);
+    return m;
+}
+
+static const struct {
+    const char *technique, *param, *value;
+    int bounded;   /* 1: at most STRAIGHT_MAX; -1: above it (the facets must be seen); 0: printed */
+} cases[] = {{"lrsm", NULL, NULL, 1},
+             {"vct", NULL, NULL, 1},
+             {"rsm_gather", NULL, NULL, 1},
+             {"lrsm", "seams", "0", -1}};
+
+static int run_scene(const char *scene, int assert_bounds)
+{
+    gib_gl_fixture fx;
+    if (gib_fixture_open(&fx, scene) < 0)
+        return 1;
+    gib_image ref;
+    if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, NULL) < 0)
+        return 1;
+    double *rl = luminance(&ref), *rb = box5(rl), mean = 0;
+    for (long i = 0; i < (long)W * H; i++)
+        mean += rl[i] / ((double)W * H);
+    int failures = 0;
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        if (!assert_bounds && cases[k].bounded < 0)
+            continue;
+        double m = measure(&fx, cases[k].technique, cases[k].param, cases[k].value, rb, mean);
+        int want = assert_bounds ? cases[k].bounded : 0;
+        int ok = m >= 0 && (want == 0 || (want > 0 ? m <= STRAIGHT_MAX : m > STRAIGHT_MAX));
+        failures += !ok;
+        printf("%s %s %s%s%s%s%s: straight edges %.4f of the smooth pairs (%s %.3f)\n",
+               ok ? (want ? "PASS" : "INFO") : "FAIL", scene, cases[k].technique,
+               cases[k].param ? " " : "", cases[k].param ? cases[k].param : "",
+               cases[k].param ? "=" : "", cases[k].param ? cases[k].value : "", m,
+               want > 0 ? "at most" : want < 0 ? "must exceed" : "printed, not bounded; cornell's bound", STRAIGHT_MAX);
+    }
+    free(rl);
+    free(rb);
+    gib_image_free(&ref);
+    gib_fixture_close(&fx);
+    return failures;
+}
+
+int main(void)
+{
+    int failures = run_scene("cornell", 1) + run_scene("cornell_spot45", 0);
+    printf("%s: straight edges on smooth indirect light\n", failures ? "FAIL" : "PASS");
+    return failures ? 1 : 0;
+}
