@@ -707,7 +707,10 @@ int gib_cmd_run(int argc, char **argv)
         char path[2048], ppath[2048];
         snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
         snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
+        /* A table restarted for new columns restarts its passes too: their rows belong to runs
+         * that are gone, and would stand in (same key) for the passes of the runs redone. */
         if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
+            (csv.moved_aside && gib_csv_move_aside(ppath, &err) < 0) ||
             gib_csv_open(&passes, ppath, pass_columns, PASS_COLUMNS, pass_key_columns, 8, &err) < 0) {
             fprintf(stderr, "gibench run: %s\n", err.msg);
             gib_csv_close(&csv);

@@ -197,11 +197,10 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
         if (!fresh && cut_unfinished_line(path, err) < 0)
             return -1;
         if (fresh) {
-            char aside[1100];
-            snprintf(aside, sizeof aside, "%s.old", path);
-            if (rename(path, aside) != 0)
-                return gib_fail(err, "%s has different columns and cannot be moved aside", path);
-            fprintf(stderr, "gibench: %s had different columns; moved it to %s\n", path, aside);
+            if (gib_csv_move_aside(path, err) < 0)
+                return -1;
+            c->moved_aside = 1;
+            fprintf(stderr, "gibench: %s had different columns; moved it to %s.old\n", path, path);
         }
     }
     c->f = fopen(path, "a");
@@ -212,6 +211,15 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
         fprintf(c->f, "%s\n", header);
         fflush(c->f);
     }
+    return 0;
+}
+
+int gib_csv_move_aside(const char *path, gib_error *err)
+{
+    char aside[1100];
+    snprintf(aside, sizeof aside, "%s.old", path);
+    if (rename(path, aside) != 0 && errno != ENOENT)
+        return gib_fail(err, "%s cannot be moved aside to %s: %s", path, aside, strerror(errno));
     return 0;
 }
 

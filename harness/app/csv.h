@@ -20,13 +20,16 @@ typedef struct gib_csv {
     int key_cols[16]; /* the columns that make a row's identity key (none: every row is new) */
     int nkey;
     int lock_fd;      /* PATH.lock, flock'ed while the table is open */
+    int moved_aside;  /* the file had other columns and went to PATH.old: its rows are gone */
 } gib_csv;
 
 /* Opens for appending. An existing file with the same header is kept (its rows' identity keys are
  * loaded, and an unfinished last line, left by a process killed mid-write, is cut off); one with a
- * different header is moved aside to PATH.old and a fresh file started. */
+ * different header is moved aside to PATH.old and a fresh file started (moved_aside). */
 int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int ncols,
                  const int *key_columns, int nkey_columns, gib_error *err);
+/* Moves PATH aside to PATH.old (replacing an older one); nothing to do when PATH is absent. */
+int gib_csv_move_aside(const char *path, gib_error *err);
 /* Appends one row (ncols values, NULL = empty), quoted as RFC 4180 needs, and flushes it in one
  * write. A row whose identity key the file already holds is not written again (a run redone after
  * an interruption re-appends only what is missing): every row is in the file exactly once.
