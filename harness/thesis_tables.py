@@ -11,8 +11,11 @@ here (yes / no / missing), and one `flag` per place the thesis disagrees with it
 
 Matching: a thesis table's rows come from its matrix (TABLES below). The image resolution is matched
 by rank among the sizes that ran (the quick profile's 64^2 and 128^2 stand for 512^2 and 1024^2; the
-`our_settings` column says what ran), the photon count by rank among the mask levels that ran (the
-thesis' counts grow ~4x a level: the most photons = the finest level), the ray resolution exactly.
+`our_settings` column says what ran), the photon count by count: the caustics run (at that size,
+instant and ray resolution) whose emitted photons (the `counters` column) are nearest the thesis'
+count, and only within COUNT_TOL = 25% of it (a row outside says so: status `count_mismatch`, with
+the nearest count); the ray resolution exactly. Each caustics row carries its photon count, their
+ratio, and its error against the reference with a black image's beside it (the thesis gives none).
 Rows of a matrix, scene or setting that did not run say `missing`. Moving scenes give a row per
 instant.
 """
@@ -34,12 +37,13 @@ TABLES = {
     ("4.2", "4.2"): ("thesis_t42_occluded", "ring_occluded"),
     ("4.3", "4.3"): ("thesis_t43_bunnies", "bunnies_ring"),
     ("4.4", "4.4"): ("thesis_t44_water", "water_room"),
-    ("4.4", "4.5"): None,  # a 16,384 (128^2) photon set: no mask level of ours gives it
+    ("4.4", "4.5"): None,  # a 16,384 (128^2) photon set: not run (thesis_t44_water.matrix)
     ("4.5", "4.6"): ("thesis_t45_sponza", "sponza_pools"),
     ("4.5", "4.7"): None,  # a fourth view with one photon count: no stand-in view of ours
     ("4.5", "4.8"): ("thesis_t45_sponza_west", "sponza_pools"),
 }
-NO_STANDIN = {"4.5": "the thesis' 16,384-photon set (a 128^2 grid): no mask level of ours gives it",
+NO_STANDIN = {"4.5": "the thesis' 16,384-photon set (a 128^2 grid): no level of the 616^2 caustic RSM "
+                      "that gives the other three counts gives it (thesis_t44_water.matrix)",
               "4.7": "the thesis' second Sponza view (one photon count): no stand-in view of ours"}
 
 # Claim thresholds (stated, not tuned): "roughly linear" = R^2 >= 0.9 of a straight-line fit per
@@ -49,6 +53,7 @@ NO_STANDIN = {"4.5": "the thesis' 16,384-photon set (a 128^2 grid): no mask leve
 # at most 0.05 above (or 25% over) rsm_gather's; "the leak" = 4 layers' caustic RMSE over 1.1x the
 # linked lists' at every setting.
 R2_MIN, RATIO_LO, RATIO_HI, SPEEDUP_MIN, ERR_ABS, ERR_REL, LEAK_MIN = 0.9, 1.5, 2.7, 2.0, 0.05, 0.25, 1.1
+COUNT_TOL = 0.25  # a thesis row is matched by a run within 25% of its photon count
 FPS_GAP = 0.06  # a thesis row's 1000/fps more than 6% from its frame ms is flagged on its own
 
 
@@ -123,9 +128,6 @@ class Matrix:
         self.passes = load_passes(results, name)
         sizes = sorted({int(r["width"]) for r in self.rows})
         self.size_rank = {s: i for i, s in enumerate(sizes)}
-        levels = sorted({parse_params(r["params"]).get("mask_level") for r in self.rows
-                         if r["technique"] == "ispm_caustics"} - {None})
-        self.levels = levels
         self.times = sorted({r.get("time", "0") for r in self.rows}, key=float) or ["0"]
 
     def pass_ms(self, row, name):
@@ -144,6 +146,24 @@ class Matrix:
         return out
 
 
+def by_count(rows, n):
+    """The rows whose photon count is nearest n, if within COUNT_TOL of it: (rows, None); else
+    ([], the nearest count) or ([], None) when no row reports a count."""
+    counted = [(abs(photon_count(r) / n - 1), r) for r in rows if photon_count(r)]
+    if not counted:
+        return [], None
+    best = min(d for d, _ in counted)
+    if best > COUNT_TOL:
+        return [], min(((d, photon_count(r)) for d, r in counted))[1]
+    return [r for d, r in counted if d == best], None
+
+
+def no_count_note(nearest, n):
+    if nearest is None:
+        return "ispm_caustics row absent"
+    return f"no caustics run within {COUNT_TOL:.0%} of the thesis' {n} photons (nearest {nearest:.0f})"
+
+
 def thesis_rows(paper_csv):
     with open(paper_csv, newline="") as f:
         return list(csv.DictReader(f))
@@ -157,10 +177,6 @@ def rows_for(results, paper):
     """The `row` lines of results/thesis_tables.csv, and the matched pairs the claims use."""
     out, matched = [], []
     mats = {}
-    # Photon counts per (table, figure group), most first: their rank is the mask level's.
-    counts = {}
-    for pr in paper:
-        counts.setdefault((pr["table"], figure_group(pr)), set()).add(int(pr["caustic_photons"]))
     for pr in paper:
         group = (pr["table"], figure_group(pr))
         base = {"kind": "row", "table": pr["table"], "figure": pr["figure"], "paper_scene": pr["scene"],
@@ -187,18 +203,16 @@ def rows_for(results, paper):
         if len(m.size_rank) == 1:  # one size ran: it stands for the thesis' size only if equal
             only = next(iter(m.size_rank))
             size_rank = 0 if only == int(pr["resolution"]) else None
-        count_rank = sorted(counts[group], reverse=True).index(int(pr["caustic_photons"]))
-        level = m.levels[count_rank] if count_rank < len(m.levels) else None
+        thesis_n = int(pr["caustic_photons"])
         ray = float(pr["ray_resolution"])
         for t in m.times:
             rec = dict(base, time_s=t)
             multi = m.find("multires_ir", size_rank, t)
             gather = m.find("rsm_gather", size_rank, t)
-            want = {"ray_res": ray} if level is None else {"ray_res": ray, "mask_level": level}
-            want_l = dict(want, layers=0.0)
-            caus = m.find("ispm_caustics", size_rank, t, **want_l) or m.find("ispm_caustics", size_rank, t, **want)
-            if level is None:
-                caus = []
+            want = {"ray_res": ray}
+            caus = m.find("ispm_caustics", size_rank, t, layers=0.0, **want) or \
+                m.find("ispm_caustics", size_rank, t, **want)
+            caus, nearest = by_count(caus, thesis_n)
             # The defaults of the thesis: 256 VPLs.
             multi = [r for r in multi if parse_params(r["params"]).get("vpl_count", 256) == 256] or multi
             gather = [r for r in gather if parse_params(r["params"]).get("vpl_count", 256) == 256] or gather
@@ -217,8 +231,8 @@ def rows_for(results, paper):
             rec.update({
                 "our_settings": "; ".join(settings) + f" profile={prof}"
                                 + ("" if exact else " (NOT the thesis' settings: see profile)"),
-                "our_photons": fmt(photon_count(cr), 6) if cr and photon_count(cr) is not None else
-                               (f"mask_level={level:g}" if level is not None else MISSING),
+                "our_photons": fmt(photon_count(cr), 6) if cr else MISSING,
+                "photon_ratio": fmt(photon_count(cr) / thesis_n, 3) if cr else MISSING,
                 "our_split_ms": fmt(split), "our_gather_ms": fmt(gath), "our_tracing_ms": fmt(trace),
                 "our_splat_ms": fmt(splat), "our_multires_ms": fmt(mms), "our_caustics_ms": fmt(cms),
                 "our_frame_ms": fmt(mms + cms) if mms is not None and cms is not None else MISSING,
@@ -229,11 +243,13 @@ def rows_for(results, paper):
                 "caustic_rmse": cr["rmse"] if cr else MISSING,
                 "caustic_rel_rmse": cr["rel_rmse"] if cr else MISSING,
                 "caustic_ssim": cr["ssim"] if cr else MISSING,
-                "status": "ok" if (mr and cr) else MISSING,
+                "caustic_black_rmse": cr.get("black_rmse", MISSING) if cr else MISSING,
+                "caustic_rmse_over_black": cr.get("rmse_over_black", MISSING) if cr else MISSING,
+                "status": "ok" if (mr and cr) else "count_mismatch" if nearest is not None else MISSING,
                 "renderer": (cr or mr or {}).get("renderer", ""),
                 "note": "" if (mr and cr) else
-                        "; ".join(w for w, ok in (("multires_ir row absent", mr), ("ispm_caustics row absent", cr))
-                                  if not ok)})
+                        "; ".join(w for w, ok in (("multires_ir row absent", mr),
+                                                  (no_count_note(nearest, thesis_n), cr)) if not ok)})
             out.append(rec)
             matched.append((pr, m, t, mr, gr, cr, trace))
     return out, matched, mats
@@ -428,10 +444,11 @@ def flags(paper):
 
 COLUMNS = ["kind", "table", "figure", "paper_scene", "matrix", "our_scene", "resolution", "caustic_photons",
            "ray_resolution", "time_s", "paper_fps", "paper_split_ms", "paper_gather_ms", "paper_tracing_ms",
-           "paper_splat_ms", "paper_frame_ms", "our_settings", "our_photons", "our_split_ms", "our_gather_ms",
-           "our_tracing_ms", "our_splat_ms", "our_multires_ms", "our_caustics_ms", "our_frame_ms",
-           "rsm_gather_ms", "indirect_rel_rmse", "indirect_ssim", "rsm_gather_rel_rmse", "caustic_rmse",
-           "caustic_rel_rmse", "caustic_ssim", "status", "claim", "reproduced", "evidence", "renderer", "note"]
+           "paper_splat_ms", "paper_frame_ms", "our_settings", "our_photons", "photon_ratio", "our_split_ms",
+           "our_gather_ms", "our_tracing_ms", "our_splat_ms", "our_multires_ms", "our_caustics_ms",
+           "our_frame_ms", "rsm_gather_ms", "indirect_rel_rmse", "indirect_ssim", "rsm_gather_rel_rmse",
+           "caustic_rmse", "caustic_rel_rmse", "caustic_ssim", "caustic_black_rmse", "caustic_rmse_over_black",
+           "status", "claim", "reproduced", "evidence", "renderer", "note"]
 
 
 def thesis_table(results, paper_dir):

@@ -131,6 +131,8 @@ int gib_cmd_render(int argc, char **argv)
                    r.passes[i].min_ms, r.passes[i].max_ms, r.passes[i].first_ms);
         printf("  memory: technique %.3f MB (%s), scene %.3f MB\n", r.technique_bytes / 1e6,
                r.memory_by_label, gpu.ledger.peak_bytes / 1e6);
+        if (r.counters[0])
+            printf("  counters: %s\n", r.counters);
     }
     for (int i = 0; r.ok && i < r.output_count; i++) {
         const char *comp = gib_output_name(r.output_components[i]);

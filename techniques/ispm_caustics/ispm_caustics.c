@@ -509,13 +509,20 @@ static void caustics_counters(void *self, char *buf, size_t len)
     snprintf(buf, len, "photons=%u", cmd[1]);
 }
 
+/* `overflow` when the lists' pool ran out; `no_photons` when the mask's level emitted none (no
+ * specular texel whose 4^level texels below are all specular): the caustic image is then black by
+ * construction, a status of its own rather than an error score. */
 static const char *caustics_status(void *self)
 {
     caustics *c = self;
-    uint32_t st[3];
+    uint32_t st[3], cmd[8];
     glGetNamedBufferSubData(c->status_buf, 0, sizeof st, st);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(c->command, 0, sizeof cmd, cmd);
     if (st[1] || st[2])
         strcpy(c->status, "overflow");
+    else if (cmd[1] == 0)
+        strcpy(c->status, "no_photons");
     return c->status;
 }
 
