@@ -11,8 +11,8 @@
 // drops it, which lets a texel a light almost touches (a patch micrometres wide, its radiance at
 // the half float's limit) outweigh metres of lit surface in every footprint that holds it
 // (hard_light_touching). With u_jacobian 0 (the paper) w = 1 and a = alpha. Table 1 leaves the
-// radiance texel's alpha free (opacity is in the normal and depth textures). Every layer texel of the block is written, empty ones as 0, so
-// the arrays need no clear.
+// radiance texel's alpha free (opacity is in the normal and depth textures). Every layer texel of
+// the block is written, empty ones as 0, so the arrays need no clear.
 //
 // The light view is the paper's RSM (light_view.h, GIB_LV_PACKED16): each texel's reflected
 // radiance (Table 1: rho L_d <n.l> / pi) and depth, its normal and <n.l>.

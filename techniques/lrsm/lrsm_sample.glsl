@@ -24,9 +24,9 @@
 //    2 r_c wide), at depths mu +- r_c tan(theta): with the sphere's window, a wall lit at 60
 //    degrees counts about half of its own footprint as outside the sample, and assumption 2 of
 //    Sec. 4.1 turns that half into shadowed surface, so every obliquely lit surface lost light
-//    (Cornell box indirect 0.79 of the reference's at 128^3). The widened window r_c / cos(theta)
+//    (Cornell box indirect 0.71 of the reference's at 128^3). The widened window r_c / cos(theta)
 //    >= r_c tan(theta) keeps the whole surface; an occluder in front or a receiver in its shadow
-//    behind, farther from mu than that, stays outside (0.81 -> 0.91 of the reference's).
+//    behind, farther from mu than that, stays outside (0.81 of the reference's).
 //  - The footprint's mip is log2 of the projected diameter in layer texels at the sample centre's
 //    distance along the face's axis, clamped below by u_mip_clamp (Sec. 7).
 //  - The faces a footprint overlaps (u_seams 1, the default): the paper has one view per light; a
@@ -83,8 +83,8 @@ vec4 lrsm_sample_face(int i, int face, vec2 uv, float zc, float rc, vec3 vc, vec
             if (V <= 0.0)
                 continue;
             // A R (Eq. 14): the area-weighted mean radiance (lrsm_build.comp) times A = alpha
-            vec4 rw = textureLod(u_lrsm_radiance, at, mip);
-            vec3 AR = rw.a > 0.0 ? rw.rgb * (dt.z / rw.a) : vec3(0.0);
+            vec4 rt = textureLod(u_lrsm_radiance, at, mip);
+            vec3 AR = rt.a > 0.0 ? rt.rgb * (dt.z / rt.a) : vec3(0.0);
             float f = lrsm_decay(i, d, lo + mu * (hi - lo));    // Eq. 15 at the layer's mean depth
             L += f * vec4(AR * (V * N), dt.z * V);
         }
