@@ -73,14 +73,15 @@ static const char *const pass_columns[] = {"matrix", "profile", "scene", "techni
                                            "git_revision"};
 #define PASS_COLUMNS ((int)(sizeof pass_columns / sizeof pass_columns[0]))
 
-#define MAX_COLS 96
+#define MAX_COLS 128
 typedef struct columns {
     const char *names[MAX_COLS];
     int count;
 } columns;
 
-/* Base columns, then every parameter name of every technique once, in registry order. */
-static void make_columns(columns *c)
+/* Base columns, then every parameter name of every technique once, in registry order. A name that
+ * does not fit is an error, never a column dropped without a word. */
+static int make_columns(columns *c, gib_error *err)
 {
     c->count = 0;
     for (int i = 0; i < C_BASE_COUNT; i++)
@@ -92,9 +93,15 @@ static void make_columns(columns *c)
             int seen = 0;
             for (int k = C_BASE_COUNT; k < c->count; k++)
                 seen |= !strcmp(c->names[k], all[t]->params[p].name);
-            if (!seen && c->count < MAX_COLS)
-                c->names[c->count++] = all[t]->params[p].name;
+            if (seen)
+                continue;
+            if (c->count == MAX_COLS)
+                return gib_fail(err, "technique '%s' parameter '%s': the results table holds %d "
+                                "columns at most (MAX_COLS in harness/app/cmd_run.c)", all[t]->name,
+                                all[t]->params[p].name, MAX_COLS);
+            c->names[c->count++] = all[t]->params[p].name;
         }
+    return 0;
 }
 
 typedef struct row {
@@ -655,9 +662,14 @@ int gib_cmd_run(int argc, char **argv)
         fprintf(stderr, "gibench run: no matrix file given\n%s", help);
         return 2;
     }
+    gib_error err;
+    columns cols;
+    if (make_columns(&cols, &err) < 0) {
+        fprintf(stderr, "gibench run: %s\n", err.msg);
+        return 1;
+    }
     /* Every matrix is expanded and validated before anything renders. */
     gib_matrix *ms = calloc(nfiles, sizeof *ms);
-    gib_error err;
     int total = 0;
     for (int i = 0; i < nfiles; i++) {
         if (gib_matrix_load(files[i], profile, &ms[i], &err) < 0) {
@@ -699,8 +711,6 @@ int gib_cmd_run(int argc, char **argv)
         free(ms);
         return 1;
     }
-    columns cols;
-    make_columns(&cols);
     int status = 0;
     for (int i = 0; i < nfiles && !ctx.write_failed; i++) {
         gib_csv csv = {.lock_fd = -1}, passes = {.lock_fd = -1};
