@@ -6,29 +6,18 @@ table kept would hold the old revision's timings under the new rows (found in re
 stages of Table 3 were the previous revision's). The test writes a run CSV with other columns and a
 passes CSV holding a stale row under the key of a run of faults.matrix, runs the matrix, and checks
 that both went aside, the new passes CSV has every run's passes once and none of the stale times."""
-import argparse
 import csv
 import os
-import shutil
 import subprocess
 import sys
 
-failures = []
+from fault_checks import MATRIX, args, check, verdict
 
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    matrix = os.path.join(os.path.dirname(os.path.abspath(__file__)), "faults.matrix")
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = args()
+    matrix = MATRIX
     out, cache = os.path.join(a.work, "out"), os.path.join(a.work, "cache")
     os.makedirs(out)
     # A first run gives the real passes CSV, whose header and first key we reuse.
@@ -57,9 +46,7 @@ def main():
     keys = [tuple(p[k] for k in key) for p in new]
     check(len(keys) == len(set(keys)) and tuple(first[header.index(k)] for k in key) in set(keys),
           f"every run's passes once, the stale row's run among them ({len(keys)} rows)")
-    print("PASS: a restarted table restarts its passes" if not failures else
-          f"FAIL: {len(failures)} check(s)")
-    return 1 if failures else 0
+    return verdict("PASS: a restarted table restarts its passes")
 
 
 if __name__ == "__main__":

@@ -13,7 +13,6 @@
   finishes, every row once.
 - A full disk (every file capped at 7,000 bytes): a clear error naming the file, the run stops,
   no temporary or truncated file is left, and the next run finishes with the clean run's rows."""
-import argparse
 import csv
 import os
 import resource
@@ -23,14 +22,9 @@ import subprocess
 import sys
 import time
 
+from fault_checks import MATRIX, args, check, verdict
+
 KEY = ("scene", "technique", "component", "params", "width", "height")
-failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
 
 
 def run(gibench, matrix, out, cache, env_extra, images=False):
@@ -43,12 +37,8 @@ def run(gibench, matrix, out, cache, env_extra, images=False):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    matrix = os.path.join(os.path.dirname(os.path.abspath(__file__)), "faults.matrix")
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = args()
+    matrix = MATRIX
     cache = os.path.join(a.work, "cache")
     rc, clean, n, _ = run(a.gibench, matrix, os.path.join(a.work, "clean"), cache, {})
     check(rc == 0 and all(r["status"] == "ok" for r in clean.values()),
@@ -127,8 +117,7 @@ def main():
               f"free disk finishes: exit {rc}, {n} rows, each once")
         same = all(resumed[k]["status"] == "ok" and resumed[k]["rmse"] == clean[k]["rmse"] for k in clean)
         check(same, f"disk full, {case}: its rows equal the clean run's (nothing half-written trusted)")
-    print("PASS" if not failures else f"FAIL: {len(failures)} checks")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":

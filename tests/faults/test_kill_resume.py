@@ -10,7 +10,6 @@ row exactly once (identity key: profile, scene, camera, technique, component, pa
 instant), equal the uninterrupted run's rows but for times, timestamps and the reference's
 git revision, and the passes CSV must hold each run's passes exactly once. The random points come
 from a fixed seed."""
-import argparse
 import csv
 import os
 import random
@@ -20,18 +19,13 @@ import subprocess
 import sys
 import time
 
+from fault_checks import MATRIX, args, check, verdict
+
 KEY = ("profile", "scene", "camera", "technique", "component", "params", "width", "height", "time")
 PASS_KEY = ("profile", "scene", "technique", "params", "width", "height", "time", "pass")
 TIMES = {"gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "gpu_ms_iqr", "cpu_ms", "cpu_ms_iqr", "first_frame_ms",
          "first_frame_gpu_ms", "timestamp", "driver_mem_bytes"}
 KILLS = 10
-failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
 
 
 def read_strict(path):
@@ -59,13 +53,8 @@ def run(gibench, matrix, out, cache):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    here = os.path.dirname(os.path.abspath(__file__))
-    matrix = os.path.join(here, "faults.matrix")
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = args()
+    matrix = MATRIX
     gold, out = os.path.join(a.work, "gold"), os.path.join(a.work, "killed")
     t0 = time.monotonic()
     p = run(a.gibench, matrix, gold, os.path.join(a.work, "gold_cache"))
@@ -149,8 +138,7 @@ def main():
         ck = [tuple(r[k] for k in KEY) for r in rows]
         check(len(ck) == len(set(ck)) and set(ck) == set(want_by),
               f"then every row once ({len(ck)} rows, {len(want_by)} expected)")
-    print("PASS" if not failures else f"FAIL: {len(failures)} checks")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":
