@@ -1,5 +1,5 @@
 /* Reference renderer: the Cornell box's transformed twins render as the Cornell box does
- * (ARCHITECTURE.md, "Hard cases"; issue 15). hard_tiny and hard_huge are cornell scaled by 0.0018 and
+ * (ARCHITECTURE.md, "Hard cases"). hard_tiny and hard_huge are cornell scaled by 0.0018 and
  * 18000 (lights by the square), hard_far is cornell moved 1e5 m on each axis, where floats are
  * 7.8 mm apart: its vertices, light and camera are rounded by up to 3.9 mm. Each component
  * (direct; ao unbounded and within a dmax scaled with the scene; indirect) is rendered with the
