@@ -23,7 +23,7 @@ import sqlite3
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_tables import paper_csv  # noqa: E402  (a CSV's rows, [] when absent)
+from schema import read_csv  # noqa: E402  (a CSV's rows, [] when absent)
 
 COLUMNS = ["paper", "source", "claim", "paper_value", "our_value", "renderer", "cores", "verdict",
            "reason"]
@@ -34,7 +34,7 @@ LDM = "Layered depth maps (LDM) for ambient occlusion and indirect light"
 
 
 def read(results, name):
-    return paper_csv(results, name)
+    return read_csv(os.path.join(results, name))
 
 
 def verdict_of(text):

@@ -22,7 +22,7 @@ import shutil
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot import parse_params  # noqa: E402
+from schema import fmt, fnum, params, passes_of, read_csv, run_key, runs, runs_table  # noqa: E402
 from thesis_tables import thesis_table  # noqa: E402
 from uncertainty import compare_times, time_resolution  # noqa: E402
 
@@ -30,36 +30,20 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
-params = parse_params
-
-
-def load(results, matrix):
-    path = os.path.join(results, matrix + ".csv")
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return [r for r in csv.DictReader(f) if r["status"] == "ok"]
+def paper_values(paper_dir, name):
+    """The rows of one of the papers' tables (../shared/paper-values/NAME), [] when absent."""
+    return read_csv(os.path.join(paper_dir, name))
 
 
 def pass_ms(results, matrix, row, names):
-    path = os.path.join(results, matrix + "_passes.csv")
-    if not os.path.exists(path):
-        return ""
-    total = 0.0
-    found = False
-    with open(path, newline="") as f:
-        for p in csv.DictReader(f):
-            if (p["scene"], p["technique"], p["params"], p["width"], p["height"], p["profile"]) == \
-               (row["scene"], row["technique"], row["params"], row["width"], row["height"], row["profile"]) \
-               and p["pass"] in names:
-                total += float(p["ms_median"])
-                found = True
-    return f"{total:.6g}" if found else ""
+    """The summed median ms of the passes `names` of row's run, "" when it has none of them."""
+    ms = [v for k, v in passes_of(results, matrix).get(run_key(row), {}).items() if k in names]
+    return f"{sum(ms):.6g}" if ms else ""
 
 
 def closeness(row, want):
     """Sort key: exact parameter matches first, then larger settings (closer to the paper's)."""
-    p = params(row["params"])
+    p = params(row)
     exact = sum(1 for k, v in want.items() if k in p and p[k] == v)
     size = int(row["width"]) * int(row["height"])
     return (exact, p.get("directions", 0), p.get("ldm_res", 0), size)
@@ -68,42 +52,41 @@ def closeness(row, want):
 def ldm_rows(results, paper_csv):
     scene_of = {"Crytek Sponza": "sponza", "Hairball": "hairball"}
     out = []
-    with open(paper_csv, newline="") as f:
-        for pr in csv.DictReader(f):
-            fig, scene = pr["figure"], scene_of.get(pr["scene"], pr["scene"])
-            matrix = f"ldm_fig{fig}"
-            tech = {"LDM": "ldm_ao", "HBAO": "hbao"}.get(pr["method"], "ldm_indirect")
-            want = {}
-            if pr["ldm_count"]:
-                want["directions"] = float(pr["ldm_count"])
-            if pr["ldm_res"]:
-                want["ldm_res"] = float(pr["ldm_res"])
-            if pr["dmax_m"]:
-                want["dmax"] = float(pr["dmax_m"])  # Sponza is in cm: the paper's "1280 m" is 1280 units
-            elif tech == "ldm_ao":
-                want["dmax"] = float("inf")
-            rows = [r for r in load(results, matrix) if r["scene"] == scene and r["technique"] == tech]
-            if "dmax" in want:
-                rows = [r for r in rows if params(r["params"]).get("dmax") == want["dmax"]] or rows
-            best = max(rows, key=lambda r: closeness(r, want)) if rows else None
-            rec = {"figure": fig, "scene": pr["scene"], "method": pr["method"], "paper_settings":
-                   f"N={pr['ldm_count'] or '-'} ldm_res={pr['ldm_res'] or '-'} image={pr['image_res']}"
-                   + (f" dmax={pr['dmax_m'] or 'inf'}" if pr["effect"].startswith("ao") else ""),
-                   "paper_ms": pr["ms"], "paper_mb": pr["mb"], "paper_gpu": pr["gpu"], "paper_note": pr["note"]}
-            if best:
-                exact = all(params(best["params"]).get(k) == v for k, v in want.items()) and \
-                    best["width"] == pr["image_res"]
-                rec.update({
-                    "our_settings": f"{best['params']} {best['width']}x{best['height']} profile={best['profile']}"
-                                    + ("" if exact else " (NOT the paper's settings: see profile)"),
-                    "our_ms": best["gpu_ms_median"],
-                    "our_photon_trace_ms": pass_ms(results, matrix, best, {"photon_trace"}) if tech == "ldm_indirect" else "",
-                    "our_mb": f"{float(best['mem_bytes']) / 1e6:.4g}",
-                    "our_rmse": best["rmse"], "our_rel_rmse": best["rel_rmse"], "our_ssim": best["ssim"],
-                    "our_ref_spp": best["ref_spp"], "our_renderer": best["renderer"]})
-            else:
-                rec["our_settings"] = "not run (scene data absent or matrix not run)"
-            out.append(rec)
+    for pr in read_csv(paper_csv):
+        fig, scene = pr["figure"], scene_of.get(pr["scene"], pr["scene"])
+        matrix = f"ldm_fig{fig}"
+        tech = {"LDM": "ldm_ao", "HBAO": "hbao"}.get(pr["method"], "ldm_indirect")
+        want = {}
+        if pr["ldm_count"]:
+            want["directions"] = float(pr["ldm_count"])
+        if pr["ldm_res"]:
+            want["ldm_res"] = float(pr["ldm_res"])
+        if pr["dmax_m"]:
+            want["dmax"] = float(pr["dmax_m"])  # Sponza is in cm: the paper's "1280 m" is 1280 units
+        elif tech == "ldm_ao":
+            want["dmax"] = float("inf")
+        rows = [r for r in runs_table(results, matrix, ok_only=True) if r["scene"] == scene and r["technique"] == tech]
+        if "dmax" in want:
+            rows = [r for r in rows if params(r).get("dmax") == want["dmax"]] or rows
+        best = max(rows, key=lambda r: closeness(r, want)) if rows else None
+        rec = {"figure": fig, "scene": pr["scene"], "method": pr["method"], "paper_settings":
+               f"N={pr['ldm_count'] or '-'} ldm_res={pr['ldm_res'] or '-'} image={pr['image_res']}"
+               + (f" dmax={pr['dmax_m'] or 'inf'}" if pr["effect"].startswith("ao") else ""),
+               "paper_ms": pr["ms"], "paper_mb": pr["mb"], "paper_gpu": pr["gpu"], "paper_note": pr["note"]}
+        if best:
+            exact = all(params(best).get(k) == v for k, v in want.items()) and \
+                best["width"] == pr["image_res"]
+            rec.update({
+                "our_settings": f"{best['params']} {best['width']}x{best['height']} profile={best['profile']}"
+                                + ("" if exact else " (NOT the paper's settings: see profile)"),
+                "our_ms": best["gpu_ms_median"],
+                "our_photon_trace_ms": pass_ms(results, matrix, best, {"photon_trace"}) if tech == "ldm_indirect" else "",
+                "our_mb": f"{float(best['mem_bytes']) / 1e6:.4g}",
+                "our_rmse": best["rmse"], "our_rel_rmse": best["rel_rmse"], "our_ssim": best["ssim"],
+                "our_ref_spp": best["ref_spp"], "our_renderer": best["renderer"]})
+        else:
+            rec["our_settings"] = "not run (scene data absent or matrix not run)"
+        out.append(rec)
     return out
 
 
@@ -115,37 +98,6 @@ def ldm_rows(results, paper_csv):
 LRSM_SCENES = {"SIBENIK": "sibenik", "SPONZA": "sponza_glossy", "SPONZA DRAGON": "sponza_dragon"}
 MB = 1e6  # the paper's MB are decimal (its sums show it: paper-values/README.md)
 MISSING = "missing"
-
-
-def load_all(results, matrix):
-    """Every row of a matrix's CSV, whatever its status (out_of_memory rows count for Table 2)."""
-    path = os.path.join(results, matrix + ".csv")
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def runs(rows):
-    """One row per run (a run writes one row per output component), keeping the first."""
-    seen, out = set(), []
-    for r in rows:
-        k = (r["scene"], r["technique"], r["params"], r["width"], r["height"], r.get("time", "0"))
-        if k not in seen:
-            seen.add(k)
-            out.append(r)
-    return out
-
-
-def fnum(text):
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return None
-
-
-def fmt(x, digits=4):
-    return "" if x is None else f"{x:.{digits}g}"
 
 
 def mip_texels(res, dims):
@@ -179,31 +131,43 @@ def vct_bytes(res):
 
 
 SUMMARY = re.compile(r"^[A-Za-z0-9_.\-]+=\d+(;[A-Za-z0-9_.\-]+=\d+)*$")
+PLANNED = "mem_planned_by_structure"
+
+
+def structure_bytes(text):
+    """{structure: bytes} of a summary "label=bytes;..." (the ledger's labels are
+    "<structure>.<part>"), or None where the text is no such summary."""
+    if not text or not SUMMARY.match(text.strip()):
+        return None
+    out = {}
+    for kv in text.strip().split(";"):
+        label, b = kv.split("=")
+        out[label.split(".")[0]] = out.get(label.split(".")[0], 0) + int(b)
+    return out
 
 
 def mem_by_structure(row):
-    """Bytes per structure from the row's memory summary column ("label=bytes;..."; the ledger's
-    labels are "<structure>.<part>"), or None when the CSV has no such column."""
+    """Bytes per structure the run allocated (its memory summary column), or None when the CSV has
+    no such column."""
     for k, v in row.items():
-        if k and k.startswith("mem") and v and SUMMARY.match(v.strip()):
-            out = {}
-            for kv in v.strip().split(";"):
-                label, b = kv.split("=")
-                out[label.split(".")[0]] = out.get(label.split(".")[0], 0) + int(b)
-            return out
+        if k and k.startswith("mem") and k != PLANNED and structure_bytes(v) is not None:
+            return structure_bytes(v)
     return None
 
 
-def paper_csv(paper_dir, name):
-    path = os.path.join(paper_dir, name)
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+def planned_by_structure(row):
+    """Bytes per structure a run planned though create() failed for lack of memory: its
+    mem_planned_by_structure column; in tables written before that column, the plan its message
+    carries ("plans N bytes (radiance a, normal b, ...)")."""
+    by = structure_bytes(row.get(PLANNED))
+    if by is not None:
+        return by
+    m = re.search(r"plans (\d+) bytes \(([^)]*)\)", row.get("message", ""))
+    return {k: int(v) for k, v in re.findall(r"([A-Za-z_]+) (\d+)", m.group(2))} if m else None
 
 
 def want_match(row, want):
-    p = params(row["params"])
+    p = params(row)
     return all(p.get(k) == v for k, v in want.items())
 
 
@@ -233,138 +197,159 @@ def mem_compare(ours, formula, paper_mb, parts=1):
     return m, of, pv
 
 
+def paper_settings(pr):
+    """The LRSM parameters of a row of the paper's Table 2 (paper-values/lrsm_table2.csv)."""
+    return {"voxel_res": int(pr["occlusion_voxel_res"]), "rsm_res": int(pr["rsm_res"]),
+            "layers_depth": int(pr["layers_depth"]), "layers_normal": int(pr["layers_normal"])}
+
+
+def table2_lrsm(pr, lrsm):
+    """Table 2's rows of one paper scene: each LRSM structure, their total and the frame time."""
+    scene = LRSM_SCENES.get(pr["scene"], pr["scene"].lower())
+    want = paper_settings(pr)
+    vres, rres, d, n = want["voxel_res"], want["rsm_res"], want["layers_depth"], want["layers_normal"]
+    row, note = pick(lrsm, scene, want)
+    by = mem_by_structure(row) if row else None
+    if row and by is None:
+        note = (note + "; " if note else "") + "the CSV has no per-structure memory column" + (
+            f" (all the technique allocated: {float(row['mem_bytes']) / MB:.2f} MB)"
+            if fnum(row.get("mem_bytes")) else "")
+    where = f"{row['scene']} {row['params']} {row['width']}x{row['height']} profile={row['profile']}" \
+        if row else ""
+    status = row["status"] if row else MISSING
+    structs = [("occlusion_voxels", "voxels", f"{vres}^3 R8, full mips", voxels_bytes(vres),
+                fnum(pr["occlusion_voxels_mb"])),
+               ("rsm", "rsm", f"{rres}^2, 16 B/texel, full mips", rsm_bytes(rres), fnum(pr["rsm_mb"])),
+               ("lrsm", "layers", f"{rres // 2}^2 x {d * n} layers ({d}x{n}), 24 B/texel, full mips",
+                lrsm_bytes(rres // 2, d * n), fnum(pr["lrsm_mb"]))]
+    out = []
+    total_ours, total_formula = 0, 0
+    for name, label, setting, formula, paper_mb in structs:
+        ours = by.get(label) if by else None
+        total_ours = None if ours is None or total_ours is None else total_ours + ours
+        total_formula += formula
+        m, of, pv = mem_compare(ours, formula, paper_mb)
+        out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": name, "setting": setting,
+                    "paper_mb": fmt(paper_mb), "formula_mb": f"{formula / MB:.2f}",
+                    "ours_mb": "" if ours is None else f"{ours / MB:.2f}",
+                    "ours_bytes": "" if ours is None else str(ours), "formula_bytes": str(formula),
+                    "matches": m, "ours_vs_formula": of, "paper_vs_formula": pv,
+                    "status": status, "measured": where, "note": note})
+    m, of, pv = mem_compare(total_ours, total_formula, fnum(pr["total_mb"]), parts=3)
+    others = {k: v for k, v in (by or {}).items() if k not in ("voxels", "rsm", "layers")}
+    out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": "total",
+                "setting": "the three structures", "paper_mb": pr["total_mb"],
+                "formula_mb": f"{total_formula / MB:.2f}",
+                "ours_mb": "" if total_ours is None else f"{total_ours / MB:.2f}",
+                "ours_bytes": "" if total_ours is None else str(total_ours),
+                "formula_bytes": str(total_formula), "matches": m, "ours_vs_formula": of,
+                "paper_vs_formula": pv, "status": status, "measured": where,
+                "note": "; ".join(x for x in [note, "besides: " + ", ".join(
+                    f"{k} {v / MB:.2f} MB" for k, v in sorted(others.items())) if others else ""] if x)})
+    same = row and row["scene"] == scene
+    out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": "frame_ms",
+                "setting": "1280x720 in the paper", "paper_mb": "",
+                "note": f"paper: GTX770 {pr['gtx770_ms']} ms, Iris Pro {pr['iris_pro_ms']} ms; ours "
+                        + (f"{float(row['gpu_ms_median']):.4g} ms GPU median on {row['renderer']} at "
+                           f"{row['width']}x{row['height']}" if same and row["gpu_ms_median"] else
+                           "not measured on this scene"),
+                "status": row["status"] if same else MISSING, "measured": where if same else ""})
+    return out
+
+
+# The paper's Sec. 6 text, "it requires 3 GB in VCT" (at SPONZA's 512^3): a figure of its text, not
+# of its tables (paper-values/ holds the tables only).
+VCT_PAPER_MB = {512: 3000.0}
+
+
+def table2_vct(vct, vres):
+    """Dense VCT at one of Table 2's voxel resolutions: its own structures (radiance, normal,
+    aniso) against the formula; the rest (the shared occlusion voxels, its light view, the
+    G-buffer) in the note. A row over its budget carries its plan (planned_by_structure): nothing
+    was allocated."""
+    cands = [r for r in vct if params(r).get("voxel_res") == vres]
+    r = next((c for c in cands if c["status"] == "ok"), cands[0] if cands else None)
+    by = mem_by_structure(r) if r else None
+    planned = r and r["status"] == "out_of_memory"
+    if planned:
+        by = planned_by_structure(r)
+    own = ("radiance", "normal", "aniso")
+    ours = sum(by.get(k, 0) for k in own) if by and any(k in by for k in own) else None
+    others = {k: v for k, v in (by or {}).items() if k not in own}
+    paper_mb = VCT_PAPER_MB.get(vres)
+    m, of, pv = mem_compare(ours, vct_bytes(vres), None)
+    note = []
+    if by is None and r and fnum(r.get("mem_bytes")):
+        note.append(f"the CSV has no per-structure memory column (all the technique allocated: "
+                    f"{float(r['mem_bytes']) / MB:.2f} MB)")
+    if others:
+        note.append("besides: " + ", ".join(f"{k} {v / MB:.2f} MB" for k, v in sorted(others.items())))
+    if planned:
+        note.append("planned, not allocated (over memory_budget_mb)")
+    return {"paper_scene": "SPONZA (Sec. 6 text)" if paper_mb else "", "technique": "vct",
+            "structure": "vct_total", "setting": f"{vres}^3 RGBA16F radiance+occlusion and normal, "
+            "6 anisotropic RGBA16F mips", "paper_mb": f"about {paper_mb:g} (3 GB)" if paper_mb else "",
+            "formula_mb": f"{vct_bytes(vres) / MB:.2f}",
+            "ours_mb": "" if ours is None else f"{ours / MB:.2f}",
+            "ours_bytes": "" if ours is None else str(ours), "formula_bytes": str(vct_bytes(vres)),
+            "matches": (("yes" if ours is not None and abs(ours / MB - paper_mb) < 100 else
+                         MISSING if ours is None else "no") if paper_mb else m),
+            "ours_vs_formula": of, "paper_vs_formula": "agrees (3.07 GB)" if paper_mb else "",
+            "status": r["status"] if r else MISSING,
+            "measured": f"{r['scene']} {r['params']} profile={r['profile']}" if r else "",
+            "note": "; ".join(note)}
+
+
 def table2(results, paper_dir):
-    rows = runs(load_all(results, "lrsm_memory"))
+    """The LRSM paper's Table 2 (memory per structure) beside ours, and dense VCT at the same voxel
+    resolutions (the paper, Sec. 6: "it requires 3 GB in VCT")."""
+    rows = runs(runs_table(results, "lrsm_memory"))
     lrsm = [r for r in rows if r["technique"] == "lrsm" and r["status"] == "ok"]
     vct = [r for r in rows if r["technique"] == "vct"]
     out = []
-    for pr in paper_csv(paper_dir, "lrsm_table2.csv"):
-        scene = LRSM_SCENES.get(pr["scene"], pr["scene"].lower())
-        vres, rres = int(pr["occlusion_voxel_res"]), int(pr["rsm_res"])
-        d, n = int(pr["layers_depth"]), int(pr["layers_normal"])
-        row, note = pick(lrsm, scene, {"voxel_res": vres, "rsm_res": rres, "layers_depth": d,
-                                       "layers_normal": n})
-        by = mem_by_structure(row) if row else None
-        if row and by is None:
-            note = (note + "; " if note else "") + "the CSV has no per-structure memory column" + (
-                f" (all the technique allocated: {float(row['mem_bytes']) / MB:.2f} MB)"
-                if fnum(row.get("mem_bytes")) else "")
-        where = f"{row['scene']} {row['params']} {row['width']}x{row['height']} profile={row['profile']}" \
-            if row else ""
-        structs = [("occlusion_voxels", "voxels", f"{vres}^3 R8, full mips", voxels_bytes(vres),
-                    fnum(pr["occlusion_voxels_mb"])),
-                   ("rsm", "rsm", f"{rres}^2, 16 B/texel, full mips", rsm_bytes(rres), fnum(pr["rsm_mb"])),
-                   ("lrsm", "layers", f"{rres // 2}^2 x {d * n} layers ({d}x{n}), 24 B/texel, full mips",
-                    lrsm_bytes(rres // 2, d * n), fnum(pr["lrsm_mb"]))]
-        total_ours, total_formula = 0, 0
-        for name, label, setting, formula, paper_mb in structs:
-            ours = by.get(label) if by else None
-            total_ours = None if ours is None or total_ours is None else total_ours + ours
-            total_formula += formula
-            m, of, pv = mem_compare(ours, formula, paper_mb)
-            out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": name, "setting": setting,
-                        "paper_mb": fmt(paper_mb), "formula_mb": f"{formula / MB:.2f}",
-                        "ours_mb": "" if ours is None else f"{ours / MB:.2f}",
-                        "ours_bytes": "" if ours is None else str(ours), "formula_bytes": str(formula),
-                        "matches": m, "ours_vs_formula": of, "paper_vs_formula": pv,
-                        "status": row["status"] if row else MISSING, "measured": where, "note": note})
-        m, of, pv = mem_compare(total_ours, total_formula, fnum(pr["total_mb"]), parts=3)
-        others = {k: v for k, v in (by or {}).items() if k not in ("voxels", "rsm", "layers")}
-        out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": "total",
-                    "setting": "the three structures", "paper_mb": pr["total_mb"],
-                    "formula_mb": f"{total_formula / MB:.2f}",
-                    "ours_mb": "" if total_ours is None else f"{total_ours / MB:.2f}",
-                    "ours_bytes": "" if total_ours is None else str(total_ours),
-                    "formula_bytes": str(total_formula), "matches": m, "ours_vs_formula": of,
-                    "paper_vs_formula": pv, "status": row["status"] if row else MISSING, "measured": where,
-                    "note": "; ".join(x for x in [note, "besides: " + ", ".join(
-                        f"{k} {v / MB:.2f} MB" for k, v in sorted(others.items())) if others else ""] if x)})
-        same = row and row["scene"] == scene
-        out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": "frame_ms",
-                    "setting": "1280x720 in the paper", "paper_mb": "",
-                    "note": f"paper: GTX770 {pr['gtx770_ms']} ms, Iris Pro {pr['iris_pro_ms']} ms; ours "
-                            + (f"{float(row['gpu_ms_median']):.4g} ms GPU median on {row['renderer']} at "
-                               f"{row['width']}x{row['height']}" if same and row["gpu_ms_median"] else
-                               "not measured on this scene"),
-                    "status": row["status"] if same else MISSING, "measured": where if same else ""})
-    # Dense VCT at the same voxel resolutions (the paper, Sec. 6: "it requires 3 GB in VCT"): its
-    # own structures (radiance, normal, aniso) against the formula; the rest (the shared occlusion
-    # voxels, its light view, the G-buffer) in the note. A row over its budget carries its plan in
-    # the message ("plans N bytes (radiance a, normal b, ...)"): nothing was allocated.
-    for vres in (256, 512):
-        cands = [r for r in vct if params(r["params"]).get("voxel_res") == vres]
-        r = next((c for c in cands if c["status"] == "ok"), cands[0] if cands else None)
-        by = mem_by_structure(r) if r else None
-        planned = r and r["status"] == "out_of_memory"
-        if planned:
-            m = re.search(r"plans (\d+) bytes \(([^)]*)\)", r.get("message", ""))
-            by = {k: int(v) for k, v in re.findall(r"([A-Za-z_]+) (\d+)", m.group(2))} if m else None
-        own = ("radiance", "normal", "aniso")
-        ours = sum(by.get(k, 0) for k in own) if by and any(k in by for k in own) else None
-        others = {k: v for k, v in (by or {}).items() if k not in own}
-        paper_mb = 3000.0 if vres == 512 else None
-        m, of, pv = mem_compare(ours, vct_bytes(vres), None)
-        note = []
-        if by is None and r and fnum(r.get("mem_bytes")):
-            note.append(f"the CSV has no per-structure memory column (all the technique allocated: "
-                        f"{float(r['mem_bytes']) / MB:.2f} MB)")
-        if others:
-            note.append("besides: " + ", ".join(f"{k} {v / MB:.2f} MB" for k, v in sorted(others.items())))
-        if planned:
-            note.append("planned, not allocated (over memory_budget_mb)")
-        out.append({"paper_scene": "SPONZA (Sec. 6 text)" if vres == 512 else "", "technique": "vct",
-                    "structure": "vct_total", "setting": f"{vres}^3 RGBA16F radiance+occlusion and normal, "
-                    "6 anisotropic RGBA16F mips", "paper_mb": "about 3000 (3 GB)" if paper_mb else "",
-                    "formula_mb": f"{vct_bytes(vres) / MB:.2f}",
-                    "ours_mb": "" if ours is None else f"{ours / MB:.2f}",
-                    "ours_bytes": "" if ours is None else str(ours), "formula_bytes": str(vct_bytes(vres)),
-                    "matches": (("yes" if ours is not None and abs(ours / MB / 1000 - 3) < 0.1 else
-                                 MISSING if ours is None else "no") if paper_mb else m),
-                    "ours_vs_formula": of, "paper_vs_formula": "agrees (3.07 GB)" if paper_mb else "",
-                    "status": r["status"] if r else MISSING,
-                    "measured": f"{r['scene']} {r['params']} profile={r['profile']}" if r else "",
-                    "note": "; ".join(note)})
-    return out
+    for pr in paper_values(paper_dir, "lrsm_table2.csv"):
+        out += table2_lrsm(pr, lrsm)
+    return out + [table2_vct(vct, vres) for vres in (256, 512)]
 
 
 TABLE3_STAGE = {"diffuse_cones_6": "diffuse_cones", "specular_cone_1": "specular_cone"}
+TABLE3_STAGES = ["voxelization", "lrsm_construction", "shadow_cone", "diffuse_cones", "specular_cone"]
+# The stage-order claims of Table 3: (text, the stage expected slower, the one expected faster).
+TABLE3_CLAIMS = [("LRSM diffuse_cones > specular_cone", ("lrsm", "diffuse_cones"), ("lrsm", "specular_cone")),
+                 ("VCT specular_cone > diffuse_cones", ("vct", "specular_cone"), ("vct", "diffuse_cones")),
+                 ("VCT shadow_cone > LRSM shadow_cone (anisotropic vs isotropic voxels)",
+                  ("vct", "shadow_cone"), ("lrsm", "shadow_cone"))]
 
 
-def passes_of(results, matrix):
-    path = os.path.join(results, matrix + "_passes.csv")
-    out = {}
-    if os.path.exists(path):
-        with open(path, newline="") as f:
-            for p in csv.DictReader(f):
-                k = (p["scene"], p["technique"], p["params"], p["width"], p["height"], p.get("time", "0"))
-                out.setdefault(k, {})[p["pass"]] = float(p["ms_median"])
-    return out
+def paper_scene_settings(paper_dir, scene):
+    """The LRSM settings of a scene of the paper's Table 2 ({} where the table lacks it)."""
+    for pr in paper_values(paper_dir, "lrsm_table2.csv"):
+        if pr["scene"] == scene:
+            return paper_settings(pr)
+    return {}
 
 
-def run_key(r):
-    return (r["scene"], r["technique"], r["params"], r["width"], r["height"], r.get("time", "0"))
-
-
-def table3(results, paper_dir):
-    rows = [r for r in runs(load_all(results, "lrsm_stages")) if r["status"] == "ok"]
-    passes = passes_of(results, "lrsm_stages")
+def table3_runs(results, paper_dir, passes):
+    """{technique: the lrsm_stages run that stands for Table 3 (SPONZA at the paper's settings, else
+    the largest)}."""
+    rows = [r for r in runs(runs_table(results, "lrsm_stages")) if r["status"] == "ok"]
+    sponza = paper_scene_settings(paper_dir, "SPONZA")
     chosen = {}
-    for tech, want in (("lrsm", {"voxel_res": 512, "rsm_res": 1024, "layers_depth": 2, "layers_normal": 2}),
-                       ("vct", {"voxel_res": 512})):
+    for tech, want in (("lrsm", sponza), ("vct", {k: v for k, v in sponza.items() if k == "voxel_res"})):
         cands = [r for r in rows if r["technique"] == tech and run_key(r) in passes]
         cands.sort(key=lambda r: (r["scene"] == "sponza_glossy", want_match(r, want),
-                                  params(r["params"]).get("voxel_res", 0), int(r["width"]) * int(r["height"])))
+                                  params(r).get("voxel_res", 0), int(r["width"]) * int(r["height"])))
         chosen[tech] = cands[-1] if cands else None
-    paper = {}
-    for pr in paper_csv(paper_dir, "lrsm_table3.csv"):
-        paper[(pr["method"].lower(), pr["gpu"], TABLE3_STAGE.get(pr["stage"], pr["stage"]))] = float(pr["ms"])
+    return chosen
+
+
+def table3_stages(chosen, passes, paper, ours_ms):
+    """A row per method and stage: the paper's times and ours (ours_ms gets ours)."""
     out = []
-    ours_ms = {}
     for tech in ("lrsm", "vct"):
         r = chosen[tech]
         ps = passes[run_key(r)] if r else {}
-        stages = ["voxelization", "lrsm_construction", "shadow_cone", "diffuse_cones", "specular_cone"]
-        for st in stages:
+        for st in TABLE3_STAGES:
             g, ip = paper.get((tech, "GTX770", st)), paper.get((tech, "Iris Pro", st))
             ms = ps.get(st)
             ours_ms[(tech, st)] = ms
@@ -377,13 +362,15 @@ def table3(results, paper_dir):
                         "our_renderer": r["renderer"] if r else "",
                         "note": "the paper's VCT voxels were precomputed (not timed)"
                                 if tech == "vct" and st == "voxelization" else ""})
-    claims = [("LRSM diffuse_cones > specular_cone", ("lrsm", "diffuse_cones"), ("lrsm", "specular_cone")),
-              ("VCT specular_cone > diffuse_cones", ("vct", "specular_cone"), ("vct", "diffuse_cones")),
-              ("VCT shadow_cone > LRSM shadow_cone (anisotropic vs isotropic voxels)",
-               ("vct", "shadow_cone"), ("lrsm", "shadow_cone"))]
-    # A difference below the machine's run-to-run resolution for a pass is a tie: not reproduced.
+    return out
+
+
+def table3_claims(results, chosen, paper, ours_ms):
+    """The stage-order claims. A difference below the machine's run-to-run resolution for a pass is
+    a tie: not reproduced."""
+    out = []
     resolution = time_resolution(results, "pass")
-    for text, a, b in claims:
+    for text, a, b in TABLE3_CLAIMS:
         pa, pb = paper.get((a[0], "GTX770", a[1])), paper.get((b[0], "GTX770", b[1]))
         oa, ob = ours_ms.get(a), ours_ms.get(b)
         order = None if oa is None or ob is None else compare_times(oa, ob, resolution)
@@ -395,6 +382,18 @@ def table3(results, paper_dir):
                     "reproduced": rep,
                     "our_renderer": (chosen[a[0]] or chosen[b[0]] or {}).get("renderer", "")})
     return out
+
+
+def table3(results, paper_dir):
+    """The LRSM paper's Table 3 (per-stage times) beside ours, and its stage-order claims."""
+    passes = passes_of(results, "lrsm_stages")
+    chosen = table3_runs(results, paper_dir, passes)
+    paper = {}
+    for pr in paper_values(paper_dir, "lrsm_table3.csv"):
+        paper[(pr["method"].lower(), pr["gpu"], TABLE3_STAGE.get(pr["stage"], pr["stage"]))] = float(pr["ms"])
+    ours_ms = {}
+    out = table3_stages(chosen, passes, paper, ours_ms)
+    return out + table3_claims(results, chosen, paper, ours_ms)
 
 
 def scene_exposure(scene):
@@ -409,17 +408,20 @@ def scene_exposure(scene):
     return 1.0
 
 
-FIG7_SCENES = [("sibenik", "SIBENIK", 256), ("sponza_glossy", "SPONZA", 512), ("thin_wall_leak", "", None),
-               ("thick_wall_leak", "", None), ("cornell", "", None)]
+# Figure 7's scenes: ours, and the paper's name of it where the paper shows it (its voxel resolution
+# is the one of Table 2).
+FIG7_SCENES = [("sibenik", "SIBENIK"), ("sponza_glossy", "SPONZA"), ("thin_wall_leak", ""),
+               ("thick_wall_leak", ""), ("cornell", "")]
 # A leak is visible when its RMS reaches 1% of display white at the scene's exposure (2.5 of 255
 # levels); thin_wall_leak's correct image is black, so its RMSE is the leaked light's RMS.
 LEAK_VISIBLE = 0.01
 
 
-def fig7(results):
-    rows = load_all(results, "lrsm_quality")
+def fig7(results, paper_dir):
+    rows = runs_table(results, "lrsm_quality")
     out = []
-    for scene, paper_scene, paper_vres in FIG7_SCENES:
+    for scene, paper_scene in FIG7_SCENES:
+        paper_vres = paper_scene_settings(paper_dir, paper_scene).get("voxel_res") if paper_scene else None
         for tech in ("lrsm", "vct"):
             for comp in ("direct", "indirect", "glossy"):
                 sel = [r for r in rows if (r["scene"], r["technique"], r["component"]) == (scene, tech, comp)]
@@ -427,7 +429,7 @@ def fig7(results):
                     out.append({"kind": "metric", "scene": scene, "paper_scene": paper_scene, "technique": tech,
                                 "component": comp, "status": MISSING})
                 for r in sel:
-                    vres = params(r["params"]).get("voxel_res")
+                    vres = params(r).get("voxel_res")
                     out.append({"kind": "metric", "scene": scene, "paper_scene": paper_scene, "technique": tech,
                                 "component": comp, "params": r["params"], "size": f"{r['width']}x{r['height']}",
                                 "paper_setting": "" if paper_vres is None else
@@ -437,15 +439,20 @@ def fig7(results):
                                 "gpu_ms": r["gpu_ms_median"],
                                 "mem_mb": fmt(fnum(r["mem_bytes"]) / MB) if fnum(r["mem_bytes"]) else "",
                                 "status": r["status"], "renderer": r["renderer"]})
-    # The thin-wall claim, per wall scene (1 mm: inside one voxel; 12 cm: whole voxels, thinner than
-    # the coarse mips) and voxel resolution that both techniques ran at.
-    # lrsm_sweeps runs the wall scenes over voxel_res too.
+    return out + fig7_leak_claims(results, rows)
+
+
+def fig7_leak_claims(results, rows):
+    """The thin-wall claim, per wall scene (1 mm: inside one voxel; 12 cm: whole voxels, thinner
+    than the coarse mips) and voxel resolution that both techniques ran at (lrsm_quality's rows;
+    lrsm_sweeps runs the wall scenes over voxel_res too)."""
+    out = []
     for scene in ("thin_wall_leak", "thick_wall_leak"):
         expo = scene_exposure(scene)
         tw = {}
-        for r in rows + load_all(results, "lrsm_sweeps"):
+        for r in rows + runs_table(results, "lrsm_sweeps"):
             if r["scene"] == scene and r["component"] == "indirect" and r["status"] == "ok":
-                k = (params(r["params"]).get("voxel_res"), f"{r['width']}x{r['height']}", r["matrix"])
+                k = (params(r).get("voxel_res"), f"{r['width']}x{r['height']}", r["matrix"])
                 tw.setdefault(k, {}).setdefault(r["technique"], []).append(r)
         text = f"LRSM leaks light through a thin wall, VCT does not ({scene}, indirect)"
         pairs = [v for v in sorted(k for k in tw if k[0] is not None) if "lrsm" in tw[v] and "vct" in tw[v]]
@@ -468,9 +475,9 @@ def fig7(results):
 
 
 def dynamic(results, paper_dir):
-    rows = load_all(results, "lrsm_dragon")
+    rows = runs_table(results, "lrsm_dragon")
     passes = passes_of(results, "lrsm_dragon")
-    paper = {pr["scene"]: pr for pr in paper_csv(paper_dir, "lrsm_table2.csv")}.get("SPONZA DRAGON")
+    paper = {pr["scene"]: pr for pr in paper_values(paper_dir, "lrsm_table2.csv")}.get("SPONZA DRAGON")
     out = []
     if not rows:
         out.append({"kind": "metric", "technique": "lrsm", "status": MISSING,
@@ -490,7 +497,7 @@ def dynamic(results, paper_dir):
     # Sec. 6: "We achieved interactive rates on all scenes (Table 2) with data structure construction
     # time included": the paper's slowest such figure (Iris Pro, 258.3 ms) as the bar.
     lr = [r for r in rows if r["technique"] == "lrsm" and r["status"] == "ok" and fnum(r["gpu_ms_median"])]
-    bar = max((float(p["iris_pro_ms"]) for p in paper_csv(paper_dir, "lrsm_table2.csv")), default=None)
+    bar = max((float(p["iris_pro_ms"]) for p in paper_values(paper_dir, "lrsm_table2.csv")), default=None)
     if lr and bar:
         worst = max(float(r["gpu_ms_median"]) for r in lr)
         paper_size = all((r["width"], r["height"]) == ("1280", "720") for r in lr)
@@ -524,7 +531,7 @@ def lrsm_tables(results, paper_dir):
     write_table(os.path.join(results, "lrsm_table3.csv"), table3(results, paper_dir),
                 ["kind", "method", "stage", "paper_gtx770_ms", "paper_iris_pro_ms", "our_ms", "reproduced",
                  "our_settings", "our_renderer", "note"])
-    write_table(os.path.join(results, "lrsm_fig7.csv"), fig7(results),
+    write_table(os.path.join(results, "lrsm_fig7.csv"), fig7(results, paper_dir),
                 ["kind", "scene", "paper_scene", "technique", "component", "params", "size", "paper_setting",
                  "rmse", "rel_rmse", "ssim", "ref_spp", "ref_noisy", "gpu_ms", "mem_mb", "status", "claim",
                  "reproduced", "evidence", "renderer"])
@@ -533,6 +540,20 @@ def lrsm_tables(results, paper_dir):
                  "voxelization_ms", "lrsm_construction_ms", "scene_update_ms", "paper_gtx770_ms",
                  "paper_iris_pro_ms", "rmse", "rel_rmse", "ssim", "ref_spp", "status", "claim", "reproduced",
                  "renderer", "note"])
+
+
+LDM_COLUMNS = ["figure", "scene", "method", "paper_settings", "paper_ms", "paper_mb", "paper_gpu", "paper_note",
+               "our_settings", "our_ms", "our_photon_trace_ms", "our_mb", "our_rmse", "our_rel_rmse", "our_ssim",
+               "our_ref_spp", "our_renderer"]
+
+
+def ldm_table(results, paper_dir, source):
+    """The LDM paper's figures beside ours: RESULTS/ldm_figures_vs_ours.csv."""
+    ldm = os.path.join(paper_dir, "ldm_figures.csv")
+    if not os.path.exists(ldm):
+        print(f"paper_tables.py: no {ldm} (paper values not found under {source}); nothing to compare")
+        return
+    write_table(os.path.join(results, "ldm_figures_vs_ours.csv"), ldm_rows(results, ldm), LDM_COLUMNS)
 
 
 def main():
@@ -550,21 +571,7 @@ def main():
                 shutil.copy(os.path.join(a.paper_values, name), os.path.join(paper_dir, name))
     lrsm_tables(a.results, paper_dir)
     thesis_table(a.results, paper_dir)
-    ldm = os.path.join(paper_dir, "ldm_figures.csv")
-    if not os.path.exists(ldm):
-        print(f"paper_tables.py: no {ldm} (paper values not found under {a.paper_values}); nothing to compare")
-        return
-    rows = ldm_rows(a.results, ldm)
-    cols = ["figure", "scene", "method", "paper_settings", "paper_ms", "paper_mb", "paper_gpu", "paper_note",
-            "our_settings", "our_ms", "our_photon_trace_ms", "our_mb", "our_rmse", "our_rel_rmse", "our_ssim",
-            "our_ref_spp", "our_renderer"]
-    out = os.path.join(a.results, "ldm_figures_vs_ours.csv")
-    with open(out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=cols)
-        w.writeheader()
-        for r in rows:
-            w.writerow({c: r.get(c, "") for c in cols})
-    print("paper_tables.py: wrote", out)
+    ldm_table(a.results, paper_dir, a.paper_values)
 
 
 if __name__ == "__main__":
