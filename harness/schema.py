@@ -12,9 +12,11 @@ read here. This module is the scripts' one way to
 - name a row's images (image_name);
 - turn CSV text into numbers and numbers into text (fnum, fmt).
 
-The schema file: $GIBENCH_SCHEMA, else build/schema.json beside harness/ (make build writes it).
+The schema file: $GIBENCH_SCHEMA, else build/schema.json beside harness/ (make build writes it), else
+the newest build*/schema.json there.
 """
 import csv
+import glob
 import json
 import os
 
@@ -27,6 +29,10 @@ def schema():
     global _schema
     if _schema is None:
         path = os.environ.get("GIBENCH_SCHEMA") or os.path.join(ROOT, "build", "schema.json")
+        if not os.environ.get("GIBENCH_SCHEMA") and not os.path.exists(path):
+            # another build folder of this tree (build-asan, ...): the schema is the sources'
+            found = sorted(glob.glob(os.path.join(ROOT, "build*", "schema.json")), key=os.path.getmtime)
+            path = found[-1] if found else path
         if not os.path.exists(path):
             raise SystemExit(f"schema.py: {path} not found: build gibench first (make build writes "
                              "it; or set GIBENCH_SCHEMA to the output of `gibench schema`)")
