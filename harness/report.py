@@ -275,8 +275,8 @@ def md(text):
 
 def write_md(results, claims, mats, plots):
     lines = ["# gibench reproduction report", "",
-             f"Generated from the CSVs in this folder; the page with every row's images is "
-             f"[report/index.html](report/index.html).", "",
+             "Generated from the CSVs in this folder; the page with every row's images is "
+             "[report/index.html](report/index.html).", "",
              f"## Claims ({len(claims)}: {summary_counts(claims)})", ""]
     paper = None
     for c in claims:

@@ -206,3 +206,15 @@ def image_name(r):
     if len(name) > spec["long_when_over"]:
         name = _fill(spec["long_template"], fields, spec["replace"])
     return name
+
+
+# ---- writing ------------------------------------------------------------------------------------
+
+def write_csv(path, rows, cols):
+    """Writes rows (dicts) under the header cols, a missing value empty. Returns the path."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols)
+        w.writeheader()
+        for r in rows:
+            w.writerow({c: r.get(c, "") for c in cols})
+    return path

@@ -20,7 +20,6 @@ Rows of a matrix, scene or setting that did not run say `missing`. Moving scenes
 instant.
 """
 import argparse
-import csv
 import os
 import re
 import sys
@@ -445,12 +444,7 @@ def thesis_table(results, paper_dir):
     paper = thesis_rows(paper_csv)
     rows, matched, mats = rows_for(results, paper)
     rows += claims(results, matched, mats, paper) + flags(paper)
-    path = os.path.join(results, "thesis_tables.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        for r in rows:
-            w.writerow({c: r.get(c, "") for c in COLUMNS})
+    path = schema.write_csv(os.path.join(results, "thesis_tables.csv"), rows, COLUMNS)
     print("paper_tables.py: wrote", path)
     return path
 
