@@ -20,13 +20,12 @@ Only times of at least MIN_MS enter the percentiles (below it a timer query's ow
 the driver's scheduling dominate); those rows are still written.
 """
 import argparse
-import csv
 import os
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import read_csv  # noqa: E402
+from schema import read_csv, write_csv  # noqa: E402
 
 DEFAULT_MATRICES = ["thesis_t41_ring", "direct_shadows", "ldm_fig11", "lrsm_stages"]
 MIN_MS = 0.5
@@ -107,11 +106,7 @@ def decimals4(x):
 
 
 def write(path, rows):
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    print("bench_timing: wrote", path)
+    print("bench_timing: wrote", write_csv(path, rows, list(rows[0].keys())))
 
 
 def main():

@@ -161,14 +161,28 @@ void gib_image_name(const char *scene, const char *technique, const char *params
 
 /* ---- JSON export ---- */
 
+/* A JSON string: quotes and backslashes escaped (the descriptors hold no control characters). */
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fputc('\\', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
 static void json_columns(FILE *f, const char *name, const char *file, const gib_column *c, int n)
 {
     fprintf(f, "  \"%s\": {\n    \"file\": \"%s\",\n    \"columns\": [\n", name, file);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         fprintf(f, "      {\"name\": \"%s\", \"kind\": \"%s\", \"row_key\": %s, \"run_key\": %s, "
-                   "\"doc\": \"%s\"}%s\n", c[i].name, c[i].kind,
-                c[i].key & GIB_KEY_ROW ? "true" : "false", c[i].key & GIB_KEY_RUN ? "true" : "false",
-                c[i].doc, i + 1 < n ? "," : "");
+                   "\"doc\": ", c[i].name, c[i].kind, c[i].key & GIB_KEY_ROW ? "true" : "false",
+                c[i].key & GIB_KEY_RUN ? "true" : "false");
+        json_str(f, c[i].doc);
+        fprintf(f, "}%s\n", i + 1 < n ? "," : "");
+    }
     fprintf(f, "    ]\n  },\n");
 }
 
