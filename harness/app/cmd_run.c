@@ -335,7 +335,8 @@ static void row_images(row *r, const char *img_dir, const char *name, const gib_
     if (dot)
         strcpy(dot, ".png");
     gib_error err;
-    if (access(ref_png, F_OK) != 0 && gib_png_write_preview(ref_png, &ref->image, exposure, &err) < 0)
+    if (access(ref_png, F_OK) != 0 &&
+        gib_png_write_preview(ref_png, &ref->image, exposure, &err) < 0)
         fprintf(stderr, "gibench run: %s\n", err.msg);
     row_set(r, GIB_C_IMAGE, "%s", name);
     row_set(r, GIB_C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
@@ -824,7 +825,8 @@ int gib_cmd_run(int argc, char **argv)
     if (load_matrices(&o, &ms, &layouts, &total) < 0)
         return 2;
     char cache_dir[2048], hist_path[2048];
-    snprintf(cache_dir, sizeof cache_dir, "%s", o.cache ? o.cache : GIB_PROJECT_ROOT "/results/cache");
+    snprintf(cache_dir, sizeof cache_dir, "%s",
+             o.cache ? o.cache : GIB_PROJECT_ROOT "/results/cache");
     run_ctx ctx = {.out = o.out, .cache = cache_dir, .images = o.images, .shard = o.shard};
     gib_history_machine machine;
     if (start_run(&ctx, &o, hist_path, sizeof hist_path, &machine)) {

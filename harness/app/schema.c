@@ -194,10 +194,11 @@ void gib_schema_write_json(FILE *f)
     fprintf(f, "  \"param_columns\": \"after the base columns: the parameters the matrix file names, "
                "in registry order; every parameter is in params\",\n");
     fprintf(f, "  \"params\": {\"column\": \"params\", \"separator\": \";\", \"assign\": \"=\"},\n");
-    fprintf(f, "  \"image_name\": {\n    \"template\": \"%s\",\n    \"long_template\": \"%s\",\n"
-               "    \"long_when_over\": %d,\n    \"at\": \"_t%%g of time, empty at time 0\",\n"
-               "    \"params_hash\": \"fnv1a64\",\n    \"replace\": {\";\": \"_\", \"=\": \"-\"}\n  }\n}\n",
-            image_template, image_template_long, IMAGE_NAME_MAX);
+    fprintf(f, "  \"image_name\": {\n    \"template\": \"%s\",\n", image_template);
+    fprintf(f, "    \"long_template\": \"%s\",\n", image_template_long);
+    fprintf(f, "    \"long_when_over\": %d,\n", IMAGE_NAME_MAX);
+    fprintf(f, "    \"at\": \"_t%%g of time, empty at time 0\",\n    \"params_hash\": \"fnv1a64\",\n");
+    fprintf(f, "    \"replace\": {\";\": \"_\", \"=\": \"-\"}\n  }\n}\n");
 }
 
 static const char schema_help[] =
