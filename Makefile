@@ -96,15 +96,16 @@ bench: build
 	  --out $(RESULTS)/bench_reference.csv
 	$(MAKE) --no-print-directory bench-timing
 
-plots:
-	python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
-	python3 harness/paper_tables.py $(RESULTS)
-	python3 harness/claims.py $(RESULTS)
+# The scripts read the results schema the build exports ($(BUILD)/schema.json, harness/schema.py).
+plots: build
+	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
+	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/paper_tables.py $(RESULTS)
+	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/claims.py $(RESULTS)
 
 # The reproduction report from the CSVs: $(RESULTS)/REPORT.md and $(RESULTS)/report/index.html
 # (opens offline from the file system).
 report: plots
-	python3 harness/report.py $(RESULTS)
+	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/report.py $(RESULTS)
 
 # libFuzzer over every parser of outside input (tests/fuzz/README.md): FUZZ_SECONDS and FUZZ_RUNS
 # per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv;

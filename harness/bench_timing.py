@@ -20,10 +20,12 @@ Only times of at least MIN_MS enter the percentiles (below it a timer query's ow
 the driver's scheduling dominate); those rows are still written.
 """
 import argparse
-import csv
 import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schema import read_csv, write_csv  # noqa: E402
 
 DEFAULT_MATRICES = ["thesis_t41_ring", "direct_shadows", "ldm_fig11", "lrsm_stages"]
 MIN_MS = 0.5
@@ -43,17 +45,13 @@ def table(folder, names, passes):
     """{(run key..., pass): (median, iqr, renderer)} over the matrices' CSVs in folder."""
     out = {}
     for n in names:
-        path = os.path.join(folder, n + ("_passes.csv" if passes else ".csv"))
-        if not os.path.exists(path):
-            continue
-        with open(path, newline="") as f:
-            for r in csv.DictReader(f):
-                if not passes and r["status"] != "ok":
-                    continue
-                key = tuple(r[k] for k in RUN_KEY) + ((r["pass"],) if passes else ("total",))
-                med = r["ms_median"] if passes else r["gpu_ms_median"]
-                iqr = r["ms_iqr"] if passes else r["gpu_ms_iqr"]
-                out[key] = (float(med), float(iqr), r["renderer"])
+        for r in read_csv(os.path.join(folder, n + ("_passes.csv" if passes else ".csv"))):
+            if not passes and r["status"] != "ok":
+                continue
+            key = tuple(r[k] for k in RUN_KEY) + ((r["pass"],) if passes else ("total",))
+            med = r["ms_median"] if passes else r["gpu_ms_median"]
+            iqr = r["ms_iqr"] if passes else r["gpu_ms_iqr"]
+            out[key] = (float(med), float(iqr), r["renderer"])
     return out
 
 
@@ -93,25 +91,22 @@ def summary(rows, cores, long_warmup):
         within = sum(r["shift_within_spread"] == "yes" for r in sel)
         out.append({"kind": kind, "renderer": sel[0]["renderer"] if sel else "", "cores": cores,
                     "times": len(sel), "min_ms": MIN_MS,
-                    "run_to_run_p50": fmt(percentile(rel, 0.5)), "run_to_run_p90": fmt(percentile(rel, 0.9)),
-                    "run_to_run_p95": fmt(percentile(rel, 0.95)),
-                    "resolution_rel": fmt(percentile(rel, 0.95)),
-                    "long_warmup": long_warmup, "warmup_shift_p50": fmt(percentile(shift, 0.5)),
-                    "warmup_shift_p95": fmt(percentile(shift, 0.95)),
+                    "run_to_run_p50": decimals4(percentile(rel, 0.5)), "run_to_run_p90": decimals4(percentile(rel, 0.9)),
+                    "run_to_run_p95": decimals4(percentile(rel, 0.95)),
+                    "resolution_rel": decimals4(percentile(rel, 0.95)),
+                    "long_warmup": long_warmup, "warmup_shift_p50": decimals4(percentile(shift, 0.5)),
+                    "warmup_shift_p95": decimals4(percentile(shift, 0.95)),
                     "warmup_shift_within_spread": f"{within}/{len(sel)}"})
     return out
 
 
-def fmt(x):
+def decimals4(x):
+    """A relative difference to four decimals (this table's own style, apart from schema.fmt)."""
     return f"{x:.4f}" if isinstance(x, float) else str(x)
 
 
 def write(path, rows):
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    print("bench_timing: wrote", path)
+    print("bench_timing: wrote", write_csv(path, rows, list(rows[0].keys())))
 
 
 def main():

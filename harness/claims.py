@@ -17,13 +17,12 @@ The result CSVs do not record the CPU's cores; `cores` comes from RESULTS_DIR/hi
 machines `gibench run` recorded) where exactly one core count was recorded with the row's renderer,
 and stays empty otherwise (a renderer string alone does not name a machine).
 """
-import csv
 import os
 import sqlite3
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from paper_tables import paper_csv  # noqa: E402  (a CSV's rows, [] when absent)
+from schema import read_csv, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
 
 COLUMNS = ["paper", "source", "claim", "paper_value", "our_value", "renderer", "cores", "verdict",
            "reason"]
@@ -34,7 +33,7 @@ LDM = "Layered depth maps (LDM) for ambient occlusion and indirect light"
 
 
 def read(results, name):
-    return paper_csv(results, name)
+    return read_csv(os.path.join(results, name))
 
 
 def verdict_of(text):
@@ -82,7 +81,8 @@ def thesis(results):
     return out
 
 
-def lrsm(results):
+def lrsm_table2(results):
+    """Table 2: memory per structure, compared exactly (byte counts do not depend on the renderer)."""
     out = []
     for r in read(results, "lrsm_table2.csv"):
         if not r["paper_mb"]:
@@ -98,6 +98,12 @@ def lrsm(results):
             v, why = NOT_REPRODUCED, f"ours {r['ours_vs_formula']} from the formula; paper {r['paper_vs_formula']}"
         out.append(row(LRSM, "lrsm_table2.csv", what, f"{r['paper_mb']} MB",
                        f"{r['ours_mb']} MB" if r["ours_mb"] else "", "", v, why))
+    return out
+
+
+def lrsm_table3(results):
+    """Table 3: the stage-order claims, and the absolute stage times (not measurable here)."""
+    out = []
     for r in read(results, "lrsm_table3.csv"):
         if r["kind"] == "claim":
             v, why = verdict_of(r["reproduced"])
@@ -110,6 +116,12 @@ def lrsm(results):
                            r["our_ms"] + " ms" if r["our_ms"] else "", r["our_renderer"], NOT_MEASURABLE,
                            "absolute stage time on the paper's GPUs; ours on "
                            + (r["our_renderer"] or "no run") + " (the stage-order claims compare ratios)"))
+    return out
+
+
+def lrsm_fig7(results):
+    """Figure 7: the thin-wall leak."""
+    out = []
     for r in read(results, "lrsm_fig7.csv"):
         if r["kind"] != "claim":
             continue
@@ -117,6 +129,12 @@ def lrsm(results):
         out.append(row(LRSM, "lrsm_fig7.csv", f"Figure 7: {r['claim']} {r['params']} {r['size']}",
                        "LRSM leaks, VCT does not", r["evidence"].split(";")[0], r["renderer"], v,
                        (why + "; " if why else "") + r["evidence"]))
+    return out
+
+
+def lrsm_dynamic(results):
+    """SPONZA DRAGON: interactive with every structure rebuilt."""
+    out = []
     for r in read(results, "lrsm_dynamic.csv"):
         if r["kind"] != "claim":
             continue
@@ -124,6 +142,10 @@ def lrsm(results):
         out.append(row(LRSM, "lrsm_dynamic.csv", "SPONZA DRAGON: " + r["claim"], "", r["note"],
                        r["renderer"], v, why or r["note"]))
     return out
+
+
+def lrsm(results):
+    return lrsm_table2(results) + lrsm_table3(results) + lrsm_fig7(results) + lrsm_dynamic(results)
 
 
 def ldm(results):
@@ -173,12 +195,7 @@ def write(results):
     for r in rows:
         if not r["cores"] and r["renderer"] in cores:
             r["cores"] = str(cores[r["renderer"]])
-    path = os.path.join(results, "claims.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
-    return path, rows
+    return write_csv(os.path.join(results, "claims.csv"), rows, COLUMNS), rows
 
 
 def main():

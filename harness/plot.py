@@ -25,15 +25,14 @@ Writes PNG and SVG. Uses only the standard library and gnuplot (Debian's gnuplot
 usage: plot.py RESULTS_DIR [--out PLOTS_DIR]
 """
 import argparse
-import csv
 import os
 import shutil
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schema import fnum as finite_num, matrices, params, read_csv  # noqa: E402
 from uncertainty import error_interval, worse_than_black  # noqa: E402
-from uncertainty import fnum as finite_num  # noqa: E402
 
 
 def pareto(points):
@@ -82,11 +81,11 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
     # technique's parameters make labels that cover the plot).
     varying = {}
     for r in rows:
-        for k, v in parse_params(r["params"]).items():
+        for k, v in params(r).items():
             varying.setdefault((r["technique"], k), set()).add(v)
     by_tech, worse, blacks = {}, [], []
     for r in rows:
-        short = ";".join(f"{k}={v:g}" for k, v in parse_params(r["params"]).items()
+        short = ";".join(f"{k}={v:g}" for k, v in params(r).items()
                          if len(varying[(r["technique"], k)]) > 1)
         xv, iv = finite_num(r.get(col)), error_interval(r, relative=metric == "rel_rmse")
         if xv is None or iv is None or xv <= 0:
@@ -164,33 +163,24 @@ def cross_groups(groups):
     return out
 
 
-def parse_params(text):
-    out = {}
-    for kv in text.split(";"):
-        if "=" in kv:
-            k, v = kv.split("=", 1)
-            out[k] = float(v)
-    return out
-
-
 def sweep_plots(key, rows, out_dir, renderer):
     """One sweep plot per parameter with >= 3 distinct values within a technique."""
     matrix, scene, component = key
     metric, _ = error_metric(rows)
     written = []
-    params = {}
+    values = {}
     for r in rows:
-        for k, v in parse_params(r["params"]).items():
-            params.setdefault((r["technique"], k), set()).add(v)
-    names = sorted({k for (t, k), vals in params.items() if len(vals) >= 3})
+        for k, v in params(r).items():
+            values.setdefault((r["technique"], k), set()).add(v)
+    names = sorted({k for (t, k), vals in values.items() if len(vals) >= 3})
     for name in names:
         series = {}
         for r in rows:
-            p = parse_params(r["params"])
+            p = params(r)
             if name not in p:
                 continue
             others = ", ".join(f"{k}={v:g}" for k, v in sorted(p.items()) if k != name
-                               and len(params[(r["technique"], k)]) > 1)
+                               and len(values[(r["technique"], k)]) > 1)
             label = r["technique"] + (f" ({others})" if others else "") + f" {r['width']}x{r['height']}"
             err, ms = finite_num(r[metric]), finite_num(r["gpu_ms_median"])
             if err is None or ms is None or err <= 0 or ms <= 0:
@@ -239,8 +229,7 @@ def bench_plot(results, out_dir):
     path = os.path.join(results, "bench_reference.csv")
     if not os.path.exists(path):
         return None
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_csv(path)
     scenes, by = [], {}
     for r in rows:
         if r["measure"] in ("path_tracer", "lean_tracer"):
@@ -298,20 +287,13 @@ def main():
     if bench:
         print("plot.py: wrote", bench)
     groups, renderers = {}, {}
-    for name in sorted(os.listdir(a.results)):
-        if not name.endswith(".csv") or name.endswith("_passes.csv"):
-            continue
-        with open(os.path.join(a.results, name), newline="") as f:
-            reader = csv.DictReader(f)
-            # Runner tables only (the papers' tables beside ours have other columns).
-            if not {"matrix", "gpu_ms_median", "rel_rmse", "status"} <= set(reader.fieldnames or []):
+    for rows in matrices(a.results).values():
+        for r in rows:
+            if r.get("status") != "ok":
                 continue
-            for r in reader:
-                if r.get("status") != "ok":
-                    continue
-                key = (r["matrix"], r["scene"], r["component"])
-                groups.setdefault(key, []).append(r)
-                renderers[key] = r["renderer"]
+            key = (r["matrix"], r["scene"], r["component"])
+            groups.setdefault(key, []).append(r)
+            renderers[key] = r["renderer"]
     if not groups:
         print(f"plot.py: no ok rows in {a.results}/*.csv; nothing to plot")
         return

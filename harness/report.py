@@ -16,7 +16,6 @@ every image loads lazily, so a page of ~500 rows opens at once. Opening it with 
 every matrix, loads every image and writes how many loaded into <pre id="image-check"> (the browser
 test reads it with chromium --dump-dom).
 """
-import csv
 import glob
 import html
 import os
@@ -25,53 +24,12 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from claims import COLUMNS as CLAIM_COLUMNS  # noqa: E402
+from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROW_KEY = ("matrix", "profile", "scene", "technique", "component")
 VERDICT_CLASS = {"reproduced": "yes", "not reproduced": "no", "not measurable here": "na"}
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def matrices(results):
-    """{matrix name: rows} for every runner CSV (first column `matrix`, a `status` column; not
-    *_passes, nor the timing benchmark's table)."""
-    out = {}
-    for path in sorted(glob.glob(os.path.join(results, "*.csv"))):
-        name = os.path.basename(path)[:-4]
-        if name.endswith("_passes"):
-            continue
-        with open(path, newline="") as f:
-            header = next(csv.reader(f), [])
-        if header[:1] != ["matrix"] or "status" not in header:  # runner tables only (not bench_*)
-            continue
-        out[name] = read_csv(path)
-    return out
-
-
-def fnv1a(text):
-    """gib_hash_str (harness/base/hash.c): 64-bit FNV-1a over the string and its NUL."""
-    h = 0xcbf29ce484222325
-    for b in text.encode() + b"\0":
-        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
-    return f"{h:016x}"
-
-
-def image_name(r):
-    """The name `gibench run` gives a row's images (harness/app/cmd_run.c, beside gib_score_and_save)."""
-    t = float(r.get("time") or 0)
-    at = f"_t{t:g}" if t != 0.0 else ""
-    name = f"{r['scene']}_{r['technique']}_{r['params']}_{r['width']}x{r['height']}{at}_{r['component']}"
-    name = name.replace(";", "_").replace("=", "-")
-    if len(name) + len("_error.png") + 16 > 240:
-        name = (f"{r['scene']}_{r['technique']}_p{fnv1a(r['params'])}_{r['width']}x{r['height']}"
-                f"{at}_{r['component']}")
-    return name
 
 
 def reference_png(img_dir, r):
@@ -84,14 +42,6 @@ def reference_png(img_dir, r):
     cands = sorted(glob.glob(os.path.join(
         glob.escape(img_dir), f"reference_{r['scene']}_{r['component']}_{r['width']}x{r['height']}_*.png")))
     return (cands[0], 1) if len(cands) == 1 else (None, len(cands))
-
-
-def num(text, digits=4):
-    try:
-        x = float(text)
-    except (TypeError, ValueError):
-        return text or ""
-    return f"{x:.{digits}g}"
 
 
 def group_ranks(rows, resolution):
@@ -117,8 +67,8 @@ def error_text(r):
     """The RMSE with the reference's noise taken out and its 95% interval."""
     iv = error_interval(r)
     if iv is None:
-        return num(r.get("rmse"))
-    return f"{num(iv[1])} [{num(iv[0], 3)}, {num(iv[2], 3)}]"
+        return fmt(r.get("rmse"))
+    return f"{fmt(iv[1])} [{fmt(iv[0], 3)}, {fmt(iv[2], 3)}]"
 
 
 def black_text(r):
@@ -130,23 +80,23 @@ def black_text(r):
 
 def time_text(r):
     iqr = r.get("gpu_ms_iqr")
-    return num(r.get("gpu_ms_median")) + (f" (IQR {num(iqr, 2)})" if iqr else "")
+    return fmt(r.get("gpu_ms_median")) + (f" (IQR {fmt(iqr, 2)})" if iqr else "")
 
 
 def row_numbers(r, rank=("", "")):
     """(label, value) pairs shown with each row; the reference's noise beside every error."""
-    noise = num(r.get("ref_noise_rmse"))
-    out = [("GPU ms (warm median)", time_text(r)), ("first frame ms", num(r.get("first_frame_ms"))),
-           ("CPU ms", num(r.get("cpu_ms"))),
-           ("memory MB", num(float(r["mem_bytes"]) / 1e6) if r.get("mem_bytes") else ""),
-           ("RMSE", f"{num(r.get('rmse'))} (ref noise {noise})"),
+    noise = fmt(r.get("ref_noise_rmse"))
+    out = [("GPU ms (warm median)", time_text(r)), ("first frame ms", fmt(r.get("first_frame_ms"))),
+           ("CPU ms", fmt(r.get("cpu_ms"))),
+           ("memory MB", fmt(float(r["mem_bytes"]) / 1e6) if r.get("mem_bytes") else ""),
+           ("RMSE", f"{fmt(r.get('rmse'))} (ref noise {noise})"),
            ("RMSE without the noise [95%]", error_text(r)),
            ("RMSE / black image's", black_text(r)),
            ("rank: error, time", f"{rank[0]}, {rank[1]}" if rank[0] or rank[1] else ""),
-           ("rel RMSE", num(r.get("rel_rmse"))), ("SSIM", num(r.get("ssim")))]
+           ("rel RMSE", fmt(r.get("rel_rmse"))), ("SSIM", fmt(r.get("ssim")))]
     for col, label in (("flip", "FLIP"), ("hdrflip", "HDR-FLIP")):
         if col in r:
-            out.append((label, num(r.get(col))))
+            out.append((label, fmt(r.get(col))))
     out.append(("ref spp", r.get("ref_spp", "")))
     if r.get("ref_noisy") == "1":
         out.append(("note", "reference too noisy to rank (noise > 1/5 of the error)"))
@@ -325,8 +275,8 @@ def md(text):
 
 def write_md(results, claims, mats, plots):
     lines = ["# gibench reproduction report", "",
-             f"Generated from the CSVs in this folder; the page with every row's images is "
-             f"[report/index.html](report/index.html).", "",
+             "Generated from the CSVs in this folder; the page with every row's images is "
+             "[report/index.html](report/index.html).", "",
              f"## Claims ({len(claims)}: {summary_counts(claims)})", ""]
     paper = None
     for c in claims:
@@ -354,10 +304,10 @@ def write_md(results, claims, mats, plots):
                 imgs = f"[image](images/{m}/{name}.png) [error](images/{m}/{name}_error.png)"
             lines.append("| " + " | ".join(md(x) for x in (
                 r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']}", r["params"],
-                time_text(r), num(r.get("first_frame_ms")),
-                f"{num(r.get('rmse'))} ({num(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
+                time_text(r), fmt(r.get("first_frame_ms")),
+                f"{fmt(r.get('rmse'))} ({fmt(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
                 f"{rk[0]}, {rk[1]}" if rk[0] or rk[1] else "",
-                num(r.get("rel_rmse")), num(r.get("ssim")), r["status"], imgs)) + " |")
+                fmt(r.get("rel_rmse")), fmt(r.get("ssim")), r["status"], imgs)) + " |")
         lines.append("")
     path = os.path.join(results, "REPORT.md")
     with open(path, "w") as f:

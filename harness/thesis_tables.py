@@ -20,14 +20,13 @@ Rows of a matrix, scene or setting that did not run say `missing`. Moving scenes
 instant.
 """
 import argparse
-import csv
 import os
 import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot import parse_params  # noqa: E402
-from uncertainty import fnum  # noqa: E402,F401  (a finite float or None)
+import schema  # noqa: E402
+from schema import fnum, params, read_csv, run_key, runs_table  # noqa: E402
 
 MISSING = "missing"
 
@@ -58,34 +57,7 @@ FPS_GAP = 0.06  # a thesis row's 1000/fps more than 6% from its frame ms is flag
 
 
 def fmt(x, digits=4):
-    return MISSING if x is None else f"{x:.{digits}g}"
-
-
-def load_rows(results, matrix):
-    path = os.path.join(results, matrix + ".csv")
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def load_passes(results, matrix):
-    """(scene, technique, params, width, height, time, profile) -> {pass: ms_median}."""
-    path = os.path.join(results, matrix + "_passes.csv")
-    out = {}
-    if os.path.exists(path):
-        with open(path, newline="") as f:
-            for p in csv.DictReader(f):
-                key = (p["scene"], p["technique"], p["params"], p["width"], p["height"],
-                       p.get("time", "0"), p["profile"])
-                ms = fnum(p["ms_median"])
-                if ms is not None:
-                    out.setdefault(key, {})[p["pass"]] = ms
-    return out
-
-
-def pkey(r):
-    return (r["scene"], r["technique"], r["params"], r["width"], r["height"], r.get("time", "0"), r["profile"])
+    return schema.fmt(x, digits, MISSING)
 
 
 def photon_count(row):
@@ -122,16 +94,16 @@ class Matrix:
 
     def __init__(self, results, name, scene):
         self.name = name
-        rows = [r for r in load_rows(results, name) if r["scene"] == scene]
+        rows = [r for r in runs_table(results, name) if r["scene"] == scene]
         self.failed = [r for r in rows if r["status"] != "ok"]
         self.rows = [r for r in rows if r["status"] == "ok"]
-        self.passes = load_passes(results, name)
+        self.passes = schema.passes_of(results, name)
         sizes = sorted({int(r["width"]) for r in self.rows})
         self.size_rank = {s: i for i, s in enumerate(sizes)}
         self.times = sorted({r.get("time", "0") for r in self.rows}, key=float) or ["0"]
 
     def pass_ms(self, row, name):
-        return self.passes.get(pkey(row), {}).get(name) if row else None
+        return self.passes.get(run_key(row), {}).get(name) if row else None
 
     def find(self, technique, size_rank, time, **want):
         out = []
@@ -140,7 +112,7 @@ class Matrix:
                 continue
             if r.get("time", "0") != time:
                 continue
-            p = parse_params(r["params"])
+            p = params(r)
             if all(p.get(k) == v for k, v in want.items()):
                 out.append(r)
         return out
@@ -165,8 +137,7 @@ def no_count_note(nearest, n):
 
 
 def thesis_rows(paper_csv):
-    with open(paper_csv, newline="") as f:
-        return list(csv.DictReader(f))
+    return read_csv(paper_csv)
 
 
 def figure_group(pr):
@@ -214,8 +185,8 @@ def rows_for(results, paper):
                 m.find("ispm_caustics", size_rank, t, **want)
             caus, nearest = by_count(caus, thesis_n)
             # The defaults of the thesis: 256 VPLs.
-            multi = [r for r in multi if parse_params(r["params"]).get("vpl_count", 256) == 256] or multi
-            gather = [r for r in gather if parse_params(r["params"]).get("vpl_count", 256) == 256] or gather
+            multi = [r for r in multi if params(r).get("vpl_count", 256) == 256] or multi
+            gather = [r for r in gather if params(r).get("vpl_count", 256) == 256] or gather
             mr, gr, cr = (multi[0] if multi else None), (gather[0] if gather else None), (caus[0] if caus else None)
             split, gath = m.pass_ms(mr, "splitting"), m.pass_ms(mr, "gathering")
             trace, splat = m.pass_ms(cr, "photon_tracing"), m.pass_ms(cr, "splatting")
@@ -259,9 +230,9 @@ def claim(text, reproduced, evidence):
     return {"kind": "claim", "claim": text, "reproduced": reproduced, "evidence": evidence}
 
 
-def claims(results, matched, mats, paper):
-    out = []
-    # 1. Photon tracing time against the photon count, per sweep (matrix, size, ray res, instant).
+def claim_linear_tracing(matched):
+    """Photon tracing time against the photon count, per sweep: roughly linear."""
+    # Photon tracing time against the photon count, per sweep (matrix, size, ray res, instant).
     sweeps, thesis_sweeps = {}, {}
     for pr, m, t, mr, gr, cr, trace in matched:
         thesis_sweeps.setdefault((pr["table"], figure_group(pr), pr["resolution"], pr["ray_resolution"]),
@@ -269,7 +240,7 @@ def claims(results, matched, mats, paper):
         if cr is None or trace is None:
             continue
         n = photon_count(cr)
-        level = parse_params(cr["params"]).get("mask_level")
+        level = params(cr).get("mask_level")
         rel = n is None
         x = n if n is not None else 4.0 ** -level  # the thesis' ~4x a level, where we lack counts
         sweeps.setdefault((m.name, cr["width"], pr["ray_resolution"], t), {})[x] = (trace, rel)
@@ -290,12 +261,15 @@ def claims(results, matched, mats, paper):
                        for k, f in fits)
         if rel_used:
             ev += " (N: our runs report no photon count, so N = 4^-mask_level, the thesis' ~4x per level)"
-        out.append(claim("photon tracing time roughly linear in the photon count (R^2 >= 0.9 per sweep)",
-                         "yes" if ok else "no", ev + "; " + thesis_r2))
-    else:
-        out.append(claim("photon tracing time roughly linear in the photon count", MISSING,
-                         "no sweep of 3 or more photon counts with a photon_tracing pass ran; " + thesis_r2))
-    # 2. 128^2 -> 256^2 rays: about doubling. A line's cost grows with its length in pixels (2x from
+        return claim("photon tracing time roughly linear in the photon count (R^2 >= 0.9 per sweep)",
+                     "yes" if ok else "no", ev + "; " + thesis_r2)
+    return claim("photon tracing time roughly linear in the photon count", MISSING,
+                 "no sweep of 3 or more photon counts with a photon_tracing pass ran; " + thesis_r2)
+
+
+def claim_ray_doubling(matched, paper):
+    """Photon tracing from 128^2 to 256^2 rays: about doubling."""
+    # 128^2 -> 256^2 rays: about doubling. A line's cost grows with its length in pixels (2x from
     # 128^2 to 256^2) only where the photons' own work dominates the pass: the claim is judged on
     # the pairs at the thesis' photon counts (N >= the smallest in its tables), every pair listed.
     by = {}
@@ -319,14 +293,17 @@ def claims(results, matched, mats, paper):
         ev = (f"at N >= {n_min} photons: {len(big)} pairs, median {med:.2f}, {min(big):.2f}-{max(big):.2f}; "
               if big else f"no pair at N >= {n_min} photons (judged on all); ")
         ratios = [x for x, _ in pairs2]
-        out.append(claim("photon tracing about doubles from 128^2 to 256^2 rays (median ratio in [1.5, 2.7] "
-                         f"at the thesis' photon counts, N >= {n_min})",
-                         "yes" if RATIO_LO <= med <= RATIO_HI else "no",
-                         ev + f"all our 256^2/128^2 ratios: median {median(ratios):.2f}, "
-                         f"{min(ratios):.2f}-{max(ratios):.2f} over {len(ratios)} pairs; {tev}"))
-    else:
-        out.append(claim("photon tracing about doubles from 128^2 to 256^2 rays", MISSING, "no pair ran; " + tev))
-    # 3. Multi-resolution gathering against rsm_gather (the same VPLs), time and error: the tables'
+        return claim("photon tracing about doubles from 128^2 to 256^2 rays (median ratio in [1.5, 2.7] "
+                     f"at the thesis' photon counts, N >= {n_min})",
+                     "yes" if RATIO_LO <= med <= RATIO_HI else "no",
+                     ev + f"all our 256^2/128^2 ratios: median {median(ratios):.2f}, "
+                     f"{min(ratios):.2f}-{max(ratios):.2f} over {len(ratios)} pairs; {tev}")
+    return claim("photon tracing about doubles from 128^2 to 256^2 rays", MISSING, "no pair ran; " + tev)
+
+
+def claim_gather_speedup(results, matched):
+    """Multi-resolution gathering against rsm_gather: much cheaper at a small error cost."""
+    # Multi-resolution gathering against rsm_gather (the same VPLs), time and error: the tables'
     # matched rows, and thesis_gather_cost's sweep of image sizes (judged at its largest size).
     pairs = {}
     for pr, m, t, mr, gr, cr, trace in matched:
@@ -335,14 +312,14 @@ def claims(results, matched, mats, paper):
     for scene in ("ring", "ring_occluded"):
         m = Matrix(results, "thesis_gather_cost", scene)
         for mr in (r for r in m.rows if r["technique"] == "multires_ir"):
-            pm = parse_params(mr["params"])
+            pm = params(mr)
             for gr in (r for r in m.rows if r["technique"] == "rsm_gather"):
-                pg = parse_params(gr["params"])
+                pg = params(gr)
                 if gr["width"] == mr["width"] and gr.get("time", "0") == mr.get("time", "0") and \
                         all(pg.get(k) == pm.get(k) for k in ("rsm_res", "vpl_count", "clamp_distance")):
                     pairs[(m.name, scene, mr["width"], mr.get("time", "0"))] = (m, mr, gr)
     if pairs:
-        speed, worse, ev, by_size = [], [], [], {}
+        ev, by_size = [], {}
         for (name, scene, w, t), (m, mr, gr) in sorted(pairs.items(), key=lambda kv: (kv[0][0], kv[0][1], int(kv[0][2]), kv[0][3])):
             # Like for like: multires_ir's screen-space work (splitting, gathering, upsampling)
             # against rsm_gather's gathering; each technique's whole frame where a pass is absent.
@@ -364,21 +341,24 @@ def claims(results, matched, mats, paper):
         ev.insert(0, "rsm_gather / multires_ir by image size: " + ", ".join(
             f"{w}^2 {min(x for x, _ in v):.2f}-{max(x for x, _ in v):.2f}x" for w, v in sorted(by_size.items()))
             + (f" (judged at {top}^2)" if top else ""))
-        out.append(claim("multi-resolution gathering much cheaper than rsm_gather (>= 2x at the largest image "
-                         "size run) at a small error cost (rel RMSE <= +0.05 or +25%)", "yes" if ok else "no",
-                         "; ".join(ev)))
-    else:
-        out.append(claim("multi-resolution gathering much cheaper than rsm_gather at a small error cost", MISSING,
-                         "no matrix ran both multires_ir and rsm_gather"))
-    # 4. The occluded ring: 4 depth layers leak, linked lists do not.
+        return claim("multi-resolution gathering much cheaper than rsm_gather (>= 2x at the largest image "
+                     "size run) at a small error cost (rel RMSE <= +0.05 or +25%)", "yes" if ok else "no",
+                     "; ".join(ev))
+    return claim("multi-resolution gathering much cheaper than rsm_gather at a small error cost", MISSING,
+                 "no matrix ran both multires_ir and rsm_gather")
+
+
+def claim_leak(mats):
+    """The occluded ring: 4 depth layers leak, per-pixel linked lists do not."""
+    # The occluded ring: 4 depth layers leak, linked lists do not.
     m = mats.get("thesis_t42_occluded")
     leak = []
     if m:
         for r4 in [r for r in m.rows if r["technique"] == "ispm_caustics"
-                   and parse_params(r["params"]).get("layers") == 4]:
-            p4 = parse_params(r4["params"])
+                   and params(r).get("layers") == 4]:
+            p4 = params(r4)
             for r0 in m.rows:
-                p0 = parse_params(r0["params"])
+                p0 = params(r0)
                 if r0["technique"] == "ispm_caustics" and p0.get("layers") == 0 and r0["width"] == r4["width"] \
                         and r0.get("time", "0") == r4.get("time", "0") \
                         and all(p0.get(k) == v for k, v in p4.items() if k != "layers"):
@@ -386,18 +366,22 @@ def claims(results, matched, mats, paper):
     if leak:
         ratios = [(fnum(a["rmse"]) or 0) / fnum(b["rmse"]) if fnum(b["rmse"]) else float("inf") for a, b in leak]
         ok = all(x >= LEAK_MIN for x in ratios)
-        ev = "; ".join(f"{a['width']}^2 ray_res {parse_params(a['params']).get('ray_res', 0):g}: caustic RMSE "
+        ev = "; ".join(f"{a['width']}^2 ray_res {params(a).get('ray_res', 0):g}: caustic RMSE "
                        f"layers=4 {a['rmse']} vs lists {b['rmse']} (rel {a['rel_rmse']} vs {b['rel_rmse']})"
                        for a, b in leak)
         if all(a["rmse"] == b["rmse"] for a, b in leak):
             ev += ("; identical images at every setting: the photons 4 layers miss (their receiver lies "
                    "5+ surfaces deep) land, in this view, only on surfaces the camera does not see")
-        out.append(claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not "
-                         "(layers=4 RMSE >= 1.1x lists')", "yes" if ok else "no", ev))
-    else:
-        out.append(claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not", MISSING,
-                         "thesis_t42_occluded has no layers=0 / layers=4 pair"))
-    return out
+        return claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not "
+                     "(layers=4 RMSE >= 1.1x lists')", "yes" if ok else "no", ev)
+    return claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not", MISSING,
+                 "thesis_t42_occluded has no layers=0 / layers=4 pair")
+
+
+def claims(results, matched, mats, paper):
+    """The thesis' claims, in the order of its text."""
+    return [claim_linear_tracing(matched), claim_ray_doubling(matched, paper),
+            claim_gather_speedup(results, matched), claim_leak(mats)]
 
 
 def flags(paper):
@@ -460,12 +444,7 @@ def thesis_table(results, paper_dir):
     paper = thesis_rows(paper_csv)
     rows, matched, mats = rows_for(results, paper)
     rows += claims(results, matched, mats, paper) + flags(paper)
-    path = os.path.join(results, "thesis_tables.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        for r in rows:
-            w.writerow({c: r.get(c, "") for c in COLUMNS})
+    path = schema.write_csv(os.path.join(results, "thesis_tables.csv"), rows, COLUMNS)
     print("paper_tables.py: wrote", path)
     return path
 

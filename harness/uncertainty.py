@@ -9,17 +9,11 @@
   from RESULTS_DIR/timing_resolution.csv (harness/bench_timing.py: the 95th percentile of the
   run-to-run difference of the same runs); two times closer than it are a tie.
 """
-import csv
 import os
+import sys
 
-
-def fnum(text):
-    """A finite float, or None."""
-    try:
-        x = float(text)
-    except (TypeError, ValueError):
-        return None
-    return x if x == x and abs(x) != float("inf") else None
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schema import fnum, read_csv  # noqa: E402,F401  (fnum: a finite float or None)
 
 
 def error_interval(r, relative=False):
@@ -67,13 +61,9 @@ def overlap(a, b):
 def time_resolution(results, kind="total"):
     """The relative time resolution of the machine (timing_resolution.csv), or None when the timing
     benchmark has not been run (then no time difference is called a tie: say so where it matters)."""
-    path = os.path.join(results, "timing_resolution.csv")
-    if not os.path.exists(path):
-        return None
-    with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            if row.get("kind") == kind:
-                return fnum(row.get("resolution_rel"))
+    for row in read_csv(os.path.join(results, "timing_resolution.csv")):
+        if row.get("kind") == kind:
+            return fnum(row.get("resolution_rel"))
     return None
 
 

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "schema.h"
 #include "shard.h"
 
 static const char help[] =
@@ -22,14 +23,6 @@ static const char help[] =
     "rows that are missing, duplicated or not the shard's. Refuses to overwrite an existing\n"
     "DIR/<matrix>.csv. --matrix limits the merge to the named matrices. The shards' images\n"
     "(SHARD_DIR/images/<matrix>/) are gathered into DIR/images/<matrix>/, hard-linked or copied.\n";
-
-/* The CSV identity key's columns, in cmd_run.c's order (key_columns there). */
-static const char *const key_names[] = {"profile", "scene", "camera", "technique", "component",
-                                        "params", "width", "height", "time"};
-#define NKEY 9
-/* The passes CSV's run columns, by which its rows find their run. */
-static const char *const pass_key_names[] = {"scene", "technique", "params", "width", "height",
-                                             "time"};
 
 typedef struct lines {
     char *buf;
@@ -229,24 +222,54 @@ static int by_order(const void *pa, const void *pb)
     return a->sub - b->sub;
 }
 
-/* The run key of a CSV identity key (profile|scene|camera|technique|component|params|w|h|time):
- * scene|technique|params|w|h|time, as the passes CSV names its run. */
+/* The fields `cols` of a CSV line joined by '|', as gib_csv keys a row. */
+static void line_key(const char *line, const int *cols, int n, char *key, size_t len)
+{
+    char f[512];
+    key[0] = 0;
+    for (int k = 0; k < n; k++) {
+        csv_field(line, cols[k], f, sizeof f);
+        strncat(key, k ? "|" : "", len - strlen(key) - 1);
+        strncat(key, f, len - strlen(key) - 1);
+    }
+}
+
+/* The run key of a row's identity key (its GIB_KEY_ROW fields joined by '|', schema.h): the
+ * fields of the columns that are GIB_KEY_RUN too, the key by which a passes row names its run. */
 static void run_key_of(const char *key, char *out, size_t len)
 {
-    char f[NKEY][256];
-    int n = 0;
+    int rk[GIB_C_COUNT];
+    int nrk = gib_schema_key(gib_run_columns, GIB_C_COUNT, GIB_KEY_ROW, rk, GIB_C_COUNT);
     const char *p = key;
-    while (n < NKEY) {
+    int first = 1;
+    out[0] = 0;
+    for (int k = 0; k < nrk && p; k++) {
         const char *e = strchr(p, '|');
-        size_t k = e ? (size_t)(e - p) : strlen(p);
-        snprintf(f[n++], sizeof f[0], "%.*s", (int)(k < 255 ? k : 255), p);
-        if (!e)
-            break;
-        p = e + 1;
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        if (gib_run_columns[rk[k]].key & GIB_KEY_RUN) {
+            size_t used = strlen(out);
+            snprintf(out + used, len - used, "%s%.*s", first ? "" : "|", (int)n, p);
+            first = 0;
+        }
+        p = e ? e + 1 : NULL;
     }
-    while (n < NKEY)
-        f[n++][0] = 0;
-    snprintf(out, len, "%.160s|%.160s|%.255s|%.32s|%.32s|%.64s", f[1], f[3], f[5], f[6], f[7], f[8]);
+}
+
+/* The columns of header named as the runs table's columns with key flag `flag`, in run_key_of's
+ * order (a passes table names its run by the same names). Returns their count, or -1. */
+static int key_columns_of(const char *header, const char *path, unsigned flag, int *cols,
+                          gib_error *err)
+{
+    int rk[GIB_C_COUNT], n = 0;
+    int nrk = gib_schema_key(gib_run_columns, GIB_C_COUNT, GIB_KEY_ROW, rk, GIB_C_COUNT);
+    for (int k = 0; k < nrk; k++) {
+        const char *name = gib_run_columns[rk[k]].name;
+        if (!(gib_run_columns[rk[k]].key & flag))
+            continue;
+        if ((cols[n++] = column_of(header, name)) < 0)
+            return gib_fail(err, "%s: no column '%s'", path, name);
+    }
+    return n;
 }
 
 /* Gathers the shards' DIR/images/<matrix>/ into OUT/images/<matrix>/: hard links where the folders
@@ -315,8 +338,9 @@ static int write_atomic(const char *path, const char *header, mrow *rows, int n,
     return 0;
 }
 
-/* Merges one matrix's shards (sh[0..n), from read_manifest) into out. */
-static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
+/* The shards of one matrix agree on its profile, revision, expansion and split, and name each
+ * shard once, none missing. */
+static int check_shards(const manifest *sh, int n, gib_error *err)
 {
     const manifest *a = &sh[0];
     const char *name = a->matrix;
@@ -349,8 +373,15 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
                                  "it did not finish, or its folder was not named)", name, s,
                             a->count, name);
     }
-    /* Every run of the expansion in exactly one shard; a count beyond the shards' runs is refused
-     * before anything of its size is allocated (a damaged manifest may claim billions). */
+    return 0;
+}
+
+/* Every run of the expansion in exactly one shard; a count beyond the shards' runs is refused
+ * before anything of its size is allocated (a damaged manifest may claim billions). */
+static int check_run_owners(const manifest *sh, int n, gib_error *err)
+{
+    const manifest *a = &sh[0];
+    const char *name = a->matrix;
     int listed = 0;
     for (int i = 0; i < n; i++)
         listed += sh[i].nruns;
@@ -360,225 +391,242 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
     int *owner = calloc((size_t)a->runs, sizeof *owner);
     if (!owner)
         return gib_fail(err, "out of memory");
-    for (int i = 0; i < n; i++)
-        for (int r = 0; r < sh[i].nruns; r++) {
+    int rc = 0;
+    for (int i = 0; i < n && !rc; i++)
+        for (int r = 0; r < sh[i].nruns && !rc; r++) {
             int j = sh[i].run_idx[r];
-            if (j < 0 || j >= a->runs) {
-                free(owner);
-                return gib_fail(err, "%s/%s.shard: run %d out of range", sh[i].dir, name, j);
-            }
-            if (owner[j]) {
-                int first = owner[j];
-                free(owner);
-                return gib_fail(err, "%s: run %d is in shard %d and in shard %d", name, j, first,
-                                sh[i].index);
-            }
-            owner[j] = sh[i].index;
+            if (j < 0 || j >= a->runs)
+                rc = gib_fail(err, "%s/%s.shard: run %d out of range", sh[i].dir, name, j);
+            else if (owner[j])
+                rc = gib_fail(err, "%s: run %d is in shard %d and in shard %d", name, j, owner[j],
+                              sh[i].index);
+            else
+                owner[j] = sh[i].index;
         }
-    for (int j = 0; j < a->runs; j++)
-        if (!owner[j]) {
-            free(owner);
-            return gib_fail(err, "%s: run %d of %d is in no shard", name, j, a->runs);
-        }
+    for (int j = 0; j < a->runs && !rc; j++)
+        if (!owner[j])
+            rc = gib_fail(err, "%s: run %d of %d is in no shard", name, j, a->runs);
     free(owner);
+    return rc;
+}
 
-    int total = 0;
-    for (int i = 0; i < n; i++)
-        total += sh[i].nrows;
-    mrow *all = calloc((size_t)total + 1, sizeof *all);
-    lines *csv = calloc((size_t)n, sizeof *csv), *pcsv = calloc((size_t)n, sizeof *pcsv);
-    int nall = 0, rc = -1;
-    char path[2048];
-    if (!all || !csv || !pcsv) {
-        gib_fail(err, "out of memory");
-        goto done;
-    }
-    int kcol[NKEY], mcol = -1, gcol = -1;
-    for (int i = 0; i < n; i++) {
-        const manifest *m = &sh[i];
-        snprintf(path, sizeof path, "%s/%s.csv", m->dir, name);
-        if (read_lines(path, &csv[i], err) < 0)
-            goto done;
-        if (strcmp(csv[i].line[0], csv[0].line[0])) {
-            gib_fail(err, "%s: the shards' CSVs have different columns (%s and %s/%s.csv): "
-                          "built from different sources", name, path, sh[0].dir, name);
-            goto done;
-        }
-        if (i == 0) {
-            for (int k = 0; k < NKEY; k++)
-                if ((kcol[k] = column_of(csv[0].line[0], key_names[k])) < 0) {
-                    gib_fail(err, "%s: no column '%s'", path, key_names[k]);
-                    goto done;
-                }
-            mcol = column_of(csv[0].line[0], "matrix");
-            gcol = column_of(csv[0].line[0], "git_revision");
-        }
-        int ncols = csv_field(csv[i].line[0], 0, NULL, 0);
-        char *used = calloc((size_t)m->nrows + 1, 1);
-        if (!used) {
-            gib_fail(err, "out of memory");
-            goto done;
-        }
-        for (int li = 1; li < csv[i].count; li++) {
-            const char *line = csv[i].line[li];
-            char key[1024] = "", f[512];
-            if (csv_field(line, 0, NULL, 0) != ncols) {
-                gib_fail(err, "%s:%d: %d fields where the header has %d", path, li + 1,
-                         csv_field(line, 0, NULL, 0), ncols);
-                free(used);
-                goto done;
-            }
-            for (int k = 0; k < NKEY; k++) {
-                csv_field(line, kcol[k], f, sizeof f);
-                strncat(key, k ? "|" : "", sizeof key - strlen(key) - 1);
-                strncat(key, f, sizeof key - strlen(key) - 1);
-            }
-            if (mcol >= 0 && (csv_field(line, mcol, f, sizeof f), strcmp(f, name))) {
-                gib_fail(err, "%s:%d: a row of matrix '%s' in %s's CSV", path, li + 1, f, name);
-                free(used);
-                goto done;
-            }
-            if (gcol >= 0 && (csv_field(line, gcol, f, sizeof f), strcmp(f, m->revision))) {
-                gib_fail(err, "%s:%d: a row of revision %s in a shard of revision %s (a resumed "
-                              "CSV from another revision: rerun the shard into an empty folder)",
-                         path, li + 1, f, m->revision);
-                free(used);
-                goto done;
-            }
-            int r = 0;
-            while (r < m->nrows && strcmp(m->rows[r].key, key))
-                r++;
-            if (r == m->nrows) {
-                gib_fail(err, "%s:%d: row %s is not one of shard %d/%d's", path, li + 1, key,
-                         m->index, m->count);
-                free(used);
-                goto done;
-            }
-            if (used[r]) {
-                gib_fail(err, "%s:%d: row %s twice in shard %d/%d", path, li + 1, key, m->index,
-                         m->count);
-                free(used);
-                goto done;
-            }
-            used[r] = 1;
-            all[nall] = m->rows[r];
-            all[nall++].line = line;
-        }
-        for (int r = 0; r < m->nrows; r++) {
-            if (used[r])
-                continue;
-            int ri = 0;
-            while (sh[i].run_idx[ri] != m->rows[r].run)
-                ri++;
-            if (m->run_state[ri] == 's')
-                continue; /* the shard skipped the run (scene data absent, scene lacks a feature) */
-            gib_fail(err, "%s: row %s missing from %s (shard %d/%d%s)", name, m->rows[r].key, path,
-                     m->index, m->count,
-                     m->run_state[ri] == 'f' ? ": the shard could not load the scene" : "");
-            free(used);
-            goto done;
-        }
-        free(used);
-    }
-    qsort(all, (size_t)nall, sizeof *all, by_order);
-    snprintf(path, sizeof path, "%s/%s.csv", out, name);
-    if (access(path, F_OK) == 0) {
-        gib_fail(err, "%s exists: merge writes a fresh table (remove it or choose another --out)",
-                 path);
-        goto done;
-    }
+/* One matrix's merge: the shards' tables as read, and the rows taken from them. */
+typedef struct merge_state {
+    const char *name;
+    lines *csv, *pcsv;  /* each shard's runs and passes tables */
+    mrow *all, *passes; /* the rows and passes rows, in the unsharded order once sorted */
+    int nall, npass, pcap;
+    int kcol[GIB_C_COUNT], nkcol, mcol, gcol;
+} merge_state;
 
-    /* The passes: each shard's rows, ordered by their run's place in the unsharded order. */
-    int npass = 0, pcap = 0;
-    mrow *passes = NULL;
-    for (int i = 0; i < n; i++) {
-        snprintf(path, sizeof path, "%s/%s_passes.csv", sh[i].dir, name);
-        if (access(path, F_OK) != 0)
+/* Row li of shard m's runs table (read from path): one of the manifest's rows, once, of this
+ * matrix and revision. */
+static int take_row(merge_state *st, const manifest *m, const lines *csv, int li, const char *path,
+                    char *used, gib_error *err)
+{
+    const char *line = csv->line[li];
+    int ncols = csv_field(csv->line[0], 0, NULL, 0);
+    char key[1024], f[512];
+    if (csv_field(line, 0, NULL, 0) != ncols)
+        return gib_fail(err, "%s:%d: %d fields where the header has %d", path, li + 1,
+                        csv_field(line, 0, NULL, 0), ncols);
+    line_key(line, st->kcol, st->nkcol, key, sizeof key);
+    if (st->mcol >= 0 && (csv_field(line, st->mcol, f, sizeof f), strcmp(f, st->name)))
+        return gib_fail(err, "%s:%d: a row of matrix '%s' in %s's CSV", path, li + 1, f, st->name);
+    if (st->gcol >= 0 && (csv_field(line, st->gcol, f, sizeof f), strcmp(f, m->revision)))
+        return gib_fail(err, "%s:%d: a row of revision %s in a shard of revision %s (a resumed "
+                             "CSV from another revision: rerun the shard into an empty folder)",
+                        path, li + 1, f, m->revision);
+    int r = 0;
+    while (r < m->nrows && strcmp(m->rows[r].key, key))
+        r++;
+    if (r == m->nrows)
+        return gib_fail(err, "%s:%d: row %s is not one of shard %d/%d's", path, li + 1, key,
+                        m->index, m->count);
+    if (used[r])
+        return gib_fail(err, "%s:%d: row %s twice in shard %d/%d", path, li + 1, key, m->index,
+                        m->count);
+    used[r] = 1;
+    st->all[st->nall] = m->rows[r];
+    st->all[st->nall++].line = line;
+    return 0;
+}
+
+/* Every row shard m's manifest expects is in its table, unless the shard skipped its run. */
+static int check_rows_present(const merge_state *st, const manifest *m, const char *path,
+                              const char *used, gib_error *err)
+{
+    for (int r = 0; r < m->nrows; r++) {
+        if (used[r])
             continue;
-        if (read_lines(path, &pcsv[i], err) < 0)
-            goto done_passes;
-        for (int k = 0; k < i; k++)
-            if (pcsv[k].count && strcmp(pcsv[k].line[0], pcsv[i].line[0])) {
-                gib_fail(err, "%s: the shards' passes CSVs have different columns (%s and %s)",
-                         name, path, sh[k].dir);
-                goto done_passes;
-            }
-        int pk[6];
-        for (int k = 0; k < 6; k++)
-            if ((pk[k] = column_of(pcsv[i].line[0], pass_key_names[k])) < 0) {
-                gib_fail(err, "%s: no column '%s'", path, pass_key_names[k]);
-                goto done_passes;
-            }
-        for (int li = 1; li < pcsv[i].count; li++) {
-            char key[1024] = "", f[512], rk[1024];
-            for (int k = 0; k < 6; k++) {
-                csv_field(pcsv[i].line[li], pk[k], f, sizeof f);
-                strncat(key, k ? "|" : "", sizeof key - strlen(key) - 1);
-                strncat(key, f, sizeof key - strlen(key) - 1);
-            }
-            int ord = -1;
-            for (int r = 0; r < sh[i].nrows && ord < 0; r++) {
-                run_key_of(sh[i].rows[r].key, rk, sizeof rk);
-                if (!strcmp(rk, key))
-                    ord = sh[i].rows[r].ordinal;
-            }
-            if (ord < 0) {
-                gib_fail(err, "%s:%d: passes of run %s, not one of shard %d/%d's", path, li + 1,
-                         key, sh[i].index, sh[i].count);
-                goto done_passes;
-            }
-            if (npass == pcap) {
-                pcap = pcap ? 2 * pcap : 256;
-                mrow *np = realloc(passes, (size_t)pcap * sizeof *np);
-                if (!np) {
-                    gib_fail(err, "out of memory");
-                    goto done_passes;
-                }
-                passes = np;
-            }
-            passes[npass] = (mrow){.ordinal = ord, .sub = npass, .line = pcsv[i].line[li]};
-            npass++;
-        }
+        int ri = 0;
+        while (m->run_idx[ri] != m->rows[r].run)
+            ri++;
+        if (m->run_state[ri] == 's')
+            continue; /* the shard skipped the run (scene data absent, scene lacks a feature) */
+        return gib_fail(err, "%s: row %s missing from %s (shard %d/%d%s)", st->name, m->rows[r].key,
+                        path, m->index, m->count,
+                        m->run_state[ri] == 'f' ? ": the shard could not load the scene" : "");
     }
-    if (npass) /* qsort of NULL, even with no element, is undefined */
-        qsort(passes, (size_t)npass, sizeof *passes, by_order);
+    return 0;
+}
+
+/* Shard i's runs table: the same header as the first shard's, every row taken. */
+static int take_shard_rows(merge_state *st, const manifest *m, int i, gib_error *err)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s.csv", m->dir, st->name);
+    if (read_lines(path, &st->csv[i], err) < 0)
+        return -1;
+    const char *header = st->csv[i].line[0];
+    if (i && strcmp(header, st->csv[0].line[0]))
+        return gib_fail(err, "%s: the shards' CSVs have different columns (%s and %s.csv of the "
+                             "first shard): built from different sources", st->name, path, st->name);
+    if (i == 0) {
+        if ((st->nkcol = key_columns_of(header, path, GIB_KEY_ROW, st->kcol, err)) < 0)
+            return -1;
+        st->mcol = column_of(header, gib_run_columns[GIB_C_MATRIX].name);
+        st->gcol = column_of(header, gib_run_columns[GIB_C_GIT].name);
+    }
+    char *used = calloc((size_t)m->nrows + 1, 1);
+    if (!used)
+        return gib_fail(err, "out of memory");
+    int rc = 0;
+    for (int li = 1; li < st->csv[i].count && !rc; li++)
+        rc = take_row(st, m, &st->csv[i], li, path, used, err);
+    if (!rc)
+        rc = check_rows_present(st, m, path, used, err);
+    free(used);
+    return rc;
+}
+
+/* Shard i's passes rows, each placed at its run's place in the unsharded order. */
+static int take_shard_passes(merge_state *st, const manifest *sh, int i, gib_error *err)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s_passes.csv", sh[i].dir, st->name);
+    if (access(path, F_OK) != 0)
+        return 0;
+    if (read_lines(path, &st->pcsv[i], err) < 0)
+        return -1;
+    const lines *p = &st->pcsv[i];
+    for (int k = 0; k < i; k++)
+        if (st->pcsv[k].count && strcmp(st->pcsv[k].line[0], p->line[0]))
+            return gib_fail(err, "%s: the shards' passes CSVs have different columns (%s and %s)",
+                            st->name, path, sh[k].dir);
+    int pk[GIB_C_COUNT];
+    int npk = key_columns_of(p->line[0], path, GIB_KEY_RUN, pk, err);
+    if (npk < 0)
+        return -1;
+    for (int li = 1; li < p->count; li++) {
+        char key[1024], rk[1024];
+        line_key(p->line[li], pk, npk, key, sizeof key);
+        int ord = -1;
+        for (int r = 0; r < sh[i].nrows && ord < 0; r++) {
+            run_key_of(sh[i].rows[r].key, rk, sizeof rk);
+            if (!strcmp(rk, key))
+                ord = sh[i].rows[r].ordinal;
+        }
+        if (ord < 0)
+            return gib_fail(err, "%s:%d: passes of run %s, not one of shard %d/%d's", path, li + 1,
+                            key, sh[i].index, sh[i].count);
+        if (st->npass == st->pcap) {
+            st->pcap = st->pcap ? 2 * st->pcap : 256;
+            mrow *np = realloc(st->passes, (size_t)st->pcap * sizeof *np);
+            if (!np)
+                return gib_fail(err, "out of memory");
+            st->passes = np;
+        }
+        st->passes[st->npass] = (mrow){.ordinal = ord, .sub = st->npass, .line = p->line[li]};
+        st->npass++;
+    }
+    return 0;
+}
+
+/* OUT/<matrix>.csv, its passes and the shards' images. */
+static int write_merged(merge_state *st, const manifest *sh, int n, const char *out,
+                        gib_error *err)
+{
+    char path[2048];
     if (gib_mkdirs(out, err) < 0)
-        goto done_passes;
-    snprintf(path, sizeof path, "%s/%s.csv", out, name);
-    if (write_atomic(path, csv[0].line[0], all, nall, err) < 0)
-        goto done_passes;
+        return -1;
+    snprintf(path, sizeof path, "%s/%s.csv", out, st->name);
+    if (write_atomic(path, st->csv[0].line[0], st->all, st->nall, err) < 0)
+        return -1;
     for (int i = 0; i < n; i++)
-        if (pcsv[i].count) {
-            snprintf(path, sizeof path, "%s/%s_passes.csv", out, name);
-            if (write_atomic(path, pcsv[i].line[0], passes, npass, err) < 0)
-                goto done_passes;
+        if (st->pcsv[i].count) {
+            snprintf(path, sizeof path, "%s/%s_passes.csv", out, st->name);
+            if (write_atomic(path, st->pcsv[i].line[0], st->passes, st->npass, err) < 0)
+                return -1;
             break;
         }
     int nimages = 0;
     for (int i = 0; i < n; i++) {
-        int k = gather_images(sh[i].dir, out, name, err);
+        int k = gather_images(sh[i].dir, out, st->name, err);
         if (k < 0)
-            goto done_passes;
+            return -1;
         nimages += k;
     }
-    printf("%s: %d shards, %d runs, %d rows -> %s/%s.csv", name, a->count, a->runs, nall, out, name);
+    printf("%s: %d shards, %d runs, %d rows -> %s/%s.csv", st->name, sh[0].count, sh[0].runs,
+           st->nall, out, st->name);
     if (nimages)
-        printf(", %d images -> %s/images/%s/", nimages, out, name);
+        printf(", %d images -> %s/images/%s/", nimages, out, st->name);
     printf("\n");
-    rc = 0;
-done_passes:
-    free(passes);
-done:
-    for (int i = 0; csv && pcsv && i < n; i++)
-        free_lines(&csv[i]), free_lines(&pcsv[i]);
-    free(csv), free(pcsv), free(all);
+    return 0;
+}
+
+/* The shards' rows and passes in the unsharded order, into out (never over an existing table). */
+static int merge_tables(merge_state *st, const manifest *sh, int n, const char *out,
+                        gib_error *err)
+{
+    for (int i = 0; i < n; i++)
+        if (take_shard_rows(st, &sh[i], i, err) < 0)
+            return -1;
+    qsort(st->all, (size_t)st->nall, sizeof *st->all, by_order);
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s.csv", out, st->name);
+    if (access(path, F_OK) == 0)
+        return gib_fail(err, "%s exists: merge writes a fresh table (remove it or choose another "
+                             "--out)", path);
+    for (int i = 0; i < n; i++)
+        if (take_shard_passes(st, sh, i, err) < 0)
+            return -1;
+    if (st->npass) /* qsort of NULL, even with no element, is undefined */
+        qsort(st->passes, (size_t)st->npass, sizeof *st->passes, by_order);
+    return write_merged(st, sh, n, out, err);
+}
+
+/* Merges one matrix's shards (sh[0..n), from read_manifest) into out. */
+static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
+{
+    if (check_shards(sh, n, err) < 0 || check_run_owners(sh, n, err) < 0)
+        return -1;
+    int total = 0;
+    for (int i = 0; i < n; i++)
+        total += sh[i].nrows;
+    merge_state st = {.name = sh[0].matrix, .mcol = -1, .gcol = -1};
+    st.all = calloc((size_t)total + 1, sizeof *st.all);
+    st.csv = calloc((size_t)n, sizeof *st.csv);
+    st.pcsv = calloc((size_t)n, sizeof *st.pcsv);
+    int rc = st.all && st.csv && st.pcsv ? merge_tables(&st, sh, n, out, err)
+                                         : gib_fail(err, "out of memory");
+    for (int i = 0; st.csv && st.pcsv && i < n; i++)
+        free_lines(&st.csv[i]), free_lines(&st.pcsv[i]);
+    free(st.csv), free(st.pcsv), free(st.all), free(st.passes);
     return rc;
 }
 
-int gib_cmd_merge(int argc, char **argv)
+/* ---- the command ---- */
+
+typedef struct merge_opts {
+    const char *out, *dirs[GIB_SHARD_MAX], *only[64];
+    int ndirs, nonly;
+} merge_opts;
+
+/* Returns -1 to go on, 0 after --help, 2 on bad usage. */
+static int parse_merge_options(int argc, char **argv, merge_opts *o)
 {
-    const char *out = NULL, *dirs[GIB_SHARD_MAX], *only[64];
-    int ndirs = 0, nonly = 0;
+    memset(o, 0, sizeof *o);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -586,11 +634,11 @@ int gib_cmd_merge(int argc, char **argv)
             return 0;
         }
         if (a[0] != '-') {
-            if (ndirs == GIB_SHARD_MAX) {
+            if (o->ndirs == GIB_SHARD_MAX) {
                 fprintf(stderr, "gibench merge: more than %d folders\n", GIB_SHARD_MAX);
                 return 2;
             }
-            dirs[ndirs++] = a;
+            o->dirs[o->ndirs++] = a;
             continue;
         }
         if (i + 1 >= argc) {
@@ -599,108 +647,146 @@ int gib_cmd_merge(int argc, char **argv)
         }
         const char *v = argv[++i];
         if (!strcmp(a, "--out"))
-            out = v;
-        else if (!strcmp(a, "--matrix") && nonly < 64)
-            only[nonly++] = v;
+            o->out = v;
+        else if (!strcmp(a, "--matrix") && o->nonly < 64)
+            o->only[o->nonly++] = v;
         else {
             fprintf(stderr, "gibench merge: unknown option '%s'\n%s", a, help);
             return 2;
         }
     }
-    if (!ndirs || !out) {
-        fprintf(stderr, "gibench merge: %s\n%s", !ndirs ? "no shard folder given" : "--out DIR missing",
-                help);
+    if (!o->ndirs || !o->out) {
+        fprintf(stderr, "gibench merge: %s\n%s",
+                !o->ndirs ? "no shard folder given" : "--out DIR missing", help);
         return 2;
     }
-    /* Every manifest in every folder, grouped by matrix below. */
-    manifest *sh = NULL;
-    int nsh = 0, cap = 0, status = 0;
-    gib_error err;
+    return -1;
+}
+
+/* Every manifest found, and the names of their matrices. */
+typedef struct manifests {
+    manifest *sh;
+    int nsh, cap;
     char names[64][64];
-    int nnames = 0;
-    for (int d = 0; d < ndirs && !status; d++) {
-        DIR *dp = opendir(dirs[d]);
-        if (!dp) {
-            fprintf(stderr, "gibench merge: cannot open the shard folder %s\n", dirs[d]);
-            status = 1;
-            break;
-        }
-        int here = 0;
-        struct dirent *e;
-        while ((e = readdir(dp))) {
-            size_t len = strlen(e->d_name);
-            if (len < 7 || strcmp(e->d_name + len - 6, ".shard"))
-                continue;
-            char mname[64];
-            snprintf(mname, sizeof mname, "%.*s", (int)(len - 6), e->d_name);
-            int wanted = !nonly;
-            for (int k = 0; k < nonly; k++)
-                wanted |= !strcmp(only[k], mname);
-            if (!wanted)
-                continue;
-            if (nsh == cap) {
-                cap = cap ? 2 * cap : 16;
-                manifest *ns = realloc(sh, (size_t)cap * sizeof *ns);
-                if (!ns) {
-                    status = 1;
-                    break;
-                }
-                sh = ns;
-            }
-            if (read_manifest(dirs[d], e->d_name, &sh[nsh], &err) < 0) {
-                fprintf(stderr, "gibench merge: %s\n", err.msg);
-                free_manifest(&sh[nsh]);
-                status = 1;
-                break;
-            }
-            if (strcmp(sh[nsh].matrix, mname)) {
-                fprintf(stderr, "gibench merge: %s/%s names matrix '%s'\n", dirs[d], e->d_name,
-                        sh[nsh].matrix);
-                free_manifest(&sh[nsh]);
-                status = 1;
-                break;
-            }
-            int known = 0;
-            for (int k = 0; k < nnames; k++)
-                known |= !strcmp(names[k], mname);
-            if (!known && nnames < 64)
-                snprintf(names[nnames++], sizeof names[0], "%s", mname);
-            nsh++;
-            here++;
-        }
-        closedir(dp);
-        if (!status && !here) {
-            fprintf(stderr, "gibench merge: %s holds no shard manifest (*.shard)%s\n", dirs[d],
-                    nonly ? " of the matrices named" : ": not a `gibench run --shard` folder");
-            status = 1;
-        }
+    int nnames;
+} manifests;
+
+static int wanted_matrix(const merge_opts *o, const char *name)
+{
+    int wanted = !o->nonly;
+    for (int k = 0; k < o->nonly; k++)
+        wanted |= !strcmp(o->only[k], name);
+    return wanted;
+}
+
+/* Reads DIR/FILE (a *.shard of matrix mname) into all. Returns 0, or -1 (reported). */
+static int add_manifest(manifests *all, const char *dir, const char *file, const char *mname)
+{
+    gib_error err;
+    if (all->nsh == all->cap) {
+        all->cap = all->cap ? 2 * all->cap : 16;
+        manifest *ns = realloc(all->sh, (size_t)all->cap * sizeof *ns);
+        if (!ns)
+            return -1;
+        all->sh = ns;
     }
-    /* Every folder must hold a shard of every matrix: a folder of another matrix is refused. */
-    for (int k = 0; !status && k < nnames; k++)
-        for (int d = 0; d < ndirs && !status; d++) {
+    manifest *m = &all->sh[all->nsh];
+    if (read_manifest(dir, file, m, &err) < 0) {
+        fprintf(stderr, "gibench merge: %s\n", err.msg);
+        free_manifest(m);
+        return -1;
+    }
+    if (strcmp(m->matrix, mname)) {
+        fprintf(stderr, "gibench merge: %s/%s names matrix '%s'\n", dir, file, m->matrix);
+        free_manifest(m);
+        return -1;
+    }
+    int known = 0;
+    for (int k = 0; k < all->nnames; k++)
+        known |= !strcmp(all->names[k], mname);
+    if (!known && all->nnames < 64)
+        snprintf(all->names[all->nnames++], sizeof all->names[0], "%s", mname);
+    all->nsh++;
+    return 0;
+}
+
+/* The wanted manifests of folder dir. Returns 0, or 1 (reported). */
+static int read_folder(const merge_opts *o, const char *dir, manifests *all)
+{
+    DIR *dp = opendir(dir);
+    if (!dp) {
+        fprintf(stderr, "gibench merge: cannot open the shard folder %s\n", dir);
+        return 1;
+    }
+    int here = 0, status = 0;
+    struct dirent *e;
+    while (!status && (e = readdir(dp))) {
+        size_t len = strlen(e->d_name);
+        if (len < 7 || strcmp(e->d_name + len - 6, ".shard"))
+            continue;
+        char mname[64];
+        snprintf(mname, sizeof mname, "%.*s", (int)(len - 6), e->d_name);
+        if (!wanted_matrix(o, mname))
+            continue;
+        if (add_manifest(all, dir, e->d_name, mname) < 0)
+            status = 1;
+        else
+            here++;
+    }
+    closedir(dp);
+    if (!status && !here) {
+        fprintf(stderr, "gibench merge: %s holds no shard manifest (*.shard)%s\n", dir,
+                o->nonly ? " of the matrices named" : ": not a `gibench run --shard` folder");
+        status = 1;
+    }
+    return status;
+}
+
+/* Every folder must hold a shard of every matrix: a folder of another matrix is refused. */
+static int check_folders(const merge_opts *o, const manifests *all)
+{
+    for (int k = 0; k < all->nnames; k++)
+        for (int d = 0; d < o->ndirs; d++) {
             int has = 0;
-            for (int i = 0; i < nsh; i++)
-                has |= !strcmp(sh[i].matrix, names[k]) && !strcmp(sh[i].dir, dirs[d]);
+            for (int i = 0; i < all->nsh; i++)
+                has |= !strcmp(all->sh[i].matrix, all->names[k]) && !strcmp(all->sh[i].dir, o->dirs[d]);
             if (!has) {
                 fprintf(stderr, "gibench merge: %s holds no shard of matrix '%s' that the other "
-                                "folders hold: shards of different matrices\n", dirs[d], names[k]);
-                status = 1;
+                                "folders hold: shards of different matrices\n", o->dirs[d],
+                        all->names[k]);
+                return 1;
             }
         }
-    for (int k = 0; !status && k < nnames; k++) {
-        manifest *group = malloc((size_t)nsh * sizeof *group);
+    return 0;
+}
+
+int gib_cmd_merge(int argc, char **argv)
+{
+    merge_opts o;
+    int rc = parse_merge_options(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    manifests all = {0};
+    int status = 0;
+    for (int d = 0; d < o.ndirs && !status; d++)
+        status = read_folder(&o, o.dirs[d], &all);
+    if (!status)
+        status = check_folders(&o, &all);
+    gib_error err;
+    for (int k = 0; !status && k < all.nnames; k++) {
+        manifest *group = malloc((size_t)all.nsh * sizeof *group);
         int ng = 0;
-        for (int i = 0; group && i < nsh; i++)
-            if (!strcmp(sh[i].matrix, names[k]))
-                group[ng++] = sh[i];
-        if (!group || merge_matrix(group, ng, out, &err) < 0) {
+        for (int i = 0; group && i < all.nsh; i++)
+            if (!strcmp(all.sh[i].matrix, all.names[k]))
+                group[ng++] = all.sh[i];
+        if (!group || merge_matrix(group, ng, o.out, &err) < 0) {
             fprintf(stderr, "gibench merge: %s\n", group ? err.msg : "out of memory");
             status = 1;
         }
         free(group);
     }
-    for (int i = 0; i < nsh; i++)
-        free_manifest(&sh[i]);
-    free(sh);
+    for (int i = 0; i < all.nsh; i++)
+        free_manifest(&all.sh[i]);
+    free(all.sh);
     return status;
 }

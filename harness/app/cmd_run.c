@@ -16,6 +16,7 @@
 #include "harness/base/hash.h"
 #include "matrix.h"
 #include "refrank.h"
+#include "schema.h"
 #include "shard.h"
 
 static const char help[] =
@@ -44,69 +45,10 @@ static const char help[] =
     "frames: median, interquartile range, min and max. --warmup W and --frames F replace the\n"
     "profile's counts (the timing benchmark's longer warm-up, harness/bench_timing.py).\n";
 
-enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
-       C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_GPU_IQR,
-       C_CPU, C_CPU_IQR, C_FIRST_FRAME, C_FIRST_GPU, C_MEM, C_MEM_STRUCT, C_MEM_PLANNED, C_SCENE_MEM,
-       C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_MEAN_RATIO, C_BLACK_RMSE, C_OVER_BLACK, C_RMSE_DENOISED, C_RMSE_LO,
-       C_RMSE_HI, C_PSNR, C_SSIM, C_FLIP, C_HDRFLIP, C_NONFINITE, C_REF_SPP,
-       C_REF_NOISE, C_REF_NOISY,
-       C_STATUS, C_MESSAGE, C_COUNTERS, C_IMAGE, C_REF_IMAGE, C_BACKEND, C_RENDERER, C_GL_VERSION, C_GIT, C_TIME, C_BASE_COUNT };
-
-static const char *const base_columns[C_BASE_COUNT] = {
-    "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
-    "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "gpu_ms_iqr",
-    "cpu_ms", "cpu_ms_iqr", "first_frame_ms", "first_frame_gpu_ms", "mem_bytes", "mem_by_structure",
-    "mem_planned_by_structure", "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "mean_ratio", "black_rmse", "rmse_over_black",
-    "rmse_denoised", "rmse_lo", "rmse_hi", "psnr", "ssim", "flip", "hdrflip",
-    "nonfinite", "ref_spp",
-    "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "image", "ref_image", "backend", "renderer", "gl_version",
-    "git_revision", "timestamp"};
-static const int key_columns[] = {C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS,
-                                  C_WIDTH, C_HEIGHT, C_INSTANT};
-#define NKEY ((int)(sizeof key_columns / sizeof key_columns[0]))
-/* profile, scene, technique, params, width, height, time, pass: a pass row's identity. */
-static const int pass_key_columns[] = {1, 2, 3, 4, 5, 6, 7, 8};
-
-static const char *const pass_columns[] = {"matrix", "profile", "scene", "technique", "params",
-                                           "width", "height", "time", "pass", "ms_median", "ms_min",
-                                           "ms_max", "ms_iqr", "ms_first", "renderer",
-                                           "git_revision"};
-#define PASS_COLUMNS ((int)(sizeof pass_columns / sizeof pass_columns[0]))
-
-#define MAX_COLS 128
-typedef struct columns {
-    const char *names[MAX_COLS];
-    int count;
-} columns;
-
-/* Base columns, then every parameter name of every technique once, in registry order. A name that
- * does not fit is an error, never a column dropped without a word. */
-static int make_columns(columns *c, gib_error *err)
-{
-    c->count = 0;
-    for (int i = 0; i < C_BASE_COUNT; i++)
-        c->names[c->count++] = base_columns[i];
-    int n;
-    const gib_technique *const *all = gib_techniques(&n);
-    for (int t = 0; t < n; t++)
-        for (int p = 0; all[t]->params && all[t]->params[p].name; p++) {
-            int seen = 0;
-            for (int k = C_BASE_COUNT; k < c->count; k++)
-                seen |= !strcmp(c->names[k], all[t]->params[p].name);
-            if (seen)
-                continue;
-            if (c->count == MAX_COLS)
-                return gib_fail(err, "technique '%s' parameter '%s': the results table holds %d "
-                                "columns at most (MAX_COLS in harness/app/cmd_run.c)", all[t]->name,
-                                all[t]->params[p].name, MAX_COLS);
-            c->names[c->count++] = all[t]->params[p].name;
-        }
-    return 0;
-}
-
+/* A row of either table, its cells by column index (harness/app/schema.h). */
 typedef struct row {
-    char v[MAX_COLS][256];
-    const char *ptr[MAX_COLS];
+    char v[GIB_TABLE_MAX_COLS][256];
+    const char *ptr[GIB_TABLE_MAX_COLS];
 } row;
 
 static void row_set(row *r, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -119,12 +61,15 @@ static void row_set(row *r, int col, const char *fmt, ...)
     r->ptr[col] = r->v[col];
 }
 
+/* A runs row's identity key: its GIB_KEY_ROW columns joined by '|' (as gib_csv keys rows). */
 static void row_key(const row *r, char *key, size_t len)
 {
+    int cols[GIB_C_COUNT];
+    int n = gib_schema_key(gib_run_columns, GIB_C_COUNT, GIB_KEY_ROW, cols, GIB_C_COUNT);
     key[0] = 0;
-    for (int k = 0; k < NKEY; k++) {
+    for (int k = 0; k < n; k++) {
         strncat(key, k ? "|" : "", len - strlen(key) - 1);
-        strncat(key, r->v[key_columns[k]], len - strlen(key) - 1);
+        strncat(key, r->v[cols[k]], len - strlen(key) - 1);
     }
 }
 
@@ -140,7 +85,7 @@ static void fmt_num(row *r, int col, double v)
 
 typedef struct run_ctx {
     const gib_matrix *m;
-    const columns *cols;
+    const gib_table_layout *cols;
     gib_csv *csv, *passes;
     const char *out, *cache;
     int images;
@@ -168,33 +113,43 @@ static void run_state(run_ctx *ctx, int j, char state)
         ctx->state[j] = state;
 }
 
-/* The identity part of a row: what makes it this run. */
+/* A table could not be written (a full disk): the run stops there. */
+static void write_failed(run_ctx *ctx, const gib_error *err)
+{
+    fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun resumes)\n",
+            err->msg);
+    ctx->write_failed = 1;
+}
+
+/* The identity part of a row: what makes it this run, and the run's settings and machine. */
 static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned comp)
 {
     memset(r->ptr, 0, sizeof r->ptr);
-    row_set(r, C_MATRIX, "%s", ctx->m->name);
-    row_set(r, C_PROFILE, "%s", ctx->m->profile);
-    row_set(r, C_SCENE, "%s", mr->scene);
-    row_set(r, C_CAMERA, "%d", ctx->m->camera);
-    row_set(r, C_TECHNIQUE, "%s", mr->technique->name);
-    row_set(r, C_COMPONENT, "%s", gib_output_name(comp));
-    row_set(r, C_PARAMS, "%s", mr->params_key);
-    row_set(r, C_WIDTH, "%d", mr->width);
-    row_set(r, C_HEIGHT, "%d", mr->height);
-    row_set(r, C_INSTANT, "%.9g", mr->time);
-    row_set(r, C_DT, "%.9g", ctx->m->dt);
-    row_set(r, C_WARMUP, "%d", ctx->m->warmup);
-    row_set(r, C_FRAMES, "%d", ctx->m->frames);
-    row_set(r, C_BACKEND, "%s", ctx->info.backend);
-    row_set(r, C_RENDERER, "%s", ctx->info.renderer);
-    row_set(r, C_GL_VERSION, "%s", ctx->info.version);
-    row_set(r, C_GIT, "%s", gib_git_revision());
+    row_set(r, GIB_C_MATRIX, "%s", ctx->m->name);
+    row_set(r, GIB_C_PROFILE, "%s", ctx->m->profile);
+    row_set(r, GIB_C_SCENE, "%s", mr->scene);
+    row_set(r, GIB_C_CAMERA, "%d", ctx->m->camera);
+    row_set(r, GIB_C_TECHNIQUE, "%s", mr->technique->name);
+    row_set(r, GIB_C_COMPONENT, "%s", gib_output_name(comp));
+    row_set(r, GIB_C_PARAMS, "%s", mr->params_key);
+    row_set(r, GIB_C_WIDTH, "%d", mr->width);
+    row_set(r, GIB_C_HEIGHT, "%d", mr->height);
+    row_set(r, GIB_C_TIME, "%.9g", mr->time);
+    row_set(r, GIB_C_DT, "%.9g", ctx->m->dt);
+    row_set(r, GIB_C_WARMUP, "%d", ctx->m->warmup);
+    row_set(r, GIB_C_FRAMES, "%d", ctx->m->frames);
+    row_set(r, GIB_C_BACKEND, "%s", ctx->info.backend);
+    row_set(r, GIB_C_RENDERER, "%s", ctx->info.renderer);
+    row_set(r, GIB_C_GL_VERSION, "%s", ctx->info.version);
+    row_set(r, GIB_C_GIT, "%s", gib_git_revision());
     time_t now = time(NULL);
-    strftime(r->v[C_TIME], sizeof r->v[C_TIME], "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
-    r->ptr[C_TIME] = r->v[C_TIME];
+    strftime(r->v[GIB_C_TIMESTAMP], sizeof r->v[GIB_C_TIMESTAMP], "%Y-%m-%dT%H:%M:%SZ",
+             gmtime(&now));
+    r->ptr[GIB_C_TIMESTAMP] = r->v[GIB_C_TIMESTAMP];
+    /* The parameters the matrix names have columns of their own; all of them are in params. */
     const gib_technique *t = mr->technique;
     for (int p = 0; t->params && t->params[p].name; p++)
-        for (int k = C_BASE_COUNT; k < ctx->cols->count; k++)
+        for (int k = GIB_C_COUNT; k < ctx->cols->count; k++)
             if (!strcmp(ctx->cols->names[k], t->params[p].name))
                 fmt_num(r, k, mr->params.values[p]);
 }
@@ -223,19 +178,9 @@ static void history_failed(run_ctx *ctx, const gib_error *err)
     ctx->hist_failed = 1;
 }
 
-static void append_row(run_ctx *ctx, row *r)
+static void record_history(run_ctx *ctx, const row *r)
 {
     gib_error err;
-    int w = gib_csv_append(ctx->csv, r->ptr, &err);
-    if (w < 0) {
-        fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
-                        "resumes)\n", err.msg);
-        ctx->write_failed = 1;
-        return;
-    }
-    if (w == 0) /* written before an interruption: the row is there once (and in
-                 * the history, unless the run was killed between the two writes) */
-        return;
     if (ctx->hist && !ctx->hist_run &&
         gib_history_begin_run(ctx->hist, ctx->machine, gib_git_revision(), ctx->m->name,
                               ctx->m->profile, &ctx->hist_run, &err) < 0)
@@ -247,11 +192,25 @@ static void append_row(run_ctx *ctx, row *r)
                                           ctx->cols->count, &err) < 0 ||
                       gib_history_commit(ctx->hist, &err) < 0))
         history_failed(ctx, &err);
+}
+
+static void append_row(run_ctx *ctx, row *r)
+{
+    gib_error err;
+    int w = gib_csv_append(ctx->csv, r->ptr, &err);
+    if (w < 0) {
+        write_failed(ctx, &err);
+        return;
+    }
+    if (w == 0) /* written before an interruption: the row is there once (and in
+                 * the history, unless the run was killed between the two writes) */
+        return;
+    record_history(ctx, r);
     ctx->rows_written++;
     /* out_of_memory is a result (the plan exceeds the device), not a failure of the run. */
-    if (!strcmp(r->v[C_STATUS], "out_of_memory"))
+    if (!strcmp(r->v[GIB_C_STATUS], "out_of_memory"))
         ctx->rows_out_of_memory++;
-    else if (strcmp(r->v[C_STATUS], "ok"))
+    else if (strcmp(r->v[GIB_C_STATUS], "ok"))
         ctx->rows_failed++;
 }
 
@@ -297,18 +256,163 @@ static void set_error_scale(row *r, const gib_metrics *m, double noise_rmse, lon
 {
     gib_rmse_bounds b;
     gib_rmse_interval(m->rmse, noise_rmse, pixels, &b);
-    fmt_num(r, C_BLACK_RMSE, m->black_rmse);
-    fmt_num(r, C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
-                                               : m->rmse > 0 ? INFINITY : 0.0);
-    fmt_num(r, C_RMSE_DENOISED, b.denoised);
-    fmt_num(r, C_RMSE_LO, b.lo);
-    fmt_num(r, C_RMSE_HI, b.hi);
+    fmt_num(r, GIB_C_BLACK_RMSE, m->black_rmse);
+    fmt_num(r, GIB_C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
+                                                   : m->rmse > 0 ? INFINITY : 0.0);
+    fmt_num(r, GIB_C_RMSE_DENOISED, b.denoised);
+    fmt_num(r, GIB_C_RMSE_LO, b.lo);
+    fmt_num(r, GIB_C_RMSE_HI, b.hi);
 }
 
+/* The run's passes, before its rows: a run whose rows are all in the CSV (run_done) then has its
+ * passes too, whenever the process is stopped. Returns -1 when the table cannot be written. */
+static int write_passes(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res)
+{
+    for (int p = 0; res->ok && p < res->pass_count; p++) {
+        row r;
+        const gib_pass_stats *ps = &res->passes[p];
+        memset(r.ptr, 0, sizeof r.ptr);
+        row_set(&r, GIB_P_MATRIX, "%s", ctx->m->name);
+        row_set(&r, GIB_P_PROFILE, "%s", ctx->m->profile);
+        row_set(&r, GIB_P_SCENE, "%s", mr->scene);
+        row_set(&r, GIB_P_TECHNIQUE, "%s", mr->technique->name);
+        row_set(&r, GIB_P_PARAMS, "%s", mr->params_key);
+        row_set(&r, GIB_P_WIDTH, "%d", mr->width);
+        row_set(&r, GIB_P_HEIGHT, "%d", mr->height);
+        row_set(&r, GIB_P_TIME, "%.9g", mr->time);
+        row_set(&r, GIB_P_PASS, "%s", ps->name);
+        row_set(&r, GIB_P_MEDIAN, "%.6g", ps->median_ms);
+        row_set(&r, GIB_P_MIN, "%.6g", ps->min_ms);
+        row_set(&r, GIB_P_MAX, "%.6g", ps->max_ms);
+        row_set(&r, GIB_P_IQR, "%.6g", ps->iqr_ms);
+        row_set(&r, GIB_P_FIRST, "%.6g", ps->first_ms);
+        row_set(&r, GIB_P_RENDERER, "%s", ctx->info.renderer);
+        row_set(&r, GIB_P_GIT, "%s", gib_git_revision());
+        gib_error err;
+        if (gib_csv_append(ctx->passes, r.ptr, &err) < 0) {
+            write_failed(ctx, &err);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* What every row of a run holds, ok or not: memory and counters; its times when it rendered. */
+static void row_run_result(row *r, const gib_gpu_scene *gpu, const gib_run_result *res)
+{
+    row_set(r, GIB_C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
+    row_set(r, GIB_C_MEM, "%llu", (unsigned long long)res->technique_bytes);
+    row_set(r, GIB_C_MEM_STRUCT, "%s", res->memory_by_structure);
+    /* What the technique planned, filled when the runner reports it (empty until then). */
+    row_set(r, GIB_C_MEM_PLANNED, "%s", res->planned_structures);
+    row_set(r, GIB_C_COUNTERS, "%s", res->counters);
+    if (res->driver_bytes >= 0)
+        row_set(r, GIB_C_DRIVER_MEM, "%lld", res->driver_bytes);
+    if (!res->ok) {
+        row_set(r, GIB_C_STATUS, "%s", res->status);
+        row_set(r, GIB_C_MESSAGE, "%s", res->err.msg);
+        return;
+    }
+    fmt_num(r, GIB_C_GPU_MED, res->gpu_total.median_ms);
+    fmt_num(r, GIB_C_GPU_MIN, res->gpu_total.min_ms);
+    fmt_num(r, GIB_C_GPU_MAX, res->gpu_total.max_ms);
+    fmt_num(r, GIB_C_GPU_IQR, res->gpu_total.iqr_ms);
+    fmt_num(r, GIB_C_CPU, res->cpu_total.median_ms);
+    fmt_num(r, GIB_C_CPU_IQR, res->cpu_total.iqr_ms);
+    fmt_num(r, GIB_C_FIRST_FRAME, res->first_frame_ms);
+    fmt_num(r, GIB_C_FIRST_GPU, res->gpu_total.first_ms);
+}
+
+/* The reference's preview beside the technique images, once per (scene, component, size, dmax),
+ * and the row's image names, relative to DIR/images/<matrix>/ (the report reads them). */
+static void row_images(row *r, const char *img_dir, const char *name, const gib_ref_result *ref,
+                       float exposure)
+{
+    char ref_png[4096];
+    const char *slash = strrchr(ref->path, '/');
+    snprintf(ref_png, sizeof ref_png, "%s/reference_%s", img_dir, slash ? slash + 1 : ref->path);
+    char *dot = strrchr(ref_png, '.');
+    if (dot)
+        strcpy(dot, ".png");
+    gib_error err;
+    if (access(ref_png, F_OK) != 0 &&
+        gib_png_write_preview(ref_png, &ref->image, exposure, &err) < 0)
+        fprintf(stderr, "gibench run: %s\n", err.msg);
+    row_set(r, GIB_C_IMAGE, "%s", name);
+    row_set(r, GIB_C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
+}
+
+static void row_metrics(row *r, const gib_metrics *m, const gib_ref_result *ref, long pixels)
+{
+    fmt_num(r, GIB_C_RMSE, m->rmse);
+    fmt_num(r, GIB_C_REL_RMSE, m->rel_rmse);
+    fmt_num(r, GIB_C_MEAN_RATIO, m->mean_ratio);
+    set_error_scale(r, m, ref->noise_rmse, pixels);
+    fmt_num(r, GIB_C_PSNR, m->psnr);
+    fmt_num(r, GIB_C_SSIM, m->ssim);
+    fmt_num(r, GIB_C_FLIP, m->flip);
+    fmt_num(r, GIB_C_HDRFLIP, m->hdrflip);
+    row_set(r, GIB_C_NONFINITE, "%ld", m->nonfinite);
+    /* A reference noisier than a fifth of the error cannot rank techniques. */
+    row_set(r, GIB_C_REF_NOISY, "%d", ref->noise_rmse > 0.2 * m->rmse);
+    row_set(r, GIB_C_STATUS, "%s", m->nonfinite ? "nonfinite" : "ok");
+    if (m->nonfinite)
+        row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image", m->nonfinite);
+}
+
+/* Scores image img (component bit of run mr) against its reference into row r and appends it. */
+static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
+                            const gib_run_result *res, unsigned bit, const gib_image *img,
+                            const char *img_dir, row *r)
+{
+    gib_error err;
+    gib_ref_request rq;
+    int component = row_request(ctx, scene, mr, bit, &rq);
+    gib_ref_result ref;
+    int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
+    if (grc == GIB_REF_WRITE_FAILED) { /* no row (a rerun redoes this run) */
+        write_failed(ctx, &err);
+        return;
+    }
+    if (grc < 0) {
+        row_set(r, GIB_C_STATUS, "reference_failed");
+        row_set(r, GIB_C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
+                                                      : err.msg);
+        append_row(ctx, r);
+        return;
+    }
+    char name[512];
+    gib_image_name(mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
+                   gib_output_name(bit), name, sizeof name);
+    if (ctx->images)
+        row_images(r, img_dir, name, &ref, scene->exposure);
+    gib_metrics m;
+    int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
+                                 name, &m, &err);
+    if (src == GIB_IMAGE_WRITE_FAILED) {
+        write_failed(ctx, &err);
+        gib_image_free(&ref.image);
+        return;
+    }
+    if (src < 0) {
+        row_set(r, GIB_C_STATUS, "scoring_failed");
+        row_set(r, GIB_C_MESSAGE, "%s", err.msg);
+    } else {
+        row_metrics(r, &m, &ref, (long)mr->width * mr->height);
+    }
+    row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
+    fmt_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
+    append_row(ctx, r);
+    printf("  %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f  %s\n",
+           mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
+           res->gpu_total.median_ms, m.rmse, m.ssim, m.flip, r->v[GIB_C_STATUS]);
+    gib_image_free(&ref.image);
+}
+
+/* A run's passes, then a row per output component. */
 static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
                       const gib_matrix_run *mr, gib_run_result *res)
 {
-    const gib_technique *t = mr->technique;
     char img_dir[2048];
     snprintf(img_dir, sizeof img_dir, "%s/images/%s", ctx->out, ctx->m->name);
     gib_error err;
@@ -316,149 +420,18 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         fprintf(stderr, "gibench run: %s\n", err.msg);
         ctx->images = 0;
     }
-    /* The passes first: a run whose rows are all in the CSV (run_done) then has its passes too,
-     * whenever the process is stopped. */
-    for (int p = 0; res->ok && p < res->pass_count; p++) {
-        char v[PASS_COLUMNS][256];
-        const char *ptr[PASS_COLUMNS];
-        snprintf(v[0], 256, "%s", ctx->m->name);
-        snprintf(v[1], 256, "%s", ctx->m->profile);
-        snprintf(v[2], 256, "%s", mr->scene);
-        snprintf(v[3], 256, "%s", t->name);
-        snprintf(v[4], 256, "%s", mr->params_key);
-        snprintf(v[5], 256, "%d", mr->width);
-        snprintf(v[6], 256, "%d", mr->height);
-        snprintf(v[7], 256, "%.9g", mr->time);
-        snprintf(v[8], 256, "%s", res->passes[p].name);
-        snprintf(v[9], 256, "%.6g", res->passes[p].median_ms);
-        snprintf(v[10], 256, "%.6g", res->passes[p].min_ms);
-        snprintf(v[11], 256, "%.6g", res->passes[p].max_ms);
-        snprintf(v[12], 256, "%.6g", res->passes[p].iqr_ms);
-        snprintf(v[13], 256, "%.6g", res->passes[p].first_ms);
-        snprintf(v[14], 256, "%s", ctx->info.renderer);
-        snprintf(v[15], 256, "%s", gib_git_revision());
-        for (int k = 0; k < PASS_COLUMNS; k++)
-            ptr[k] = v[k];
-        if (gib_csv_append(ctx->passes, ptr, &err) < 0) {
-            fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
-                            "resumes)\n", err.msg);
-            ctx->write_failed = 1;
-            return;
-        }
-    }
-    for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
-        if (!(t->components & bit))
+    if (write_passes(ctx, mr, res) < 0)
+        return;
+    for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC && !ctx->write_failed; bit <<= 1) {
+        if (!(mr->technique->components & bit))
             continue;
         row r;
         row_identity(&r, ctx, mr, bit);
-        row_set(&r, C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
-        row_set(&r, C_MEM, "%llu", (unsigned long long)res->technique_bytes);
-        row_set(&r, C_MEM_STRUCT, "%s", res->memory_by_structure);
-        row_set(&r, C_MEM_PLANNED, "%s", res->planned_structures);
-        row_set(&r, C_COUNTERS, "%s", res->counters);
-        if (res->driver_bytes >= 0)
-            row_set(&r, C_DRIVER_MEM, "%lld", res->driver_bytes);
-        if (!res->ok) {
-            row_set(&r, C_STATUS, "%s", res->status);
-            row_set(&r, C_MESSAGE, "%s", res->err.msg);
+        row_run_result(&r, gpu, res);
+        if (!res->ok)
             append_row(ctx, &r);
-            continue;
-        }
-        fmt_num(&r, C_GPU_MED, res->gpu_total.median_ms);
-        fmt_num(&r, C_GPU_MIN, res->gpu_total.min_ms);
-        fmt_num(&r, C_GPU_MAX, res->gpu_total.max_ms);
-        fmt_num(&r, C_GPU_IQR, res->gpu_total.iqr_ms);
-        fmt_num(&r, C_CPU, res->cpu_total.median_ms);
-        fmt_num(&r, C_CPU_IQR, res->cpu_total.iqr_ms);
-        fmt_num(&r, C_FIRST_FRAME, res->first_frame_ms);
-        fmt_num(&r, C_FIRST_GPU, res->gpu_total.first_ms);
-        const gib_image *img = &res->images[i++];
-        const char *comp = gib_output_name(bit);
-        gib_ref_request rq;
-        int component = row_request(ctx, scene, mr, bit, &rq);
-        gib_ref_result ref;
-        int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
-        if (grc == GIB_REF_WRITE_FAILED) {
-            /* The disk is full: no row (a rerun redoes this run), the run stops as for a table. */
-            fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
-                            "resumes)\n", err.msg);
-            ctx->write_failed = 1;
-            return;
-        }
-        if (grc < 0) {
-            row_set(&r, C_STATUS, "reference_failed");
-            row_set(&r, C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
-                                                       : err.msg);
-            append_row(ctx, &r);
-            continue;
-        }
-        char name[512];
-        char at[48] = "";
-        if (mr->time != 0.0) /* names of runs at t = 0 stay what they were */
-            snprintf(at, sizeof at, "_t%g", mr->time);
-        snprintf(name, sizeof name, "%s_%s_%s_%dx%d%s_%s", mr->scene, t->name, mr->params_key,
-                 mr->width, mr->height, at, comp);
-        for (char *p = name; *p; p++)
-            if (*p == ';' || *p == '=')
-                *p = *p == ';' ? '_' : '-';
-        /* File names stop at 255 bytes: a long parameter list (lrsm has 15) becomes its hash. */
-        if (strlen(name) + strlen("_error.png") + 16 > 240) {
-            char hex[17];
-            gib_hash_hex(gib_hash_str(GIB_HASH_INIT, mr->params_key), hex);
-            snprintf(name, sizeof name, "%s_%s_p%s_%dx%d%s_%s", mr->scene, t->name, hex, mr->width,
-                     mr->height, at, comp);
-        }
-        if (ctx->images) {
-            /* The reference beside the technique images, once per (scene, component, size, dmax). */
-            char ref_png[4096];
-            const char *slash = strrchr(ref.path, '/');
-            snprintf(ref_png, sizeof ref_png, "%s/reference_%s", img_dir, slash ? slash + 1 : ref.path);
-            char *dot = strrchr(ref_png, '.');
-            if (dot)
-                strcpy(dot, ".png");
-            if (access(ref_png, F_OK) != 0 && gib_png_write_preview(ref_png, &ref.image, scene->exposure, &err) < 0)
-                fprintf(stderr, "gibench run: %s\n", err.msg);
-            /* The row's images by name, relative to DIR/images/<matrix>/ (the report reads them). */
-            row_set(&r, C_IMAGE, "%s", name);
-            row_set(&r, C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
-        }
-        gib_metrics m;
-        int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
-                                     name, &m, &err);
-        if (src == GIB_IMAGE_WRITE_FAILED) {
-            fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun "
-                            "resumes)\n", err.msg);
-            ctx->write_failed = 1;
-            gib_image_free(&ref.image);
-            return;
-        }
-        if (src < 0) {
-            row_set(&r, C_STATUS, "scoring_failed");
-            row_set(&r, C_MESSAGE, "%s", err.msg);
-        } else {
-            fmt_num(&r, C_RMSE, m.rmse);
-            fmt_num(&r, C_REL_RMSE, m.rel_rmse);
-            fmt_num(&r, C_MEAN_RATIO, m.mean_ratio);
-            set_error_scale(&r, &m, ref.noise_rmse, (long)mr->width * mr->height);
-            fmt_num(&r, C_PSNR, m.psnr);
-            fmt_num(&r, C_SSIM, m.ssim);
-            fmt_num(&r, C_FLIP, m.flip);
-            fmt_num(&r, C_HDRFLIP, m.hdrflip);
-            row_set(&r, C_NONFINITE, "%ld", m.nonfinite);
-            /* A reference noisier than a fifth of the error cannot rank techniques. */
-            row_set(&r, C_REF_NOISY, "%d", ref.noise_rmse > 0.2 * m.rmse);
-            row_set(&r, C_STATUS, "%s", m.nonfinite ? "nonfinite" : "ok");
-            if (m.nonfinite)
-                row_set(&r, C_MESSAGE, "%ld NaN/Inf values in the image", m.nonfinite);
-        }
-        row_set(&r, C_REF_SPP, "%d", ref.spp);
-        fmt_num(&r, C_REF_NOISE, ref.noise_rmse);
-        append_row(ctx, &r);
-        printf("  %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f"
-               "  %s\n",
-               mr->scene, t->name, mr->params_key, mr->width, mr->height, mr->time,
-               res->gpu_total.median_ms, m.rmse, m.ssim, m.flip, r.v[C_STATUS]);
-        gib_image_free(&ref.image);
+        else
+            score_component(ctx, scene, mr, res, bit, &res->images[i++], img_dir, &r);
     }
 }
 
@@ -479,6 +452,70 @@ static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, s
     return 1;
 }
 
+/* Marks this process's unfinished runs of scene sname (from run `from` on) with state. */
+static void mark_scene_runs(run_ctx *ctx, int from, const char *sname, char state)
+{
+    const gib_matrix *m = ctx->m;
+    for (int j = from; j < m->run_count; j++)
+        if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j]))
+            run_state(ctx, j, state);
+}
+
+/* Runs this process's unfinished runs of an uploaded scene (from run `from` on). */
+static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const gib_gpu_scene *gpu)
+{
+    const gib_matrix *m = ctx->m;
+    const char *sname = m->runs[from].scene;
+    for (int j = from; j < m->run_count && !ctx->write_failed; j++) {
+        const gib_matrix_run *mr = &m->runs[j];
+        if (strcmp(mr->scene, sname) || !run_mine(ctx, j) || run_done(ctx, mr))
+            continue;
+        char why[512];
+        if (!scene_wanted(scene, mr->technique, why, sizeof why)) {
+            printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
+            ctx->runs_skipped++;
+            run_state(ctx, j, 's');
+            continue;
+        }
+        gib_run_result res;
+        gib_run_technique_at(gpu, mr->technique, &mr->params, m->camera, mr->width, mr->height,
+                             m->warmup, m->frames, mr->time, m->dt, &res);
+        if (!res.ok)
+            fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
+                    mr->params_key, res.status, res.err.msg);
+        score_run(ctx, scene, gpu, mr, &res);
+        gib_run_result_free(&res);
+    }
+}
+
+/* The runs of the scene of run i (i its first): loads and uploads it once for them all. */
+static void run_scene(run_ctx *ctx, int i, int pending)
+{
+    const char *sname = ctx->m->runs[i].scene;
+    gib_scene scene;
+    gib_gpu_scene gpu;
+    gib_error err;
+    int rc = gib_scene_load(sname, &scene, &err);
+    if (rc == GIB_SCENE_UNAVAILABLE) {
+        printf("%s: skipped (%d runs): %s\n", sname, pending, err.msg);
+        ctx->runs_skipped += pending;
+        mark_scene_runs(ctx, i, sname, 's');
+        return;
+    }
+    if (rc < 0 || gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
+        fprintf(stderr, "gibench run: scene '%s': %s\n", sname, err.msg);
+        if (rc == 0)
+            gib_scene_free(&scene);
+        ctx->rows_failed += pending;
+        mark_scene_runs(ctx, i, sname, 'f');
+        return;
+    }
+    printf("%s: %u triangles, %d runs to do\n", sname, scene.triangle_count, pending);
+    run_scene_runs(ctx, i, &scene, &gpu);
+    gib_gpu_scene_free(&gpu);
+    gib_scene_free(&scene);
+}
+
 static void run_matrix(run_ctx *ctx)
 {
     const gib_matrix *m = ctx->m;
@@ -489,64 +526,19 @@ static void run_matrix(run_ctx *ctx)
         const char *sname = m->runs[i].scene;
         int pending = 0, mine = 0;
         for (int j = i; j < m->run_count; j++)
-            if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j)) {
-                mine++;
-                pending += !run_done(ctx, &m->runs[j]);
-            }
-        for (int j = i; j < m->run_count; j++)
-            if (!strcmp(m->runs[j].scene, sname))
+            if (!strcmp(m->runs[j].scene, sname)) {
                 done_scene[j] = 1;
+                if (run_mine(ctx, j)) {
+                    mine++;
+                    pending += !run_done(ctx, &m->runs[j]);
+                }
+            }
         if (!mine) /* another shard's scene */
             continue;
-        if (!pending) {
+        if (!pending)
             printf("%s: every run already in %s\n", sname, ctx->csv->path);
-            continue;
-        }
-        gib_scene scene;
-        gib_gpu_scene gpu;
-        gib_error err;
-        int rc = gib_scene_load(sname, &scene, &err);
-        if (rc == GIB_SCENE_UNAVAILABLE) {
-            printf("%s: skipped (%d runs): %s\n", sname, pending, err.msg);
-            ctx->runs_skipped += pending;
-            for (int j = i; j < m->run_count; j++)
-                if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j]))
-                    run_state(ctx, j, 's');
-            continue;
-        }
-        if (rc < 0 || gib_gpu_scene_upload(&scene, &gpu, &err) < 0) {
-            fprintf(stderr, "gibench run: scene '%s': %s\n", sname, err.msg);
-            if (rc == 0)
-                gib_scene_free(&scene);
-            ctx->rows_failed += pending;
-            for (int j = i; j < m->run_count; j++)
-                if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j]))
-                    run_state(ctx, j, 'f');
-            continue;
-        }
-        printf("%s: %u triangles, %d runs to do\n", sname, scene.triangle_count, pending);
-        for (int j = i; j < m->run_count && !ctx->write_failed; j++) {
-            const gib_matrix_run *mr = &m->runs[j];
-            if (strcmp(mr->scene, sname) || !run_mine(ctx, j) || run_done(ctx, mr))
-                continue;
-            char why[512];
-            if (!scene_wanted(&scene, mr->technique, why, sizeof why)) {
-                printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
-                ctx->runs_skipped++;
-                run_state(ctx, j, 's');
-                continue;
-            }
-            gib_run_result res;
-            gib_run_technique_at(&gpu, mr->technique, &mr->params, m->camera, mr->width,
-                                 mr->height, m->warmup, m->frames, mr->time, m->dt, &res);
-            if (!res.ok)
-                fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
-                        mr->params_key, res.status, res.err.msg);
-            score_run(ctx, &scene, &gpu, mr, &res);
-            gib_run_result_free(&res);
-        }
-        gib_gpu_scene_free(&gpu);
-        gib_scene_free(&scene);
+        else
+            run_scene(ctx, i, pending);
     }
     free(done_scene);
 }
@@ -596,15 +588,53 @@ static int write_manifest(const run_ctx *ctx, gib_error *err)
     return 0;
 }
 
-int gib_cmd_run(int argc, char **argv)
-{
-    const char *profile = "quick", *out = GIB_PROJECT_ROOT "/results", *cache = NULL;
-    const char *history = NULL;
-    int no_history = 0;
+/* ---- the command ---- */
+
+typedef struct run_opts {
+    const char *profile, *out, *cache, *history;
     const char *files[64];
-    int nfiles = 0, backend = GIB_BACKEND_AUTO, images = 1;
-    gib_shard shard = {0, 0};
-    long warmup = -1, frames = -1;
+    int nfiles, backend, images, no_history;
+    gib_shard shard;
+    long warmup, frames;
+} run_opts;
+
+/* An option with a value (a = argv[i], v its value). Returns 0, or 2 on bad usage. */
+static int parse_value_option(run_opts *o, const char *a, const char *v)
+{
+    gib_error err;
+    if (!strcmp(a, "--profile")) o->profile = v;
+    else if (!strcmp(a, "--out")) o->out = v;
+    else if (!strcmp(a, "--cache")) o->cache = v;
+    else if (!strcmp(a, "--history")) o->history = v;
+    else if (!strcmp(a, "--shard")) {
+        if (gib_shard_parse("--shard", v, &o->shard, &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            return 2;
+        }
+    } else if (!strcmp(a, "--warmup") || !strcmp(a, "--frames")) {
+        int warm = !strcmp(a, "--warmup");
+        if (gib_parse_int(a, v, warm ? 0 : 1, warm ? 100 : GIB_TIMER_MAX_FRAMES,
+                          warm ? &o->warmup : &o->frames, &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            return 2;
+        }
+    } else if (!strcmp(a, "--backend")) {
+        if ((o->backend = gib_backend_parse(v)) < 0) {
+            fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
+            return 2;
+        }
+    } else {
+        fprintf(stderr, "gibench run: unknown option '%s'\n%s", a, help);
+        return 2;
+    }
+    return 0;
+}
+
+/* Returns -1 to go on, 0 after --help, 2 on bad usage. */
+static int parse_options(int argc, char **argv, run_opts *o)
+{
+    *o = (run_opts){.profile = "quick", .out = GIB_PROJECT_ROOT "/results",
+                    .backend = GIB_BACKEND_AUTO, .images = 1, .warmup = -1, .frames = -1};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -612,164 +642,203 @@ int gib_cmd_run(int argc, char **argv)
             return 0;
         }
         if (!strcmp(a, "--no-images")) {
-            images = 0;
+            o->images = 0;
             continue;
         }
         if (!strcmp(a, "--no-history")) {
-            no_history = 1;
+            o->no_history = 1;
             continue;
         }
         if (a[0] != '-') {
-            if (nfiles < 64)
-                files[nfiles++] = a;
+            if (o->nfiles < 64)
+                o->files[o->nfiles++] = a;
             continue;
         }
         if (i + 1 >= argc) {
             fprintf(stderr, "gibench run: option %s needs a value\n%s", a, help);
             return 2;
         }
-        const char *v = argv[++i];
-        if (!strcmp(a, "--profile")) profile = v;
-        else if (!strcmp(a, "--out")) out = v;
-        else if (!strcmp(a, "--cache")) cache = v;
-        else if (!strcmp(a, "--shard")) {
-            gib_error serr;
-            if (gib_shard_parse("--shard", v, &shard, &serr) < 0) {
-                fprintf(stderr, "gibench run: %s\n", serr.msg);
-                return 2;
-            }
-        }
-        else if (!strcmp(a, "--history")) history = v;
-        else if (!strcmp(a, "--warmup") || !strcmp(a, "--frames")) {
-            gib_error verr;
-            int warm = !strcmp(a, "--warmup");
-            if (gib_parse_int(a, v, warm ? 0 : 1, warm ? 100 : GIB_TIMER_MAX_FRAMES,
-                              warm ? &warmup : &frames, &verr) < 0) {
-                fprintf(stderr, "gibench run: %s\n", verr.msg);
-                return 2;
-            }
-        }
-        else if (!strcmp(a, "--backend")) {
-            if ((backend = gib_backend_parse(v)) < 0) {
-                fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
-                return 2;
-            }
-        } else {
-            fprintf(stderr, "gibench run: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
+        int rc = parse_value_option(o, a, argv[++i]);
+        if (rc)
+            return rc;
     }
-    if (!nfiles) {
+    if (!o->nfiles) {
         fprintf(stderr, "gibench run: no matrix file given\n%s", help);
         return 2;
     }
+    return -1;
+}
+
+static void free_matrices(gib_matrix *ms, int n)
+{
+    for (int k = 0; ms && k < n; k++)
+        gib_matrix_free(&ms[k]);
+    free(ms);
+}
+
+/* Every matrix expanded and validated before anything renders, with its table's layout. */
+static int load_matrices(const run_opts *o, gib_matrix **out, gib_table_layout **layouts,
+                         int *total)
+{
+    gib_matrix *ms = calloc(o->nfiles, sizeof *ms);
+    gib_table_layout *ls = calloc(o->nfiles, sizeof *ls);
     gib_error err;
-    columns cols;
-    if (make_columns(&cols, &err) < 0) {
+    *total = 0;
+    for (int i = 0; ms && ls && i < o->nfiles; i++) {
+        if (gib_matrix_load(o->files[i], o->profile, &ms[i], &err) < 0 ||
+            gib_table_layout_of(&ms[i], &ls[i], &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            free_matrices(ms, i + 1);
+            free(ls);
+            return -1;
+        }
+        *total += ms[i].run_count;
+        if (o->warmup >= 0)
+            ms[i].warmup = (int)o->warmup;
+        if (o->frames >= 0)
+            ms[i].frames = (int)o->frames;
+    }
+    if (!ms || !ls) {
+        fprintf(stderr, "gibench run: out of memory\n");
+        free(ms), free(ls);
+        return -1;
+    }
+    *out = ms;
+    *layouts = ls;
+    return 0;
+}
+
+/* Opens DIR/<matrix>.csv and its passes table. A table restarted for new columns restarts its
+ * passes too: their rows belong to runs that are gone, and would stand in (same key) for the
+ * passes of the runs redone. */
+static int open_tables(const char *out, const gib_matrix *m, const gib_table_layout *l,
+                       gib_csv *csv, gib_csv *passes, gib_error *err)
+{
+    char path[2048], ppath[2048];
+    int key[GIB_C_COUNT], pkey[GIB_P_COUNT];
+    int nkey = gib_schema_key(gib_run_columns, GIB_C_COUNT, GIB_KEY_ROW, key, GIB_C_COUNT);
+    int npkey = gib_schema_key(gib_pass_columns, GIB_P_COUNT, GIB_KEY_ROW, pkey, GIB_P_COUNT);
+    const char *pnames[GIB_P_COUNT];
+    for (int k = 0; k < GIB_P_COUNT; k++)
+        pnames[k] = gib_pass_columns[k].name;
+    snprintf(path, sizeof path, "%s/%s.csv", out, m->name);
+    snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, m->name);
+    if (gib_csv_open(csv, path, l->names, l->count, key, nkey, err) < 0 ||
+        (csv->moved_aside && gib_csv_move_aside(ppath, err) < 0) ||
+        gib_csv_open(passes, ppath, pnames, GIB_P_COUNT, pkey, npkey, err) < 0)
+        return -1;
+    return 0;
+}
+
+/* With --shard: which runs are this shard's (ctx->owner, ctx->state). */
+static int assign_shard(run_ctx *ctx, int **owner)
+{
+    const gib_matrix *m = ctx->m;
+    *owner = malloc((size_t)m->run_count * sizeof **owner);
+    ctx->state = calloc((size_t)m->run_count + 1, 1);
+    if (!*owner || !ctx->state) {
+        fprintf(stderr, "gibench run: out of memory splitting %s into shards\n", m->name);
+        free(*owner), free(ctx->state);
+        *owner = NULL, ctx->state = NULL;
+        return -1;
+    }
+    gib_shard_assign(m, ctx->shard.count, *owner);
+    int mine = 0;
+    for (int j = 0; j < m->run_count; j++)
+        if ((*owner)[j] == ctx->shard.index) {
+            ctx->state[j] = 'e';
+            mine++;
+        }
+    printf("shard %d/%d: %d of the %d runs\n", ctx->shard.index, ctx->shard.count, mine,
+           m->run_count);
+    ctx->owner = *owner;
+    return 0;
+}
+
+/* One matrix into its tables. Returns 1 when it could not run or write its manifest. */
+static int run_one_matrix(run_ctx *ctx, const gib_matrix *m, const gib_table_layout *l)
+{
+    gib_csv csv = {.lock_fd = -1}, passes = {.lock_fd = -1};
+    gib_error err;
+    int status = 0, *owner = NULL;
+    if (open_tables(ctx->out, m, l, &csv, &passes, &err) < 0) {
         fprintf(stderr, "gibench run: %s\n", err.msg);
-        return 1;
-    }
-    /* Every matrix is expanded and validated before anything renders. */
-    gib_matrix *ms = calloc(nfiles, sizeof *ms);
-    int total = 0;
-    for (int i = 0; i < nfiles; i++) {
-        if (gib_matrix_load(files[i], profile, &ms[i], &err) < 0) {
-            fprintf(stderr, "gibench run: %s\n", err.msg);
-            for (int k = 0; k < i; k++)
-                gib_matrix_free(&ms[k]);
-            free(ms);
-            return 2;
-        }
-        total += ms[i].run_count;
-        if (warmup >= 0)
-            ms[i].warmup = (int)warmup;
-        if (frames >= 0)
-            ms[i].frames = (int)frames;
-    }
-    char cache_dir[2048];
-    snprintf(cache_dir, sizeof cache_dir, "%s", cache ? cache : GIB_PROJECT_ROOT "/results/cache");
-    run_ctx ctx = {.out = out, .cache = cache_dir, .images = images, .shard = shard};
-    if (gib_mkdirs(out, &err) < 0 || gib_gl_init(backend, &ctx.info, &err) < 0) {
-        fprintf(stderr, "gibench run: %s\n", err.msg);
-        for (int k = 0; k < nfiles; k++)
-            gib_matrix_free(&ms[k]);
-        free(ms);
-        return 1;
-    }
-    printf("gibench run: %d matrices, %d runs, profile %s, on %s (%s, %s)\n", nfiles, total,
-           profile, ctx.info.renderer, ctx.info.backend, ctx.info.version);
-    char hist_path[2048];
-    snprintf(hist_path, sizeof hist_path, "%s", history ? history : "");
-    if (!history)
-        snprintf(hist_path, sizeof hist_path, "%s/history.sqlite", out);
-    gib_history_machine machine;
-    gib_history_machine_detect(&machine, ctx.info.renderer, ctx.info.version, ctx.info.backend);
-    if (!no_history && gib_history_open(&ctx.hist, hist_path, &err) < 0) {
-        fprintf(stderr, "gibench run: --history: %s\n", err.msg);
-        gib_gl_shutdown();
-        for (int k = 0; k < nfiles; k++)
-            gib_matrix_free(&ms[k]);
-        free(ms);
-        return 1;
-    }
-    int status = 0;
-    for (int i = 0; i < nfiles && !ctx.write_failed; i++) {
-        gib_csv csv = {.lock_fd = -1}, passes = {.lock_fd = -1};
-        char path[2048], ppath[2048];
-        snprintf(path, sizeof path, "%s/%s.csv", out, ms[i].name);
-        snprintf(ppath, sizeof ppath, "%s/%s_passes.csv", out, ms[i].name);
-        /* A table restarted for new columns restarts its passes too: their rows belong to runs
-         * that are gone, and would stand in (same key) for the passes of the runs redone. */
-        if (gib_csv_open(&csv, path, cols.names, cols.count, key_columns, NKEY, &err) < 0 ||
-            (csv.moved_aside && gib_csv_move_aside(ppath, &err) < 0) ||
-            gib_csv_open(&passes, ppath, pass_columns, PASS_COLUMNS, pass_key_columns, 8, &err) < 0) {
-            fprintf(stderr, "gibench run: %s\n", err.msg);
-            gib_csv_close(&csv);
-            gib_csv_close(&passes);
-            status = 1;
-            continue;
-        }
-        printf("matrix %s (%d runs): %s\n", ms[i].name, ms[i].run_count, ms[i].description);
-        ctx.machine = &machine;
-        ctx.hist_run = 0; /* a history run is recorded with the matrix's first new row */
-        ctx.m = &ms[i];
-        ctx.cols = &cols;
-        ctx.csv = &csv;
-        ctx.passes = &passes;
-        int *owner = NULL;
-        if (shard.count) {
-            owner = malloc((size_t)ms[i].run_count * sizeof *owner);
-            ctx.state = calloc((size_t)ms[i].run_count + 1, 1);
-            if (!owner || !ctx.state) {
-                fprintf(stderr, "gibench run: out of memory splitting %s into shards\n", ms[i].name);
-                free(owner), free(ctx.state), ctx.state = NULL;
-                gib_csv_close(&csv), gib_csv_close(&passes);
-                status = 1;
-                continue;
-            }
-            gib_shard_assign(&ms[i], shard.count, owner);
-            int mine = 0;
-            for (int j = 0; j < ms[i].run_count; j++)
-                if (owner[j] == shard.index) {
-                    ctx.state[j] = 'e';
-                    mine++;
-                }
-            printf("shard %d/%d: %d of the %d runs\n", shard.index, shard.count, mine,
-                   ms[i].run_count);
-            ctx.owner = owner;
-        }
-        run_matrix(&ctx);
-        if (shard.count && !ctx.write_failed && write_manifest(&ctx, &err) < 0) {
-            fprintf(stderr, "gibench run: %s\n", err.msg);
-            status = 1;
-        }
-        free(owner);
-        free(ctx.state);
-        ctx.owner = NULL;
-        ctx.state = NULL;
         gib_csv_close(&csv);
         gib_csv_close(&passes);
+        return 1;
     }
+    printf("matrix %s (%d runs): %s\n", m->name, m->run_count, m->description);
+    ctx->hist_run = 0; /* a history run is recorded with the matrix's first new row */
+    ctx->m = m;
+    ctx->cols = l;
+    ctx->csv = &csv;
+    ctx->passes = &passes;
+    if (ctx->shard.count && assign_shard(ctx, &owner) < 0) {
+        status = 1;
+    } else {
+        run_matrix(ctx);
+        if (ctx->shard.count && !ctx->write_failed && write_manifest(ctx, &err) < 0) {
+            fprintf(stderr, "gibench run: %s\n", err.msg);
+            status = 1;
+        }
+    }
+    free(owner);
+    free(ctx->state);
+    ctx->owner = NULL;
+    ctx->state = NULL;
+    gib_csv_close(&csv);
+    gib_csv_close(&passes);
+    return status;
+}
+
+/* The GL context and the results history. Returns 0, or 1 (reported). */
+static int start_run(run_ctx *ctx, const run_opts *o, char *hist_path, size_t len,
+                     gib_history_machine *machine)
+{
+    gib_error err;
+    if (gib_mkdirs(o->out, &err) < 0 || gib_gl_init(o->backend, &ctx->info, &err) < 0) {
+        fprintf(stderr, "gibench run: %s\n", err.msg);
+        return 1;
+    }
+    snprintf(hist_path, len, "%s", o->history ? o->history : "");
+    if (!o->history)
+        snprintf(hist_path, len, "%s/history.sqlite", o->out);
+    gib_history_machine_detect(machine, ctx->info.renderer, ctx->info.version, ctx->info.backend);
+    ctx->machine = machine;
+    if (!o->no_history && gib_history_open(&ctx->hist, hist_path, &err) < 0) {
+        fprintf(stderr, "gibench run: --history: %s\n", err.msg);
+        gib_gl_shutdown();
+        return 1;
+    }
+    return 0;
+}
+
+int gib_cmd_run(int argc, char **argv)
+{
+    run_opts o;
+    int rc = parse_options(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    gib_matrix *ms;
+    gib_table_layout *layouts;
+    int total;
+    if (load_matrices(&o, &ms, &layouts, &total) < 0)
+        return 2;
+    char cache_dir[2048], hist_path[2048];
+    snprintf(cache_dir, sizeof cache_dir, "%s",
+             o.cache ? o.cache : GIB_PROJECT_ROOT "/results/cache");
+    run_ctx ctx = {.out = o.out, .cache = cache_dir, .images = o.images, .shard = o.shard};
+    gib_history_machine machine;
+    if (start_run(&ctx, &o, hist_path, sizeof hist_path, &machine)) {
+        free_matrices(ms, o.nfiles);
+        free(layouts);
+        return 1;
+    }
+    printf("gibench run: %d matrices, %d runs, profile %s, on %s (%s, %s)\n", o.nfiles, total,
+           o.profile, ctx.info.renderer, ctx.info.backend, ctx.info.version);
+    int status = 0;
+    for (int i = 0; i < o.nfiles && !ctx.write_failed; i++)
+        status |= run_one_matrix(&ctx, &ms[i], &layouts[i]);
     printf("gibench run: %d rows written (%d not ok, %d out of memory), %d runs skipped\n",
            ctx.rows_written, ctx.rows_failed, ctx.rows_out_of_memory, ctx.runs_skipped);
     if (ctx.hist)
@@ -778,8 +847,7 @@ int gib_cmd_run(int argc, char **argv)
         status = 1;
     gib_history_close(ctx.hist);
     gib_gl_shutdown();
-    for (int k = 0; k < nfiles; k++)
-        gib_matrix_free(&ms[k]);
-    free(ms);
+    free_matrices(ms, o.nfiles);
+    free(layouts);
     return status;
 }

@@ -129,16 +129,11 @@ static int add_key(gib_csv *c, const char *key)
     return 0;
 }
 
-int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int ncols,
-                 const int *key_cols, int nkey, gib_error *err)
+/* PATH.lock, flock'ed: one writer a table. A second run of the same matrix into the same folder
+ * refuses before it reads or cuts anything, rather than append the same rows. The lock is kept
+ * open until gib_csv_close, so it goes with the process, even when that is killed. */
+static int lock_table(gib_csv *c, const char *path, gib_error *err)
 {
-    memset(c, 0, sizeof *c);
-    snprintf(c->path, sizeof c->path, "%s", path);
-    c->ncols = ncols;
-    c->lock_fd = -1;
-    /* One writer a table: a second run of the same matrix into the same folder refuses before it
-     * reads or cuts anything, rather than append the same rows. The lock is PATH.lock's (kept
-     * open until gib_csv_close), so it goes with the process, even when that is killed. */
     char lock[1100];
     snprintf(lock, sizeof lock, "%s.lock", path);
     c->lock_fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
@@ -152,6 +147,66 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
                                                     "run a matrix and output folder at a time)"
                                                   : "cannot lock it");
     }
+    return 0;
+}
+
+/* The identity keys of the rows after the header of `old` (a file whose header is the table's). */
+static void load_keys(gib_csv *c, FILE *old, char **line, size_t *cap)
+{
+    char **fields = malloc(sizeof(char *) * (c->ncols + 1));
+    ssize_t len;
+    while (fields && (len = getline(line, cap, old)) > 0) {
+        char *l = *line;
+        /* A last line without its newline was left by a killed run and is cut off by the caller:
+         * its key must not count, or its row would never be written again (found by
+         * tests/fuzz/fuzz_resume: a row cut inside its last field). */
+        if (l[len - 1] != '\n')
+            break;
+        l[strcspn(l, "\r\n")] = 0;
+        if (!l[0])
+            continue;
+        /* A damaged line with too few or too many fields is no row. */
+        if (split_csv(l, fields, c->ncols + 1) != c->ncols)
+            continue;
+        if (!c->nkey)
+            continue;
+        char key[4096];
+        row_key(c, fields, key, sizeof key);
+        if (add_key(c, key) < 0)
+            break;
+    }
+    free(fields);
+}
+
+/* Whether PATH holds this header (its rows' keys then loaded). Returns 1 when it does, 0 when it has
+ * other columns (or none), -1 when it cannot be opened (absent). */
+static int keep_existing(gib_csv *c, const char *path, const char *header)
+{
+    FILE *old = fopen(path, "r");
+    if (!old)
+        return -1;
+    char *line = NULL;
+    size_t cap = 0;
+    int same = 0;
+    if (getline(&line, &cap, old) > 0) {
+        line[strcspn(line, "\r\n")] = 0;
+        if ((same = !strcmp(line, header)))
+            load_keys(c, old, &line, &cap);
+    }
+    free(line);
+    fclose(old);
+    return same;
+}
+
+int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int ncols,
+                 const int *key_cols, int nkey, gib_error *err)
+{
+    memset(c, 0, sizeof *c);
+    snprintf(c->path, sizeof c->path, "%s", path);
+    c->ncols = ncols;
+    c->lock_fd = -1;
+    if (lock_table(c, path, err) < 0)
+        return -1;
     if (nkey < 0 || nkey > (int)(sizeof c->key_cols / sizeof c->key_cols[0]))
         return gib_fail(err, "%s: %d key columns, at most 16", path, nkey);
     for (int k = 0; k < nkey; k++)
@@ -159,49 +214,14 @@ int gib_csv_open(gib_csv *c, const char *path, const char *const *columns, int n
     c->nkey = nkey;
     char header[8192];
     header_line(columns, ncols, header, sizeof header);
-    FILE *old = fopen(path, "r");
-    int fresh = 1;
-    if (old) {
-        char *line = NULL;
-        size_t cap = 0;
-        ssize_t len = getline(&line, &cap, old);
-        if (len > 0) {
-            line[strcspn(line, "\r\n")] = 0;
-            if (!strcmp(line, header)) {
-                fresh = 0;
-                char **fields = malloc(sizeof(char *) * (ncols + 1));
-                while (fields && (len = getline(&line, &cap, old)) > 0) {
-                    /* A last line without its newline was left by a killed run and is cut off
-                     * below: its key must not count, or its row would never be written again
-                     * (found by tests/fuzz/fuzz_resume: a row cut inside its last field). */
-                    if (line[len - 1] != '\n')
-                        break;
-                    line[strcspn(line, "\r\n")] = 0;
-                    if (!line[0])
-                        continue;
-                    /* A damaged line with too few or too many fields is no row. */
-                    if (split_csv(line, fields, ncols + 1) != ncols)
-                        continue;
-                    if (!nkey)
-                        continue;
-                    char key[4096];
-                    row_key(c, fields, key, sizeof key);
-                    if (add_key(c, key) < 0)
-                        break;
-                }
-                free(fields);
-            }
-        }
-        free(line);
-        fclose(old);
-        if (!fresh && cut_unfinished_line(path, err) < 0)
+    int kept = keep_existing(c, path, header), fresh = kept != 1;
+    if (!fresh && cut_unfinished_line(path, err) < 0)
+        return -1;
+    if (kept == 0) {
+        if (gib_csv_move_aside(path, err) < 0)
             return -1;
-        if (fresh) {
-            if (gib_csv_move_aside(path, err) < 0)
-                return -1;
-            c->moved_aside = 1;
-            fprintf(stderr, "gibench: %s had different columns; moved it to %s.old\n", path, path);
-        }
+        c->moved_aside = 1;
+        fprintf(stderr, "gibench: %s had different columns; moved it to %s.old\n", path, path);
     }
     c->f = fopen(path, "a");
     if (!c->f)

@@ -2,8 +2,8 @@
  *
  * One row per (run, output component), appended and flushed as each run finishes, so an
  * interrupted matrix keeps what it did; a rerun skips runs whose rows are all present. The
- * columns are fixed for a build: the base columns below plus one column per parameter name of every
- * registered technique (empty where a technique lacks it). A second file holds per-pass timings. */
+ * columns and the identity key are the caller's (for gibench run: harness/app/schema.h, the base
+ * columns plus the parameters the matrix names). A second file holds per-pass timings. */
 #ifndef GIB_CSV_H
 #define GIB_CSV_H
 

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""A results table whose columns changed (a technique gained a parameter, the run CSV a column) is
-moved aside to <matrix>.csv.old and started afresh, and its passes CSV with it: the old passes rows
-belong to runs that are gone, and share their keys with the runs about to be redone, so a passes
-table kept would hold the old revision's timings under the new rows (found in results/: the VCT
-stages of Table 3 were the previous revision's). The test writes a run CSV with other columns and a
-passes CSV holding a stale row under the key of a run of faults.matrix, runs the matrix, and checks
-that both went aside, the new passes CSV has every run's passes once and none of the stale times."""
+"""A results table whose columns changed (its matrix names another parameter, the run CSV gained a
+column) is moved aside to <matrix>.csv.old and started afresh, and its passes CSV with it: the old
+passes rows belong to runs that are gone, and share their keys with the runs about to be redone, so
+a passes table kept would hold the old revision's timings under the new rows (found in results/: the
+VCT stages of Table 3 were the previous revision's). The test writes a run CSV with other columns
+and a passes CSV holding a stale row under the key of a run of faults.matrix, runs the matrix, and
+checks that both went aside, the new passes CSV has every run's passes once and none of the stale
+times."""
 import csv
 import os
 import subprocess

@@ -1,0 +1,237 @@
+#include "schema.h"
+
+#include <ini.h>
+#include <string.h>
+
+#include "app.h"
+#include "harness/base/hash.h"
+
+#define GIB_COL_DESC(id, name, kind, key, doc) {name, kind, key, doc},
+const gib_column gib_run_columns[GIB_C_COUNT] = {GIB_RUN_COLUMNS(GIB_COL_DESC)};
+const gib_column gib_pass_columns[GIB_P_COUNT] = {GIB_PASS_COLUMNS(GIB_COL_DESC)};
+#undef GIB_COL_DESC
+
+int gib_schema_key(const gib_column *cols, int ncols, unsigned flag, int *out, int max)
+{
+    int n = 0;
+    for (int i = 0; i < ncols; i++)
+        if ((cols[i].key & flag) && n < max)
+            out[n++] = i;
+    return n;
+}
+
+/* ---- a matrix's parameter columns ---- */
+
+typedef struct named_params {
+    char tech[64][64], param[64][64];
+    int count, overflow;
+} named_params;
+
+/* [params.T] key and [profile.P] T.key: the parameters the matrix file sets or varies. */
+static int collect_named(void *user, const char *section, const char *key, const char *value)
+{
+    (void)value;
+    named_params *np = user;
+    const char *tech = NULL, *param = key;
+    size_t tlen = 0;
+    if (!strncmp(section, "params.", 7)) {
+        tech = section + 7;
+        tlen = strlen(tech);
+    } else if (!strncmp(section, "profile.", 8) && strchr(key, '.')) {
+        tech = key;
+        tlen = (size_t)(strchr(key, '.') - key);
+        param = strchr(key, '.') + 1;
+    }
+    if (!tech)
+        return 1;
+    if (np->count == 64) {
+        np->overflow = 1;
+        return 1;
+    }
+    snprintf(np->tech[np->count], sizeof np->tech[0], "%.*s", (int)tlen, tech);
+    snprintf(np->param[np->count], sizeof np->param[0], "%s", param);
+    np->count++;
+    return 1;
+}
+
+static int is_named(const named_params *np, const char *tech, const char *param)
+{
+    for (int i = 0; i < np->count; i++)
+        if (!strcmp(np->tech[i], tech) && !strcmp(np->param[i], param))
+            return 1;
+    return 0;
+}
+
+static int add_column(gib_table_layout *l, const char *tech, const char *name, gib_error *err)
+{
+    for (int k = GIB_C_COUNT; k < l->count; k++)
+        if (!strcmp(l->names[k], name))
+            return 0;
+    if (l->count == GIB_TABLE_MAX_COLS)
+        return gib_fail(err, "technique '%s' parameter '%s': the results table holds %d columns at "
+                        "most (GIB_TABLE_MAX_COLS in harness/app/schema.h)", tech, name,
+                        GIB_TABLE_MAX_COLS);
+    l->names[l->count++] = name;
+    return 0;
+}
+
+int gib_table_layout_of(const gib_matrix *m, gib_table_layout *l, gib_error *err)
+{
+    l->count = 0;
+    for (int i = 0; i < GIB_C_COUNT; i++)
+        l->names[l->count++] = gib_run_columns[i].name;
+    named_params np = {0};
+    if (ini_parse(m->path, collect_named, &np) != 0)
+        return gib_fail(err, "%s: cannot be read again for its parameter names", m->path);
+    if (np.overflow)
+        return gib_fail(err, "%s: names more than 64 parameters: the results table's parameter "
+                        "columns cannot all be kept (harness/app/schema.c)", m->path);
+    int n;
+    const gib_technique *const *all = gib_techniques(&n);
+    for (int t = 0; t < n; t++)
+        for (int p = 0; all[t]->params && all[t]->params[p].name; p++)
+            if (is_named(&np, all[t]->name, all[t]->params[p].name) &&
+                add_column(l, all[t]->name, all[t]->params[p].name, err) < 0)
+                return -1;
+    return 0;
+}
+
+/* ---- image names ---- */
+
+/* Fields in braces are the row's; {at} is "_t<time>" for a time other than 0 (the names of runs
+ * at t = 0 stay what they were), {params_hash} the 64-bit FNV-1a of params (with its NUL). After
+ * filling, ';' becomes '_' and '=' '-'. A short name longer than IMAGE_NAME_MAX takes the long
+ * template: file names stop at 255 bytes, and a row's images add suffixes such as "_error.png". */
+static const char image_template[] =
+    "{scene}_{technique}_{params}_{width}x{height}{at}_{component}";
+static const char image_template_long[] =
+    "{scene}_{technique}_p{params_hash}_{width}x{height}{at}_{component}";
+#define IMAGE_NAME_MAX (240 - 16 - (int)sizeof "_error.png" + 1)
+
+typedef struct image_fields {
+    const char *scene, *technique, *params, *component;
+    char width[16], height[16], at[48], params_hash[17];
+} image_fields;
+
+static const char *image_field(const image_fields *f, const char *name, size_t n)
+{
+#define FIELD(s, v) if (n == sizeof s - 1 && !strncmp(name, s, n)) return v
+    FIELD("scene", f->scene);
+    FIELD("technique", f->technique);
+    FIELD("params", f->params);
+    FIELD("component", f->component);
+    FIELD("width", f->width);
+    FIELD("height", f->height);
+    FIELD("at", f->at);
+    FIELD("params_hash", f->params_hash);
+#undef FIELD
+    return "";
+}
+
+static void fill_template(const char *tpl, const image_fields *f, char *out, size_t len)
+{
+    size_t o = 0;
+    for (const char *p = tpl; *p && o + 1 < len;) {
+        const char *close = *p == '{' ? strchr(p, '}') : NULL;
+        if (!close) {
+            out[o++] = *p++;
+            continue;
+        }
+        for (const char *v = image_field(f, p + 1, (size_t)(close - p - 1)); *v && o + 1 < len; v++)
+            out[o++] = *v == ';' ? '_' : *v == '=' ? '-' : *v;
+        p = close + 1;
+    }
+    out[o] = 0;
+}
+
+void gib_image_name(const char *scene, const char *technique, const char *params, int width,
+                    int height, double time, const char *component, char *out, size_t len)
+{
+    image_fields f = {.scene = scene, .technique = technique, .params = params,
+                      .component = component};
+    snprintf(f.width, sizeof f.width, "%d", width);
+    snprintf(f.height, sizeof f.height, "%d", height);
+    if (time != 0.0)
+        snprintf(f.at, sizeof f.at, "_t%g", time);
+    gib_hash_hex(gib_hash_str(GIB_HASH_INIT, params), f.params_hash);
+    fill_template(image_template, &f, out, len);
+    if ((int)strlen(out) > IMAGE_NAME_MAX)
+        fill_template(image_template_long, &f, out, len);
+}
+
+/* ---- JSON export ---- */
+
+/* A JSON string: quotes and backslashes escaped (the descriptors hold no control characters). */
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fputc('\\', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void json_columns(FILE *f, const char *name, const char *file, const gib_column *c, int n)
+{
+    fprintf(f, "  \"%s\": {\n    \"file\": \"%s\",\n    \"columns\": [\n", name, file);
+    for (int i = 0; i < n; i++) {
+        fprintf(f, "      {\"name\": \"%s\", \"kind\": \"%s\", \"row_key\": %s, \"run_key\": %s, "
+                   "\"doc\": ", c[i].name, c[i].kind, c[i].key & GIB_KEY_ROW ? "true" : "false",
+                c[i].key & GIB_KEY_RUN ? "true" : "false");
+        json_str(f, c[i].doc);
+        fprintf(f, "}%s\n", i + 1 < n ? "," : "");
+    }
+    fprintf(f, "    ]\n  },\n");
+}
+
+void gib_schema_write_json(FILE *f)
+{
+    fprintf(f, "{\n  \"version\": 1,\n");
+    json_columns(f, "runs", "{matrix}.csv", gib_run_columns, GIB_C_COUNT);
+    json_columns(f, "passes", "{matrix}_passes.csv", gib_pass_columns, GIB_P_COUNT);
+    fprintf(f, "  \"param_columns\": \"after the base columns: the parameters the matrix file names, "
+               "in registry order; every parameter is in params\",\n");
+    fprintf(f, "  \"params\": {\"column\": \"params\", \"separator\": \";\", \"assign\": \"=\"},\n");
+    fprintf(f, "  \"image_name\": {\n    \"template\": \"%s\",\n", image_template);
+    fprintf(f, "    \"long_template\": \"%s\",\n", image_template_long);
+    fprintf(f, "    \"long_when_over\": %d,\n", IMAGE_NAME_MAX);
+    fprintf(f, "    \"at\": \"_t%%g of time, empty at time 0\",\n    \"params_hash\": \"fnv1a64\",\n");
+    fprintf(f, "    \"replace\": {\";\": \"_\", \"=\": \"-\"}\n  }\n}\n");
+}
+
+static const char schema_help[] =
+    "usage: gibench schema [--out FILE]\n"
+    "\n"
+    "Prints the results schema as JSON: the columns of a matrix's runs and passes tables, the\n"
+    "columns of a row's and a run's identity, and the names of a row's images (the build writes\n"
+    "it to build/schema.json; harness/schema.py reads it).\n";
+
+int gib_cmd_schema(int argc, char **argv)
+{
+    const char *out = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(schema_help, stdout);
+            return 0;
+        }
+        if (!strcmp(argv[i], "--out") && i + 1 < argc) {
+            out = argv[++i];
+            continue;
+        }
+        fprintf(stderr, "gibench schema: unknown argument '%s'\n%s", argv[i], schema_help);
+        return 2;
+    }
+    FILE *f = out ? fopen(out, "w") : stdout;
+    if (!f) {
+        fprintf(stderr, "gibench schema: cannot write %s\n", out);
+        return 1;
+    }
+    gib_schema_write_json(f);
+    if (out && fclose(f) != 0) {
+        fprintf(stderr, "gibench schema: cannot write %s\n", out);
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,220 @@
+"""The results tables as gibench defines them (harness/app/schema.h), for every report script.
+
+The columns of a matrix's runs table (RESULTS/<matrix>.csv) and passes table (<matrix>_passes.csv),
+which columns make a row's identity and a run's, and the names of a row's images are defined once,
+in C where the rows are written; the build exports them as build/schema.json (`gibench schema`),
+read here. This module is the scripts' one way to
+- read a CSV (read_csv), a matrix's runs (runs_table, matrices) and its passes (passes_of);
+- know a row (row_key: its identity in its table; run_key: the run it belongs to, shared by the
+  run's rows, one per component, and its passes rows);
+- read a parameter (params, param: from the wide column where the table has one, else from the
+  `params` column, which holds every parameter);
+- name a row's images (image_name);
+- turn CSV text into numbers and numbers into text (fnum, fmt).
+
+The schema file: $GIBENCH_SCHEMA, else build/schema.json beside harness/ (make build writes it), else
+the newest build*/schema.json there.
+"""
+import csv
+import glob
+import json
+import os
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+_schema = None
+
+
+def schema():
+    """The exported schema (a dict, read once)."""
+    global _schema
+    if _schema is None:
+        path = os.environ.get("GIBENCH_SCHEMA") or os.path.join(ROOT, "build", "schema.json")
+        if not os.environ.get("GIBENCH_SCHEMA") and not os.path.exists(path):
+            # another build folder of this tree (build-asan, ...): the schema is the sources'
+            found = sorted(glob.glob(os.path.join(ROOT, "build*", "schema.json")), key=os.path.getmtime)
+            path = found[-1] if found else path
+        if not os.path.exists(path):
+            raise SystemExit(f"schema.py: {path} not found: build gibench first (make build writes "
+                             "it; or set GIBENCH_SCHEMA to the output of `gibench schema`)")
+        with open(path) as f:
+            _schema = json.load(f)
+    return _schema
+
+
+def columns(table="runs"):
+    """The base column names of the runs or the passes table, in order."""
+    return [c["name"] for c in schema()[table]["columns"]]
+
+
+def key_columns(table="runs", key="row_key"):
+    """The names of the columns of a row's identity (row_key) or its run's (run_key)."""
+    return [c["name"] for c in schema()[table]["columns"] if c[key]]
+
+
+# ---- numbers ------------------------------------------------------------------------------------
+
+def fnum(text):
+    """A finite float from CSV text (or a number), or None."""
+    try:
+        x = float(text)
+    except (TypeError, ValueError):
+        return None
+    return x if x == x and abs(x) != float("inf") else None
+
+
+def fmt(x, digits=4, missing=""):
+    """A number (or CSV text holding one) to `digits` significant digits; None or empty text is
+    `missing`; text that is no number is returned as it is."""
+    if isinstance(x, str):
+        try:
+            x = float(x)
+        except ValueError:
+            return x or missing
+    if x is None:
+        return missing
+    return f"{x:.{digits}g}"
+
+
+# ---- reading ------------------------------------------------------------------------------------
+
+def read_csv(path):
+    """Every row of a CSV as a dict of text, [] when the file is absent."""
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def header(path):
+    with open(path, newline="") as f:
+        return next(csv.reader(f), [])
+
+
+def is_runs_table(names):
+    """Whether a header is a runs table's: the first column, every identity column and status."""
+    base = columns("runs")
+    return names[:1] == base[:1] and set(key_columns("runs")) | {"status"} <= set(names)
+
+
+def runs_table(results, matrix, ok_only=False):
+    """The rows of RESULTS/<matrix>.csv ([] when absent); only status ok with ok_only."""
+    rows = read_csv(os.path.join(results, matrix + ".csv"))
+    return [r for r in rows if r["status"] == "ok"] if ok_only else rows
+
+
+def matrices(results):
+    """{matrix: rows} for every runs table in RESULTS (not *_passes, nor other tables), by name."""
+    out = {}
+    for name in sorted(os.listdir(results)):
+        path = os.path.join(results, name)
+        if not name.endswith(".csv") or name.endswith("_passes.csv") or not is_runs_table(header(path)):
+            continue
+        out[name[:-4]] = read_csv(path)
+    return out
+
+
+def passes_of(results, matrix):
+    """{run_key: {pass: median ms}} of RESULTS/<matrix>_passes.csv (times that are no finite
+    number left out)."""
+    out = {}
+    for p in read_csv(os.path.join(results, matrix + "_passes.csv")):
+        ms = fnum(p["ms_median"])
+        if ms is not None:
+            out.setdefault(run_key(p), {})[p["pass"]] = ms
+    return out
+
+
+# ---- identity -----------------------------------------------------------------------------------
+
+def row_key(r, table="runs"):
+    """A row's identity in its table: a table holds each once."""
+    return tuple(r.get(k, "") for k in key_columns(table, "row_key"))
+
+
+def run_key(r):
+    """The run a runs row (one of its components) or a passes row belongs to."""
+    return tuple(r.get(k, "") for k in key_columns("runs", "run_key"))
+
+
+def runs(rows):
+    """One row per run (a run writes one row per output component), the first of each."""
+    seen, out = set(), []
+    for r in rows:
+        k = run_key(r)
+        if k not in seen:
+            seen.add(k)
+            out.append(r)
+    return out
+
+
+# ---- parameters ---------------------------------------------------------------------------------
+
+def parse_params(text):
+    """{name: float} of a `params` text ("name=value;...")."""
+    p = schema()["params"]
+    out = {}
+    for kv in (text or "").split(p["separator"]):
+        if p["assign"] in kv:
+            k, v = kv.split(p["assign"], 1)
+            out[k] = float(v)
+    return out
+
+
+def params(r):
+    """Every parameter of a row, {name: float}."""
+    return parse_params(r.get(schema()["params"]["column"], ""))
+
+
+def param(r, name, default=None):
+    """One parameter of a row: its wide column where the table has one, else from `params`."""
+    wide = r.get(name)
+    if wide:
+        try:
+            return float(wide)
+        except ValueError:
+            pass
+    return params(r).get(name, default)
+
+
+# ---- image names --------------------------------------------------------------------------------
+
+def fnv1a64(text):
+    """64-bit FNV-1a over the text and its NUL, 16 hex digits (harness/base/hash.c)."""
+    h = 0xcbf29ce484222325
+    for b in text.encode() + b"\0":
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return f"{h:016x}"
+
+
+def _fill(template, fields, replace):
+    out = template
+    for k, v in fields.items():
+        out = out.replace("{" + k + "}", v)
+    for a, b in replace.items():
+        out = out.replace(a, b)
+    return out
+
+
+def image_name(r):
+    """The name (no extension) `gibench run` gives a row's images in DIR/images/<matrix>/."""
+    spec = schema()["image_name"]
+    t = float(r.get("time") or 0)
+    fields = {"scene": r["scene"], "technique": r["technique"], "params": r["params"],
+              "width": r["width"], "height": r["height"], "component": r["component"],
+              "at": f"_t{t:g}" if t != 0.0 else "", "params_hash": fnv1a64(r["params"])}
+    name = _fill(spec["template"], fields, spec["replace"])
+    if len(name) > spec["long_when_over"]:
+        name = _fill(spec["long_template"], fields, spec["replace"])
+    return name
+
+
+# ---- writing ------------------------------------------------------------------------------------
+
+def write_csv(path, rows, cols):
+    """Writes rows (dicts) under the header cols, a missing value empty. Returns the path."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols)
+        w.writeheader()
+        for r in rows:
+            w.writerow({c: r.get(c, "") for c in cols})
+    return path
