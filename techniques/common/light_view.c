@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
+#include "techniques/common/common_slots.h"
 #include "techniques/common/shader.h"
 
 /* GL's cube-map face order, with up vectors giving each face a right-handed view. */
@@ -226,10 +226,10 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
         glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, face->view_proj);
         glUniform3fv(GIB_LOC_ORIGIN, 1, face->origin);
-        glUniform3fv(2, 1, face->forward);
-        glUniform1i(3, face->kind);
-        glUniform1i(4, face->light);
-        glUniform1f(5, lv->texel[face->light]);
+        glUniform3fv(GIB_LV_LOC_FORWARD, 1, face->forward);
+        glUniform1i(GIB_LV_LOC_KIND, face->kind);
+        glUniform1i(GIB_LV_LOC_LIGHT, face->light);
+        glUniform1f(GIB_LV_LOC_TEXEL, lv->texel[face->light]);
         gib_gpu_scene_draw(gpu);
     }
     gib_timer_end(timers);
