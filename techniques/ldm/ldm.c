@@ -11,6 +11,7 @@
 #include "techniques/common/shader.h"
 #include "harness/gl/view.h"
 #include "eqsp.h"
+#include "techniques/ldm/ldm_slots.h"
 
 /* std430 struct LdmInfo in ldm_common.glsl. */
 typedef struct ldm_info_gpu {
@@ -22,7 +23,7 @@ typedef struct ldm_info_gpu {
 static void draw_all(const gib_gpu_scene *scene, unsigned program, int first, int count)
 {
     glUseProgram(program);
-    glUniform1i(5, first);
+    glUniform1i(LDM_LOC_FIRST_LDM, first);
     gib_gpu_scene_draw_instanced(scene, count);
 }
 
@@ -67,9 +68,9 @@ static void begin_pass(ldm_set *l)
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE); /* front and back faces both go into the lists */
     glDisable(GL_BLEND);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, l->info);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, l->status);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, l->counters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_INFO, l->info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_STATUS, l->status);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_COUNTERS, l->counters);
 }
 
 /* Counting pass: fragments per LDM of the geometry as the GPU scene holds it now, into counts. */
@@ -243,9 +244,9 @@ void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
 
 void ldm_bind_page(const ldm_set *l, int page)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, l->info);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, l->pages[page].heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, l->pages[page].nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_INFO, l->info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_HEADS, l->pages[page].heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_NODES, l->pages[page].nodes);
 }
 
 const char *ldm_status(ldm_set *l)
@@ -314,14 +315,14 @@ int ldm_probe(ldm_set *l, const float *rays, int n, float eps, float *dist, gib_
         return -1;
     }
     glUseProgram(prog);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, rb);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, hb);
-    glUniform1i(0, n);
-    glUniform1f(3, eps);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDM_PROBE_SSBO_RAYS, rb);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDM_PROBE_SSBO_HITS, hb);
+    glUniform1i(LDM_PROBE_LOC_COUNT, n);
+    glUniform1f(LDM_PROBE_LOC_EPS, eps);
     for (int p = 0; p < l->page_count; p++) {
         ldm_bind_page(l, p);
-        glUniform1i(1, l->pages[p].first);
-        glUniform1i(2, l->pages[p].count);
+        glUniform1i(LDM_PROBE_LOC_FIRST, l->pages[p].first);
+        glUniform1i(LDM_PROBE_LOC_PAGE_COUNT, l->pages[p].count);
         glDispatchCompute((n + 63) / 64, 1, 1);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
