@@ -5,6 +5,7 @@
 
 #include "harness/gl/context.h"
 #include "techniques/common/common_slots.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 
 int gib_gbuffer_create(gib_gbuffer *g, int w, int h, gib_ledger *ledger, gib_error *err)
@@ -42,21 +43,18 @@ void gib_gbuffer_render(gib_gbuffer *g, const gib_gpu_scene *scene, const gib_vi
                         gib_timers *timers, const char *pass)
 {
     gib_timer_begin(timers, pass);
-    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
-    glViewport(0, 0, g->width, g->height);
+    gib_pass_apply(&(gib_pass_state){.fbo = g->fbo, .width = g->width, .height = g->height,
+                                     .depth = GIB_DEPTH_LESS});
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; i++)
         glClearBufferfv(GL_COLOR, i, zero);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
     glUseProgram(g->program);
     glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
     glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
     glUniform3fv(GIB_GBUFFER_LOC_EYE, 1, view->camera->eye);
     gib_gpu_scene_draw(scene);
+    gib_pass_end();
     gib_timer_end(timers);
 }
 

@@ -8,6 +8,7 @@
 
 #include "harness/gl/context.h"
 #include "techniques/common/common_slots.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 
 /* GL's cube-map face order, with up vectors giving each face a right-handed view. */
@@ -203,14 +204,10 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
     set_up_views(lv, gpu->scene);
     glNamedBufferSubData(lv->table, 0, sizeof(float) * (GLsizeiptr)lv->table_floats,
                          lv->table_data);
-    glViewport(0, 0, lv->res, lv->res);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    gib_pass_apply(&(gib_pass_state){.fbo = lv->fbo, .width = lv->res, .height = lv->res,
+                                     .depth = GIB_DEPTH_LESS});
     glUseProgram(lv->program);
     gib_gpu_scene_bind(gpu);
-    glBindFramebuffer(GL_FRAMEBUFFER, lv->fbo);
     /* Empty texels: depth +inf (the first attribute, or the packed depth in w), the rest 0. */
     const float far[4] = {INFINITY, INFINITY, INFINITY, INFINITY}, zero[4] = {0, 0, 0, 0},
                 far_packed[4] = {0, 0, 0, INFINITY};
@@ -232,6 +229,7 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
         glUniform1f(GIB_LV_LOC_TEXEL, lv->texel[face->light]);
         gib_gpu_scene_draw(gpu);
     }
+    gib_pass_end();
     gib_timer_end(timers);
 }
 

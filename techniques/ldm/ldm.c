@@ -8,6 +8,7 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "harness/gl/view.h"
 #include "eqsp.h"
@@ -63,11 +64,8 @@ static int upload_info(ldm_set *l, gib_ledger *ledger, const uint64_t *counts, g
 
 static void begin_pass(ldm_set *l)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, l->fbo);
-    glViewport(0, 0, l->res, l->res);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE); /* front and back faces both go into the lists */
-    glDisable(GL_BLEND);
+    /* No depth test and no culling: front and back faces all go into the lists. */
+    gib_pass_apply(&(gib_pass_state){.fbo = l->fbo, .width = l->res, .height = l->res});
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_INFO, l->info);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_STATUS, l->status);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_COUNTERS, l->counters);
@@ -80,6 +78,7 @@ static void count_fragments(ldm_set *l, const gib_gpu_scene *scene, uint32_t *co
     glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     begin_pass(l);
     draw_all(scene, l->count_program, 0, l->count);
+    gib_pass_end();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts);
 }
@@ -238,6 +237,7 @@ void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
         ldm_bind_page(l, p);
         draw_all(scene, l->build_program, l->pages[p].first, l->pages[p].count);
     }
+    gib_pass_end();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gib_timer_end(timers);
 }

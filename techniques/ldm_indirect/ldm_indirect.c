@@ -26,6 +26,7 @@
 #include "harness/gl/context.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "techniques/ldm/ldm.h"
 #include "techniques/ldm_indirect/ldm_indirect_slots.h"
@@ -237,13 +238,10 @@ static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timer
 static void draw_splats(ldm_indirect *a, unsigned program, unsigned fbo, const gib_view *view,
                         int audit)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, view->width, view->height);
+    gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = view->width, .height = view->height,
+                                     .blend = GIB_BLEND_ADD});
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(program);
     glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
     glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
@@ -263,7 +261,7 @@ static void draw_splats(ldm_indirect *a, unsigned program, unsigned fbo, const g
     glDrawArraysIndirect(GL_POINTS, NULL);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    glDisable(GL_BLEND);
+    gib_pass_end();
 }
 
 /* The audit's splat pass (the photons drawn again, each fragment writing the flux it deposits),

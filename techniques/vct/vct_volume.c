@@ -9,6 +9,7 @@
 
 #include "harness/gl/context.h"
 #include "techniques/common/common_slots.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
 #include "techniques/vct/vct_slots.h"
@@ -148,13 +149,8 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
     /* Injection: every light-view texel drawn as a point into the voxel holding its position
      * (vct_inject.vert), summed by additive blending into radiance (rgb: w L, a: w) and normal
      * (rgb: w n), w the texel's area in voxel faces. */
-    glBindFramebuffer(GL_FRAMEBUFFER, v->fbo);
-    glViewport(0, 0, v->res, v->res);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glBlendEquation(GL_FUNC_ADD);
+    gib_pass_apply(&(gib_pass_state){.fbo = v->fbo, .width = v->res, .height = v->res,
+                                     .blend = GIB_BLEND_ADD});
     glUseProgram(v->inject_program);
     grid_uniforms(v);
     glUniform1i(VCT_INJECT_LOC_LV_RES, lv_res);
@@ -166,7 +162,7 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
             glDrawArrays(GL_POINTS, 0, lv_res * lv_res);
         }
     glBindVertexArray(0);
-    glDisable(GL_BLEND);
+    gib_pass_end();
     /* The injection framebuffer stays bound: llvmpipe loses the begin of a GL_TIME_ELAPSED query
      * started while framebuffer 0 (none, surfaceless) is bound, and the next pass's time. */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
