@@ -32,7 +32,7 @@
 #define GIB_VOXELS_LOC_ORIGIN (GIB_LOC_VOXEL_FIRST + 0)  // vec3: the grid's lowest corner
 #define GIB_VOXELS_LOC_SIZE (GIB_LOC_VOXEL_FIRST + 1)    // float: the grid's side
 #define GIB_VOXELS_LOC_RES (GIB_LOC_VOXEL_FIRST + 2)     // int: voxels a side
-#define GIB_VOXELS_LOC_DENSITY (GIB_LOC_VOXEL_FIRST + 3) // int: how occupancy becomes a step's opacity
+#define GIB_VOXELS_LOC_DENSITY (GIB_LOC_VOXEL_FIRST + 3) // int: occupancy to a step's opacity
 
 // Voxelization (voxelize.comp).
 #define GIB_VOXELIZE_SSBO_POSITIONS (GIB_SSBO_OWN_FIRST + 0) // the GPU scene's positions
@@ -46,7 +46,7 @@
 #define GIB_VOXELIZE_LOC_INV_VOXEL (GIB_LOC_OWN_FIRST + 1)   // float: res / side
 #define GIB_VOXELIZE_LOC_RES (GIB_LOC_OWN_FIRST + 2)         // int
 #define GIB_VOXELIZE_LOC_TRIANGLES (GIB_LOC_OWN_FIRST + 3)   // uint: the scene's triangles
-#define GIB_VOXELIZE_LOC_MASK_FIRST (GIB_LOC_OWN_FIRST + 7)  // int: the pass's first mask (< 0: none)
+#define GIB_VOXELIZE_LOC_MASK_FIRST (GIB_LOC_OWN_FIRST + 7)  // int: the first mask, < 0 none
 
 // The voxels' mips (voxel_mip.comp): one level from the one below.
 #define GIB_VOXEL_MIP_IMAGE_DST (GIB_IMAGE_OWN_FIRST + 0)    // r8 3D, level l

@@ -8,7 +8,8 @@
 layout(location = GIB_LOC_MATERIAL) uniform int u_material;
 layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
 layout(location = GIB_LV_LOC_FORWARD) uniform vec3 u_forward;
-layout(location = GIB_LV_LOC_KIND) uniform int u_kind;      // enum gib_lv_kind: 0 cube, 1 perspective, 2 ortho
+// enum gib_lv_kind: 0 cube, 1 perspective, 2 ortho
+layout(location = GIB_LV_LOC_KIND) uniform int u_kind;
 layout(location = GIB_LV_LOC_LIGHT) uniform int u_light;
 layout(location = GIB_LV_LOC_TEXEL) uniform float u_texel;
 layout(binding = GIB_UNIT_ALBEDO_TEX) uniform sampler2D u_albedo_tex;

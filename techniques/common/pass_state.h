@@ -2,7 +2,8 @@
  * a pass never inherits what the pass before it left (blending, a stencil test, a colour mask).
  * Zero means the usual default in every field, as in sokol's sg_pipeline_desc: a pass writes only
  * what differs,
- *     gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = w, .height = h, .blend = GIB_BLEND_ADD});
+ *     gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = w, .height = h,
+ *                                      .blend = GIB_BLEND_ADD});
  * and what it leaves unwritten is off: no blending, no depth test, no culling, no stencil test,
  * colour written. The viewport has no default: width and height are the pass's. Programs, vertex
  * arrays, textures and buffers are not state here: a pass binds its own. A pass starts with

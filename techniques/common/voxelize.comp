@@ -18,7 +18,9 @@
 #include "common/common_slots.h"
 layout(local_size_x = 64) in;
 
-layout(std430, binding = GIB_VOXELIZE_SSBO_POSITIONS) readonly buffer Positions { float positions[]; };
+layout(std430, binding = GIB_VOXELIZE_SSBO_POSITIONS) readonly buffer Positions {
+    float positions[];
+};
 layout(std430, binding = GIB_VOXELIZE_SSBO_INDICES) readonly buffer Indices { uint indices[]; };
 // work[0..2]: the LARGE pass's indirect dispatch (groups, 1, 1); work[3]: large-triangle count;
 // work[4 .. 4 + T): their indices; work[4 + T + t]: triangle t's alpha mask, 0 for none, else

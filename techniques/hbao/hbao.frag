@@ -22,16 +22,20 @@ layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(location = HBAO_LOC_EYE) uniform vec3 u_eye;
 layout(location = HBAO_LOC_RIGHT) uniform vec3 u_right;    // world direction of screen +x
-layout(location = HBAO_LOC_UP) uniform vec3 u_up;       // world direction of screen +y (GL rows bottom up)
+// world direction of screen +y (GL rows bottom up)
+layout(location = HBAO_LOC_UP) uniform vec3 u_up;
 layout(location = HBAO_LOC_FORWARD) uniform vec3 u_forward;  // viewing direction
-layout(location = HBAO_LOC_FOCAL_PX) uniform float u_focal_px; // pixels per unit of (lateral offset / depth)
+// pixels per unit of (lateral offset / depth)
+layout(location = HBAO_LOC_FOCAL_PX) uniform float u_focal_px;
 layout(location = HBAO_LOC_RADIUS) uniform float u_radius;   // R = d_max, world units
 layout(location = HBAO_LOC_DIRS) uniform int u_dirs;
 layout(location = HBAO_LOC_STEPS) uniform int u_steps;
 layout(location = HBAO_LOC_BIAS) uniform float u_bias;     // tangent angle bias, radians
-layout(location = HBAO_LOC_FALLOFF) uniform int u_falloff;    // 1: W = 1 - r^2/R^2, 0: W = 1 inside R
+// 1: W = 1 - r^2/R^2, 0: W = 1 inside R
+layout(location = HBAO_LOC_FALLOFF) uniform int u_falloff;
 layout(location = HBAO_LOC_MAX_RADIUS_PX) uniform float u_max_radius_px; // 0: no clamp
-layout(location = HBAO_LOC_FINAL) uniform int u_final;     // 1: write (ao, ao, ao, 1), 0: write ao to R only
+// 1: write (ao, ao, ao, 1), 0: write ao to R only
+layout(location = HBAO_LOC_FINAL) uniform int u_final;
 layout(location = 0) out vec4 o_ao;
 
 const float TWO_PI = 6.28318530717959;

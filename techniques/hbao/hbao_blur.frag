@@ -11,7 +11,8 @@ layout(location = HBAO_BLUR_LOC_EYE) uniform vec3 u_eye;
 layout(location = HBAO_BLUR_LOC_FORWARD) uniform vec3 u_forward;
 layout(location = HBAO_BLUR_LOC_AXIS) uniform ivec2 u_axis;
 layout(location = HBAO_BLUR_LOC_RADIUS) uniform int u_radius;
-layout(location = HBAO_BLUR_LOC_TOLERANCE) uniform float u_tolerance; // plane distance scale, as a fraction of depth
+// plane distance scale, as a fraction of depth
+layout(location = HBAO_BLUR_LOC_TOLERANCE) uniform float u_tolerance;
 layout(location = HBAO_BLUR_LOC_FINAL) uniform int u_final;
 layout(location = 0) out vec4 o_ao;
 

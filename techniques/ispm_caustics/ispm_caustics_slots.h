@@ -15,7 +15,7 @@
 #define ISPM_SSBO_STATUS (GIB_SSBO_OWN_FIRST + 3)    // list count, overflows, longest list
 #define ISPM_SSBO_COUNTS (GIB_SSBO_OWN_FIRST + 4)    // the lists' lengths
 #define ISPM_SSBO_FIRST_HIT (GIB_SSBO_OWN_FIRST + 5) // a photon's nearest hit, atomicMin
-#define ISPM_SSBO_COMMAND (GIB_SSBO_OWN_FIRST + 6)   // uint[8]: lines {2, N, 0, 0}, points {N, 1, 0, 0}
+#define ISPM_SSBO_COMMAND (GIB_SSBO_OWN_FIRST + 6)   // the lines' and points' indirect draws
 #define ISPM_SSBO_RANDOM (GIB_SSBO_OWN_FIRST + 7)    // vec4[]: the random numbers of create
 
 // The camera's lists (list_lookup.glsl, list_build.frag, peel.frag, layers.comp).

@@ -4,7 +4,9 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = ISPM_SSBO_HEADS) writeonly buffer Heads { uint heads[]; };
 layout(std430, binding = ISPM_SSBO_NODES) writeonly buffer Nodes { Node nodes[]; };
-layout(std430, binding = ISPM_SSBO_STATUS) buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
+layout(std430, binding = ISPM_SSBO_STATUS) buffer Status {
+    uint list_count, list_overflow, photon_overflow, list_longest;
+};
 layout(binding = ISPM_UNIT_LAYER_FIRST + 0) uniform sampler2D u_layer0;
 layout(binding = ISPM_UNIT_LAYER_FIRST + 1) uniform sampler2D u_layer1;
 layout(binding = ISPM_UNIT_LAYER_FIRST + 2) uniform sampler2D u_layer2;

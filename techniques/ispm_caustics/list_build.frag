@@ -8,7 +8,9 @@
 #include "ispm_caustics/caustics.glsl"
 layout(std430, binding = ISPM_SSBO_HEADS) coherent buffer Heads { uint heads[]; };
 layout(std430, binding = ISPM_SSBO_NODES) writeonly buffer Nodes { Node nodes[]; };
-layout(std430, binding = ISPM_SSBO_STATUS) buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
+layout(std430, binding = ISPM_SSBO_STATUS) buffer Status {
+    uint list_count, list_overflow, photon_overflow, list_longest;
+};
 layout(std430, binding = ISPM_SSBO_COUNTS) buffer Counts { uint counts[]; };
 layout(location = GIB_LOC_MATERIAL) uniform int u_material;
 layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin; // the eye

@@ -2,7 +2,8 @@
 #include "ispm_caustics/caustics.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = ISPM_PROBE_SSBO_IN) readonly buffer In { vec4 xi[]; };       // xy xi1 xi2
-layout(std430, binding = ISPM_PROBE_SSBO_OUT) buffer Out { vec4 dirs[]; };              // xyz d, w accepted
+// xyz d, w accepted
+layout(std430, binding = ISPM_PROBE_SSBO_OUT) buffer Out { vec4 dirs[]; };
 layout(location = ISPM_PROBE_LOC_R) uniform vec3 u_r;
 layout(location = ISPM_PROBE_LOC_NORMAL) uniform vec3 u_normal;
 layout(location = ISPM_PROBE_LOC_N) uniform float u_n;

@@ -6,7 +6,8 @@
 #include "common/scene.glsl"
 #include "ldm/ldm_common.glsl"
 layout(std430, binding = GIB_SSBO_LDM_HEADS) coherent buffer Heads { uint heads[]; };
-layout(std430, binding = GIB_SSBO_LDM_NODES) coherent buffer Nodes { uvec2 nodes[]; }; // x depth bits, y next
+// x depth bits, y next
+layout(std430, binding = GIB_SSBO_LDM_NODES) coherent buffer Nodes { uvec2 nodes[]; };
 layout(std430, binding = GIB_SSBO_LDM_STATUS) buffer Status { uint overflow; uint contention; };
 layout(std430, binding = GIB_SSBO_LDM_COUNTERS) buffer Counters { uint counters[]; };
 layout(location = GIB_LOC_MATERIAL) uniform int u_material;

@@ -23,8 +23,10 @@ layout(location = LDMI_TRACE_LOC_FACE) uniform int u_face;           // the ligh
 layout(location = LDMI_TRACE_LOC_RES) uniform int u_res;            // light-view photon resolution
 layout(location = LDMI_TRACE_LOC_FIRST) uniform int u_first;          // LDMs of the bound page
 layout(location = LDMI_TRACE_LOC_COUNT) uniform int u_count;
-layout(location = LDMI_TRACE_LOC_SPLIT_WEIGHT) uniform float u_split_weight; // 2/N: each direction stands for 2 pi / N sr
-layout(location = LDMI_TRACE_LOC_VIEW_PROJ) uniform mat4 u_camera_view_proj; // maps p - u_camera_origin
+// 2/N: each direction stands for 2 pi / N sr
+layout(location = LDMI_TRACE_LOC_SPLIT_WEIGHT) uniform float u_split_weight;
+// maps p - u_camera_origin
+layout(location = LDMI_TRACE_LOC_VIEW_PROJ) uniform mat4 u_camera_view_proj;
 layout(location = LDMI_TRACE_LOC_ORIGIN) uniform vec3 u_camera_origin;
 layout(location = LDMI_TRACE_LOC_SIZE) uniform ivec2 u_camera_size;
 layout(location = LDMI_TRACE_LOC_OFFSET) uniform float u_offset_texels;
@@ -36,7 +38,8 @@ layout(location = LDMI_TRACE_LOC_CAPACITY) uniform uint u_capacity;
 #ifdef AUDIT
 #include "ldm_indirect/audit.glsl"
 layout(std430, binding = LDMI_SSBO_AUDIT) buffer Audit { vec4 audit[]; };
-layout(location = LDMI_TRACE_LOC_FIRST_PAGE) uniform int u_first_page; // 1 for the first LDM page: count the primary photon
+// 1 for the first LDM page: count the primary photon
+layout(location = LDMI_TRACE_LOC_FIRST_PAGE) uniform int u_first_page;
 vec3 acc[AUDIT_COUNT];
 shared vec3 group_acc[AUDIT_COUNT][64];
 #define TALLY(k, v) acc[k] += (v)

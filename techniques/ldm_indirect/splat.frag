@@ -19,7 +19,8 @@ layout(location = 0) out vec4 o_color;
 // times the patch's area: the pixel's solid angle (from the frustum's half-extents at distance 1
 // and the image size) times dist^2 / cos.
 layout(location = LDMI_SPLAT_LOC_EYE) uniform vec3 u_eye;
-layout(location = LDMI_SPLAT_LOC_TAN_SIZE) uniform vec4 u_tan_size; // xy: tan of the half-angles, zw: image size
+// xy: tan of the half-angles, zw: image size
+layout(location = LDMI_SPLAT_LOC_TAN_SIZE) uniform vec4 u_tan_size;
 #endif
 void main()
 {

@@ -48,7 +48,8 @@ layout(location = LRSM_CONE_LOC_APERTURE) uniform float u_aperture;     // radia
 layout(location = LRSM_CONE_LOC_START_OFFSET) uniform float u_start_offset; // voxels
 layout(location = LRSM_CONE_LOC_STEP_FACTOR) uniform float u_step_factor;
 layout(location = LRSM_CONE_LOC_MAX_DISTANCE) uniform float u_max_distance; // grid sides
-layout(location = LRSM_CONE_LOC_COVERAGE) uniform int u_coverage;       // 1: L normalised by the lit coverage
+// 1: L normalised by the lit coverage
+layout(location = LRSM_CONE_LOC_COVERAGE) uniform int u_coverage;
 in vec2 v_texcoord;
 layout(location = 0) out vec4 o_color;
 

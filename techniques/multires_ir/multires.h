@@ -29,7 +29,7 @@ typedef struct multires {
     int use_stencil;
     unsigned lo, hi, mean, nsum, irradiance, stencil, mask, fbo, fbo_mask, fbo_color;
     unsigned mips_program;
-    gib_fullscreen split, gather, upsample, resolve; /* full-screen passes over the flattened image */
+    gib_fullscreen split, gather, upsample, resolve; /* passes over the flattened image */
 } multires;
 
 /* depth_threshold: relative depth range that splits; normal_deg: the angle whose chord bounds a

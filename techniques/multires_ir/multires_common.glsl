@@ -8,7 +8,8 @@
 #include "multires_ir/multires_ir_slots.h"
 layout(location = MULTIRES_LOC_SIZE) uniform ivec2 u_size;       // W, H
 layout(location = MULTIRES_LOC_LEVELS) uniform int u_levels;
-layout(location = MULTIRES_LOC_DEPTH_THRESHOLD) uniform float u_depth_threshold;  // relative: max - min > t x min
+// relative: max - min > t x min
+layout(location = MULTIRES_LOC_DEPTH_THRESHOLD) uniform float u_depth_threshold;
 layout(location = MULTIRES_LOC_NORMAL_CHORD) uniform float u_normal_chord;     // 2 sin(theta / 2)
 const float MR_FAR = 1e30;
 

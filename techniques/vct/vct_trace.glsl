@@ -30,7 +30,8 @@
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
-layout(location = VCT_LOC_START_OFFSET) uniform float u_start_offset; // voxels, along the surface normal
+// voxels, along the surface normal
+layout(location = VCT_LOC_START_OFFSET) uniform float u_start_offset;
 layout(location = VCT_LOC_LEVEL_BIAS) uniform float u_level_bias;   // levels finer than log2(d)
 layout(binding = VCT_UNIT_ANISO_FIRST) uniform sampler3D u_aniso[6];   // +x -x +y -y +z -z
 

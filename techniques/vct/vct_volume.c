@@ -194,8 +194,8 @@ void vct_volume_mips(vct_volume *v)
                 glBindTextureUnit(VCT_ANISO_UNIT_SRC_FIRST + d, v->aniso[d]);
         }
         for (int d = 0; d < VCT_DIRECTIONS; d++)
-            glBindImageTexture(VCT_ANISO_IMAGE_DST_FIRST + (GLuint)d, v->aniso[d], level, GL_TRUE, 0,
-                               GL_WRITE_ONLY, GL_RGBA16F);
+            glBindImageTexture(VCT_ANISO_IMAGE_DST_FIRST + (GLuint)d, v->aniso[d], level,
+                               GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         int g = (side + 3) / 4;
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -104,7 +104,8 @@ def check_glsl(path, text):
         if ("in" in words or "out" in words) and not ("uniform" in words or "buffer" in words):
             continue  # a vertex input or fragment output: its location is not a slot
         if LITERAL_SLOT.search(qualifiers):
-            found.append((line_of(code, m.start()), "layout(%s) is a bare number" % qualifiers.strip()))
+            found.append((line_of(code, m.start()),
+                          "layout(%s) is a bare number" % qualifiers.strip()))
     return found
 
 
@@ -133,19 +134,33 @@ def check_tree(root):
     return problems, files
 
 
+# A scratch tree with bare numbers to find (file, line) and named slots to pass over.
 PLANTED = {
-    "t/t.c": ("void f(void)\n{\n    glUniform1f(9, 1.0f);\n    glBindBufferBase(GL_SHADER_STORAGE_BUFFER,\n"
-              "                     8, b);\n    glBindTextureUnit(T_UNIT, t); /* glBindTextureUnit(3, t) */\n"
-              "    glBindImageTexture((GLuint)0, t, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R8);\n"
-              "    glProgramUniform1i(p, 4, 1);\n    glUniform1i(T_LOC + 1, 2);\n}\n"),
-    "t/t.frag": ("layout(location = 0) out vec4 o;\nlayout(location = 2) in vec2 uv;\n"
-                 "layout(location = 3) uniform float u_a;\nlayout(std430, binding = 8) buffer B { uint b[]; };\n"
-                 "layout(binding = T_UNIT) uniform sampler2D s; // layout(binding = 1)\n"
-                 "layout(r8, binding = 1) writeonly uniform image3D img;\n"),
-    "t/t_slots.h": "// ok\n#ifndef T\n#define T\n#define T_UNIT 10\nint x;\n#endif\n",
+    "t/t.c": [
+        "void f(void)",
+        "{",
+        "    glUniform1f(9, 1.0f);",
+        "    glBindBufferBase(GL_SHADER_STORAGE_BUFFER,",
+        "                     8, b);",
+        "    glBindTextureUnit(T_UNIT, t); /* glBindTextureUnit(3, t) */",
+        "    glBindImageTexture((GLuint)0, t, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R8);",
+        "    glProgramUniform1i(p, 4, 1);",
+        "    glUniform1i(T_LOC + 1, 2);",
+        "    load(\"a/*.glsl\"); glUniform1i(5, 0); /* */",
+        "}",
+    ],
+    "t/t.frag": [
+        "layout(location = 0) out vec4 o;",
+        "layout(location = 2) in vec2 uv;",
+        "layout(location = 3) uniform float u_a;",
+        "layout(std430, binding = 8) buffer B { uint b[]; };",
+        "layout(binding = T_UNIT) uniform sampler2D s; // layout(binding = 1)",
+        "layout(r8, binding = 1) writeonly uniform image3D img;",
+    ],
+    "t/t_slots.h": ["// ok", "#ifndef T", "#define T", "#define T_UNIT 10", "int x;", "#endif"],
 }
-EXPECTED = {("t.c", 3), ("t.c", 4), ("t.c", 7), ("t.c", 8), ("t.frag", 3), ("t.frag", 4),
-            ("t.frag", 6), ("t_slots.h", 5)}
+EXPECTED = {("t.c", 3), ("t.c", 4), ("t.c", 7), ("t.c", 8), ("t.c", 10), ("t.frag", 3),
+            ("t.frag", 4), ("t.frag", 6), ("t_slots.h", 5)}
 
 
 def self_test():
@@ -153,7 +168,7 @@ def self_test():
         for rel, text in PLANTED.items():
             os.makedirs(os.path.join(root, os.path.dirname(rel)), exist_ok=True)
             with open(os.path.join(root, rel), "w") as f:
-                f.write(text)
+                f.write("\n".join(text) + "\n")
         problems, _ = check_tree(root)
         got = {(os.path.basename(p.split(":")[0]), int(p.split(":")[1])) for p in problems}
         if got != EXPECTED:
@@ -175,8 +190,8 @@ def main(argv):
     for p in problems:
         print(p)
     if problems:
-        print("FAIL: %d GL slots under %s are bare numbers; name them in harness/gl/bindings.h or the "
-              "technique's <name>_slots.h" % (len(problems), argv[1]))
+        print("FAIL: %d GL slots under %s are bare numbers; name them in harness/gl/bindings.h or "
+              "the technique's <name>_slots.h" % (len(problems), argv[1]))
         return 1
     print("%d files under %s: every GL slot named" % (files, argv[1]))
     return 0
