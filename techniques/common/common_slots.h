@@ -23,17 +23,6 @@
 #define GIB_LV_LOC_LIGHT 4              // int: the light's index
 #define GIB_LV_LOC_TEXEL 5              // float: a texel's side
 
-// Shadow lookup (shadow_lookup.glsl), in the range GIB_LOC_LV_FIRST.
-#define GIB_SHADOW_LOC_PCF_RADIUS (GIB_LOC_LV_FIRST + 1)    // int: (2r+1)^2 taps
-#define GIB_SHADOW_LOC_NORMAL_OFFSET (GIB_LOC_LV_FIRST + 2) // float: texels
-
-// The occlusion voxels' grid (voxel_cone.glsl; vct's radiance volume takes the same slots), in
-// the range GIB_LOC_VOXEL_FIRST.
-#define GIB_VOXELS_LOC_ORIGIN (GIB_LOC_VOXEL_FIRST + 0)  // vec3: the grid's lowest corner
-#define GIB_VOXELS_LOC_SIZE (GIB_LOC_VOXEL_FIRST + 1)    // float: the grid's side
-#define GIB_VOXELS_LOC_RES (GIB_LOC_VOXEL_FIRST + 2)     // int: voxels a side
-#define GIB_VOXELS_LOC_DENSITY (GIB_LOC_VOXEL_FIRST + 3) // int: occupancy to a step's opacity
-
 // Voxelization (voxelize.comp).
 #define GIB_VOXELIZE_SSBO_POSITIONS (GIB_SSBO_OWN_FIRST + 0) // the GPU scene's positions
 #define GIB_VOXELIZE_SSBO_INDICES (GIB_SSBO_OWN_FIRST + 1)   //   its triangles

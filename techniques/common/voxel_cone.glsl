@@ -4,16 +4,16 @@
 // samples are accumulated front to back (Eq. 1). The techniques write their own radiance cones with
 // these pieces; shadow_cone is Eq. 1 with L = 0 (only the transmittance). Apertures are full apex
 // angles (a 60-degree cone has a 30-degree half-angle).
-#include "common/common_slots.h"
+#include "gl/bindings.h"
 #include "common/basis.glsl"
 
 layout(binding = GIB_UNIT_VOXELS) uniform sampler3D u_voxels;
-layout(location = GIB_VOXELS_LOC_ORIGIN) uniform vec3 u_voxel_origin;
-layout(location = GIB_VOXELS_LOC_SIZE) uniform float u_voxel_size;  // grid side
-layout(location = GIB_VOXELS_LOC_RES) uniform int u_voxel_res;
+layout(location = GIB_LOC_VOXEL_ORIGIN) uniform vec3 u_voxel_origin;
+layout(location = GIB_LOC_VOXEL_SIZE) uniform float u_voxel_size;  // grid side
+layout(location = GIB_LOC_VOXEL_RES) uniform int u_voxel_res;
 // How a sample's mean occupancy becomes the opacity of a cone step (voxel_step_alpha); 0 unless a
 // pass sets it.
-layout(location = GIB_VOXELS_LOC_DENSITY) uniform int u_voxel_density;
+layout(location = GIB_LOC_VOXEL_DENSITY) uniform int u_voxel_density;
 
 float voxel_size_world() { return u_voxel_size / float(u_voxel_res); }
 

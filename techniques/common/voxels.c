@@ -191,9 +191,9 @@ void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *tim
 void gib_voxels_bind(const gib_voxels *v)
 {
     glBindTextureUnit(GIB_UNIT_VOXELS, v->texture);
-    glUniform3fv(GIB_VOXELS_LOC_ORIGIN, 1, v->origin);
-    glUniform1f(GIB_VOXELS_LOC_SIZE, v->size);
-    glUniform1i(GIB_VOXELS_LOC_RES, v->res);
+    glUniform3fv(GIB_LOC_VOXEL_ORIGIN, 1, v->origin);
+    glUniform1f(GIB_LOC_VOXEL_SIZE, v->size);
+    glUniform1i(GIB_LOC_VOXEL_RES, v->res);
 }
 
 void gib_voxels_destroy(gib_voxels *v, gib_ledger *ledger)

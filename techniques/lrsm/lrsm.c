@@ -20,7 +20,6 @@
 #include <string.h>
 
 #include "harness/gl/context.h"
-#include "techniques/common/common_slots.h"
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/voxels.h"
@@ -168,7 +167,7 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     glUniform1i(LRSM_LOC_SEAMS, s->seams);
     glUniform1i(LRSM_CONE_LOC_COVERAGE, s->coverage);
     glUniform1i(LRSM_LOC_VISIBILITY, s->visibility);
-    glUniform1i(GIB_VOXELS_LOC_DENSITY, which == PASS_SHADOW ? 0 : s->opacity);
+    glUniform1i(GIB_LOC_VOXEL_DENSITY, which == PASS_SHADOW ? 0 : s->opacity);
     gib_fullscreen_draw(&s->pass[which]);
     gib_fullscreen_end();
     gib_timer_end(timers);

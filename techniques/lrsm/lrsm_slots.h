@@ -1,7 +1,7 @@
 // gibench - the GL slots of technique `lrsm` (lrsm_build.comp, lrsm_cone.frag, lrsm_probe.comp and
 // the files they include), for C and GLSL alike: only #define lines and // comments. The cone
 // pass reads the G-buffer (GIB_UNIT_GBUF_*), the light views (GIB_UNIT_LV_*) and the occlusion
-// voxels (GIB_UNIT_VOXELS, GIB_VOXELS_LOC_*: techniques/common/common_slots.h).
+// voxels (GIB_UNIT_VOXELS, GIB_LOC_VOXEL_*: harness/gl/bindings.h).
 #ifndef LRSM_SLOTS_H
 #define LRSM_SLOTS_H
 

@@ -1,6 +1,6 @@
 // gibench - the GL slots of technique `vct` (vct_*.vert/.frag/.comp, vct_trace.glsl), for C and
 // GLSL alike: only #define lines and // comments. The radiance volume takes the occlusion voxels'
-// slots (GIB_UNIT_VOXELS and GIB_VOXELS_LOC_ORIGIN/SIZE/RES, techniques/common/common_slots.h) so
+// slots (GIB_UNIT_VOXELS and GIB_LOC_VOXEL_ORIGIN/SIZE/RES, harness/gl/bindings.h) so
 // that the cones read it with common/voxel_cone.glsl.
 #ifndef VCT_SLOTS_H
 #define VCT_SLOTS_H

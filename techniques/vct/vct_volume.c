@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include "harness/gl/context.h"
-#include "techniques/common/common_slots.h"
 #include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
@@ -134,9 +133,9 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
 
 static void grid_uniforms(const vct_volume *v)
 {
-    glUniform3fv(GIB_VOXELS_LOC_ORIGIN, 1, v->origin);
-    glUniform1f(GIB_VOXELS_LOC_SIZE, v->size);
-    glUniform1i(GIB_VOXELS_LOC_RES, v->res);
+    glUniform3fv(GIB_LOC_VOXEL_ORIGIN, 1, v->origin);
+    glUniform1f(GIB_LOC_VOXEL_SIZE, v->size);
+    glUniform1i(GIB_LOC_VOXEL_RES, v->res);
 }
 
 void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
