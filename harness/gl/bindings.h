@@ -1,6 +1,7 @@
 // gibench — the GL binding points every pass shares, one table for C and GLSL (both include this
 // file: only #define lines and // comments, valid in both languages). A shared slot has a name
-// here; a pass's own resources use the ranges marked "own" (ARCHITECTURE.md, "GL bindings").
+// here; a pass's own resources use the ranges marked "own", named in its technique's slots header
+// (techniques/<name>/<name>_slots.h; ARCHITECTURE.md, "GL bindings").
 #ifndef GIB_BINDINGS_H
 #define GIB_BINDINGS_H
 
@@ -39,6 +40,15 @@
 #define GIB_LOC_ORIGIN 6          // vec3: the view's origin (positions are sent as p - origin)
 #define GIB_LOC_OWN_FIRST 2       // 2..5 and 7..19: a pass's own uniforms
 #define GIB_LOC_LV_FIRST 20       // 20..23: the shadow lookup (common/shadow_lookup.glsl)
+#define GIB_LOC_LV_PCF_RADIUS (GIB_LOC_LV_FIRST + 1)    //   int: (2r+1)^2 taps
+#define GIB_LOC_LV_NORMAL_OFFSET (GIB_LOC_LV_FIRST + 2) //   float: along the normal, texels
 #define GIB_LOC_VOXEL_FIRST 24    // 24..27: the occlusion voxels' grid (common/voxel_cone.glsl)
+#define GIB_LOC_VOXEL_ORIGIN (GIB_LOC_VOXEL_FIRST + 0)  //   vec3: the grid's lowest corner
+#define GIB_LOC_VOXEL_SIZE (GIB_LOC_VOXEL_FIRST + 1)    //   float: its side
+#define GIB_LOC_VOXEL_RES (GIB_LOC_VOXEL_FIRST + 2)     //   int: voxels a side
+#define GIB_LOC_VOXEL_DENSITY (GIB_LOC_VOXEL_FIRST + 3) //   int: occupancy to a step's opacity
+
+// Image units (glBindImageTexture, layout(binding = N, format) image*): no shared ones.
+#define GIB_IMAGE_OWN_FIRST 0     // 0..7: a pass's own images
 
 #endif

@@ -3,6 +3,8 @@
 #include <glad/gl.h>
 #include <string.h>
 
+#include "techniques/common/common_slots.h"
+
 int gib_direct_light_create(gib_direct_light *d, const gib_gpu_scene *scene, int shadow_res,
                             int pcf_radius, float normal_offset, gib_ledger *ledger,
                             gib_error *err)
@@ -30,8 +32,8 @@ void gib_direct_light_shade(gib_direct_light *d, const gib_gpu_scene *scene,
     gib_gpu_scene_bind(scene);
     gib_gbuffer_bind(gbuffer);
     gib_shadow_maps_bind(&d->shadows, d->pcf_radius, d->normal_offset);
-    glUniform3fv(2, 1, view->camera->eye);
-    glUniform1i(3, (int)scene->scene->light_count);
+    glUniform3fv(GIB_DIRECT_LOC_EYE, 1, view->camera->eye);
+    glUniform1i(GIB_DIRECT_LOC_LIGHT_COUNT, (int)scene->scene->light_count);
     gib_fullscreen_draw(&d->pass);
     gib_fullscreen_end();
     gib_timer_end(timers);

@@ -1,13 +1,14 @@
 #include "common/scene.glsl"
 #include "common/shadow_lookup.glsl"
+#include "common/common_slots.h"
 // Direct light (L D E and L S E) from every light of the scene, with PCF shadow maps, evaluated on
 // the G-buffer: the same BRDF and light falloff as the reference's `direct` estimator.
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
 layout(binding = GIB_UNIT_GBUF_SPECULAR) uniform sampler2D g_specular;
-layout(location = 2) uniform vec3 u_eye;
-layout(location = 3) uniform int u_light_count;
+layout(location = GIB_DIRECT_LOC_EYE) uniform vec3 u_eye;
+layout(location = GIB_DIRECT_LOC_LIGHT_COUNT) uniform int u_light_count;
 in vec2 v_texcoord;
 layout(location = 0) out vec4 o_color;
 void main()

@@ -19,15 +19,14 @@ int gib_fullscreen_create(gib_fullscreen *fs, const char *fragment, const char *
 void gib_fullscreen_begin(const gib_fullscreen *fs, unsigned fbo, int width, int height,
                           int additive)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, width, height);
-    glDisable(GL_DEPTH_TEST);
-    if (additive) {
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-    } else {
-        glDisable(GL_BLEND);
-    }
+    const gib_pass_state state = {.fbo = fbo, .width = width, .height = height,
+                                  .blend = additive ? GIB_BLEND_ADD : GIB_BLEND_OFF};
+    gib_fullscreen_begin_pass(fs, &state);
+}
+
+void gib_fullscreen_begin_pass(const gib_fullscreen *fs, const gib_pass_state *state)
+{
+    gib_pass_apply(state);
     glUseProgram(fs->program);
     glBindVertexArray(fs->vao);
 }
@@ -41,7 +40,7 @@ void gib_fullscreen_draw(const gib_fullscreen *fs)
 void gib_fullscreen_end(void)
 {
     glBindVertexArray(0);
-    glDisable(GL_BLEND);
+    gib_pass_end();
 }
 
 void gib_fullscreen_destroy(gib_fullscreen *fs)

@@ -4,6 +4,8 @@
 #include <string.h>
 
 #include "harness/gl/context.h"
+#include "techniques/common/common_slots.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 
 int gib_gbuffer_create(gib_gbuffer *g, int w, int h, gib_ledger *ledger, gib_error *err)
@@ -41,30 +43,27 @@ void gib_gbuffer_render(gib_gbuffer *g, const gib_gpu_scene *scene, const gib_vi
                         gib_timers *timers, const char *pass)
 {
     gib_timer_begin(timers, pass);
-    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
-    glViewport(0, 0, g->width, g->height);
+    gib_pass_apply(&(gib_pass_state){.fbo = g->fbo, .width = g->width, .height = g->height,
+                                     .depth = GIB_DEPTH_LESS});
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; i++)
         glClearBufferfv(GL_COLOR, i, zero);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
     glUseProgram(g->program);
-    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
-    glUniform3fv(6, 1, view->origin);
-    glUniform3fv(2, 1, view->camera->eye);
+    glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
+    glUniform3fv(GIB_GBUFFER_LOC_EYE, 1, view->camera->eye);
     gib_gpu_scene_draw(scene);
+    gib_pass_end();
     gib_timer_end(timers);
 }
 
 void gib_gbuffer_bind(const gib_gbuffer *g)
 {
-    glBindTextureUnit(0, g->position);
-    glBindTextureUnit(1, g->normal);
-    glBindTextureUnit(2, g->albedo);
-    glBindTextureUnit(3, g->specular);
+    glBindTextureUnit(GIB_UNIT_GBUF_POSITION, g->position);
+    glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, g->normal);
+    glBindTextureUnit(GIB_UNIT_GBUF_ALBEDO, g->albedo);
+    glBindTextureUnit(GIB_UNIT_GBUF_SPECULAR, g->specular);
 }
 
 void gib_gbuffer_destroy(gib_gbuffer *g, gib_ledger *ledger)

@@ -1,11 +1,12 @@
 #include "common/scene.glsl"
+#include "common/common_slots.h"
 // G-buffer: world position, viewer-facing shading normal, albedo (rho_d x texture), specular.
 // The path tracer makes the same choices at its primary hit (reference/): two-sided materials flip
 // the normal toward the viewer; one-sided materials seen from behind reflect nothing.
-layout(location = 0) uniform int u_material;
-layout(location = 2) uniform vec3 u_eye;
-layout(binding = 0) uniform sampler2D u_albedo_tex;
-layout(binding = 1) uniform sampler2D u_alpha_tex;
+layout(location = GIB_LOC_MATERIAL) uniform int u_material;
+layout(location = GIB_GBUFFER_LOC_EYE) uniform vec3 u_eye;
+layout(binding = GIB_UNIT_ALBEDO_TEX) uniform sampler2D u_albedo_tex;
+layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;

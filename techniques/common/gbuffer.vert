@@ -1,8 +1,10 @@
+#include "gl/bindings.h"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
-layout(location = 1) uniform mat4 u_view_proj; // maps p - u_origin (camera-relative: precision)
-layout(location = 6) uniform vec3 u_origin;
+// maps p - u_origin (camera-relative: precision)
+layout(location = GIB_LOC_VIEW_PROJ) uniform mat4 u_view_proj;
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
 out vec3 v_position;
 out vec3 v_normal;
 out vec2 v_uv;

@@ -6,8 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
+#include "techniques/common/common_slots.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 
 /* GL's cube-map face order, with up vectors giving each face a right-handed view. */
@@ -203,14 +204,10 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
     set_up_views(lv, gpu->scene);
     glNamedBufferSubData(lv->table, 0, sizeof(float) * (GLsizeiptr)lv->table_floats,
                          lv->table_data);
-    glViewport(0, 0, lv->res, lv->res);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    gib_pass_apply(&(gib_pass_state){.fbo = lv->fbo, .width = lv->res, .height = lv->res,
+                                     .depth = GIB_DEPTH_LESS});
     glUseProgram(lv->program);
     gib_gpu_scene_bind(gpu);
-    glBindFramebuffer(GL_FRAMEBUFFER, lv->fbo);
     /* Empty texels: depth +inf (the first attribute, or the packed depth in w), the rest 0. */
     const float far[4] = {INFINITY, INFINITY, INFINITY, INFINITY}, zero[4] = {0, 0, 0, 0},
                 far_packed[4] = {0, 0, 0, INFINITY};
@@ -226,12 +223,13 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
         glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, face->view_proj);
         glUniform3fv(GIB_LOC_ORIGIN, 1, face->origin);
-        glUniform3fv(2, 1, face->forward);
-        glUniform1i(3, face->kind);
-        glUniform1i(4, face->light);
-        glUniform1f(5, lv->texel[face->light]);
+        glUniform3fv(GIB_LV_LOC_FORWARD, 1, face->forward);
+        glUniform1i(GIB_LV_LOC_KIND, face->kind);
+        glUniform1i(GIB_LV_LOC_LIGHT, face->light);
+        glUniform1f(GIB_LV_LOC_TEXEL, lv->texel[face->light]);
         gib_gpu_scene_draw(gpu);
     }
+    gib_pass_end();
     gib_timer_end(timers);
 }
 

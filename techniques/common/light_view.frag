@@ -1,4 +1,5 @@
 #include "common/scene.glsl"
+#include "common/common_slots.h"
 // One face of a light's view (techniques/common/light_view.c): what the light sees at each texel,
 // as a reflective shadow map. Flux per texel: a point or spot light of intensity I sends
 // I(w) dw into the texel's solid angle dw = s^2 cos^3(theta) (s: the texel's side on the plane at
@@ -6,10 +7,11 @@
 // E s^2 through a texel of side s. The surface there reflects rho_d times that flux diffusely.
 layout(location = GIB_LOC_MATERIAL) uniform int u_material;
 layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
-layout(location = 2) uniform vec3 u_forward;
-layout(location = 3) uniform int u_kind;      // enum gib_lv_kind: 0 cube, 1 perspective, 2 ortho
-layout(location = 4) uniform int u_light;
-layout(location = 5) uniform float u_texel;
+layout(location = GIB_LV_LOC_FORWARD) uniform vec3 u_forward;
+// enum gib_lv_kind: 0 cube, 1 perspective, 2 ortho
+layout(location = GIB_LV_LOC_KIND) uniform int u_kind;
+layout(location = GIB_LV_LOC_LIGHT) uniform int u_light;
+layout(location = GIB_LV_LOC_TEXEL) uniform float u_texel;
 layout(binding = GIB_UNIT_ALBEDO_TEX) uniform sampler2D u_albedo_tex;
 layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
 in vec3 v_position;

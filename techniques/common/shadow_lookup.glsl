@@ -5,8 +5,8 @@
 #include "common/basis.glsl"
 #include "common/light_view.glsl"
 layout(binding = GIB_UNIT_LV_DEPTH) uniform sampler2DArray u_lv_depth;
-layout(location = GIB_LOC_LV_FIRST + 1) uniform int u_pcf_radius;     // (2r+1)^2 taps
-layout(location = GIB_LOC_LV_FIRST + 2) uniform float u_normal_offset; // in texels
+layout(location = GIB_LOC_LV_PCF_RADIUS) uniform int u_pcf_radius;    // (2r+1)^2 taps
+layout(location = GIB_LOC_LV_NORMAL_OFFSET) uniform float u_normal_offset; // in texels
 
 // Depth tolerance for a map of texel size `texel` seen at incidence cosine `cosi`: one texel, plus
 // the depth a surface tilted by theta spans across a texel (texel * tan theta, capped at 8 texels

@@ -18,8 +18,8 @@ void gib_shadow_maps_render(gib_shadow_maps *sm, const gib_gpu_scene *gpu, gib_t
 void gib_shadow_maps_bind(const gib_shadow_maps *sm, int pcf_radius, float normal_offset)
 {
     gib_light_views_bind(&sm->views);
-    glUniform1i(GIB_LOC_LV_FIRST + 1, pcf_radius);
-    glUniform1f(GIB_LOC_LV_FIRST + 2, normal_offset);
+    glUniform1i(GIB_LOC_LV_PCF_RADIUS, pcf_radius);
+    glUniform1f(GIB_LOC_LV_NORMAL_OFFSET, normal_offset);
 }
 
 void gib_shadow_maps_destroy(gib_shadow_maps *sm, gib_ledger *ledger)

@@ -8,12 +8,12 @@
 #include "common/basis.glsl"
 
 layout(binding = GIB_UNIT_VOXELS) uniform sampler3D u_voxels;
-layout(location = GIB_LOC_VOXEL_FIRST + 0) uniform vec3 u_voxel_origin;
-layout(location = GIB_LOC_VOXEL_FIRST + 1) uniform float u_voxel_size;  // grid side
-layout(location = GIB_LOC_VOXEL_FIRST + 2) uniform int u_voxel_res;
+layout(location = GIB_LOC_VOXEL_ORIGIN) uniform vec3 u_voxel_origin;
+layout(location = GIB_LOC_VOXEL_SIZE) uniform float u_voxel_size;  // grid side
+layout(location = GIB_LOC_VOXEL_RES) uniform int u_voxel_res;
 // How a sample's mean occupancy becomes the opacity of a cone step (voxel_step_alpha); 0 unless a
 // pass sets it.
-layout(location = GIB_LOC_VOXEL_FIRST + 3) uniform int u_voxel_density;
+layout(location = GIB_LOC_VOXEL_DENSITY) uniform int u_voxel_density;
 
 float voxel_size_world() { return u_voxel_size / float(u_voxel_res); }
 

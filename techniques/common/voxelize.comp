@@ -15,32 +15,34 @@
 // Triangles with more than LARGE_COLUMNS columns are listed by the first pass (SMALL) and done by a
 // second pass (LARGE) with one 64-wide work group per triangle, so one invocation never walks a
 // floor's million columns alone. Every writer stores 1: no atomics on the texture (paper, Sec. 5).
-#include "gl/bindings.h"
+#include "common/common_slots.h"
 layout(local_size_x = 64) in;
 
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 0) readonly buffer Positions { float positions[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = GIB_VOXELIZE_SSBO_POSITIONS) readonly buffer Positions {
+    float positions[];
+};
+layout(std430, binding = GIB_VOXELIZE_SSBO_INDICES) readonly buffer Indices { uint indices[]; };
 // work[0..2]: the LARGE pass's indirect dispatch (groups, 1, 1); work[3]: large-triangle count;
 // work[4 .. 4 + T): their indices; work[4 + T + t]: triangle t's alpha mask, 0 for none, else
 // its id (1 + an index into gib_voxels.mask_tex; static, written at creation).
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) buffer Work { uint work[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 3) readonly buffer Uvs { float uvs[]; };
-layout(r8, binding = 0) writeonly uniform image3D u_vox;
+layout(std430, binding = GIB_VOXELIZE_SSBO_WORK) buffer Work { uint work[]; };
+layout(std430, binding = GIB_VOXELIZE_SSBO_UVS) readonly buffer Uvs { float uvs[]; };
+layout(r8, binding = GIB_VOXELIZE_IMAGE_VOXELS) writeonly uniform image3D u_vox;
 #ifdef ALPHA
 // The masks of this pass: scene textures u_mask_first .. u_mask_first + 5 (a pass per 6 masks).
-layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler2D u_mask0;
-layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2D u_mask1;
-layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2D u_mask2;
-layout(binding = GIB_UNIT_OWN_FIRST + 3) uniform sampler2D u_mask3;
-layout(binding = GIB_UNIT_OWN_FIRST + 4) uniform sampler2D u_mask4;
-layout(binding = GIB_UNIT_OWN_FIRST + 5) uniform sampler2D u_mask5;
+layout(binding = GIB_VOXELIZE_UNIT_MASK_FIRST + 0) uniform sampler2D u_mask0;
+layout(binding = GIB_VOXELIZE_UNIT_MASK_FIRST + 1) uniform sampler2D u_mask1;
+layout(binding = GIB_VOXELIZE_UNIT_MASK_FIRST + 2) uniform sampler2D u_mask2;
+layout(binding = GIB_VOXELIZE_UNIT_MASK_FIRST + 3) uniform sampler2D u_mask3;
+layout(binding = GIB_VOXELIZE_UNIT_MASK_FIRST + 4) uniform sampler2D u_mask4;
+layout(binding = GIB_VOXELIZE_UNIT_MASK_FIRST + 5) uniform sampler2D u_mask5;
 #endif
 
-layout(location = GIB_LOC_OWN_FIRST + 0) uniform vec3 u_grid_origin;
-layout(location = GIB_LOC_OWN_FIRST + 1) uniform float u_inv_voxel;   // res / side
-layout(location = GIB_LOC_OWN_FIRST + 2) uniform int u_res;
-layout(location = GIB_LOC_OWN_FIRST + 3) uniform uint u_triangle_count;
-layout(location = GIB_LOC_OWN_FIRST + 7) uniform int u_mask_first;  // ALPHA
+layout(location = GIB_VOXELIZE_LOC_ORIGIN) uniform vec3 u_grid_origin;
+layout(location = GIB_VOXELIZE_LOC_INV_VOXEL) uniform float u_inv_voxel;   // res / side
+layout(location = GIB_VOXELIZE_LOC_RES) uniform int u_res;
+layout(location = GIB_VOXELIZE_LOC_TRIANGLES) uniform uint u_triangle_count;
+layout(location = GIB_VOXELIZE_LOC_MASK_FIRST) uniform int u_mask_first;  // ALPHA
 
 const float EPS = 1e-3;        // dilation in voxels: float error of voxel coordinates up to 512
 const float H = 0.5 + EPS;     // half side of the tested box

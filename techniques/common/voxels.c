@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
+#include "techniques/common/common_slots.h"
 #include "techniques/common/shader.h"
 
 uint64_t gib_voxels_bytes(int res)
@@ -119,15 +119,17 @@ void gib_voxels_mips(gib_voxels *v)
     const int levels = gib_mip_levels(v->res, v->res, v->res);
     for (int l = 1; l < levels; l++) {
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        glBindImageTexture(0, v->texture, l, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8);
-        glBindImageTexture(1, v->texture, l - 1, GL_TRUE, 0, GL_READ_ONLY, GL_R8);
+        glBindImageTexture(GIB_VOXEL_MIP_IMAGE_DST, v->texture, l, GL_TRUE, 0, GL_WRITE_ONLY,
+                           GL_R8);
+        glBindImageTexture(GIB_VOXEL_MIP_IMAGE_SRC, v->texture, l - 1, GL_TRUE, 0, GL_READ_ONLY,
+                           GL_R8);
         const GLuint n = (GLuint)(((v->res >> l) + 3) / 4);
         glDispatchCompute(n, n, n);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glUseProgram(0);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+    glBindImageTexture(GIB_VOXEL_MIP_IMAGE_DST, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
+    glBindImageTexture(GIB_VOXEL_MIP_IMAGE_SRC, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
 }
 
 void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *timers,
@@ -138,30 +140,33 @@ void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *tim
     const unsigned char zero = 0;
     glClearTexImage(v->texture, 0, GL_RED, GL_UNSIGNED_BYTE, &zero);
     if (v->triangle_count) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 0, scene->positions);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, scene->indices);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, v->work);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 3, scene->uvs);
-        glBindImageTexture(0, v->texture, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VOXELIZE_SSBO_POSITIONS,
+                         scene->positions);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VOXELIZE_SSBO_INDICES, scene->indices);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VOXELIZE_SSBO_WORK, v->work);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VOXELIZE_SSBO_UVS, scene->uvs);
+        glBindImageTexture(GIB_VOXELIZE_IMAGE_VOXELS, v->texture, 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                           GL_R8);
         /* A pass for the triangles without a mask, then one per 6 alpha masks (the samplers one
          * pass binds): separate programs, as sampling code in the loop slows llvmpipe down
          * even where no triangle takes it. */
-        for (int first = -6; first < v->mask_count; first += 6) {
+        for (int first = -GIB_VOXELIZE_MASKS; first < v->mask_count; first += GIB_VOXELIZE_MASKS) {
             const unsigned *programs = v->program + (first < 0 ? 0 : 2);
-            for (int j = 0; j < 6; j++)
-                glBindTextureUnit(GIB_UNIT_OWN_FIRST + j, first >= 0 && first + j < v->mask_count
-                                  ? scene->textures[v->mask_tex[first + j]] : scene->white);
+            for (int j = 0; j < GIB_VOXELIZE_MASKS; j++)
+                glBindTextureUnit(GIB_VOXELIZE_UNIT_MASK_FIRST + j,
+                                  first >= 0 && first + j < v->mask_count
+                                      ? scene->textures[v->mask_tex[first + j]] : scene->white);
             const uint32_t reset[4] = {0, 1, 1, 0};
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                             GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glNamedBufferSubData(v->work, 0, sizeof reset, reset);
             for (int i = 0; i < 2; i++) {
                 glUseProgram(programs[i]);
-                glUniform3fv(GIB_LOC_OWN_FIRST + 0, 1, v->origin);
-                glUniform1f(GIB_LOC_OWN_FIRST + 1, (float)v->res / v->size);
-                glUniform1i(GIB_LOC_OWN_FIRST + 2, v->res);
-                glUniform1ui(GIB_LOC_OWN_FIRST + 3, v->triangle_count);
-                glUniform1i(GIB_LOC_OWN_FIRST + 7, first);
+                glUniform3fv(GIB_VOXELIZE_LOC_ORIGIN, 1, v->origin);
+                glUniform1f(GIB_VOXELIZE_LOC_INV_VOXEL, (float)v->res / v->size);
+                glUniform1i(GIB_VOXELIZE_LOC_RES, v->res);
+                glUniform1ui(GIB_VOXELIZE_LOC_TRIANGLES, v->triangle_count);
+                glUniform1i(GIB_VOXELIZE_LOC_MASK_FIRST, first);
                 if (i == 0) {
                     glDispatchCompute((v->triangle_count + 63) / 64, 1, 1);
                     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -173,9 +178,9 @@ void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *tim
             }
         }
         glUseProgram(0);
-        for (int j = 0; j < 6; j++)
-            glBindTextureUnit(GIB_UNIT_OWN_FIRST + j, 0);
-        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
+        for (int j = 0; j < GIB_VOXELIZE_MASKS; j++)
+            glBindTextureUnit(GIB_VOXELIZE_UNIT_MASK_FIRST + j, 0);
+        glBindImageTexture(GIB_VOXELIZE_IMAGE_VOXELS, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
     gib_voxels_mips(v);
@@ -186,9 +191,9 @@ void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *tim
 void gib_voxels_bind(const gib_voxels *v)
 {
     glBindTextureUnit(GIB_UNIT_VOXELS, v->texture);
-    glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, v->origin);
-    glUniform1f(GIB_LOC_VOXEL_FIRST + 1, v->size);
-    glUniform1i(GIB_LOC_VOXEL_FIRST + 2, v->res);
+    glUniform3fv(GIB_LOC_VOXEL_ORIGIN, 1, v->origin);
+    glUniform1f(GIB_LOC_VOXEL_SIZE, v->size);
+    glUniform1i(GIB_LOC_VOXEL_RES, v->res);
 }
 
 void gib_voxels_destroy(gib_voxels *v, gib_ledger *ledger)

@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
+#include "techniques/common/common_slots.h"
 #include "techniques/common/shader.h"
 
 /* A small deterministic generator (splitmix64): the pattern depends on the seed only. */
@@ -177,11 +177,11 @@ void gib_vpls_update(gib_vpls *v, const gib_light_views *views, gib_timers *time
     gib_timer_begin(timers, pass);
     glUseProgram(v->program);
     gib_light_views_bind(views);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST, v->buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, v->cells);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, v->texels);
-    glUniform1i(2, v->res);
-    glUniform1i(3, v->count);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VPL_SSBO_VPLS, v->buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VPL_SSBO_CELLS, v->cells);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VPL_SSBO_TEXELS, v->texels);
+    glUniform1i(GIB_VPL_LOC_RES, v->res);
+    glUniform1i(GIB_VPL_LOC_COUNT, v->count);
     glDispatchCompute((GLuint)v->count, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gib_timer_end(timers);
@@ -189,7 +189,7 @@ void gib_vpls_update(gib_vpls *v, const gib_light_views *views, gib_timers *time
 
 void gib_vpls_bind(const gib_vpls *v)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST, v->buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VPL_SSBO_VPLS, v->buffer);
 }
 
 int gib_vpls_read(const gib_vpls *v, float *out)
@@ -221,11 +221,11 @@ int gib_vpls_probe(const gib_vpls *v, float clamp_distance, const float *in, int
     glNamedBufferStorage(buf[1], (GLsizeiptr)(16ull * n), NULL, GL_DYNAMIC_STORAGE_BIT);
     glUseProgram(prog);
     gib_vpls_bind(v);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, buf[0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, buf[1]);
-    glUniform1i(2, n);
-    glUniform1i(3, v->count);
-    glUniform1f(4, clamp_distance);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VPL_PROBE_SSBO_IN, buf[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_VPL_PROBE_SSBO_OUT, buf[1]);
+    glUniform1i(GIB_VPL_PROBE_LOC_COUNT, n);
+    glUniform1i(GIB_VPL_PROBE_LOC_VPLS, v->count);
+    glUniform1f(GIB_VPL_PROBE_LOC_EPS, clamp_distance);
     glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(16ull * n), out);

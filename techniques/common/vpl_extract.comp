@@ -1,4 +1,4 @@
-#include "gl/bindings.h"
+#include "common/common_slots.h"
 // VPL extraction (common/vpl.h): one work group per VPL sums the reflected flux of its region of
 // light-view texels and takes position and normal from the texel under its sample point, or from
 // the region's texel nearest to it that holds a surface (ties: the lower texel index).
@@ -8,14 +8,14 @@ struct Vpl {
     vec4 normal;
     vec4 flux;
 };
-layout(std430, binding = GIB_SSBO_OWN_FIRST) writeonly buffer Vpls { Vpl vpls[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer Cells { ivec4 cells[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) readonly buffer Texels { int texels[]; };
+layout(std430, binding = GIB_VPL_SSBO_VPLS) writeonly buffer Vpls { Vpl vpls[]; };
+layout(std430, binding = GIB_VPL_SSBO_CELLS) readonly buffer Cells { ivec4 cells[]; };
+layout(std430, binding = GIB_VPL_SSBO_TEXELS) readonly buffer Texels { int texels[]; };
 layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
-layout(location = 2) uniform int u_res;
-layout(location = 3) uniform int u_count;
+layout(location = GIB_VPL_LOC_RES) uniform int u_res;
+layout(location = GIB_VPL_LOC_COUNT) uniform int u_count;
 shared vec3 s_flux[64];
 shared int s_d2[64];
 shared int s_texel[64];

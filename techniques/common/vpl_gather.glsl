@@ -8,13 +8,13 @@
 // 1/d^2, and the 1/pi of the VPL's intensity is missing; eps is a length in the scene's units (the
 // technique's clamp_distance) under d, so the clamp scales with the scene. No visibility between
 // VPL and x (as the thesis and RSM).
-#include "gl/bindings.h"
+#include "common/common_slots.h"
 struct Vpl {
     vec4 position;  // w: 1 valid
     vec4 normal;    // w: light index
     vec4 flux;      // rgb, W
 };
-layout(std430, binding = GIB_SSBO_OWN_FIRST) readonly buffer Vpls { Vpl vpls[]; };
+layout(std430, binding = GIB_VPL_SSBO_VPLS) readonly buffer Vpls { Vpl vpls[]; };
 
 vec3 vpl_irradiance(vec3 x, vec3 n, int count, float eps)
 {

@@ -1,11 +1,11 @@
 #include "common/vpl_gather.glsl"
 // Test hook (common/vpl.h, gib_vpls_probe): vpl_irradiance() at given points and normals.
 layout(local_size_x = 64) in;
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer ProbeIn { vec4 probe_in[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) writeonly buffer ProbeOut { vec4 probe_out[]; };
-layout(location = 2) uniform int u_count;
-layout(location = 3) uniform int u_vpls;
-layout(location = 4) uniform float u_eps;
+layout(std430, binding = GIB_VPL_PROBE_SSBO_IN) readonly buffer ProbeIn { vec4 probe_in[]; };
+layout(std430, binding = GIB_VPL_PROBE_SSBO_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
+layout(location = GIB_VPL_PROBE_LOC_COUNT) uniform int u_count;
+layout(location = GIB_VPL_PROBE_LOC_VPLS) uniform int u_vpls;
+layout(location = GIB_VPL_PROBE_LOC_EPS) uniform float u_eps;
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);

@@ -19,9 +19,9 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
-#include "harness/gl/bindings.h"
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
+#include "techniques/hbao/hbao_slots.h"
 
 typedef struct hbao {
     gib_ledger *ledger;
@@ -138,20 +138,20 @@ static int hbao_render(void *self, const gib_view *view, gib_timers *timers,
     gib_timer_begin(timers, "hbao");
     gib_fullscreen_begin(&h->ao, blur ? h->ao_fbo[0] : targets[0].fbo, view->width, view->height,
                          0);
-    glUniform3fv(0, 1, view->camera->eye);
-    glUniform3fv(1, 1, right);
-    glUniform3fv(2, 1, up);
-    glUniform3fv(3, 1, forward);
+    glUniform3fv(HBAO_LOC_EYE, 1, view->camera->eye);
+    glUniform3fv(HBAO_LOC_RIGHT, 1, right);
+    glUniform3fv(HBAO_LOC_UP, 1, up);
+    glUniform3fv(HBAO_LOC_FORWARD, 1, forward);
     /* proj[5] = cot(fov_y / 2): lateral offset / depth -> NDC; times height/2 -> pixels (square
      * pixels, so the same factor holds along x). */
-    glUniform1f(4, view->proj[5] * 0.5f * (float)view->height);
-    glUniform1f(5, h->radius);
-    glUniform1i(6, h->dirs);
-    glUniform1i(7, h->steps);
-    glUniform1f(8, h->bias_rad);
-    glUniform1i(9, h->falloff);
-    glUniform1f(10, h->max_radius_px);
-    glUniform1i(11, !blur);
+    glUniform1f(HBAO_LOC_FOCAL_PX, view->proj[5] * 0.5f * (float)view->height);
+    glUniform1f(HBAO_LOC_RADIUS, h->radius);
+    glUniform1i(HBAO_LOC_DIRS, h->dirs);
+    glUniform1i(HBAO_LOC_STEPS, h->steps);
+    glUniform1f(HBAO_LOC_BIAS, h->bias_rad);
+    glUniform1i(HBAO_LOC_FALLOFF, h->falloff);
+    glUniform1f(HBAO_LOC_MAX_RADIUS_PX, h->max_radius_px);
+    glUniform1i(HBAO_LOC_FINAL, !blur);
     gib_fullscreen_draw(&h->ao);
     gib_fullscreen_end();
     gib_timer_end(timers);
@@ -162,14 +162,14 @@ static int hbao_render(void *self, const gib_view *view, gib_timers *timers,
             gib_fullscreen_begin(&h->blur, pass == 0 ? h->ao_fbo[1] : targets[0].fbo, view->width,
                                  view->height, 0);
             if (pass == 0) {
-                glUniform3fv(0, 1, view->camera->eye);
-                glUniform3fv(1, 1, forward);
-                glUniform1i(3, h->blur_radius);
-                glUniform1f(4, HBAO_BLUR_TOLERANCE);
+                glUniform3fv(HBAO_BLUR_LOC_EYE, 1, view->camera->eye);
+                glUniform3fv(HBAO_BLUR_LOC_FORWARD, 1, forward);
+                glUniform1i(HBAO_BLUR_LOC_RADIUS, h->blur_radius);
+                glUniform1f(HBAO_BLUR_LOC_TOLERANCE, HBAO_BLUR_TOLERANCE);
             }
-            glBindTextureUnit(GIB_UNIT_OWN_FIRST, h->ao_tex[pass]);
-            glUniform2i(2, pass == 0, pass == 1);
-            glUniform1i(5, pass == 1);
+            glBindTextureUnit(HBAO_BLUR_UNIT_AO, h->ao_tex[pass]);
+            glUniform2i(HBAO_BLUR_LOC_AXIS, pass == 0, pass == 1);
+            glUniform1i(HBAO_BLUR_LOC_FINAL, pass == 1);
             gib_fullscreen_draw(&h->blur);
         }
         gib_fullscreen_end();

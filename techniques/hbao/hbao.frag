@@ -17,20 +17,25 @@
 // which keeps flat receivers free of self-occlusion without relying on the angle bias. All vectors
 // are in world space (the G-buffer holds world positions); the camera axes give the screen
 // directions. The uniform solid-angle weighting (no cosine) is Bavoil et al.'s definition.
-layout(binding = 0) uniform sampler2D g_position;
-layout(binding = 1) uniform sampler2D g_normal;
-layout(location = 0) uniform vec3 u_eye;
-layout(location = 1) uniform vec3 u_right;    // world direction of screen +x
-layout(location = 2) uniform vec3 u_up;       // world direction of screen +y (GL rows bottom up)
-layout(location = 3) uniform vec3 u_forward;  // viewing direction
-layout(location = 4) uniform float u_focal_px; // pixels per unit of (lateral offset / depth)
-layout(location = 5) uniform float u_radius;   // R = d_max, world units
-layout(location = 6) uniform int u_dirs;
-layout(location = 7) uniform int u_steps;
-layout(location = 8) uniform float u_bias;     // tangent angle bias, radians
-layout(location = 9) uniform int u_falloff;    // 1: W = 1 - r^2/R^2, 0: W = 1 inside R
-layout(location = 10) uniform float u_max_radius_px; // 0: no clamp
-layout(location = 11) uniform int u_final;     // 1: write (ao, ao, ao, 1), 0: write ao to R only
+#include "hbao/hbao_slots.h"
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
+layout(location = HBAO_LOC_EYE) uniform vec3 u_eye;
+layout(location = HBAO_LOC_RIGHT) uniform vec3 u_right;    // world direction of screen +x
+// world direction of screen +y (GL rows bottom up)
+layout(location = HBAO_LOC_UP) uniform vec3 u_up;
+layout(location = HBAO_LOC_FORWARD) uniform vec3 u_forward;  // viewing direction
+// pixels per unit of (lateral offset / depth)
+layout(location = HBAO_LOC_FOCAL_PX) uniform float u_focal_px;
+layout(location = HBAO_LOC_RADIUS) uniform float u_radius;   // R = d_max, world units
+layout(location = HBAO_LOC_DIRS) uniform int u_dirs;
+layout(location = HBAO_LOC_STEPS) uniform int u_steps;
+layout(location = HBAO_LOC_BIAS) uniform float u_bias;     // tangent angle bias, radians
+// 1: W = 1 - r^2/R^2, 0: W = 1 inside R
+layout(location = HBAO_LOC_FALLOFF) uniform int u_falloff;
+layout(location = HBAO_LOC_MAX_RADIUS_PX) uniform float u_max_radius_px; // 0: no clamp
+// 1: write (ao, ao, ao, 1), 0: write ao to R only
+layout(location = HBAO_LOC_FINAL) uniform int u_final;
 layout(location = 0) out vec4 o_ao;
 
 const float TWO_PI = 6.28318530717959;

@@ -3,16 +3,17 @@
 // across depth edges. Weights: a spatial Gaussian times a range term on the distance of the
 // neighbour's surface point from the centre pixel's tangent plane, relative to the centre's depth
 // (scale-free, so the same setting serves scenes in metres and in centimetres).
-#include "gl/bindings.h"
-layout(binding = 0) uniform sampler2D g_position;
-layout(binding = 1) uniform sampler2D g_normal;
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler2D u_ao;
-layout(location = 0) uniform vec3 u_eye;
-layout(location = 1) uniform vec3 u_forward;
-layout(location = 2) uniform ivec2 u_axis;
-layout(location = 3) uniform int u_radius;
-layout(location = 4) uniform float u_tolerance; // plane distance scale, as a fraction of depth
-layout(location = 5) uniform int u_final;
+#include "hbao/hbao_slots.h"
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
+layout(binding = HBAO_BLUR_UNIT_AO) uniform sampler2D u_ao;
+layout(location = HBAO_BLUR_LOC_EYE) uniform vec3 u_eye;
+layout(location = HBAO_BLUR_LOC_FORWARD) uniform vec3 u_forward;
+layout(location = HBAO_BLUR_LOC_AXIS) uniform ivec2 u_axis;
+layout(location = HBAO_BLUR_LOC_RADIUS) uniform int u_radius;
+// plane distance scale, as a fraction of depth
+layout(location = HBAO_BLUR_LOC_TOLERANCE) uniform float u_tolerance;
+layout(location = HBAO_BLUR_LOC_FINAL) uniform int u_final;
 layout(location = 0) out vec4 o_ao;
 
 void main()

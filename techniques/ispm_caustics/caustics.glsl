@@ -1,6 +1,6 @@
 // ispm_caustics (thesis 004, Sec. 3.3): what its shaders share. A photon, the camera's per-pixel
 // linked lists (Algorithm 3.4's FragmentNode) and the Phong lobe sampler.
-#include "gl/bindings.h"
+#include "ispm_caustics/ispm_caustics_slots.h"
 
 // One photon, from its first (specular) hit in the light view to its second hit (std430, 80 bytes).
 struct Photon {

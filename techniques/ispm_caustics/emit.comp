@@ -15,18 +15,22 @@ layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
 layout(binding = GIB_UNIT_LV_SPECULAR) uniform sampler2DArray lv_specular;
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler2DArray u_mask;
-layout(std430, binding = 8) writeonly buffer Photons { Photon photons[]; };
-layout(std430, binding = 9) readonly buffer Random { vec4 rnd[]; };
-layout(std430, binding = 10) buffer Command { uint cmd[8]; }; // lines {2, N, 0, 0}, points {N, 1, 0, 0}
-layout(std430, binding = 11) buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
-layout(location = 2) uniform int u_level;
-layout(location = 3) uniform int u_res_l;     // the mask level's side
-layout(location = 4) uniform uint u_capacity; // photons
-layout(location = 5) uniform vec3 u_eye;
-layout(location = 7) uniform vec3 u_forward;
-layout(location = 8) uniform float u_pixel_scale; // a ray-resolution pixel's side at depth 1
-layout(location = 9) uniform float u_tmin_floor;  // scene units
+layout(binding = ISPM_EMIT_UNIT_MASK) uniform sampler2DArray u_mask;
+layout(std430, binding = ISPM_SSBO_PHOTONS) writeonly buffer Photons { Photon photons[]; };
+layout(std430, binding = ISPM_SSBO_RANDOM) readonly buffer Random { vec4 rnd[]; };
+// lines {2, N, 0, 0}, points {N, 1, 0, 0}
+layout(std430, binding = ISPM_SSBO_COMMAND) buffer Command { uint cmd[8]; };
+layout(std430, binding = ISPM_SSBO_STATUS) buffer Status {
+    uint list_count, list_overflow, photon_overflow, list_longest;
+};
+layout(location = ISPM_EMIT_LOC_LEVEL) uniform int u_level;
+layout(location = ISPM_EMIT_LOC_RES) uniform int u_res_l;     // the mask level's side
+layout(location = ISPM_EMIT_LOC_CAPACITY) uniform uint u_capacity; // photons
+layout(location = ISPM_EMIT_LOC_EYE) uniform vec3 u_eye;
+layout(location = ISPM_EMIT_LOC_FORWARD) uniform vec3 u_forward;
+// a ray-resolution pixel's side at depth 1
+layout(location = ISPM_EMIT_LOC_PIXEL_SCALE) uniform float u_pixel_scale;
+layout(location = ISPM_EMIT_LOC_TMIN_FLOOR) uniform float u_tmin_floor;  // scene units
 
 int light_of_face(int face)
 {

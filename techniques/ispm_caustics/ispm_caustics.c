@@ -28,13 +28,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
 #include "techniques/common/shader.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/ispm_caustics/ispm_caustics.h"
+#include "techniques/ispm_caustics/ispm_caustics_slots.h"
 
 extern const gib_technique gib_technique_ispm_caustics;
 
@@ -53,7 +54,7 @@ typedef struct caustics {
     unsigned irradiance, splat_fbo, list_fbo, vao;
     unsigned mip_prog, emit_prog, list_prog, trace_prog, resolve_prog, splat_prog;
     int layers;                    /* 0: lists; 4: depth-peeled layers */
-    unsigned layer_tex[4], layer_depth, layer_fbo, peel_prog, layers_prog;
+    unsigned layer_tex[ISPM_LAYERS], layer_depth, layer_fbo, peel_prog, layers_prog;
     gib_fullscreen shade;
     uint32_t node_capacity, photon_capacity;
     char status[32];
@@ -105,7 +106,7 @@ static void caustics_destroy(void *self)
         if (progs[i])
             glDeleteProgram(progs[i]);
     gib_fullscreen_destroy(&c->shade);
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < ISPM_LAYERS; k++)
         if (c->layer_tex[k])
             gib_gpu_free(c->ledger, c->layer_tex[k], 1);
     if (c->layer_depth)
@@ -134,10 +135,157 @@ static uint32_t pcg32(uint64_t *s)
     return (x >> r) | (x << ((32 - r) & 31));
 }
 
+/* The photons' indirect draw command as emission starts (emit.comp counts into it): the lines of
+ * the tracing {2 vertices, N instances, 0, 0} and the points of the splatting {N, 1 instance, 0,
+ * 0}, N = 0. Written at create and before every frame's emission. */
+static const uint32_t COMMAND_RESET[8] = {2, 0, 0, 0, 0, 1, 0, 0};
+
+/* The parameters, checked, and the sizes that follow from them. */
+static int read_params(caustics *c, const gib_params *p, int *rsm_res, gib_error *err)
+{
+    const gib_technique *t = &gib_technique_ispm_caustics;
+    *rsm_res = gib_param_int(t, p, "rsm_res");
+    c->level = gib_param_int(t, p, "mask_level");
+    c->ray_res = gib_param_int(t, p, "ray_res");
+    c->divisor = gib_param_int(t, p, "splat_res_divisor");
+    c->splat_scale = (float)gib_param_float(t, p, "splat_scale");
+    c->delta = (float)gib_param_float(t, p, "kernel_delta");
+    c->slack = (float)gib_param_float(t, p, "hit_slack");
+    c->layers = gib_param_int(t, p, "layers");
+    if (c->layers != 0 && c->layers != ISPM_LAYERS)
+        return gib_fail(err, "ispm_caustics: parameter 'layers' = %d: 0 (linked lists) or 4 (the "
+                             "thesis' 4 depth layers)", c->layers);
+    if ((*rsm_res >> c->level) < 1)
+        return gib_fail(err, "ispm_caustics: mask_level %d is past the last mip of a %d^2 light "
+                             "view", c->level, *rsm_res);
+    c->res_l = *rsm_res >> c->level;
+    const gib_scene *s = c->scene->scene;
+    c->diag = 0;
+    for (int k = 0; k < 3; k++)
+        c->diag += (s->bounds_max[k] - s->bounds_min[k]) * (s->bounds_max[k] - s->bounds_min[k]);
+    c->diag = sqrtf(c->diag);
+    c->splat_w = (c->width + c->divisor - 1) / c->divisor;
+    c->splat_h = (c->height + c->divisor - 1) / c->divisor;
+    return 0;
+}
+
+/* The G-buffers, the light views and every program. */
+static int create_passes(caustics *c, int rsm_res, gib_error *err)
+{
+    const char *mip[] = {"ispm_caustics/mask_mip.comp"};
+    const char *emit[] = {"ispm_caustics/emit.comp"};
+    const char *list[] = {"common/gbuffer.vert", "ispm_caustics/list_build.frag"};
+    const char *trace[] = {"ispm_caustics/trace.vert", "ispm_caustics/trace.frag"};
+    const char *resolve[] = {"ispm_caustics/resolve.comp"};
+    const char *splat[] = {"ispm_caustics/splat.vert", "ispm_caustics/splat.geom",
+                           "ispm_caustics/splat.frag"};
+    const unsigned lv = GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX | GIB_LV_SPECULAR;
+    if (gib_gbuffer_create(&c->gbuffer, c->width, c->height, c->ledger, err) < 0 ||
+        (c->divisor > 1 &&
+         gib_gbuffer_create(&c->low, c->splat_w, c->splat_h, c->ledger, err) < 0) ||
+        gib_light_views_create(&c->views, c->scene, rsm_res, lv, "rsm", c->ledger, err) < 0 ||
+        !(c->mip_prog = gib_program(mip, 1, NULL, err)) ||
+        !(c->emit_prog = gib_program(emit, 1, NULL, err)) ||
+        !(c->list_prog = gib_program(list, 2, NULL, err)) ||
+        !(c->trace_prog = gib_program(trace, 2, NULL, err)) ||
+        !(c->resolve_prog = gib_program(resolve, 1, NULL, err)) ||
+        !(c->splat_prog = gib_program(splat, 3, NULL, err)) ||
+        gib_fullscreen_create(&c->shade, "ispm_caustics/shade.frag", NULL, err) < 0)
+        return -1;
+    return 0;
+}
+
+/* The pool of list nodes: list_capacity per ray_res pixel on average, within one storage buffer
+ * (4 a pixel with the layers). */
+static int size_pool(caustics *c, const gib_params *p, gib_error *err)
+{
+    uint64_t pixels = (uint64_t)c->ray_res * (uint64_t)c->ray_res;
+    double per_pixel = gib_param_float(&gib_technique_ispm_caustics, p, "list_capacity");
+    uint64_t nodes = (uint64_t)ceil((double)pixels * per_pixel);
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    if (nodes * NODE_BYTES > (uint64_t)max_block)
+        return gib_fail(err, "ispm_caustics: list_capacity %g x %d^2 nodes of %u bytes exceed one "
+                             "storage buffer (%lld bytes)", per_pixel, c->ray_res, NODE_BYTES,
+                        (long long)max_block);
+    c->node_capacity = (uint32_t)(c->layers ? ISPM_LAYERS * pixels : nodes);
+    return 0;
+}
+
+/* 8 random numbers a photon, generated once from the seed. */
+static int create_random(caustics *c, const gib_params *p, gib_error *err)
+{
+    size_t nrand = (size_t)c->photon_capacity * 8;
+    float *rnd = malloc(nrand * sizeof *rnd);
+    if (!rnd)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
+    uint64_t seed = (uint64_t)gib_param_int(&gib_technique_ispm_caustics, p, "seed");
+    uint64_t state = 0x853c49e6748fea9bull ^ (seed << 1);
+    for (size_t i = 0; i < nrand; i++)
+        rnd[i] = (float)(pcg32(&state) >> 8) * (1.0f / 16777216.0f);
+    c->random = gib_gpu_buffer(c->ledger, "photons.random", nrand * sizeof *rnd, rnd, 0, err);
+    free(rnd);
+    return c->random ? 0 : -1;
+}
+
+/* The mask, the lists, the photons and the splats' target, as the ledger names them. */
+static int create_buffers(caustics *c, int rsm_res, int faces, gib_error *err)
+{
+    gib_ledger *L = c->ledger;
+    const uint64_t pixels = (uint64_t)c->ray_res * (uint64_t)c->ray_res;
+    const unsigned dyn = GL_DYNAMIC_STORAGE_BIT;
+    if (!(c->mask = gib_gpu_texture(L, "mips.mask", GL_TEXTURE_2D_ARRAY, rsm_res, rsm_res, faces,
+                                    GL_R32F, c->level + 1, err)) ||
+        !(c->heads = gib_gpu_buffer(L, "lists.heads", 4 * pixels, NULL, dyn, err)) ||
+        !(c->counts = gib_gpu_buffer(L, "lists.counts", 4 * pixels, NULL, dyn, err)) ||
+        !(c->nodes = gib_gpu_buffer(L, "lists.nodes", (uint64_t)NODE_BYTES * c->node_capacity,
+                                    NULL, 0, err)) ||
+        !(c->status_buf = gib_gpu_buffer(L, "lists.status", 16, NULL, dyn, err)) ||
+        !(c->photons = gib_gpu_buffer(L, "photons.buffer",
+                                      (uint64_t)PHOTON_BYTES * c->photon_capacity, NULL, 0, err)) ||
+        !(c->first_t = gib_gpu_buffer(L, "photons.first_hit", 4ull * c->photon_capacity, NULL,
+                                      dyn, err)) ||
+        !(c->command = gib_gpu_buffer(L, "photons.command", sizeof COMMAND_RESET, COMMAND_RESET,
+                                      dyn, err)) ||
+        !(c->irradiance = gib_gpu_texture(L, "splat.irradiance", GL_TEXTURE_2D, c->splat_w,
+                                          c->splat_h, 1, GL_RGBA32F, 1, err)))
+        return -1;
+    return 0;
+}
+
+/* The framebuffers: the splats' target, an attachment-less one at ray_res (lists and lines write
+ * buffers only), and with layers = 4 the peeling's programs, depth and layer textures. */
+static int create_targets(caustics *c, gib_error *err)
+{
+    glCreateFramebuffers(1, &c->splat_fbo);
+    glNamedFramebufferTexture(c->splat_fbo, GL_COLOR_ATTACHMENT0, c->irradiance, 0);
+    glCreateFramebuffers(1, &c->list_fbo);
+    glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, c->ray_res);
+    glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, c->ray_res);
+    glCreateVertexArrays(1, &c->vao);
+    if (!c->layers)
+        return 0;
+    const char *peel[] = {"common/gbuffer.vert", "ispm_caustics/peel.frag"};
+    const char *lay[] = {"ispm_caustics/layers.comp"};
+    if (!(c->peel_prog = gib_program(peel, 2, NULL, err)) ||
+        !(c->layers_prog = gib_program(lay, 1, NULL, err)) ||
+        !(c->layer_depth = gib_gpu_renderbuffer(c->ledger, "layers.zbuffer",
+                                                GL_DEPTH_COMPONENT32F, c->ray_res, c->ray_res,
+                                                err)))
+        return -1;
+    for (int k = 0; k < ISPM_LAYERS; k++)
+        if (!(c->layer_tex[k] = gib_gpu_texture(c->ledger, "layers.depth_normal", GL_TEXTURE_2D,
+                                                c->ray_res, c->ray_res, 1, GL_RGBA32F, 1, err)))
+            return -1;
+    glCreateFramebuffers(1, &c->layer_fbo);
+    glNamedFramebufferRenderbuffer(c->layer_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                   c->layer_depth);
+    return 0;
+}
+
 static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, int w, int h,
                              gib_ledger *ledger, gib_error *err)
 {
-    const gib_technique *t = &gib_technique_ispm_caustics;
     caustics *c = calloc(1, sizeof *c);
     if (!c) {
         gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
@@ -148,123 +296,14 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     c->width = w;
     c->height = h;
     strcpy(c->status, "ok");
-    int rsm_res = gib_param_int(t, p, "rsm_res");
-    c->level = gib_param_int(t, p, "mask_level");
-    c->ray_res = gib_param_int(t, p, "ray_res");
-    c->divisor = gib_param_int(t, p, "splat_res_divisor");
-    c->splat_scale = (float)gib_param_float(t, p, "splat_scale");
-    c->delta = (float)gib_param_float(t, p, "kernel_delta");
-    c->slack = (float)gib_param_float(t, p, "hit_slack");
-    c->layers = gib_param_int(t, p, "layers");
-    if (c->layers != 0 && c->layers != 4) {
-        gib_fail(err, "ispm_caustics: parameter 'layers' = %d: 0 (linked lists) or 4 (the "
-                      "thesis' 4 depth layers)", c->layers);
-        goto fail;
-    }
-    if ((rsm_res >> c->level) < 1) {
-        gib_fail(err, "ispm_caustics: mask_level %d is past the last mip of a %d^2 light view",
-                 c->level, rsm_res);
-        goto fail;
-    }
-    c->res_l = rsm_res >> c->level;
-    const gib_scene *s = scene->scene;
-    c->diag = 0;
-    for (int k = 0; k < 3; k++)
-        c->diag += (s->bounds_max[k] - s->bounds_min[k]) * (s->bounds_max[k] - s->bounds_min[k]);
-    c->diag = sqrtf(c->diag);
-    c->splat_w = (w + c->divisor - 1) / c->divisor;
-    c->splat_h = (h + c->divisor - 1) / c->divisor;
-
-    const char *mip[] = {"ispm_caustics/mask_mip.comp"};
-    const char *emit[] = {"ispm_caustics/emit.comp"};
-    const char *list[] = {"common/gbuffer.vert", "ispm_caustics/list_build.frag"};
-    const char *trace[] = {"ispm_caustics/trace.vert", "ispm_caustics/trace.frag"};
-    const char *resolve[] = {"ispm_caustics/resolve.comp"};
-    const char *splat[] = {"ispm_caustics/splat.vert", "ispm_caustics/splat.geom",
-                           "ispm_caustics/splat.frag"};
-    if (gib_gbuffer_create(&c->gbuffer, w, h, ledger, err) < 0 ||
-        (c->divisor > 1 && gib_gbuffer_create(&c->low, c->splat_w, c->splat_h, ledger, err) < 0) ||
-        gib_light_views_create(&c->views, scene, rsm_res,
-                               GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX | GIB_LV_SPECULAR,
-                               "rsm", ledger, err) < 0 ||
-        !(c->mip_prog = gib_program(mip, 1, NULL, err)) ||
-        !(c->emit_prog = gib_program(emit, 1, NULL, err)) ||
-        !(c->list_prog = gib_program(list, 2, NULL, err)) ||
-        !(c->trace_prog = gib_program(trace, 2, NULL, err)) ||
-        !(c->resolve_prog = gib_program(resolve, 1, NULL, err)) ||
-        !(c->splat_prog = gib_program(splat, 3, NULL, err)) ||
-        gib_fullscreen_create(&c->shade, "ispm_caustics/shade.frag", NULL, err) < 0)
+    int rsm_res = 0;
+    if (read_params(c, p, &rsm_res, err) < 0 || create_passes(c, rsm_res, err) < 0 ||
+        size_pool(c, p, err) < 0)
         goto fail;
     int faces = c->views.face_count > 0 ? c->views.face_count : 1;
-    uint64_t pixels = (uint64_t)c->ray_res * (uint64_t)c->ray_res;
-    double per_pixel = gib_param_float(t, p, "list_capacity");
-    uint64_t nodes = (uint64_t)ceil((double)pixels * per_pixel);
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    if (nodes * NODE_BYTES > (uint64_t)max_block) {
-        gib_fail(err, "ispm_caustics: list_capacity %g x %d^2 nodes of %u bytes exceed one storage "
-                      "buffer (%lld bytes)", per_pixel, c->ray_res,
-                 NODE_BYTES, (long long)max_block);
-        goto fail;
-    }
-    if (c->layers)
-        nodes = 4 * pixels;
-    c->node_capacity = (uint32_t)nodes;
     c->photon_capacity = (uint32_t)((uint64_t)faces * c->res_l * c->res_l);
-    size_t nrand = (size_t)c->photon_capacity * 8;
-    float *rnd = malloc(nrand * sizeof *rnd);
-    if (!rnd) {
-        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
-        goto fail;
-    }
-    uint64_t state = 0x853c49e6748fea9bull ^ ((uint64_t)gib_param_int(t, p, "seed") << 1);
-    for (size_t i = 0; i < nrand; i++)
-        rnd[i] = (float)(pcg32(&state) >> 8) * (1.0f / 16777216.0f);
-    const uint32_t cmd[8] = {2, 0, 0, 0, 0, 1, 0, 0};
-    c->random = gib_gpu_buffer(ledger, "photons.random", nrand * sizeof *rnd, rnd, 0, err);
-    free(rnd);
-    if (!c->random ||
-        !(c->mask = gib_gpu_texture(ledger, "mips.mask", GL_TEXTURE_2D_ARRAY, rsm_res, rsm_res,
-                                    faces, GL_R32F, c->level + 1, err)) ||
-        !(c->heads = gib_gpu_buffer(ledger, "lists.heads", 4 * pixels, NULL,
-                                    GL_DYNAMIC_STORAGE_BIT, err)) ||
-        !(c->counts = gib_gpu_buffer(ledger, "lists.counts", 4 * pixels, NULL,
-                                     GL_DYNAMIC_STORAGE_BIT, err)) ||
-        !(c->nodes = gib_gpu_buffer(ledger, "lists.nodes", NODE_BYTES * nodes, NULL, 0, err)) ||
-        !(c->status_buf = gib_gpu_buffer(ledger, "lists.status", 16, NULL, GL_DYNAMIC_STORAGE_BIT,
-                                         err)) ||
-        !(c->photons = gib_gpu_buffer(ledger, "photons.buffer",
-                                      (uint64_t)PHOTON_BYTES * c->photon_capacity, NULL, 0, err)) ||
-        !(c->first_t = gib_gpu_buffer(ledger, "photons.first_hit", 4ull * c->photon_capacity, NULL,
-                                      GL_DYNAMIC_STORAGE_BIT, err)) ||
-        !(c->command = gib_gpu_buffer(ledger, "photons.command", sizeof cmd, cmd,
-                                      GL_DYNAMIC_STORAGE_BIT, err)) ||
-        !(c->irradiance = gib_gpu_texture(ledger, "splat.irradiance", GL_TEXTURE_2D, c->splat_w,
-                                          c->splat_h, 1, GL_RGBA32F, 1, err)))
-        goto fail;
-    glCreateFramebuffers(1, &c->splat_fbo);
-    glNamedFramebufferTexture(c->splat_fbo, GL_COLOR_ATTACHMENT0, c->irradiance, 0);
-    glCreateFramebuffers(1, &c->list_fbo); /* no attachments: lists and lines write buffers only */
-    glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, c->ray_res);
-    glNamedFramebufferParameteri(c->list_fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, c->ray_res);
-    glCreateVertexArrays(1, &c->vao);
-    if (c->layers) {
-        const char *peel[] = {"common/gbuffer.vert", "ispm_caustics/peel.frag"};
-        const char *lay[] = {"ispm_caustics/layers.comp"};
-        if (!(c->peel_prog = gib_program(peel, 2, NULL, err)) ||
-            !(c->layers_prog = gib_program(lay, 1, NULL, err)) ||
-            !(c->layer_depth = gib_gpu_renderbuffer(ledger, "layers.zbuffer", GL_DEPTH_COMPONENT32F,
-                                                    c->ray_res, c->ray_res, err)))
-            goto fail;
-        for (int k = 0; k < 4; k++)
-            if (!(c->layer_tex[k] = gib_gpu_texture(ledger, "layers.depth_normal", GL_TEXTURE_2D,
-                                                    c->ray_res, c->ray_res, 1, GL_RGBA32F, 1, err)))
-                goto fail;
-        glCreateFramebuffers(1, &c->layer_fbo);
-        glNamedFramebufferRenderbuffer(c->layer_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                       c->layer_depth);
-    }
-    if (gib_gl_check("ispm_caustics create", err) < 0)
+    if (create_random(c, p, err) < 0 || create_buffers(c, rsm_res, faces, err) < 0 ||
+        create_targets(c, err) < 0 || gib_gl_check("ispm_caustics create", err) < 0)
         goto fail;
     return c;
 fail:
@@ -273,37 +312,35 @@ fail:
 }
 
 /* The camera's axes scaled for list_lookup.glsl and the ray-resolution uniforms every list user
- * takes (locations 1, 6, 7, 8, 10, 11). */
+ * takes. */
 static void list_uniforms(const caustics *c, const gib_view *v)
 {
     const float *V = v->view, *P = v->proj;
     const float right[3] = {V[0] / P[0], V[4] / P[0], V[8] / P[0]};
     const float up[3] = {V[1] / P[5], V[5] / P[5], V[9] / P[5]};
     const float fwd[3] = {-V[2], -V[6], -V[10]};
-    glUniformMatrix4fv(1, 1, GL_FALSE, v->view_proj);
-    glUniform3fv(6, 1, v->origin);
-    glUniform3fv(7, 1, fwd);
-    glUniform1i(8, c->ray_res);
-    glUniform3fv(10, 1, right);
-    glUniform3fv(11, 1, up);
+    glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, v->view_proj);
+    glUniform3fv(GIB_LOC_ORIGIN, 1, v->origin);
+    glUniform3fv(ISPM_LOC_FORWARD, 1, fwd);
+    glUniform1i(ISPM_LOC_RES, c->ray_res);
+    glUniform3fv(ISPM_LOC_RIGHT_TAN, 1, right);
+    glUniform3fv(ISPM_LOC_UP_TAN, 1, up);
 }
 
 /* What both list builders share: the status cleared, the scene rasterised from the camera at the
  * ray resolution with `prog` into `fbo`, every face kept (no culling, no blending). */
 static void camera_pass_begin(caustics *c, const gib_view *view, const float fwd[3], unsigned fbo,
-                              unsigned prog)
+                              unsigned prog, gib_depth depth)
 {
     const uint32_t zero = 0;
     glClearNamedBufferData(c->status_buf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, c->ray_res, c->ray_res);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
+    gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = c->ray_res, .height = c->ray_res,
+                                     .depth = depth});
     glUseProgram(prog);
     gib_gpu_scene_bind(c->scene);
-    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
-    glUniform3fv(6, 1, view->origin);
-    glUniform3fv(7, 1, fwd);
+    glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
+    glUniform3fv(ISPM_LOC_FORWARD, 1, fwd);
 }
 
 /* Algorithm 3.4: every fragment of the scene seen from the camera into its pixel's list. */
@@ -312,44 +349,154 @@ static void build_lists(caustics *c, const gib_view *view, const float fwd[3])
     const uint32_t ones = 0xffffffffu, zero = 0;
     glClearNamedBufferData(c->heads, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
     glClearNamedBufferData(c->counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    camera_pass_begin(c, view, fwd, c->list_fbo, c->list_prog);
-    glDisable(GL_DEPTH_TEST);
-    glUniform1i(8, c->ray_res);
-    glUniform1ui(9, c->node_capacity);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, c->counts);
+    camera_pass_begin(c, view, fwd, c->list_fbo, c->list_prog, GIB_DEPTH_OFF);
+    glUniform1i(ISPM_LOC_RES, c->ray_res);
+    glUniform1ui(ISPM_LIST_LOC_CAPACITY, c->node_capacity);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_HEADS, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_NODES, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_STATUS, c->status_buf);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_COUNTS, c->counts);
     gib_gpu_scene_draw(c->scene);
+    gib_pass_end();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 /* The 4-layer variant: 4 peeling passes, then the layers as lists of at most 4 nodes. */
 static void build_layers(caustics *c, const gib_view *view, const float fwd[3])
 {
-    camera_pass_begin(c, view, fwd, c->layer_fbo, c->peel_prog);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    camera_pass_begin(c, view, fwd, c->layer_fbo, c->peel_prog, GIB_DEPTH_LESS);
     const float none[4] = {0, 0, 0, 0};
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < ISPM_LAYERS; k++) {
         glNamedFramebufferTexture(c->layer_fbo, GL_COLOR_ATTACHMENT0, c->layer_tex[k], 0);
         glClearBufferfv(GL_COLOR, 0, none);
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-        glUniform1i(8, k);
-        glBindTextureUnit(GIB_UNIT_OWN_FIRST, c->layer_tex[k > 0 ? k - 1 : 0]);
+        glUniform1i(ISPM_PEEL_LOC_LAYER, k);
+        glBindTextureUnit(ISPM_UNIT_PREV_LAYER, c->layer_tex[k > 0 ? k - 1 : 0]);
         gib_gpu_scene_draw(c->scene);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     }
-    glDisable(GL_DEPTH_TEST);
+    gib_pass_end();
     glUseProgram(c->layers_prog);
-    for (int k = 0; k < 4; k++)
-        glBindTextureUnit(GIB_UNIT_OWN_FIRST + k, c->layer_tex[k]);
-    glUniform1i(8, c->ray_res);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
+    for (int k = 0; k < ISPM_LAYERS; k++)
+        glBindTextureUnit(ISPM_UNIT_LAYER_FIRST + k, c->layer_tex[k]);
+    glUniform1i(ISPM_LOC_RES, c->ray_res);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_HEADS, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_NODES, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_STATUS, c->status_buf);
     glDispatchCompute((unsigned)(c->ray_res + 7) / 8, (unsigned)(c->ray_res + 7) / 8, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The specular mask and its mips (Fig. 3.5), from the bound light views. */
+static void build_mask(caustics *c)
+{
+    glUseProgram(c->mip_prog);
+    int faces = c->views.face_count;
+    for (int l = 0; l <= c->level && faces > 0; l++) {
+        int res = c->views.res >> l;
+        glBindImageTexture(ISPM_MIP_IMAGE_DST, c->mask, l, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindImageTexture(ISPM_MIP_IMAGE_SRC, c->mask, l > 0 ? l - 1 : 0, GL_TRUE, 0,
+                           GL_READ_ONLY, GL_R32F);
+        glUniform1i(ISPM_MIP_LOC_LEVEL, l);
+        glUniform1i(ISPM_MIP_LOC_RES, res);
+        glDispatchCompute((unsigned)(res + 7) / 8, (unsigned)(res + 7) / 8, (unsigned)faces);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+}
+
+/* Emission (Sec. 3.3.1): a photon per fully specular texel of the mask's level, counted into the
+ * draw command. */
+static void emit_photons(caustics *c, const gib_view *view, const float fwd[3])
+{
+    const uint32_t ones = 0xffffffffu;
+    glNamedBufferSubData(c->command, 0, sizeof COMMAND_RESET, COMMAND_RESET);
+    glClearNamedBufferData(c->first_t, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+    glUseProgram(c->emit_prog);
+    gib_gpu_scene_bind(c->scene);
+    glBindTextureUnit(ISPM_EMIT_UNIT_MASK, c->mask);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_PHOTONS, c->photons);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_RANDOM, c->random);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_COMMAND, c->command);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_STATUS, c->status_buf);
+    glUniform1i(ISPM_EMIT_LOC_LEVEL, c->level);
+    glUniform1i(ISPM_EMIT_LOC_RES, c->res_l);
+    glUniform1ui(ISPM_EMIT_LOC_CAPACITY, c->photon_capacity);
+    glUniform3fv(ISPM_EMIT_LOC_EYE, 1, view->origin);
+    glUniform3fv(ISPM_EMIT_LOC_FORWARD, 1, fwd);
+    glUniform1f(ISPM_EMIT_LOC_PIXEL_SCALE, 2.0f / ((float)c->ray_res * view->proj[5]));
+    glUniform1f(ISPM_EMIT_LOC_TMIN_FLOOR, 1e-4f * c->diag);
+    if (c->views.face_count > 0)
+        glDispatchCompute((unsigned)(c->res_l + 7) / 8, (unsigned)(c->res_l + 7) / 8,
+                          (unsigned)c->views.face_count);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+/* Algorithm 3.5: the photons' lines against the lists, then each photon's hit, normal and splat
+ * radius (resolve.comp). */
+static void trace_photons(caustics *c, const gib_view *view)
+{
+    const float tmax = 2.0f * c->diag;
+    gib_pass_apply(&(gib_pass_state){.fbo = c->list_fbo, .width = c->ray_res,
+                                     .height = c->ray_res});
+    glUseProgram(c->trace_prog);
+    list_uniforms(c, view);
+    glUniform1f(ISPM_TRACE_LOC_TMAX, tmax);
+    glUniform1ui(ISPM_TRACE_LOC_CAPACITY, c->photon_capacity);
+    glUniform1f(ISPM_TRACE_LOC_SLACK, c->slack);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_HEADS, c->heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_NODES, c->nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_PHOTONS, c->photons);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_FIRST_HIT, c->first_t);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, c->command);
+    glBindVertexArray(c->vao);
+    glDrawArraysIndirect(GL_LINES, NULL);
+    gib_pass_end();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(c->resolve_prog);
+    list_uniforms(c, view);
+    glUniform1f(ISPM_TRACE_LOC_TMAX, tmax);
+    glUniform1ui(ISPM_TRACE_LOC_CAPACITY, c->photon_capacity);
+    glUniform1f(ISPM_RESOLVE_LOC_SPLAT_SCALE, c->splat_scale);
+    glUniform1f(ISPM_RESOLVE_LOC_HMAX, 0.1f * c->diag);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_COMMAND, c->command);
+    glDispatchCompute((c->photon_capacity + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* Splatting (Sec. 3.3.2.3): Gaussian disks summed into the irradiance target over `sg`. */
+static void splat_photons(caustics *c, const gib_view *view, const gib_gbuffer *sg)
+{
+    gib_pass_apply(&(gib_pass_state){.fbo = c->splat_fbo, .width = c->splat_w,
+                                     .height = c->splat_h, .blend = GIB_BLEND_ADD});
+    const float black[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, black);
+    glUseProgram(c->splat_prog);
+    glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
+    glUniform1f(ISPM_SPLAT_LOC_DELTA, c->delta);
+    glBindTextureUnit(GIB_UNIT_GBUF_POSITION, sg->position);
+    glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, sg->normal);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_PHOTONS, c->photons);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, c->command);
+    glBindVertexArray(c->vao);
+    glDrawArraysIndirect(GL_POINTS, (const void *)(uintptr_t)(4 * sizeof(uint32_t)));
+    glBindVertexArray(0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gib_pass_end();
+}
+
+/* Radiance rho_d / pi E into `fbo`, upsampled bilaterally when the splats were smaller. */
+static void shade(caustics *c, const gib_view *view, unsigned fbo, const gib_gbuffer *sg)
+{
+    gib_fullscreen_begin(&c->shade, fbo, c->width, c->height, 0);
+    gib_gbuffer_bind(&c->gbuffer);
+    glBindTextureUnit(ISPM_SHADE_UNIT_IRRADIANCE, c->irradiance);
+    glBindTextureUnit(ISPM_SHADE_UNIT_LOW_POSITION, sg->position);
+    glBindTextureUnit(ISPM_SHADE_UNIT_LOW_NORMAL, sg->normal);
+    glUniform1i(ISPM_SHADE_LOC_DIVISOR, c->divisor);
+    glUniform3fv(ISPM_SHADE_LOC_EYE, 1, view->origin);
+    gib_fullscreen_draw(&c->shade);
+    gib_fullscreen_end();
 }
 
 static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
@@ -361,10 +508,6 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
                         target_count);
     const float *V = view->view;
     const float fwd[3] = {-V[2], -V[6], -V[10]};
-    const uint32_t cmd[8] = {2, 0, 0, 0, 0, 1, 0, 0};
-    const uint32_t ones = 0xffffffffu;
-    const float tmax = 2.0f * c->diag;
-
     gib_gbuffer_render(&c->gbuffer, c->scene, view, timers, "gbuffer");
     if (c->divisor > 1) {
         gib_view lv = *view;
@@ -374,7 +517,6 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
     }
     gib_light_views_render(&c->views, c->scene, timers, "rsm");
 
-    /* Algorithm 3.4: the lists (or the 4 layers as lists). */
     gib_timer_begin(timers, "list_build");
     if (c->layers)
         build_layers(c, view, fwd);
@@ -383,102 +525,19 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
     gib_timer_end(timers);
 
     gib_timer_begin(timers, "photon_tracing");
-    /* The specular mask and its mips (Fig. 3.5). */
     gib_light_views_bind(&c->views);
-    glUseProgram(c->mip_prog);
-    int faces = c->views.face_count;
-    for (int l = 0; l <= c->level && faces > 0; l++) {
-        int res = c->views.res >> l;
-        glBindImageTexture(0, c->mask, l, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-        glBindImageTexture(1, c->mask, l > 0 ? l - 1 : 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32F);
-        glUniform1i(2, l);
-        glUniform1i(3, res);
-        glDispatchCompute((unsigned)(res + 7) / 8, (unsigned)(res + 7) / 8, (unsigned)faces);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    }
-    /* Emission (Sec. 3.3.1). */
-    glNamedBufferSubData(c->command, 0, sizeof cmd, cmd);
-    glClearNamedBufferData(c->first_t, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
-    glUseProgram(c->emit_prog);
-    gib_gpu_scene_bind(c->scene);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST, c->mask);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->photons);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->random);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, c->command);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, c->status_buf);
-    glUniform1i(2, c->level);
-    glUniform1i(3, c->res_l);
-    glUniform1ui(4, c->photon_capacity);
-    glUniform3fv(5, 1, view->origin);
-    glUniform3fv(7, 1, fwd);
-    glUniform1f(8, 2.0f / ((float)c->ray_res * view->proj[5]));
-    glUniform1f(9, 1e-4f * c->diag);
-    if (faces > 0)
-        glDispatchCompute((unsigned)(c->res_l + 7) / 8, (unsigned)(c->res_l + 7) / 8,
-                          (unsigned)faces);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    /* Algorithm 3.5: the photons' lines against the lists. */
-    glBindFramebuffer(GL_FRAMEBUFFER, c->list_fbo);
-    glViewport(0, 0, c->ray_res, c->ray_res);
-    glUseProgram(c->trace_prog);
-    list_uniforms(c, view);
-    glUniform1f(12, tmax);
-    glUniform1ui(13, c->photon_capacity);
-    glUniform1f(14, c->slack);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, c->heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, c->nodes);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, c->photons);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, c->first_t);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, c->command);
-    glBindVertexArray(c->vao);
-    glDrawArraysIndirect(GL_LINES, NULL);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    /* Hits, normals, radii. */
-    glUseProgram(c->resolve_prog);
-    list_uniforms(c, view);
-    glUniform1f(12, tmax);
-    glUniform1ui(13, c->photon_capacity);
-    glUniform1f(14, c->splat_scale);
-    glUniform1f(15, 0.1f * c->diag);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, c->command);
-    glDispatchCompute((c->photon_capacity + 63) / 64, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    build_mask(c);
+    emit_photons(c, view, fwd);
+    trace_photons(c, view);
     gib_timer_end(timers);
 
-    /* Splatting (Sec. 3.3.2.3). */
-    gib_timer_begin(timers, "splatting");
     const gib_gbuffer *sg = c->divisor > 1 ? &c->low : &c->gbuffer;
-    glBindFramebuffer(GL_FRAMEBUFFER, c->splat_fbo);
-    glViewport(0, 0, c->splat_w, c->splat_h);
-    const float black[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 0, black);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(c->splat_prog);
-    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
-    glUniform3fv(6, 1, view->origin);
-    glUniform1f(2, c->delta);
-    glBindTextureUnit(GIB_UNIT_GBUF_POSITION, sg->position);
-    glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, sg->normal);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, c->photons);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, c->command);
-    glDrawArraysIndirect(GL_POINTS, (const void *)(uintptr_t)16);
-    glBindVertexArray(0);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    glDisable(GL_BLEND);
+    gib_timer_begin(timers, "splatting");
+    splat_photons(c, view, sg);
     gib_timer_end(timers);
 
     gib_timer_begin(timers, "upsampling");
-    gib_fullscreen_begin(&c->shade, targets[0].fbo, c->width, c->height, 0);
-    gib_gbuffer_bind(&c->gbuffer);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST, c->irradiance);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 1, sg->position);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 2, sg->normal);
-    glUniform1i(2, c->divisor);
-    glUniform3fv(3, 1, view->origin);
-    gib_fullscreen_draw(&c->shade);
-    gib_fullscreen_end();
+    shade(c, view, targets[0].fbo, sg);
     gib_timer_end(timers);
     return gib_gl_check("ispm_caustics", err);
 }

@@ -2,14 +2,16 @@
 // (trace.frag, resolve.comp) reads them as it reads Algorithm 3.4's lists.
 #include "ispm_caustics/caustics.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 8) writeonly buffer Heads { uint heads[]; };
-layout(std430, binding = 9) writeonly buffer Nodes { Node nodes[]; };
-layout(std430, binding = 11) buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler2D u_layer0;
-layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2D u_layer1;
-layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2D u_layer2;
-layout(binding = GIB_UNIT_OWN_FIRST + 3) uniform sampler2D u_layer3;
-layout(location = 8) uniform int u_res;
+layout(std430, binding = ISPM_SSBO_HEADS) writeonly buffer Heads { uint heads[]; };
+layout(std430, binding = ISPM_SSBO_NODES) writeonly buffer Nodes { Node nodes[]; };
+layout(std430, binding = ISPM_SSBO_STATUS) buffer Status {
+    uint list_count, list_overflow, photon_overflow, list_longest;
+};
+layout(binding = ISPM_UNIT_LAYER_FIRST + 0) uniform sampler2D u_layer0;
+layout(binding = ISPM_UNIT_LAYER_FIRST + 1) uniform sampler2D u_layer1;
+layout(binding = ISPM_UNIT_LAYER_FIRST + 2) uniform sampler2D u_layer2;
+layout(binding = ISPM_UNIT_LAYER_FIRST + 3) uniform sampler2D u_layer3;
+layout(location = ISPM_LOC_RES) uniform int u_res;
 void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);

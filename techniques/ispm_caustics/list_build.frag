@@ -6,15 +6,17 @@
 // list's length bounds the walks of the trace.
 #include "common/scene.glsl"
 #include "ispm_caustics/caustics.glsl"
-layout(std430, binding = 8) coherent buffer Heads { uint heads[]; };
-layout(std430, binding = 9) writeonly buffer Nodes { Node nodes[]; };
-layout(std430, binding = 11) buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
-layout(std430, binding = 12) buffer Counts { uint counts[]; };
-layout(location = 0) uniform int u_material;
-layout(location = 6) uniform vec3 u_origin; // the eye
-layout(location = 7) uniform vec3 u_forward;
-layout(location = 8) uniform int u_res;
-layout(location = 9) uniform uint u_capacity;
+layout(std430, binding = ISPM_SSBO_HEADS) coherent buffer Heads { uint heads[]; };
+layout(std430, binding = ISPM_SSBO_NODES) writeonly buffer Nodes { Node nodes[]; };
+layout(std430, binding = ISPM_SSBO_STATUS) buffer Status {
+    uint list_count, list_overflow, photon_overflow, list_longest;
+};
+layout(std430, binding = ISPM_SSBO_COUNTS) buffer Counts { uint counts[]; };
+layout(location = GIB_LOC_MATERIAL) uniform int u_material;
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin; // the eye
+layout(location = ISPM_LOC_FORWARD) uniform vec3 u_forward;
+layout(location = ISPM_LOC_RES) uniform int u_res;
+layout(location = ISPM_LIST_LOC_CAPACITY) uniform uint u_capacity;
 layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
 in vec3 v_position;
 in vec3 v_normal;

@@ -1,13 +1,16 @@
 // The camera's lists at the ray resolution (list_build.frag) and what the trace asks of them.
-layout(std430, binding = 8) readonly buffer Heads { uint heads[]; };
-layout(std430, binding = 9) readonly buffer Nodes { Node nodes[]; };
-layout(location = 1) uniform mat4 u_view_proj; // camera-relative: maps p - u_origin
-layout(location = 6) uniform vec3 u_origin;    // the eye
-layout(location = 7) uniform vec3 u_forward;
-layout(location = 8) uniform int u_res;
-layout(location = 10) uniform vec3 u_right_tan; // camera right / P[0]: x_ndc 1's direction step
-layout(location = 11) uniform vec3 u_up_tan;    // camera up / P[5]
-layout(std430, binding = 11) readonly buffer Status { uint list_count; uint list_overflow; uint photon_overflow; uint list_longest; };
+layout(std430, binding = ISPM_SSBO_HEADS) readonly buffer Heads { uint heads[]; };
+layout(std430, binding = ISPM_SSBO_NODES) readonly buffer Nodes { Node nodes[]; };
+layout(location = GIB_LOC_VIEW_PROJ) uniform mat4 u_view_proj; // camera-relative: maps p - u_origin
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;    // the eye
+layout(location = ISPM_LOC_FORWARD) uniform vec3 u_forward;
+layout(location = ISPM_LOC_RES) uniform int u_res;
+// camera right / P[0]: x_ndc 1's direction step
+layout(location = ISPM_LOC_RIGHT_TAN) uniform vec3 u_right_tan;
+layout(location = ISPM_LOC_UP_TAN) uniform vec3 u_up_tan;    // camera up / P[5]
+layout(std430, binding = ISPM_SSBO_STATUS) readonly buffer Status {
+    uint list_count, list_overflow, photon_overflow, list_longest;
+};
 // Walks stop after the longest list's length (llvmpipe runs a loop's lanes to its bound when the
 // bound is a large constant, however early each list ends).
 int max_walk() { return int(min(list_longest, 1u << 20)); }

@@ -2,15 +2,15 @@
 // light sees a specular surface (NORMAL.w, the material's specular type, with rho_s > 0), else 0.
 // Level k: the box mean of its 4 texels at level k - 1 (computed here: GL leaves
 // glGenerateMipmap's filter to the driver), so a texel is exactly 1 iff all 4^k texels below are.
-#include "gl/bindings.h"
+#include "ispm_caustics/ispm_caustics_slots.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_SPECULAR) uniform sampler2DArray lv_specular;
-layout(r32f, binding = 0) uniform writeonly image2DArray u_dst;
-layout(r32f, binding = 1) uniform readonly image2DArray u_src;
-layout(location = 2) uniform int u_level;
-layout(location = 3) uniform int u_res; // of the level written
+layout(r32f, binding = ISPM_MIP_IMAGE_DST) uniform writeonly image2DArray u_dst;
+layout(r32f, binding = ISPM_MIP_IMAGE_SRC) uniform readonly image2DArray u_src;
+layout(location = ISPM_MIP_LOC_LEVEL) uniform int u_level;
+layout(location = ISPM_MIP_LOC_RES) uniform int u_res; // of the level written
 void main()
 {
     ivec3 p = ivec3(gl_GlobalInvocationID);

@@ -5,12 +5,12 @@
 // missing, which is the leak of Fig. 4.2(b). Output: the list node's fields (caustics.glsl).
 #include "common/scene.glsl"
 #include "ispm_caustics/caustics.glsl"
-layout(location = 0) uniform int u_material;
-layout(location = 6) uniform vec3 u_origin; // the eye
-layout(location = 7) uniform vec3 u_forward;
-layout(location = 8) uniform int u_layer;
+layout(location = GIB_LOC_MATERIAL) uniform int u_material;
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin; // the eye
+layout(location = ISPM_LOC_FORWARD) uniform vec3 u_forward;
+layout(location = ISPM_PEEL_LOC_LAYER) uniform int u_layer;
 layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler2D u_prev;
+layout(binding = ISPM_UNIT_PREV_LAYER) uniform sampler2D u_prev;
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;

@@ -1,12 +1,13 @@
 // Test probe (tests/caustics): the Phong sampler of caustics.glsl on given lobe axes and normals.
 #include "ispm_caustics/caustics.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = 8) readonly buffer In { vec4 xi[]; };       // xy xi1 xi2
-layout(std430, binding = 9) buffer Out { vec4 dirs[]; };              // xyz d, w accepted
-layout(location = 2) uniform vec3 u_r;
-layout(location = 3) uniform vec3 u_normal;
-layout(location = 4) uniform float u_n;
-layout(location = 5) uniform int u_count;
+layout(std430, binding = ISPM_PROBE_SSBO_IN) readonly buffer In { vec4 xi[]; };       // xy xi1 xi2
+// xyz d, w accepted
+layout(std430, binding = ISPM_PROBE_SSBO_OUT) buffer Out { vec4 dirs[]; };
+layout(location = ISPM_PROBE_LOC_R) uniform vec3 u_r;
+layout(location = ISPM_PROBE_LOC_NORMAL) uniform vec3 u_normal;
+layout(location = ISPM_PROBE_LOC_N) uniform float u_n;
+layout(location = ISPM_PROBE_LOC_COUNT) uniform int u_count;
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);

@@ -10,13 +10,13 @@
 #include "ispm_caustics/caustics.glsl"
 #include "ispm_caustics/list_lookup.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = 10) buffer Photons { Photon photons[]; };
-layout(std430, binding = 12) readonly buffer FirstHit { uint first_t[]; };
-layout(std430, binding = 13) readonly buffer Command { uint cmd[8]; };
-layout(location = 12) uniform float u_tmax;
-layout(location = 13) uniform uint u_capacity;
-layout(location = 14) uniform float u_splat_scale;
-layout(location = 15) uniform float u_hmax;
+layout(std430, binding = ISPM_SSBO_PHOTONS) buffer Photons { Photon photons[]; };
+layout(std430, binding = ISPM_SSBO_FIRST_HIT) readonly buffer FirstHit { uint first_t[]; };
+layout(std430, binding = ISPM_SSBO_COMMAND) readonly buffer Command { uint cmd[8]; };
+layout(location = ISPM_TRACE_LOC_TMAX) uniform float u_tmax;
+layout(location = ISPM_TRACE_LOC_CAPACITY) uniform uint u_capacity;
+layout(location = ISPM_RESOLVE_LOC_SPLAT_SCALE) uniform float u_splat_scale;
+layout(location = ISPM_RESOLVE_LOC_HMAX) uniform float u_hmax;
 void main()
 {
     uint i = gl_GlobalInvocationID.x;

@@ -5,15 +5,15 @@
 // normals' agreement max(n . n', 0)^8 and 1 / (1 + |d - d'| / (0.01 d)): the text's
 // 1 / (1 + |d - d'|) measures depth in the scene's units; ours is relative, 1% of the pixel's depth
 // halving the weight.
-#include "gl/bindings.h"
+#include "ispm_caustics/ispm_caustics_slots.h"
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler2D u_irradiance;
-layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2D u_low_position;
-layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2D u_low_normal;
-layout(location = 2) uniform int u_divisor;
-layout(location = 3) uniform vec3 u_eye;
+layout(binding = ISPM_SHADE_UNIT_IRRADIANCE) uniform sampler2D u_irradiance;
+layout(binding = ISPM_SHADE_UNIT_LOW_POSITION) uniform sampler2D u_low_position;
+layout(binding = ISPM_SHADE_UNIT_LOW_NORMAL) uniform sampler2D u_low_normal;
+layout(location = ISPM_SHADE_LOC_DIVISOR) uniform int u_divisor;
+layout(location = ISPM_SHADE_LOC_EYE) uniform vec3 u_eye;
 layout(location = 0) out vec4 o_color;
 void main()
 {

@@ -5,10 +5,10 @@
 // splat integrates to its flux on its plane (the thesis divides by pi h^2, right only for a
 // constant kernel: issue 17). Additive blending sums the photons.
 #include "ispm_caustics/caustics.glsl"
-layout(std430, binding = 10) readonly buffer Photons { Photon photons[]; };
+layout(std430, binding = ISPM_SSBO_PHOTONS) readonly buffer Photons { Photon photons[]; };
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
-layout(location = 2) uniform float u_delta;
+layout(location = ISPM_SPLAT_LOC_DELTA) uniform float u_delta;
 flat in int f_photon;
 layout(location = 0) out vec4 o_irradiance;
 void main()

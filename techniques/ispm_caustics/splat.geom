@@ -3,9 +3,9 @@
 #include "ispm_caustics/caustics.glsl"
 layout(points) in;
 layout(triangle_strip, max_vertices = 4) out;
-layout(std430, binding = 10) readonly buffer Photons { Photon photons[]; };
-layout(location = 1) uniform mat4 u_view_proj;
-layout(location = 6) uniform vec3 u_origin;
+layout(std430, binding = ISPM_SSBO_PHOTONS) readonly buffer Photons { Photon photons[]; };
+layout(location = GIB_LOC_VIEW_PROJ) uniform mat4 u_view_proj;
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
 flat out int f_photon;
 void main()
 {

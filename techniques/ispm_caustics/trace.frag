@@ -8,10 +8,10 @@
 // place of the thesis' row of hits per line.
 #include "ispm_caustics/caustics.glsl"
 #include "ispm_caustics/list_lookup.glsl"
-layout(std430, binding = 10) readonly buffer Photons { Photon photons[]; };
-layout(std430, binding = 12) buffer FirstHit { uint first_t[]; };
-layout(location = 12) uniform float u_tmax;
-layout(location = 14) uniform float u_slack;
+layout(std430, binding = ISPM_SSBO_PHOTONS) readonly buffer Photons { Photon photons[]; };
+layout(std430, binding = ISPM_SSBO_FIRST_HIT) buffer FirstHit { uint first_t[]; };
+layout(location = ISPM_TRACE_LOC_TMAX) uniform float u_tmax;
+layout(location = ISPM_TRACE_LOC_SLACK) uniform float u_slack;
 flat in int v_photon;
 void main()
 {

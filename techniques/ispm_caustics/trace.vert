@@ -1,11 +1,11 @@
 // Sec. 3.3.2.2: each photon's ray drawn as a line (instance = photon, vertex 0/1 = its ends) in
 // the camera's view at the ray resolution; GL clips it to the view frustum.
 #include "ispm_caustics/caustics.glsl"
-layout(std430, binding = 10) readonly buffer Photons { Photon photons[]; };
-layout(location = 1) uniform mat4 u_view_proj;
-layout(location = 6) uniform vec3 u_origin;
-layout(location = 12) uniform float u_tmax;
-layout(location = 13) uniform uint u_capacity;
+layout(std430, binding = ISPM_SSBO_PHOTONS) readonly buffer Photons { Photon photons[]; };
+layout(location = GIB_LOC_VIEW_PROJ) uniform mat4 u_view_proj;
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
+layout(location = ISPM_TRACE_LOC_TMAX) uniform float u_tmax;
+layout(location = ISPM_TRACE_LOC_CAPACITY) uniform uint u_capacity;
 flat out int v_photon;
 void main()
 {

@@ -8,9 +8,11 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "harness/gl/view.h"
 #include "eqsp.h"
+#include "techniques/ldm/ldm_slots.h"
 
 /* std430 struct LdmInfo in ldm_common.glsl. */
 typedef struct ldm_info_gpu {
@@ -22,7 +24,7 @@ typedef struct ldm_info_gpu {
 static void draw_all(const gib_gpu_scene *scene, unsigned program, int first, int count)
 {
     glUseProgram(program);
-    glUniform1i(5, first);
+    glUniform1i(LDM_LOC_FIRST_LDM, first);
     gib_gpu_scene_draw_instanced(scene, count);
 }
 
@@ -62,14 +64,11 @@ static int upload_info(ldm_set *l, gib_ledger *ledger, const uint64_t *counts, g
 
 static void begin_pass(ldm_set *l)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, l->fbo);
-    glViewport(0, 0, l->res, l->res);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE); /* front and back faces both go into the lists */
-    glDisable(GL_BLEND);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, l->info);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, l->status);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, l->counters);
+    /* No depth test and no culling: front and back faces all go into the lists. */
+    gib_pass_apply(&(gib_pass_state){.fbo = l->fbo, .width = l->res, .height = l->res});
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_INFO, l->info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_STATUS, l->status);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_COUNTERS, l->counters);
 }
 
 /* Counting pass: fragments per LDM of the geometry as the GPU scene holds it now, into counts. */
@@ -79,6 +78,7 @@ static void count_fragments(ldm_set *l, const gib_gpu_scene *scene, uint32_t *co
     glClearNamedBufferData(l->counters, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     begin_pass(l);
     draw_all(scene, l->count_program, 0, l->count);
+    gib_pass_end();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts);
 }
@@ -237,15 +237,16 @@ void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
         ldm_bind_page(l, p);
         draw_all(scene, l->build_program, l->pages[p].first, l->pages[p].count);
     }
+    gib_pass_end();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gib_timer_end(timers);
 }
 
 void ldm_bind_page(const ldm_set *l, int page)
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, l->info);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, l->pages[page].heads);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, l->pages[page].nodes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_INFO, l->info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_HEADS, l->pages[page].heads);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_NODES, l->pages[page].nodes);
 }
 
 const char *ldm_status(ldm_set *l)
@@ -314,14 +315,14 @@ int ldm_probe(ldm_set *l, const float *rays, int n, float eps, float *dist, gib_
         return -1;
     }
     glUseProgram(prog);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, rb);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, hb);
-    glUniform1i(0, n);
-    glUniform1f(3, eps);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDM_PROBE_SSBO_RAYS, rb);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDM_PROBE_SSBO_HITS, hb);
+    glUniform1i(LDM_PROBE_LOC_COUNT, n);
+    glUniform1f(LDM_PROBE_LOC_EPS, eps);
     for (int p = 0; p < l->page_count; p++) {
         ldm_bind_page(l, p);
-        glUniform1i(1, l->pages[p].first);
-        glUniform1i(2, l->pages[p].count);
+        glUniform1i(LDM_PROBE_LOC_FIRST, l->pages[p].first);
+        glUniform1i(LDM_PROBE_LOC_PAGE_COUNT, l->pages[p].count);
         glDispatchCompute((n + 63) / 64, 1, 1);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

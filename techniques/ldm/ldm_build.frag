@@ -5,12 +5,13 @@
 // walk on from the same predecessor.
 #include "common/scene.glsl"
 #include "ldm/ldm_common.glsl"
-layout(std430, binding = 4) coherent buffer Heads { uint heads[]; };
-layout(std430, binding = 5) coherent buffer Nodes { uvec2 nodes[]; }; // x depth bits, y next
-layout(std430, binding = 6) buffer Status { uint overflow; uint contention; };
-layout(std430, binding = 7) buffer Counters { uint counters[]; };
-layout(location = 0) uniform int u_material;
-layout(binding = 1) uniform sampler2D u_alpha_tex;
+layout(std430, binding = GIB_SSBO_LDM_HEADS) coherent buffer Heads { uint heads[]; };
+// x depth bits, y next
+layout(std430, binding = GIB_SSBO_LDM_NODES) coherent buffer Nodes { uvec2 nodes[]; };
+layout(std430, binding = GIB_SSBO_LDM_STATUS) buffer Status { uint overflow; uint contention; };
+layout(std430, binding = GIB_SSBO_LDM_COUNTERS) buffer Counters { uint counters[]; };
+layout(location = GIB_LOC_MATERIAL) uniform int u_material;
+layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
 in vec3 v_position;
 in vec2 v_uv;
 flat in int v_ldm;

@@ -3,7 +3,7 @@
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
-layout(location = 5) uniform int u_first_ldm;
+layout(location = LDM_LOC_FIRST_LDM) uniform int u_first_ldm;
 out vec3 v_position;
 out vec2 v_uv;
 flat out int v_ldm;

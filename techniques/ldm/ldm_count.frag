@@ -1,9 +1,9 @@
 // Counting pass (once, at create): fragments per LDM, to size the node buffers exactly.
 #include "common/scene.glsl"
 #include "ldm/ldm_common.glsl"
-layout(std430, binding = 7) buffer Counters { uint counters[]; };
-layout(location = 0) uniform int u_material;
-layout(binding = 1) uniform sampler2D u_alpha_tex;
+layout(std430, binding = GIB_SSBO_LDM_COUNTERS) buffer Counters { uint counters[]; };
+layout(location = GIB_LOC_MATERIAL) uniform int u_material;
+layout(binding = GIB_UNIT_ALPHA_TEX) uniform sampler2D u_alpha_tex;
 in vec3 v_position;
 in vec2 v_uv;
 flat in int v_ldm;

@@ -2,12 +2,12 @@
 // can be checked against Embree on the same rays. ray.w = +-(i + 1): LDM i, direction sign.
 #include "ldm/ldm_trace.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = 8) readonly buffer Rays { vec4 rays[]; };
-layout(std430, binding = 9) writeonly buffer Hits { float hits[]; };
-layout(location = 0) uniform int u_count;
-layout(location = 1) uniform int u_first; // LDMs of the bound page
-layout(location = 2) uniform int u_page_count;
-layout(location = 3) uniform float u_eps;
+layout(std430, binding = LDM_PROBE_SSBO_RAYS) readonly buffer Rays { vec4 rays[]; };
+layout(std430, binding = LDM_PROBE_SSBO_HITS) writeonly buffer Hits { float hits[]; };
+layout(location = LDM_PROBE_LOC_COUNT) uniform int u_count;
+layout(location = LDM_PROBE_LOC_FIRST) uniform int u_first; // LDMs of the bound page
+layout(location = LDM_PROBE_LOC_PAGE_COUNT) uniform int u_page_count;
+layout(location = LDM_PROBE_LOC_EPS) uniform float u_eps;
 void main()
 {
     int k = int(gl_GlobalInvocationID.x);

@@ -6,8 +6,8 @@
 // Returns the distance from x to the first surface along sgn*v beyond eps, or -1 when nothing is hit
 // (or x projects outside the map). The walk stops at the first hit: the lists are sorted.
 #include "ldm/ldm_common.glsl"
-layout(std430, binding = 4) readonly buffer Heads { uint heads[]; };
-layout(std430, binding = 5) readonly buffer Nodes { uvec2 nodes[]; };
+layout(std430, binding = GIB_SSBO_LDM_HEADS) readonly buffer Heads { uint heads[]; };
+layout(std430, binding = GIB_SSBO_LDM_NODES) readonly buffer Nodes { uvec2 nodes[]; };
 
 float ldm_trace(int i, vec3 x, float sgn, float eps)
 {

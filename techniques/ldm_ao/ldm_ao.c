@@ -12,6 +12,7 @@
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/ldm/ldm.h"
+#include "techniques/ldm_ao/ldm_ao_slots.h"
 
 extern const gib_technique gib_technique_ldm_ao;
 
@@ -92,14 +93,14 @@ static int ldm_ao_render(void *self, const gib_view *view, gib_timers *timers,
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
     gib_gbuffer_bind(&a->gbuffer);
-    glUniform1f(7, 2.0f / (float)a->ldms.count);
-    glUniform1f(8, a->dmax);
-    glUniform1i(9, a->obscurance);
-    glUniform1f(10, a->offset);
+    glUniform1f(LDM_AO_LOC_WEIGHT, 2.0f / (float)a->ldms.count);
+    glUniform1f(LDM_AO_LOC_DMAX, a->dmax);
+    glUniform1i(LDM_AO_LOC_OBSCURANCE, a->obscurance);
+    glUniform1f(LDM_AO_LOC_OFFSET, a->offset);
     for (int p = 0; p < a->ldms.page_count; p++) {
         ldm_bind_page(&a->ldms, p);
-        glUniform1i(5, a->ldms.pages[p].first);
-        glUniform1i(6, a->ldms.pages[p].count);
+        glUniform1i(LDM_AO_LOC_FIRST, a->ldms.pages[p].first);
+        glUniform1i(LDM_AO_LOC_COUNT, a->ldms.pages[p].count);
         gib_fullscreen_draw(&a->trace);
     }
     gib_fullscreen_end();

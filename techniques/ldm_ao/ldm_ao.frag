@@ -7,17 +7,18 @@
 // With LDM_SKY defined (technique ldm_env, the paper's Fig. 11) the same sum is the direct light of
 // a uniform sky of radiance L: rho/pi * integral L V cos dw = rho * L * (2/N) sum V |cos|.
 #include "ldm/ldm_trace.glsl"
-layout(binding = 0) uniform sampler2D g_position;
-layout(binding = 1) uniform sampler2D g_normal;
-layout(location = 5) uniform int u_first;
-layout(location = 6) uniform int u_count;
-layout(location = 7) uniform float u_weight;        // 2 / N
-layout(location = 8) uniform float u_dmax;          // +inf for unbounded
-layout(location = 9) uniform int u_obscurance;
-layout(location = 10) uniform float u_offset_texels;
+#include "ldm_ao/ldm_ao_slots.h"
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
+layout(location = LDM_AO_LOC_FIRST) uniform int u_first;
+layout(location = LDM_AO_LOC_COUNT) uniform int u_count;
+layout(location = LDM_AO_LOC_WEIGHT) uniform float u_weight;        // 2 / N
+layout(location = LDM_AO_LOC_DMAX) uniform float u_dmax;          // +inf for unbounded
+layout(location = LDM_AO_LOC_OBSCURANCE) uniform int u_obscurance;
+layout(location = LDM_AO_LOC_OFFSET) uniform float u_offset_texels;
 #ifdef LDM_SKY
-layout(binding = 2) uniform sampler2D g_albedo;
-layout(location = 11) uniform vec3 u_sky;
+layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
+layout(location = LDM_AO_LOC_SKY) uniform vec3 u_sky;
 #endif
 layout(location = 0) out vec4 o_ao;
 void main()

@@ -14,6 +14,7 @@
 #include "harness/gl/context.h"
 #include "techniques/common/direct_light.h"
 #include "techniques/ldm/ldm.h"
+#include "techniques/ldm_ao/ldm_ao_slots.h"
 
 extern const gib_technique gib_technique_ldm_env;
 
@@ -88,15 +89,15 @@ static int ldm_env_render(void *self, const gib_view *view, gib_timers *timers,
     gib_timer_begin(timers, "ldm_sky");
     gib_fullscreen_begin(&e->sky, targets[0].fbo, view->width, view->height, 1);
     gib_gbuffer_bind(&e->gbuffer);
-    glUniform1f(7, 2.0f / (float)e->ldms.count);
-    glUniform1f(8, INFINITY); /* unbounded: the sky is seen wherever nothing is hit */
-    glUniform1i(9, 0);
-    glUniform1f(10, e->ldm_offset);
-    glUniform3fv(11, 1, e->scene->scene->sky);
+    glUniform1f(LDM_AO_LOC_WEIGHT, 2.0f / (float)e->ldms.count);
+    glUniform1f(LDM_AO_LOC_DMAX, INFINITY); /* unbounded: the sky is seen wherever nothing is hit */
+    glUniform1i(LDM_AO_LOC_OBSCURANCE, 0);
+    glUniform1f(LDM_AO_LOC_OFFSET, e->ldm_offset);
+    glUniform3fv(LDM_AO_LOC_SKY, 1, e->scene->scene->sky);
     for (int p = 0; p < e->ldms.page_count; p++) {
         ldm_bind_page(&e->ldms, p);
-        glUniform1i(5, e->ldms.pages[p].first);
-        glUniform1i(6, e->ldms.pages[p].count);
+        glUniform1i(LDM_AO_LOC_FIRST, e->ldms.pages[p].first);
+        glUniform1i(LDM_AO_LOC_COUNT, e->ldms.pages[p].count);
         gib_fullscreen_draw(&e->sky);
     }
     gib_fullscreen_end();

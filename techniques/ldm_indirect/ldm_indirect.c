@@ -23,12 +23,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "techniques/ldm/ldm.h"
+#include "techniques/ldm_indirect/ldm_indirect_slots.h"
 
 extern const gib_technique gib_technique_ldm_indirect;
 
@@ -202,26 +203,26 @@ static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timer
         gib_light_views_bind(&a->views);
         glBindTextureUnit(GIB_UNIT_GBUF_POSITION, a->gbuffer.position);
         glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, a->gbuffer.normal);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, a->photons);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, a->command);
-        glUniform1i(0, li);
-        glUniform1i(1, f);
-        glUniform1i(4, a->photon_res);
-        glUniform1f(7, 2.0f / (float)a->ldms.count);
-        glUniformMatrix4fv(8, 1, GL_FALSE, view->view_proj);
-        glUniform3fv(12, 1, view->origin);
-        glUniform2i(9, view->width, view->height);
-        glUniform1f(10, a->offset);
-        glUniform1ui(11, a->capacity);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_PHOTONS, a->photons);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_COMMAND, a->command);
+        glUniform1i(LDMI_TRACE_LOC_LIGHT, li);
+        glUniform1i(LDMI_TRACE_LOC_FACE, f);
+        glUniform1i(LDMI_TRACE_LOC_RES, a->photon_res);
+        glUniform1f(LDMI_TRACE_LOC_SPLIT_WEIGHT, 2.0f / (float)a->ldms.count);
+        glUniformMatrix4fv(LDMI_TRACE_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
+        glUniform3fv(LDMI_TRACE_LOC_ORIGIN, 1, view->origin);
+        glUniform2i(LDMI_TRACE_LOC_SIZE, view->width, view->height);
+        glUniform1f(LDMI_TRACE_LOC_OFFSET, a->offset);
+        glUniform1ui(LDMI_TRACE_LOC_CAPACITY, a->capacity);
         if (a->audit)
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, a->audit_buffer);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_AUDIT, a->audit_buffer);
         int groups = (a->photon_res + 7) / 8;
         for (int p = 0; p < a->ldms.page_count; p++) {
             ldm_bind_page(&a->ldms, p);
-            glUniform1i(5, a->ldms.pages[p].first);
-            glUniform1i(6, a->ldms.pages[p].count);
+            glUniform1i(LDMI_TRACE_LOC_FIRST, a->ldms.pages[p].first);
+            glUniform1i(LDMI_TRACE_LOC_COUNT, a->ldms.pages[p].count);
             if (a->audit) {
-                glUniform1i(13, p == 0);
+                glUniform1i(LDMI_TRACE_LOC_FIRST_PAGE, p == 0);
                 /* Each work group adds to its audit slot: the previous dispatch's sums first. */
                 glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
             }
@@ -237,33 +238,30 @@ static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timer
 static void draw_splats(ldm_indirect *a, unsigned program, unsigned fbo, const gib_view *view,
                         int audit)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, view->width, view->height);
+    gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = view->width, .height = view->height,
+                                     .blend = GIB_BLEND_ADD});
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(program);
-    glUniformMatrix4fv(1, 1, GL_FALSE, view->view_proj);
-    glUniform3fv(6, 1, view->origin);
-    glUniform1f(2, a->topo_bias);
+    glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
+    glUniform1f(LDMI_SPLAT_LOC_TOPO_BIAS, a->topo_bias);
     if (audit) {
-        glUniform3fv(3, 1, view->origin);
+        glUniform3fv(LDMI_SPLAT_LOC_EYE, 1, view->origin);
         /* proj[0] = 1/tan(half horizontal angle), proj[5] = 1/tan(half vertical angle). */
-        glUniform4f(4, 1.0f / view->proj[0], 1.0f / view->proj[5], (float)view->width,
-                    (float)view->height);
+        glUniform4f(LDMI_SPLAT_LOC_TAN_SIZE, 1.0f / view->proj[0], 1.0f / view->proj[5],
+                    (float)view->width, (float)view->height);
     }
-    glBindTextureUnit(0, a->gbuffer.position);
-    glBindTextureUnit(1, a->gbuffer.normal);
-    glBindTextureUnit(2, a->gbuffer.albedo);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, a->photons);
+    glBindTextureUnit(GIB_UNIT_GBUF_POSITION, a->gbuffer.position);
+    glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, a->gbuffer.normal);
+    glBindTextureUnit(GIB_UNIT_GBUF_ALBEDO, a->gbuffer.albedo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_PHOTONS, a->photons);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, a->command);
     glBindVertexArray(a->vao);
     glDrawArraysIndirect(GL_POINTS, NULL);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-    glDisable(GL_BLEND);
+    gib_pass_end();
 }
 
 /* The audit's splat pass (the photons drawn again, each fragment writing the flux it deposits),

@@ -1,4 +1,5 @@
 // The photon record shared by the tracing and splatting passes of ldm_indirect.
+#include "ldm_indirect/ldm_indirect_slots.h"
 struct Photon {
     vec4 position; // xyz: where the secondary photon landed (x2)
     vec4 du;       // xyz: positional differential D_u x2

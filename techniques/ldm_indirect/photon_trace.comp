@@ -16,27 +16,30 @@ layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
-layout(std430, binding = 8) writeonly buffer Photons { Photon photons[]; };
-layout(std430, binding = 9) buffer Command { DrawCommand command; uint overflow; };
-layout(location = 0) uniform int u_light;
-layout(location = 1) uniform int u_face;            // the light-view layer traced
-layout(location = 4) uniform int u_res;             // light-view photon resolution
-layout(location = 5) uniform int u_first;           // LDMs of the bound page
-layout(location = 6) uniform int u_count;
-layout(location = 7) uniform float u_split_weight;  // 2/N: each direction stands for 2 pi / N sr
-layout(location = 8) uniform mat4 u_camera_view_proj; // maps p - u_camera_origin
-layout(location = 12) uniform vec3 u_camera_origin;
-layout(location = 9) uniform ivec2 u_camera_size;
-layout(location = 10) uniform float u_offset_texels;
-layout(location = 11) uniform uint u_capacity;
+layout(std430, binding = LDMI_SSBO_PHOTONS) writeonly buffer Photons { Photon photons[]; };
+layout(std430, binding = LDMI_SSBO_COMMAND) buffer Command { DrawCommand command; uint overflow; };
+layout(location = LDMI_TRACE_LOC_LIGHT) uniform int u_light;
+layout(location = LDMI_TRACE_LOC_FACE) uniform int u_face;           // the light-view layer traced
+layout(location = LDMI_TRACE_LOC_RES) uniform int u_res;            // light-view photon resolution
+layout(location = LDMI_TRACE_LOC_FIRST) uniform int u_first;          // LDMs of the bound page
+layout(location = LDMI_TRACE_LOC_COUNT) uniform int u_count;
+// 2/N: each direction stands for 2 pi / N sr
+layout(location = LDMI_TRACE_LOC_SPLIT_WEIGHT) uniform float u_split_weight;
+// maps p - u_camera_origin
+layout(location = LDMI_TRACE_LOC_VIEW_PROJ) uniform mat4 u_camera_view_proj;
+layout(location = LDMI_TRACE_LOC_ORIGIN) uniform vec3 u_camera_origin;
+layout(location = LDMI_TRACE_LOC_SIZE) uniform ivec2 u_camera_size;
+layout(location = LDMI_TRACE_LOC_OFFSET) uniform float u_offset_texels;
+layout(location = LDMI_TRACE_LOC_CAPACITY) uniform uint u_capacity;
 
 // Flux audit (built with AUDIT defined, ldm_indirect.h): every invocation sums the flux of each
 // fate below, the work group adds its 64 sums, and work group g adds them to audit[g] (one slot
 // per work group, accumulated over faces, lights and pages; the host clears and reads it).
 #ifdef AUDIT
 #include "ldm_indirect/audit.glsl"
-layout(std430, binding = 10) buffer Audit { vec4 audit[]; };
-layout(location = 13) uniform int u_first_page; // 1 for the first LDM page: count the primary photon
+layout(std430, binding = LDMI_SSBO_AUDIT) buffer Audit { vec4 audit[]; };
+// 1 for the first LDM page: count the primary photon
+layout(location = LDMI_TRACE_LOC_FIRST_PAGE) uniform int u_first_page;
 vec3 acc[AUDIT_COUNT];
 shared vec3 group_acc[AUDIT_COUNT][64];
 #define TALLY(k, v) acc[k] += (v)

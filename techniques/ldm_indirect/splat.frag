@@ -4,10 +4,11 @@
 // a carry units of length; we scale it by the footprint, a_eff = a sqrt(|D_u x . (D_v x x n)|), so a
 // is dimensionless: with a = 1 a point half a footprint off the plane gets l = 1. f_s = rho/pi
 // (diffuse receivers: LDDE). Additive blending sums over photons.
-layout(binding = 0) uniform sampler2D g_position;
-layout(binding = 1) uniform sampler2D g_normal;
-layout(binding = 2) uniform sampler2D g_albedo;
-layout(location = 2) uniform float u_topo_bias;
+#include "ldm_indirect/ldm_indirect_slots.h"
+layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
+layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
+layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
+layout(location = LDMI_SPLAT_LOC_TOPO_BIAS) uniform float u_topo_bias;
 flat in vec3 f_position;
 flat in vec3 f_du;
 flat in vec3 f_dv;
@@ -17,8 +18,9 @@ layout(location = 0) out vec4 o_color;
 // Audit (ldm_indirect.h): the flux the splat deposits on this pixel's patch of surface, irradiance
 // times the patch's area: the pixel's solid angle (from the frustum's half-extents at distance 1
 // and the image size) times dist^2 / cos.
-layout(location = 3) uniform vec3 u_eye;
-layout(location = 4) uniform vec4 u_tan_size; // xy: tan of the half-angles, zw: image size
+layout(location = LDMI_SPLAT_LOC_EYE) uniform vec3 u_eye;
+// xy: tan of the half-angles, zw: image size
+layout(location = LDMI_SPLAT_LOC_TAN_SIZE) uniform vec4 u_tan_size;
 #endif
 void main()
 {

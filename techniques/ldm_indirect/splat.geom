@@ -1,9 +1,10 @@
 // Expands a photon into the screen-space rectangle that bounds its footprint: the parallelogram
 // x_p +- D_u x / 2 +- D_v x / 2, which contains the kernel's ellipse (M maps it to the unit disc).
+#include "gl/bindings.h"
 layout(points) in;
 layout(triangle_strip, max_vertices = 4) out;
-layout(location = 1) uniform mat4 u_view_proj; // camera-relative: maps p - u_origin
-layout(location = 6) uniform vec3 u_origin;
+layout(location = GIB_LOC_VIEW_PROJ) uniform mat4 u_view_proj; // camera-relative: maps p - u_origin
+layout(location = GIB_LOC_ORIGIN) uniform vec3 u_origin;
 in vec3 v_position[];
 in vec3 v_du[];
 in vec3 v_dv[];

@@ -1,7 +1,7 @@
 // Photon splatting (Aalund et al. 2015, Sec. 4.2): the photon buffer is drawn as points; the vertex
 // shader forms the irradiance estimate E_p = Phi_p / A_p (Eq. 4), A_p = pi/4 |D_u x x D_v x|.
 #include "ldm_indirect/photon.glsl"
-layout(std430, binding = 8) readonly buffer Photons { Photon photons[]; };
+layout(std430, binding = LDMI_SSBO_PHOTONS) readonly buffer Photons { Photon photons[]; };
 out vec3 v_position;
 out vec3 v_du;
 out vec3 v_dv;

@@ -19,12 +19,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/voxels.h"
 #include "techniques/lrsm/lrsm.h"
+#include "techniques/lrsm/lrsm_slots.h"
 
 extern const gib_technique gib_technique_lrsm;
 
@@ -156,18 +156,18 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     gib_light_views_bind(&s->views);
     lrsm_layers_bind(&s->layers);
     gib_voxels_bind(&s->voxels);
-    glUniform1f(7, s->mip_clamp);
-    glUniform1i(8, (int)s->scene->scene->light_count);
-    glUniform3fv(9, 1, view->camera->eye);
-    glUniform1f(10, s->aperture[which]);
-    glUniform1f(11, s->start_offset);
-    glUniform1f(12, s->step_factor);
-    glUniform1f(13, s->max_distance);
-    glUniform1i(14, s->backface);
-    glUniform1i(15, s->seams);
-    glUniform1i(16, s->coverage);
-    glUniform1i(17, s->visibility);
-    glUniform1i(GIB_LOC_VOXEL_FIRST + 3, which == PASS_SHADOW ? 0 : s->opacity);
+    glUniform1f(LRSM_LOC_MIP_CLAMP, s->mip_clamp);
+    glUniform1i(LRSM_LOC_LIGHTS, (int)s->scene->scene->light_count);
+    glUniform3fv(LRSM_CONE_LOC_EYE, 1, view->camera->eye);
+    glUniform1f(LRSM_CONE_LOC_APERTURE, s->aperture[which]);
+    glUniform1f(LRSM_CONE_LOC_START_OFFSET, s->start_offset);
+    glUniform1f(LRSM_CONE_LOC_STEP_FACTOR, s->step_factor);
+    glUniform1f(LRSM_CONE_LOC_MAX_DISTANCE, s->max_distance);
+    glUniform1i(LRSM_LOC_BACKFACE, s->backface);
+    glUniform1i(LRSM_LOC_SEAMS, s->seams);
+    glUniform1i(LRSM_CONE_LOC_COVERAGE, s->coverage);
+    glUniform1i(LRSM_LOC_VISIBILITY, s->visibility);
+    glUniform1i(GIB_LOC_VOXEL_DENSITY, which == PASS_SHADOW ? 0 : s->opacity);
     gib_fullscreen_draw(&s->pass[which]);
     gib_fullscreen_end();
     gib_timer_end(timers);

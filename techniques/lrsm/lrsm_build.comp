@@ -19,13 +19,13 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = GIB_UNIT_LV_PACKED0) uniform sampler2DArray u_lv_radiance_depth;
 layout(binding = GIB_UNIT_LV_PACKED1) uniform sampler2DArray u_lv_normal_nl;
-layout(binding = 0, rgba16f) writeonly uniform image2DArray o_radiance;
-layout(binding = 1, rgba16f) writeonly uniform image2DArray o_normal;
-layout(binding = 2, rgba16) writeonly uniform image2DArray o_depth;
-layout(location = GIB_LOC_OWN_FIRST + 2) uniform int u_face;
-layout(location = GIB_LOC_OWN_FIRST + 3) uniform int u_light;
-layout(location = GIB_LOC_OWN_FIRST + 4) uniform int u_half;   // layer side: light-view res / 2
-layout(location = GIB_LOC_OWN_FIRST + 5) uniform int u_jacobian; // 1: texels weighted by area
+layout(binding = LRSM_IMAGE_RADIANCE, rgba16f) writeonly uniform image2DArray o_radiance;
+layout(binding = LRSM_IMAGE_NORMAL, rgba16f) writeonly uniform image2DArray o_normal;
+layout(binding = LRSM_IMAGE_DEPTH, rgba16) writeonly uniform image2DArray o_depth;
+layout(location = LRSM_BUILD_LOC_FACE) uniform int u_face;
+layout(location = LRSM_BUILD_LOC_LIGHT) uniform int u_light;
+layout(location = LRSM_BUILD_LOC_HALF) uniform int u_half;  // layer side: light-view res / 2
+layout(location = LRSM_BUILD_LOC_JACOBIAN) uniform int u_jacobian; // 1: texels weighted by area
 
 const int MAX_LAYERS = 16;
 

@@ -1,13 +1,13 @@
 // gibench technique `lrsm` — the math of layered reflective shadow maps (Sugihara et al. 2014),
 // line for line the CPU mirror techniques/lrsm/lrsm_math.c (the unit tests check that one), and the
 // per-light partition table both the construction pass and the cone passes read.
-#include "gl/bindings.h"
+#include "lrsm/lrsm_slots.h"
 
 // Per light i: lrsm_table[i] = (z0, z1, delta, 0): the light view's depth range over the scene
 // bounds and the overlap band's width (lrsm_math.h, "Static depth partitions").
-layout(std430, binding = GIB_SSBO_OWN_FIRST) readonly buffer LrsmTable { vec4 lrsm_table[]; };
-layout(location = GIB_LOC_OWN_FIRST + 0) uniform int u_depth_parts;   // D
-layout(location = GIB_LOC_OWN_FIRST + 1) uniform int u_normal_parts;  // N
+layout(std430, binding = LRSM_SSBO_TABLE) readonly buffer LrsmTable { vec4 lrsm_table[]; };
+layout(location = LRSM_LOC_DEPTH_PARTS) uniform int u_depth_parts;  // D
+layout(location = LRSM_LOC_NORMAL_PARTS) uniform int u_normal_parts; // N
 
 const float LRSM_MIN_VARIANCE = 1.0 / 32768.0;
 // The least <n.l> the widened Eq. 12 window divides by (lrsm_sample.glsl, u_visibility 1): a

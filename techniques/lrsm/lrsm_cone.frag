@@ -43,12 +43,13 @@ layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
 layout(binding = GIB_UNIT_GBUF_SPECULAR) uniform sampler2D g_specular;
-layout(location = 9) uniform vec3 u_eye;
-layout(location = 10) uniform float u_aperture;      // radians, full angle
-layout(location = 11) uniform float u_start_offset;  // voxels
-layout(location = 12) uniform float u_step_factor;
-layout(location = 13) uniform float u_max_distance;  // grid sides
-layout(location = 16) uniform int u_coverage;        // 1: L normalised by the lit coverage
+layout(location = LRSM_CONE_LOC_EYE) uniform vec3 u_eye;
+layout(location = LRSM_CONE_LOC_APERTURE) uniform float u_aperture;     // radians, full angle
+layout(location = LRSM_CONE_LOC_START_OFFSET) uniform float u_start_offset; // voxels
+layout(location = LRSM_CONE_LOC_STEP_FACTOR) uniform float u_step_factor;
+layout(location = LRSM_CONE_LOC_MAX_DISTANCE) uniform float u_max_distance; // grid sides
+// 1: L normalised by the lit coverage
+layout(location = LRSM_CONE_LOC_COVERAGE) uniform int u_coverage;
 in vec2 v_texcoord;
 layout(location = 0) out vec4 o_color;
 

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "techniques/common/shader.h"
+#include "techniques/lrsm/lrsm_slots.h"
 
 static const unsigned layer_format[3] = {GL_RGBA16F, GL_RGBA16F, GL_RGBA16};
 
@@ -116,12 +116,12 @@ void lrsm_layers_partition(lrsm_layers *L, const gib_light_views *views, const g
 
 void lrsm_layers_bind(const lrsm_layers *L)
 {
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 0, L->radiance);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 1, L->normal);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 2, L->depth);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST, L->table);
-    glUniform1i(GIB_LOC_OWN_FIRST + 0, L->depth_parts);
-    glUniform1i(GIB_LOC_OWN_FIRST + 1, L->normal_parts);
+    glBindTextureUnit(LRSM_UNIT_RADIANCE, L->radiance);
+    glBindTextureUnit(LRSM_UNIT_NORMAL, L->normal);
+    glBindTextureUnit(LRSM_UNIT_DEPTH, L->depth);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LRSM_SSBO_TABLE, L->table);
+    glUniform1i(LRSM_LOC_DEPTH_PARTS, L->depth_parts);
+    glUniform1i(LRSM_LOC_NORMAL_PARTS, L->normal_parts);
 }
 
 void lrsm_layers_build(lrsm_layers *L, const gib_light_views *views)
@@ -130,18 +130,18 @@ void lrsm_layers_build(lrsm_layers *L, const gib_light_views *views)
         return;
     glUseProgram(L->program);
     gib_light_views_bind(views);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST, L->table);
-    glUniform1i(GIB_LOC_OWN_FIRST + 0, L->depth_parts);
-    glUniform1i(GIB_LOC_OWN_FIRST + 1, L->normal_parts);
-    glUniform1i(GIB_LOC_OWN_FIRST + 4, L->half);
-    glUniform1i(GIB_LOC_OWN_FIRST + 5, L->jacobian);
-    glBindImageTexture(0, L->radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, L->normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(2, L->depth, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LRSM_SSBO_TABLE, L->table);
+    glUniform1i(LRSM_LOC_DEPTH_PARTS, L->depth_parts);
+    glUniform1i(LRSM_LOC_NORMAL_PARTS, L->normal_parts);
+    glUniform1i(LRSM_BUILD_LOC_HALF, L->half);
+    glUniform1i(LRSM_BUILD_LOC_JACOBIAN, L->jacobian);
+    glBindImageTexture(LRSM_IMAGE_RADIANCE, L->radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(LRSM_IMAGE_NORMAL, L->normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(LRSM_IMAGE_DEPTH, L->depth, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16);
     GLuint groups = (GLuint)(L->half + 7) / 8;
     for (int f = 0; f < L->faces; f++) {
-        glUniform1i(GIB_LOC_OWN_FIRST + 2, f);
-        glUniform1i(GIB_LOC_OWN_FIRST + 3, views->faces[f].light);
+        glUniform1i(LRSM_BUILD_LOC_FACE, f);
+        glUniform1i(LRSM_BUILD_LOC_LIGHT, views->faces[f].light);
         glDispatchCompute(groups, groups, 1);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
@@ -150,8 +150,9 @@ void lrsm_layers_build(lrsm_layers *L, const gib_light_views *views)
     glGenerateTextureMipmap(L->radiance);
     glGenerateTextureMipmap(L->normal);
     glGenerateTextureMipmap(L->depth);
-    for (int u = 0; u < 3; u++)
-        glBindImageTexture((GLuint)u, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+    for (int u = 0; u < LRSM_IMAGES; u++)
+        glBindImageTexture(LRSM_IMAGE_RADIANCE + (GLuint)u, 0, 0, GL_FALSE, 0, GL_READ_ONLY,
+                           GL_RGBA8);
 }
 
 void lrsm_layers_destroy(lrsm_layers *L, gib_ledger *ledger)
@@ -182,12 +183,12 @@ int lrsm_layers_probe(const lrsm_layers *L, const gib_light_views *views, float 
     glUseProgram(program);
     gib_light_views_bind(views);
     lrsm_layers_bind(L);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, buf[0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, buf[1]);
-    glUniform1f(7, mip_clamp);
-    glUniform1i(8, L->lights);
-    glUniform1i(9, n);
-    glUniform1i(15, seams);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LRSM_PROBE_SSBO_IN, buf[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LRSM_PROBE_SSBO_OUT, buf[1]);
+    glUniform1f(LRSM_LOC_MIP_CLAMP, mip_clamp);
+    glUniform1i(LRSM_LOC_LIGHTS, L->lights);
+    glUniform1i(LRSM_PROBE_LOC_COUNT, n);
+    glUniform1i(LRSM_LOC_SEAMS, seams);
     glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(sizeof(float) * 4 * (size_t)n), out);

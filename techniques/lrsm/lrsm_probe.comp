@@ -5,9 +5,9 @@
 // radiance lookup (Algorithm 1) apart from the voxels. In: (x_c, r_c) and (v_c, 0) per sample; out:
 // (L, the lit coverage).
 layout(local_size_x = 64) in;
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer ProbeIn { vec4 probe_in[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) writeonly buffer ProbeOut { vec4 probe_out[]; };
-layout(location = 9) uniform int u_count;
+layout(std430, binding = LRSM_PROBE_SSBO_IN) readonly buffer ProbeIn { vec4 probe_in[]; };
+layout(std430, binding = LRSM_PROBE_SSBO_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
+layout(location = LRSM_PROBE_LOC_COUNT) uniform int u_count;
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);

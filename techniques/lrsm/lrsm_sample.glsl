@@ -40,14 +40,16 @@
 //    outside its view there is no light, so a sample at the border fades with the fraction inside
 //    instead of being dropped whole when its centre leaves. u_seams 0: the centre's face only,
 //    dropped outside it (the literal reading).
-layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler2DArray u_lrsm_radiance;
-layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2DArray u_lrsm_normal;
-layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2DArray u_lrsm_depth;
-layout(location = 7) uniform float u_mip_clamp;
-layout(location = 8) uniform int u_lrsm_lights;   // lights in the table (the scene's)
-layout(location = 14) uniform int u_backface;     // 0: Eq. 8's cosine; 1: Eq. 8 as a test only
-layout(location = 15) uniform int u_seams;        // 1: every face the footprint overlaps
-layout(location = 17) uniform int u_visibility;   // 1: Eq. 12's window widened by 1 / <n.l>
+layout(binding = LRSM_UNIT_RADIANCE) uniform sampler2DArray u_lrsm_radiance;
+layout(binding = LRSM_UNIT_NORMAL) uniform sampler2DArray u_lrsm_normal;
+layout(binding = LRSM_UNIT_DEPTH) uniform sampler2DArray u_lrsm_depth;
+layout(location = LRSM_LOC_MIP_CLAMP) uniform float u_mip_clamp;
+layout(location = LRSM_LOC_LIGHTS) uniform int u_lrsm_lights;  // lights in the table (the scene's)
+// 0: Eq. 8's cosine; 1: Eq. 8 as a test only
+layout(location = LRSM_LOC_BACKFACE) uniform int u_backface;
+layout(location = LRSM_LOC_SEAMS) uniform int u_seams;       // 1: every face the footprint overlaps
+// 1: Eq. 12's window widened by 1 / <n.l>
+layout(location = LRSM_LOC_VISIBILITY) uniform int u_visibility;
 
 // Algorithm 1 in one face of light i: the layers met by [z_c - r_c, z_c + r_c] at uv, at mip level
 // `mip` (Eq. 5-15): rgb = sum f A R V N, a = sum f A V (the coverage of the lit surfaces inside

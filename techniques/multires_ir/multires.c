@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "techniques/common/shader.h"
+#include "techniques/multires_ir/multires_ir_slots.h"
 
 void multires_rect(const multires *m, int k, int rect[4])
 {
@@ -23,12 +23,6 @@ void multires_rect(const multires *m, int k, int rect[4])
     rect[1] = y;
     rect[2] = (m->width + (1 << k) - 1) >> k;
     rect[3] = (m->height + (1 << k) - 1) >> k;
-}
-
-static unsigned fs_program(const char *frag, const char *defines, gib_error *err)
-{
-    const char *files[] = {"common/fullscreen.vert", frag};
-    return gib_program(files, 2, defines, err);
 }
 
 int multires_create(multires *m, int width, int height, int levels, float depth_threshold,
@@ -91,139 +85,128 @@ int multires_create(multires *m, int width, int height, int levels, float depth_
     }
     const char *mips[] = {"multires_ir/multires_mips.comp"};
     if (!(m->mips_program = gib_program(mips, 1, NULL, err)) ||
-        !(m->split_program = fs_program("multires_ir/multires_split.frag", NULL, err)))
+        gib_fullscreen_create(&m->split, "multires_ir/multires_split.frag", NULL, err) < 0)
         return -1;
     if (with_gather &&
-        (!(m->gather_program = fs_program("multires_ir/multires_gather.frag",
-                                          use_stencil ? NULL : "#define MASKED 1\n", err)) ||
-         !(m->upsample_program = fs_program("multires_ir/multires_upsample.frag", NULL, err)) ||
-         !(m->resolve_program =
-               fs_program("multires_ir/multires_upsample.frag", "#define RESOLVE 1\n", err))))
+        (gib_fullscreen_create(&m->gather, "multires_ir/multires_gather.frag",
+                               use_stencil ? NULL : "#define MASKED 1\n", err) < 0 ||
+         gib_fullscreen_create(&m->upsample, "multires_ir/multires_upsample.frag", NULL, err) < 0 ||
+         gib_fullscreen_create(&m->resolve, "multires_ir/multires_upsample.frag",
+                               "#define RESOLVE 1\n", err) < 0))
         return -1;
-    glCreateVertexArrays(1, &m->vao);
     return 0;
 }
 
 static void common_uniforms(const multires *m)
 {
-    glUniform2i(2, m->width, m->height);
-    glUniform1i(3, m->levels);
-    glUniform1f(4, m->depth_threshold);
-    glUniform1f(5, m->normal_chord);
+    glUniform2i(MULTIRES_LOC_SIZE, m->width, m->height);
+    glUniform1i(MULTIRES_LOC_LEVELS, m->levels);
+    glUniform1f(MULTIRES_LOC_DEPTH_THRESHOLD, m->depth_threshold);
+    glUniform1f(MULTIRES_LOC_NORMAL_CHORD, m->normal_chord);
 }
 
 static void bind_mips(const multires *m)
 {
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 0, m->lo);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 1, m->hi);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 2, m->mean);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 3, m->nsum);
+    glBindTextureUnit(MULTIRES_UNIT_LO, m->lo);
+    glBindTextureUnit(MULTIRES_UNIT_HI, m->hi);
+    glBindTextureUnit(MULTIRES_UNIT_MEAN, m->mean);
+    glBindTextureUnit(MULTIRES_UNIT_NSUM, m->nsum);
+}
+
+/* Level k's rectangle of the flattened image (level 0: the image) in `fbo`, as a pass's state. */
+static gib_pass_state level_pass(const multires *m, unsigned fbo, int k)
+{
+    int r[4];
+    multires_rect(m, k, r);
+    return (gib_pass_state){.fbo = fbo, .x = r[0], .y = r[1], .width = r[2], .height = r[3]};
 }
 
 void multires_split(multires *m, unsigned position_tex, unsigned normal_tex, const float eye[3])
 {
     glUseProgram(m->mips_program);
     common_uniforms(m);
-    glUniform3fv(7, 1, eye);
+    glUniform3fv(MULTIRES_LOC_EYE, 1, eye);
     glBindTextureUnit(GIB_UNIT_GBUF_POSITION, position_tex);
     glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, normal_tex);
-    unsigned *tex[4] = {&m->lo, &m->hi, &m->mean, &m->nsum};
+    const unsigned image[4] = {MULTIRES_IMAGE_LO, MULTIRES_IMAGE_HI, MULTIRES_IMAGE_MEAN,
+                               MULTIRES_IMAGE_NSUM};
+    const unsigned tex[4] = {m->lo, m->hi, m->mean, m->nsum};
     for (int i = 0; i < 4; i++)
-        glBindImageTexture((GLuint)i, *tex[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glBindImageTexture(image[i], tex[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     for (int k = 0; k < m->levels; k++) {
         int r[4];
         multires_rect(m, k, r);
-        glUniform1i(6, k);
+        glUniform1i(MULTIRES_LOC_LEVEL, k);
         glDispatchCompute((GLuint)(r[2] + 7) / 8, (GLuint)(r[3] + 7) / 8, 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     /* Marking: texels of invalid regions are discarded, the rest write stencil 1 (colour writes
      * off) or 1 into the mask (cleared to 0 first). */
-    const float zero[4] = {0, 0, 0, 0};
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
+    gib_pass_state mark = {.fbo = m->fbo_mask, .width = m->atlas_w, .height = m->atlas_h};
     if (m->use_stencil) {
-        glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
-        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-        glEnable(GL_STENCIL_TEST);
-        glStencilMask(0xff);
-        glStencilFunc(GL_ALWAYS, 1, 0xff);
-        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    } else {
-        glBindFramebuffer(GL_FRAMEBUFFER, m->fbo_mask);
-        glClearBufferfv(GL_COLOR, 0, zero);
+        mark.fbo = m->fbo;
+        mark.stencil = GIB_STENCIL_MARK;
+        mark.stencil_ref = 1;
+        mark.no_color = 1;
     }
-    glViewport(0, 0, m->atlas_w, m->atlas_h);
-    glUseProgram(m->split_program);
+    gib_fullscreen_begin_pass(&m->split, &mark);
+    const float zero[4] = {0, 0, 0, 0};
+    if (m->use_stencil)
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    else
+        glClearBufferfv(GL_COLOR, 0, zero);
     common_uniforms(m);
     bind_mips(m);
-    glBindVertexArray(m->vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDisable(GL_STENCIL_TEST);
-    glBindVertexArray(0);
+    gib_fullscreen_draw(&m->split);
+    gib_fullscreen_end();
 }
 
 void multires_gather(multires *m, int vpl_count, float eps)
 {
     const float zero[4] = {0, 0, 0, 0};
     glClearTexImage(m->irradiance, 0, GL_RGBA, GL_FLOAT, zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, m->use_stencil ? m->fbo : m->fbo_color);
-    glViewport(0, 0, m->atlas_w, m->atlas_h);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
+    gib_pass_state gather = {.fbo = m->fbo_color, .width = m->atlas_w, .height = m->atlas_h};
     if (m->use_stencil) {
-        glEnable(GL_STENCIL_TEST);
-        glStencilMask(0);
-        glStencilFunc(GL_EQUAL, 1, 0xff);
-        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        gather.fbo = m->fbo;
+        gather.stencil = GIB_STENCIL_EQUAL;
+        gather.stencil_ref = 1;
     }
-    glUseProgram(m->gather_program);
+    gib_fullscreen_begin_pass(&m->gather, &gather);
     common_uniforms(m);
     bind_mips(m);
     if (m->mask)
-        glBindTextureUnit(GIB_UNIT_OWN_FIRST + 5, m->mask);
-    glUniform1i(8, vpl_count);
-    glUniform1f(9, eps);
-    glBindVertexArray(m->vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDisable(GL_STENCIL_TEST);
-    glStencilMask(0xff);
-    glBindVertexArray(0);
+        glBindTextureUnit(MULTIRES_UNIT_VALID, m->mask);
+    glUniform1i(MULTIRES_GATHER_LOC_VPLS, vpl_count);
+    glUniform1f(MULTIRES_GATHER_LOC_EPS, eps);
+    gib_fullscreen_draw(&m->gather);
+    gib_fullscreen_end();
 }
 
 void multires_upsample(multires *m, unsigned fbo, const float eye[3])
 {
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_STENCIL_TEST);
-    glBindVertexArray(m->vao);
-    glUseProgram(m->upsample_program);
+    const gib_pass_state atlas = {.fbo = m->fbo_color, .width = m->atlas_w, .height = m->atlas_h};
+    gib_fullscreen_begin_pass(&m->upsample, &atlas);
     common_uniforms(m);
     bind_mips(m);
-    glUniform3fv(7, 1, eye);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST + 4, m->irradiance);
-    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo_color);
+    glUniform3fv(MULTIRES_LOC_EYE, 1, eye);
+    glBindTextureUnit(MULTIRES_UNIT_IRRADIANCE, m->irradiance);
     /* Each level reads only the next coarser level's texels and writes its own (disjoint), with a
      * texture barrier between levels (GL 4.5, 9.3.1). */
     for (int k = m->levels - 2; k >= 1; k--) {
-        int r[4];
-        multires_rect(m, k, r);
+        const gib_pass_state level = level_pass(m, m->fbo_color, k);
         glTextureBarrier();
-        glViewport(r[0], r[1], r[2], r[3]);
-        glUniform1i(6, k);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gib_pass_apply(&level);
+        glUniform1i(MULTIRES_LOC_LEVEL, k);
+        gib_fullscreen_draw(&m->upsample);
     }
     glTextureBarrier();
-    glUseProgram(m->resolve_program);
+    const gib_pass_state image = level_pass(m, fbo, 0);
+    gib_fullscreen_begin_pass(&m->resolve, &image);
     common_uniforms(m);
-    glUniform3fv(7, 1, eye);
-    glUniform1i(6, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, m->width, m->height);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindVertexArray(0);
+    glUniform3fv(MULTIRES_LOC_EYE, 1, eye);
+    glUniform1i(MULTIRES_LOC_LEVEL, 0);
+    gib_fullscreen_draw(&m->resolve);
+    gib_fullscreen_end();
 }
 
 void multires_read_valid(const multires *m, unsigned char *out)
@@ -263,13 +246,11 @@ long multires_count_valid(const multires *m, long *counts)
 
 void multires_destroy(multires *m, gib_ledger *ledger)
 {
-    unsigned *prog[5] = {&m->mips_program, &m->split_program, &m->gather_program,
-                         &m->upsample_program, &m->resolve_program};
-    for (int i = 0; i < 5; i++)
-        if (*prog[i])
-            glDeleteProgram(*prog[i]);
-    if (m->vao)
-        glDeleteVertexArrays(1, &m->vao);
+    if (m->mips_program)
+        glDeleteProgram(m->mips_program);
+    gib_fullscreen *passes[4] = {&m->split, &m->gather, &m->upsample, &m->resolve};
+    for (int i = 0; i < 4; i++)
+        gib_fullscreen_destroy(passes[i]);
     unsigned *fbo[3] = {&m->fbo, &m->fbo_mask, &m->fbo_color};
     for (int i = 0; i < 3; i++)
         if (*fbo[i])

@@ -20,6 +20,7 @@
 #define GIB_MULTIRES_H
 
 #include "harness/gl/ledger.h"
+#include "techniques/common/fullscreen.h"
 
 typedef struct multires {
     int width, height, levels;
@@ -27,7 +28,8 @@ typedef struct multires {
     float depth_threshold, normal_chord;
     int use_stencil;
     unsigned lo, hi, mean, nsum, irradiance, stencil, mask, fbo, fbo_mask, fbo_color;
-    unsigned mips_program, split_program, gather_program, upsample_program, resolve_program, vao;
+    unsigned mips_program;
+    gib_fullscreen split, gather, upsample, resolve; /* passes over the flattened image */
 } multires;
 
 /* depth_threshold: relative depth range that splits; normal_deg: the angle whose chord bounds a

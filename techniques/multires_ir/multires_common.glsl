@@ -5,11 +5,12 @@
 // Min-max mips (per region): lo = (min n.x, n.y, n.z, min depth), hi = (max n, max depth), depth
 // the distance to the camera (the thesis' linear depth), MR_FAR where no surface; mean = (mean
 // position, surface pixels), nsum = (sum of normals, 0).
-#include "gl/bindings.h"
-layout(location = 2) uniform ivec2 u_size;       // W, H
-layout(location = 3) uniform int u_levels;
-layout(location = 4) uniform float u_depth_threshold;  // relative: max - min > t x min
-layout(location = 5) uniform float u_normal_chord;     // 2 sin(theta / 2)
+#include "multires_ir/multires_ir_slots.h"
+layout(location = MULTIRES_LOC_SIZE) uniform ivec2 u_size;       // W, H
+layout(location = MULTIRES_LOC_LEVELS) uniform int u_levels;
+// relative: max - min > t x min
+layout(location = MULTIRES_LOC_DEPTH_THRESHOLD) uniform float u_depth_threshold;
+layout(location = MULTIRES_LOC_NORMAL_CHORD) uniform float u_normal_chord;     // 2 sin(theta / 2)
 const float MR_FAR = 1e30;
 
 ivec4 mr_rect(int k)
@@ -42,10 +43,10 @@ ivec2 mr_texel(int k, ivec2 region)
 }
 
 #ifdef MR_READ_MIPS
-layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler2D mr_lo;
-layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler2D mr_hi;
-layout(binding = GIB_UNIT_OWN_FIRST + 2) uniform sampler2D mr_mean;
-layout(binding = GIB_UNIT_OWN_FIRST + 3) uniform sampler2D mr_nsum;
+layout(binding = MULTIRES_UNIT_LO) uniform sampler2D mr_lo;
+layout(binding = MULTIRES_UNIT_HI) uniform sampler2D mr_hi;
+layout(binding = MULTIRES_UNIT_MEAN) uniform sampler2D mr_mean;
+layout(binding = MULTIRES_UNIT_NSUM) uniform sampler2D mr_nsum;
 
 bool mr_empty(int k, ivec2 region)
 {

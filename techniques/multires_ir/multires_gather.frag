@@ -6,10 +6,10 @@
 // region's mean position and normal. Irradiance, not radiance: the albedo varies inside a region
 // (textures), so each pixel applies its own after interpolation. alpha 1 marks data.
 #ifdef MASKED
-layout(binding = GIB_UNIT_OWN_FIRST + 5) uniform sampler2D mr_valid_mask;  // multires.h, stencil = 0
+layout(binding = MULTIRES_UNIT_VALID) uniform sampler2D mr_valid_mask;  // multires.h, stencil = 0
 #endif
-layout(location = 8) uniform int u_vpls;
-layout(location = 9) uniform float u_eps;
+layout(location = MULTIRES_GATHER_LOC_VPLS) uniform int u_vpls;
+layout(location = MULTIRES_GATHER_LOC_EPS) uniform float u_eps;
 layout(location = 0) out vec4 o_irradiance;
 void main()
 {

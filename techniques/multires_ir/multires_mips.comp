@@ -4,12 +4,12 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
-layout(binding = 0, rgba32f) uniform image2D o_lo;
-layout(binding = 1, rgba32f) uniform image2D o_hi;
-layout(binding = 2, rgba32f) uniform image2D o_mean;
-layout(binding = 3, rgba32f) uniform image2D o_nsum;
-layout(location = 6) uniform int u_level;
-layout(location = 7) uniform vec3 u_eye;
+layout(binding = MULTIRES_IMAGE_LO, rgba32f) uniform image2D o_lo;
+layout(binding = MULTIRES_IMAGE_HI, rgba32f) uniform image2D o_hi;
+layout(binding = MULTIRES_IMAGE_MEAN, rgba32f) uniform image2D o_mean;
+layout(binding = MULTIRES_IMAGE_NSUM, rgba32f) uniform image2D o_nsum;
+layout(location = MULTIRES_LOC_LEVEL) uniform int u_level;
+layout(location = MULTIRES_LOC_EYE) uniform vec3 u_eye;
 void main()
 {
     ivec2 r = ivec2(gl_GlobalInvocationID.xy);

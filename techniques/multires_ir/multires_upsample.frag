@@ -9,9 +9,10 @@
 // an edge that falls on a region boundary; the parent itself is always kept (it contains this
 // region and is continuous). RESOLVE: the last step, into the output at full resolution, where
 // level-0 regions gathered themselves and every pixel's own albedo turns E into L = rho/pi E.
-layout(binding = GIB_UNIT_OWN_FIRST + 4) uniform sampler2D mr_irradiance;
-layout(location = 6) uniform int u_level;   // the level written (k); data read from k + 1
-layout(location = 7) uniform vec3 u_eye;
+layout(binding = MULTIRES_UNIT_IRRADIANCE) uniform sampler2D mr_irradiance;
+// the level written (k); data read from k + 1
+layout(location = MULTIRES_LOC_LEVEL) uniform int u_level;
+layout(location = MULTIRES_LOC_EYE) uniform vec3 u_eye;
 #ifdef RESOLVE
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
 #endif

@@ -20,6 +20,7 @@
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/vpl.h"
 #include "techniques/rsm_gather/rsm_gather.h"
+#include "techniques/rsm_gather/rsm_gather_slots.h"
 
 extern const gib_technique gib_technique_rsm_gather;
 
@@ -81,8 +82,8 @@ void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, uns
     gib_fullscreen_begin(&s->gather, fbo, view->width, view->height, 0);
     gib_gbuffer_bind(&s->frame.gbuffer);
     gib_vpls_bind(&s->frame.vpls);
-    glUniform1i(2, s->frame.vpls.count);
-    glUniform1f(3, s->eps);
+    glUniform1i(RSM_GATHER_LOC_VPLS, s->frame.vpls.count);
+    glUniform1f(RSM_GATHER_LOC_EPS, s->eps);
     gib_fullscreen_draw(&s->gather);
     gib_fullscreen_end();
     gib_timer_end(timers);

@@ -1,12 +1,13 @@
 #include "common/vpl_gather.glsl"
+#include "rsm_gather/rsm_gather_slots.h"
 // rsm_gather (Dachsbacher and Stamminger 2005, the thesis' baseline; Algorithm 2.1): every VPL
 // gathered at every G-buffer pixel, L = rho_d / pi x E (vpl_gather.glsl), the diffuse part of the
 // visible point only (the `indirect` component is L D D E).
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
-layout(location = 2) uniform int u_vpls;
-layout(location = 3) uniform float u_eps;
+layout(location = RSM_GATHER_LOC_VPLS) uniform int u_vpls;
+layout(location = RSM_GATHER_LOC_EPS) uniform float u_eps;
 layout(location = 0) out vec4 o_color;
 void main()
 {

@@ -17,12 +17,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
 #include "techniques/common/voxels.h"
+#include "techniques/vct/vct_slots.h"
 
 extern const gib_technique gib_technique_vct;
 
@@ -135,10 +135,10 @@ static void cone_pass(vct *a, const gib_fullscreen *fs, const char *pass, unsign
     gib_gpu_scene_bind(a->scene);
     gib_gbuffer_bind(&a->gbuffer);
     vct_volume_bind_cones(&a->vol, &a->cones);
-    glUniform3fv(2, 1, view->camera->eye);
-    glUniform1i(3, (int)a->scene->scene->light_count);
-    glUniform1f(4, tan_half);
-    glUniform1f(5, a->max_distance * a->vol.size);
+    glUniform3fv(VCT_SHADE_LOC_EYE, 1, view->camera->eye);
+    glUniform1i(VCT_SHADE_LOC_LIGHT_COUNT, (int)a->scene->scene->light_count);
+    glUniform1f(VCT_SHADE_LOC_TAN_HALF, tan_half);
+    glUniform1f(VCT_SHADE_LOC_MAX_DIST, a->max_distance * a->vol.size);
     gib_fullscreen_draw(fs);
     gib_fullscreen_end();
     gib_timer_end(timers);

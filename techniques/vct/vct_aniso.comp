@@ -1,4 +1,4 @@
-#include "gl/bindings.h"
+#include "vct/vct_slots.h"
 // Anisotropic mips (Crassin et al. 2011, Sec. 4; Sugihara et al. 2014, Sec. 6): for each of the 6
 // directions a cone can travel (+x -x +y -y +z -z), a voxel of level k+1 is its 8 children of level
 // k seen along that direction: the 2 children on each line along it composited front to back,
@@ -20,14 +20,14 @@
 // different voxels; a wall thinner than a voxel lit on both sides has one averaged normal and leaks
 // (stated in vct.h).
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(location = 2) uniform int u_level; // level written
+layout(location = VCT_ANISO_LOC_LEVEL) uniform int u_level; // level written
 #ifdef FROM_BASE
-layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler3D u_radiance;
-layout(binding = GIB_UNIT_OWN_FIRST + 1) uniform sampler3D u_normal;
+layout(binding = VCT_ANISO_UNIT_RADIANCE) uniform sampler3D u_radiance;
+layout(binding = VCT_ANISO_UNIT_NORMAL) uniform sampler3D u_normal;
 #else
-layout(binding = GIB_UNIT_OWN_FIRST + 0) uniform sampler3D u_src[6];
+layout(binding = VCT_ANISO_UNIT_SRC_FIRST) uniform sampler3D u_src[6];
 #endif
-layout(binding = 0, rgba16f) writeonly uniform image3D u_dst[6];
+layout(binding = VCT_ANISO_IMAGE_DST_FIRST, rgba16f) writeonly uniform image3D u_dst[6];
 
 const float HIDDEN_COS = 0.70710678; // cos 45 degrees
 const vec3 DIRECTION[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0),

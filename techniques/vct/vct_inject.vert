@@ -1,5 +1,6 @@
 #extension GL_ARB_shader_viewport_layer_array : require
 #include "common/light_view.glsl"
+#include "vct/vct_slots.h"
 // Injection (vct.h): one point per light-view texel, drawn into the voxel that holds the texel's
 // position (layer = z). The texel is a patch of a Lambertian surface that reflects `flux` (W,
 // rho_d x the flux reaching it, common/light_view.h); its outgoing radiance is
@@ -9,12 +10,12 @@
 // the direction to the light. Voxels average L weighted by area (w = A in voxel faces), so a
 // voxel's radiance is its patches' total reflected flux over pi times their total area: the flux
 // the surface reflects is what the voxels emit (sum w L = sum flux / (pi voxel^2)).
-layout(location = GIB_LOC_VOXEL_FIRST + 0) uniform vec3 u_origin;
-layout(location = GIB_LOC_VOXEL_FIRST + 1) uniform float u_size;
-layout(location = GIB_LOC_VOXEL_FIRST + 2) uniform int u_res;
-layout(location = 2) uniform int u_light;
-layout(location = 3) uniform int u_lv_res;
-layout(location = 4) uniform int u_face;
+layout(location = GIB_LOC_VOXEL_ORIGIN) uniform vec3 u_origin;
+layout(location = GIB_LOC_VOXEL_SIZE) uniform float u_size;
+layout(location = GIB_LOC_VOXEL_RES) uniform int u_res;
+layout(location = VCT_INJECT_LOC_LIGHT) uniform int u_light;
+layout(location = VCT_INJECT_LOC_LV_RES) uniform int u_lv_res;
+layout(location = VCT_INJECT_LOC_FACE) uniform int u_face;
 layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;

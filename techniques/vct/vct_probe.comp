@@ -3,9 +3,9 @@
 // the anisotropic mips apart from the G-buffer. In: (p, tan_half), (n, max_dist), (D, 0) per
 // cone; out: vct_cone's (radiance, occlusion).
 layout(local_size_x = 64) in;
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 1) readonly buffer ProbeIn { vec4 probe_in[]; };
-layout(std430, binding = GIB_SSBO_OWN_FIRST + 2) writeonly buffer ProbeOut { vec4 probe_out[]; };
-layout(location = 10) uniform int u_count;
+layout(std430, binding = VCT_PROBE_SSBO_IN) readonly buffer ProbeIn { vec4 probe_in[]; };
+layout(std430, binding = VCT_PROBE_SSBO_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
+layout(location = VCT_PROBE_LOC_COUNT) uniform int u_count;
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);

@@ -1,13 +1,13 @@
-#include "gl/bindings.h"
+#include "vct/vct_slots.h"
 // The injection's sums to averages (vct_inject.vert): radiance = sum(w L) / sum(w), normal = the
 // normalised sum of w n with w = 1 where light landed. Alpha (occlusion) = the occlusion voxels'
 // occupancy at level 0 (common/voxels.h, the same grid: exact triangle/box overlap, alpha masks
 // honoured), or 1 where light landed (a lit surface is there even if a float rounding put its
 // texel in the neighbouring voxel).
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler3D u_occupancy;
-layout(binding = 0, rgba16f) uniform image3D u_radiance;
-layout(binding = 1, rgba16f) uniform image3D u_normal;
+layout(binding = VCT_RESOLVE_UNIT_OCCUPANCY) uniform sampler3D u_occupancy;
+layout(binding = VCT_RESOLVE_IMAGE_RADIANCE, rgba16f) uniform image3D u_radiance;
+layout(binding = VCT_RESOLVE_IMAGE_NORMAL, rgba16f) uniform image3D u_normal;
 void main()
 {
     ivec3 c = ivec3(gl_GlobalInvocationID);

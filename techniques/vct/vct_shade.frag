@@ -13,10 +13,10 @@ layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
 layout(binding = GIB_UNIT_GBUF_SPECULAR) uniform sampler2D g_specular;
-layout(location = 2) uniform vec3 u_eye;
-layout(location = 3) uniform int u_light_count;
-layout(location = 4) uniform float u_tan_half;   // tan(aperture / 2)
-layout(location = 5) uniform float u_max_dist;   // world units
+layout(location = VCT_SHADE_LOC_EYE) uniform vec3 u_eye;
+layout(location = VCT_SHADE_LOC_LIGHT_COUNT) uniform int u_light_count;
+layout(location = VCT_SHADE_LOC_TAN_HALF) uniform float u_tan_half;   // tan(aperture / 2)
+layout(location = VCT_SHADE_LOC_MAX_DIST) uniform float u_max_dist;   // world units
 in vec2 v_texcoord;
 layout(location = 0) out vec4 o_color;
 void main()

@@ -28,10 +28,12 @@
 // alone kept clear, let it reach h/2 behind: Cornell box indirect 1.04 / 0.92 / 0.86 of the
 // reference's at voxel_res 64 / 128 / 256, now 1.10 / 1.05 / 0.95, thick-wall leak 0.11 -> 0.07.)
 #include "common/voxel_cone.glsl"
-layout(location = 7) uniform float u_step_factor;
-layout(location = 8) uniform float u_start_offset; // voxels, along the surface normal
-layout(location = 9) uniform float u_level_bias;   // levels finer than log2(d)
-layout(binding = GIB_UNIT_OWN_FIRST) uniform sampler3D u_aniso[6];   // +x -x +y -y +z -z
+#include "vct/vct_slots.h"
+layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
+// voxels, along the surface normal
+layout(location = VCT_LOC_START_OFFSET) uniform float u_start_offset;
+layout(location = VCT_LOC_LEVEL_BIAS) uniform float u_level_bias;   // levels finer than log2(d)
+layout(binding = VCT_UNIT_ANISO_FIRST) uniform sampler3D u_aniso[6];   // +x -x +y -y +z -z
 
 vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 {

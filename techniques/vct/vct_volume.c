@@ -7,10 +7,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
+#include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
+#include "techniques/vct/vct_slots.h"
 
 static const char *const dir_label[VCT_DIRECTIONS] = {"aniso.px", "aniso.nx", "aniso.py",
                                                       "aniso.ny", "aniso.pz", "aniso.nz"};
@@ -136,9 +137,9 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
 
 static void grid_uniforms(const vct_volume *v)
 {
-    glUniform3fv(GIB_LOC_VOXEL_FIRST + 0, 1, v->origin);
-    glUniform1f(GIB_LOC_VOXEL_FIRST + 1, v->size);
-    glUniform1i(GIB_LOC_VOXEL_FIRST + 2, v->res);
+    glUniform3fv(GIB_LOC_VOXEL_ORIGIN, 1, v->origin);
+    glUniform1f(GIB_LOC_VOXEL_SIZE, v->size);
+    glUniform1i(GIB_LOC_VOXEL_RES, v->res);
 }
 
 void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
@@ -151,25 +152,20 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
     /* Injection: every light-view texel drawn as a point into the voxel holding its position
      * (vct_inject.vert), summed by additive blending into radiance (rgb: w L, a: w) and normal
      * (rgb: w n), w the texel's area in voxel faces. */
-    glBindFramebuffer(GL_FRAMEBUFFER, v->fbo);
-    glViewport(0, 0, v->res, v->res);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glBlendEquation(GL_FUNC_ADD);
+    gib_pass_apply(&(gib_pass_state){.fbo = v->fbo, .width = v->res, .height = v->res,
+                                     .blend = GIB_BLEND_ADD});
     glUseProgram(v->inject_program);
     grid_uniforms(v);
-    glUniform1i(3, lv_res);
+    glUniform1i(VCT_INJECT_LOC_LV_RES, lv_res);
     glBindVertexArray(v->vao);
     for (int l = 0; l < lights; l++)
         for (int f = first_face[l]; f < first_face[l] + faces_of[l]; f++) {
-            glUniform1i(2, l);
-            glUniform1i(4, f);
+            glUniform1i(VCT_INJECT_LOC_LIGHT, l);
+            glUniform1i(VCT_INJECT_LOC_FACE, f);
             glDrawArrays(GL_POINTS, 0, lv_res * lv_res);
         }
     glBindVertexArray(0);
-    glDisable(GL_BLEND);
+    gib_pass_end();
     /* The injection framebuffer stays bound: llvmpipe loses the begin of a GL_TIME_ELAPSED query
      * started while framebuffer 0 (none, surfaceless) is bound, and the next pass's time. */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -178,9 +174,11 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
      * where light landed). */
     int g = (v->res + 3) / 4;
     glUseProgram(v->resolve_program);
-    glBindTextureUnit(GIB_UNIT_OWN_FIRST, occupancy);
-    glBindImageTexture(0, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
-    glBindImageTexture(1, v->normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glBindTextureUnit(VCT_RESOLVE_UNIT_OCCUPANCY, occupancy);
+    glBindImageTexture(VCT_RESOLVE_IMAGE_RADIANCE, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE,
+                       GL_RGBA16F);
+    glBindImageTexture(VCT_RESOLVE_IMAGE_NORMAL, v->normal, 0, GL_TRUE, 0, GL_READ_WRITE,
+                       GL_RGBA16F);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -190,34 +188,34 @@ void vct_volume_mips(vct_volume *v)
     for (int level = 0; level < v->aniso_levels; level++) {
         int side = (v->res / 2) >> level;
         glUseProgram(level == 0 ? v->mip_base_program : v->mip_program);
-        glUniform1i(2, level);
+        glUniform1i(VCT_ANISO_LOC_LEVEL, level);
         if (level == 0) {
-            glBindTextureUnit(GIB_UNIT_OWN_FIRST + 0, v->radiance);
-            glBindTextureUnit(GIB_UNIT_OWN_FIRST + 1, v->normal);
+            glBindTextureUnit(VCT_ANISO_UNIT_RADIANCE, v->radiance);
+            glBindTextureUnit(VCT_ANISO_UNIT_NORMAL, v->normal);
         } else {
             for (int d = 0; d < VCT_DIRECTIONS; d++)
-                glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, v->aniso[d]);
+                glBindTextureUnit(VCT_ANISO_UNIT_SRC_FIRST + d, v->aniso[d]);
         }
         for (int d = 0; d < VCT_DIRECTIONS; d++)
-            glBindImageTexture((GLuint)d, v->aniso[d], level, GL_TRUE, 0, GL_WRITE_ONLY,
-                               GL_RGBA16F);
+            glBindImageTexture(VCT_ANISO_IMAGE_DST_FIRST + (GLuint)d, v->aniso[d], level,
+                               GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         int g = (side + 3) / 4;
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     for (int d = 0; d < VCT_DIRECTIONS; d++)
-        glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, 0);
+        glBindTextureUnit(VCT_ANISO_UNIT_SRC_FIRST + d, 0);
 }
 
 void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
 {
     glBindTextureUnit(GIB_UNIT_VOXELS, v->radiance);
     for (int d = 0; d < VCT_DIRECTIONS; d++)
-        glBindTextureUnit(GIB_UNIT_OWN_FIRST + d, v->aniso[d]);
+        glBindTextureUnit(VCT_UNIT_ANISO_FIRST + d, v->aniso[d]);
     grid_uniforms(v);
-    glUniform1f(7, c->step_factor);
-    glUniform1f(8, c->start_offset);
-    glUniform1f(9, (float)c->sample_level);
+    glUniform1f(VCT_LOC_STEP_FACTOR, c->step_factor);
+    glUniform1f(VCT_LOC_START_OFFSET, c->start_offset);
+    glUniform1f(VCT_LOC_LEVEL_BIAS, (float)c->sample_level);
 }
 
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
