@@ -11,11 +11,13 @@ add_library(gib_glad STATIC ${GLAD_DIR}/src/gl.c)
 target_include_directories(gib_glad SYSTEM PUBLIC ${GLAD_DIR}/include)
 target_compile_options(gib_glad PRIVATE -w)
 
-# Shaders live next to their technique and are embedded as C strings (cmake/embed_shaders.cmake).
+# Shaders live next to their technique and are embedded as C strings (cmake/embed_shaders.cmake),
+# with the slot tables C and GLSL both include (harness/gl/bindings.h, techniques/*/<name>_slots.h).
 file(GLOB_RECURSE GIB_SHADERS CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/techniques/*.glsl ${CMAKE_SOURCE_DIR}/techniques/*.vert
   ${CMAKE_SOURCE_DIR}/techniques/*.frag ${CMAKE_SOURCE_DIR}/techniques/*.geom
-  ${CMAKE_SOURCE_DIR}/techniques/*.comp ${CMAKE_SOURCE_DIR}/harness/gl/bindings.h)
+  ${CMAKE_SOURCE_DIR}/techniques/*.comp ${CMAKE_SOURCE_DIR}/techniques/*_slots.h
+  ${CMAKE_SOURCE_DIR}/harness/gl/bindings.h)
 set(GIB_SHADER_C ${CMAKE_BINARY_DIR}/generated/shaders.c)
 # A CMake list would be split into several shell words: pass it '|'-separated.
 string(REPLACE ";" "|" GIB_SHADER_LIST "${GIB_SHADERS}")
