@@ -74,9 +74,10 @@ static const gib_param_spec template_params[] = {
 extern const gib_technique gib_technique_template;
 static void template_destroy(void *self);
 
-/* Power of one light in channel c, W. Point: I over the sphere, 4 pi I. Spot: I cos^e(theta)
- * over its cone, 2 pi I (1 - cos^(e+1) theta_o) / (e + 1), the cosine clamped at 0 as
- * gib_spot_falloff clamps it (with e = 0 the falloff is 1 out to theta_o, beyond 90 degrees too).
+/* What create computes: the irradiance E the pass spreads. First the power of one light in
+ * channel c, W. Point: I over the sphere, 4 pi I. Spot: I cos^e(theta) over its cone,
+ * 2 pi I (1 - cos^(e+1) theta_o) / (e + 1), the cosine clamped at 0 as gib_spot_falloff clamps
+ * it (with e = 0 the falloff is 1 out to theta_o, beyond 90 degrees too).
  * A directional light has no finite power in a closed scene: 0 (scene_needs_any below leaves
  * scenes lit only by one out). */
 static double light_power(const gib_light *l, int c)
@@ -189,8 +190,8 @@ static int template_render(void *self, const gib_view *view, gib_timers *timers,
 static const char *template_status(void *self)
 {
     const template_state *s = self;
-    return s->irradiance[0] > 0 || s->irradiance[1] > 0 || s->irradiance[2] > 0 ? "ok"
-                                                                                 : "no_light";
+    const int lit = s->irradiance[0] > 0 || s->irradiance[1] > 0 || s->irradiance[2] > 0;
+    return lit ? "ok" : "no_light";
 }
 
 static void template_counters(void *self, char *buf, size_t len)

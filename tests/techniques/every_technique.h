@@ -1,7 +1,7 @@
-/* gibench tests — what the tests that walk every technique share (test_registry, test_closed_form,
- * test_contract_gl): the techniques gibench runs followed by those only tests run (the template),
- * and whether a scene is one a technique runs on, as a matrix decides it. A technique added to
- * either list of techniques/registry.c is walked without a change here. */
+/* gibench tests — what the tests that walk every technique share (test_registry,
+ * test_closed_form, test_contract_gl): the techniques gibench runs, then those only tests run
+ * (the template), and whether a scene is one a technique runs on, as a matrix decides it. A
+ * technique added to either list of techniques/registry.c is walked without a change here. */
 #ifndef GIB_TEST_EVERY_TECHNIQUE_H
 #define GIB_TEST_EVERY_TECHNIQUE_H
 
