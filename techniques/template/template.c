@@ -4,11 +4,12 @@
  * gib_techniques_test_only() (techniques/registry.c).
  *
  * What it estimates: the `indirect` component (one diffuse bounce, L D D E) by the ambient term of
- * a closed scene, an energy balance in the spirit of the ambient term of progressive radiosity
- * (Cohen, Chen, Wallace and Greenberg 1988, Sec. 4): in a closed scene all the power Phi the
- * lights emit lands on the surfaces; after one diffuse reflection the surfaces give back
- * rho_avg Phi, rho_avg their area-weighted mean albedo. Spread evenly over the area A, that is
- * the irradiance E = rho_avg Phi / A at every point, and a Lambertian point reflects
+ * a closed scene, an energy balance: the one-bounce term of the ambient term of progressive
+ * radiosity (Cohen, Chen, Wallace and Greenberg 1988, which sums every bounce with 1/(1 - rho)).
+ * In a closed scene all the power Phi the lights emit lands on the surfaces; after one diffuse
+ * reflection the surfaces give back rho_avg Phi, rho_avg their area-weighted mean albedo. Spread
+ * evenly over the area A, that is the irradiance E = rho_avg Phi / A at every point, and a
+ * Lambertian point reflects
  *     L = (rho_d / pi) E.
  * It ignores where the light falls and what sees what, so it is right only where those do not
  * matter: inside a sphere of uniform albedo with lights anywhere inside (the form factor between
@@ -93,6 +94,21 @@ static double light_power(const gib_light *l, int c)
     return 2.0 * M_PI * I * (1.0 - pow(fmax(cos_o, 0.0), e + 1.0)) / (e + 1.0);
 }
 
+static double triangle_area(const gib_scene *s, uint32_t t)
+{
+    const float *p[3];
+    for (int k = 0; k < 3; k++)
+        p[k] = s->positions + 3 * (size_t)s->indices[3 * (size_t)t + k];
+    double u[3], v[3];
+    for (int k = 0; k < 3; k++) {
+        u[k] = (double)p[1][k] - p[0][k];
+        v[k] = (double)p[2][k] - p[0][k];
+    }
+    const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2],
+                 cz = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+}
+
 /* E = strength x rho_avg Phi / A, per channel. rho_avg weighs each triangle's material albedo by
  * its area (textures are left out: their mean is not known here). A moving scene is measured as
  * loaded. All on the CPU, once: the pass only reads the result. */
@@ -100,17 +116,7 @@ static void ambient_irradiance(const gib_scene *s, double strength, float E[3])
 {
     double area = 0, reflected[3] = {0, 0, 0}, power[3] = {0, 0, 0};
     for (uint32_t t = 0; t < s->triangle_count; t++) {
-        const float *p[3];
-        for (int k = 0; k < 3; k++)
-            p[k] = s->positions + 3 * (size_t)s->indices[3 * (size_t)t + k];
-        double u[3], v[3];
-        for (int k = 0; k < 3; k++) {
-            u[k] = (double)p[1][k] - p[0][k];
-            v[k] = (double)p[2][k] - p[0][k];
-        }
-        const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2],
-                     cz = u[0] * v[1] - u[1] * v[0];
-        const double a = 0.5 * sqrt(cx * cx + cy * cy + cz * cz);
+        const double a = triangle_area(s, t);
         const gib_material *m = &s->materials[s->tri_material[t]];
         area += a;
         for (int c = 0; c < 3; c++)
