@@ -12,7 +12,7 @@ target_include_directories(gib_glad SYSTEM PUBLIC ${GLAD_DIR}/include)
 target_compile_options(gib_glad PRIVATE -w)
 
 # Shaders live next to their technique and are embedded as C strings (cmake/embed_shaders.cmake),
-# with the slot tables C and GLSL both include (harness/gl/bindings.h, techniques/*/<name>_slots.h).
+# with the GL slots' headers they include (harness/gl/bindings.h, techniques/*/*_slots.h).
 file(GLOB_RECURSE GIB_SHADERS CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/techniques/*.glsl ${CMAKE_SOURCE_DIR}/techniques/*.vert
   ${CMAKE_SOURCE_DIR}/techniques/*.frag ${CMAKE_SOURCE_DIR}/techniques/*.geom
