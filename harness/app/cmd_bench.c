@@ -86,7 +86,7 @@ typedef struct bench_summary {
 static int bench_scene(const char *name, int fallback, int in_list, const gib_ref_params *p,
                        const char *comp, int repeat, FILE *f, bench_summary *sum)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     gib_scene scene;
     int rc = gib_scene_load(name, &scene, &err);
     if (rc == GIB_SCENE_UNAVAILABLE && fallback) {
@@ -205,7 +205,7 @@ typedef struct eff_opts {
 static int eff_render(const gib_scene *sc, int comp, int spp, int sampler, uint64_t seed,
                       const eff_opts *o, gib_image *img, gib_ref_stats *st)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     gib_ref_params p = {.component = comp, .width = o->w, .height = o->h, .spp = spp,
                         .seed = seed, .sampler = sampler, .threads = o->threads, .quiet = 1};
     if (gib_reference_render(sc, &p, img, NULL, st, &err) < 0) {
@@ -224,7 +224,7 @@ static int eff_cmp(const void *a, const void *b)
 /* One scene: every component, sampler and spp; rows to f. Returns 0, 3 (data absent), 1. */
 static int eff_scene(const char *name, const eff_opts *o, FILE *f, const char *machine)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     gib_scene sc;
     int rc = gib_scene_load(name, &sc, &err);
     if (rc < 0) {
@@ -423,7 +423,7 @@ int gib_cmd_bench(int argc, char **argv)
     const char *samplers = "random,sobol", *spps = NULL;
     long spp = 16, threads = 0, repeat = 3, truth_spp = 2048;
     int efficiency = 0;
-    gib_error err = {{0}};
+    gib_error err = {0};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {

@@ -30,7 +30,7 @@ int gib_cmd_compare(int argc, char **argv)
     const char *paths[2] = {NULL, NULL}, *map = NULL;
     double exposure = -1, fail_rmse = INFINITY, fail_rel = INFINITY, fail_ssim = -INFINITY;
     int json = 0, np = 0;
-    gib_error err = {{0}};
+    gib_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int rc = 0;

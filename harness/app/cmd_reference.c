@@ -137,7 +137,7 @@ int gib_cmd_reference(int argc, char **argv)
     long max_spec = 0, max_spp = 0;
     int force = 0, quiet = 0;
     double dmax = INFINITY, target = 0.0, time = 0.0;
-    gib_error err = {{0}};
+    gib_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {

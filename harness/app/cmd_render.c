@@ -31,7 +31,7 @@ int gib_cmd_render(int argc, char **argv)
     int nparams = 0, backend = GIB_BACKEND_AUTO;
     long camera = 0, warmup = 2, frames = 5, ref_spp = 0;
     double time = 0.0, dt = 0.0;
-    gib_error err = {{0}};
+    gib_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {

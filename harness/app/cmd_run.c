@@ -46,7 +46,7 @@ static const char help[] =
 
 enum { C_MATRIX, C_PROFILE, C_SCENE, C_CAMERA, C_TECHNIQUE, C_COMPONENT, C_PARAMS, C_WIDTH,
        C_HEIGHT, C_INSTANT, C_WARMUP, C_FRAMES, C_DT, C_GPU_MED, C_GPU_MIN, C_GPU_MAX, C_GPU_IQR,
-       C_CPU, C_CPU_IQR, C_FIRST_FRAME, C_FIRST_GPU, C_MEM, C_MEM_STRUCT, C_SCENE_MEM,
+       C_CPU, C_CPU_IQR, C_FIRST_FRAME, C_FIRST_GPU, C_MEM, C_MEM_STRUCT, C_MEM_PLANNED, C_SCENE_MEM,
        C_DRIVER_MEM, C_RMSE, C_REL_RMSE, C_MEAN_RATIO, C_BLACK_RMSE, C_OVER_BLACK, C_RMSE_DENOISED, C_RMSE_LO,
        C_RMSE_HI, C_PSNR, C_SSIM, C_FLIP, C_HDRFLIP, C_NONFINITE, C_REF_SPP,
        C_REF_NOISE, C_REF_NOISY,
@@ -56,7 +56,7 @@ static const char *const base_columns[C_BASE_COUNT] = {
     "matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
     "time", "warmup", "frames", "dt", "gpu_ms_median", "gpu_ms_min", "gpu_ms_max", "gpu_ms_iqr",
     "cpu_ms", "cpu_ms_iqr", "first_frame_ms", "first_frame_gpu_ms", "mem_bytes", "mem_by_structure",
-    "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "mean_ratio", "black_rmse", "rmse_over_black",
+    "mem_planned_by_structure", "scene_mem_bytes", "driver_mem_bytes", "rmse", "rel_rmse", "mean_ratio", "black_rmse", "rmse_over_black",
     "rmse_denoised", "rmse_lo", "rmse_hi", "psnr", "ssim", "flip", "hdrflip",
     "nonfinite", "ref_spp",
     "ref_noise_rmse", "ref_noisy", "status", "message", "counters", "image", "ref_image", "backend", "renderer", "gl_version",
@@ -354,6 +354,7 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         row_set(&r, C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
         row_set(&r, C_MEM, "%llu", (unsigned long long)res->technique_bytes);
         row_set(&r, C_MEM_STRUCT, "%s", res->memory_by_structure);
+        row_set(&r, C_MEM_PLANNED, "%s", res->planned_structures);
         row_set(&r, C_COUNTERS, "%s", res->counters);
         if (res->driver_bytes >= 0)
             row_set(&r, C_DRIVER_MEM, "%lld", res->driver_bytes);

@@ -1,5 +1,5 @@
 /* gibench — results history: every `gibench run` row kept in a SQLite database across runs
- * (README, "Results history"; issue 18 section 2).
+ * (docs/history.md).
  *
  * Schema (one file, default DIR/history.sqlite beside the CSVs):
  *   machine(id, renderer, gl_version, backend, cpu, cores, gpu)   one row per distinct machine

@@ -27,6 +27,14 @@ static void set_status(gib_run_result *r, const char *status)
     r->ok = !strcmp(status, "ok");
 }
 
+/* A failed step's status: the code its error carries (out_of_memory, shader_failed, ...), or the
+ * step's own word when the failure has no code of its own. */
+static void set_failure_status(gib_run_result *r, const char *step_status)
+{
+    const char *coded = gib_error_code_status(r->err.code);
+    set_status(r, coded ? coded : step_status);
+}
+
 /* Reads an RGBA32F target into a 3-channel image with row 0 on top. */
 static int read_target(unsigned texture, int w, int h, gib_image *img, gib_error *err)
 {
@@ -132,9 +140,7 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
     const double create_start = gib_now_ms();
     self = t->create(scene, params, w, h, &ledger, &r->err);
     if (!self) {
-        set_status(r, strstr(r->err.msg, "out of memory") ? "out_of_memory"
-                      : strstr(r->err.msg, "shader") || strstr(r->err.msg, "program")
-                          ? "shader_failed" : "create_failed");
+        set_failure_status(r, "create_failed");
         goto done;
     }
     gib_view view;
@@ -158,7 +164,7 @@ void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
         if (f == 0)
             r->first_frame_ms = gib_now_ms() - create_start;
         if (rc < 0) {
-            set_status(r, "render_failed");
+            set_failure_status(r, "render_failed");
             goto done;
         }
     }
@@ -186,6 +192,7 @@ done:
     r->technique_bytes = ledger.peak_bytes;
     gib_ledger_summary(&ledger, r->memory_by_label, sizeof r->memory_by_label);
     gib_ledger_structures(&ledger, r->memory_by_structure, sizeof r->memory_by_structure);
+    gib_ledger_planned_structures(&ledger, r->planned_structures, sizeof r->planned_structures);
     if (self)
         t->destroy(self);
     gib_ledger_release_all(&ledger); /* whatever a technique forgot to free */

@@ -30,6 +30,8 @@ typedef struct gib_run_result {
                                        the last frame), -1 where the driver does not tell */
     char memory_by_label[1024];
     char memory_by_structure[256];  /* the same summed by structure (gib_ledger_structures) */
+    char planned_structures[256];   /* what the technique planned, by structure, even when create()
+                                       refused it (gib_ledger_planned_structures); "" if none */
     char counters[256];             /* the technique's counters of the last frame, or "" */
     gib_error err;
 } gib_run_result;

@@ -1,5 +1,5 @@
 /* gibench — matrices split into shards (`gibench run M --shard i/N`) and the manifests that let
- * `gibench merge` put the shards' CSVs back together (README, "Spreading a matrix over machines").
+ * `gibench merge` put the shards' CSVs back together (docs/scale-out.md).
  *
  * The split depends only on the expanded matrix (never on the machine or on which scenes are
  * present), so every shard computes the same assignment on its own. A shard writes, beside its

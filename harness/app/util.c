@@ -166,7 +166,8 @@ int gib_score_flip(const gib_image *ref, const gib_image *img, float exposure, f
         return 0; /* gib_metrics_compute reports the mismatch */
     float *a = malloc(4 * 3 * n * sizeof(float));
     if (!a)
-        return gib_fail(err, "FLIP: out of memory for a %dx%d image", w, h);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "FLIP: out of memory for a %dx%d image", w, h);
     float *b = a + 3 * n, *la = b + 3 * n, *lb = la + 3 * n;
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 3; c++) {
@@ -177,14 +178,14 @@ int gib_score_flip(const gib_image *ref, const gib_image *img, float exposure, f
         }
     /* A NaN mean (non-finite samples, black reference) is the answer: the row's nonfinite count
      * and status already say what is wrong with the image, so the message is not needed. */
-    gib_error ferr = {{0}};
+    gib_error ferr = {0};
     const float ppd = gib_flip_default_ppd();
     m->flip = gib_flip_ldr(la, lb, w, h, ppd, ldr_map, &ferr);
     if (!isnan(m->flip))
         m->hdrflip = gib_flip_hdr(a, b, w, h, ppd, NULL, NULL, NULL, &ferr);
     free(a);
-    if (isnan(m->flip + m->hdrflip) && strstr(ferr.msg, "out of memory"))
-        return gib_fail(err, "%s", ferr.msg);
+    if (isnan(m->flip + m->hdrflip) && ferr.code == GIB_ERR_OUT_OF_MEMORY)
+        return gib_fail_code(err, ferr.code, "%s", ferr.msg);
     return 0;
 }
 
@@ -195,7 +196,8 @@ int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposur
         return -1;
     float *map = dir ? malloc((size_t)ref->width * ref->height * sizeof(float)) : NULL;
     if (dir && !map)
-        return gib_fail(err, "FLIP: out of memory for a %dx%d map", ref->width, ref->height);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "FLIP: out of memory for a %dx%d map", ref->width, ref->height);
     if (gib_score_flip(ref, img, exposure, map, m, err) < 0) {
         free(map);
         return -1;

@@ -6,15 +6,46 @@
 #include <stdlib.h>
 #include <string.h>
 
+static void set_message(gib_error *err, gib_error_code code, const char *fmt, va_list ap)
+{
+    err->code = code;
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+}
+
 int gib_fail(gib_error *err, const char *fmt, ...)
 {
     if (err) {
         va_list ap;
         va_start(ap, fmt);
-        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        set_message(err, GIB_ERR_FAILED, fmt, ap);
         va_end(ap);
     }
     return -1;
+}
+
+int gib_fail_code(gib_error *err, gib_error_code code, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        set_message(err, code, fmt, ap);
+        va_end(ap);
+    }
+    return -1;
+}
+
+const char *gib_error_code_status(gib_error_code code)
+{
+    switch (code) {
+    case GIB_ERR_OUT_OF_MEMORY: return "out_of_memory";
+    case GIB_ERR_SHADER: return "shader_failed";
+    case GIB_ERR_OVERFLOW: return "overflow";
+    case GIB_ERR_NON_FINITE: return "nonfinite";
+    case GIB_ERR_REFERENCE: return "reference_failed";
+    case GIB_ERR_NONE:
+    case GIB_ERR_FAILED: break;
+    }
+    return NULL;
 }
 
 int gib_error_prefix(gib_error *err, const char *fmt, ...)
@@ -40,19 +71,21 @@ void *gib_calloc(size_t n, size_t size, gib_error *err)
     }
     void *p = calloc(n, size);
     if (!p)
-        gib_fail(err, "out of memory allocating %zu x %zu bytes", n, size);
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                      "out of memory allocating %zu x %zu bytes", n, size);
     return p;
 }
 
 void *gib_realloc_array(void *p, size_t n, size_t size, gib_error *err)
 {
     if (size && n > SIZE_MAX / size) {
-        gib_fail(err, "allocation of %zu x %zu bytes overflows", n, size);
+        gib_fail_code(err, GIB_ERR_OVERFLOW, "allocation of %zu x %zu bytes overflows", n, size);
         return NULL;
     }
     void *q = realloc(p, (n && size) ? n * size : 1);
     if (!q)
-        gib_fail(err, "out of memory allocating %zu x %zu bytes", n, size);
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                      "out of memory allocating %zu x %zu bytes", n, size);
     return q;
 }
 

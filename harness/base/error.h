@@ -7,15 +7,34 @@
 
 #include <stddef.h>
 
+/* What kind of failure a message describes, set where the failure happens: the runner turns it into
+ * a result row's status (harness/app/runner.c) and never reads the status from the text. */
+typedef enum gib_error_code {
+    GIB_ERR_NONE = 0,
+    GIB_ERR_FAILED,        /* any failure without a code of its own */
+    GIB_ERR_OUT_OF_MEMORY, /* host or GPU allocation, or a memory plan over the budget */
+    GIB_ERR_SHADER,        /* a shader failed to compile or a program to link */
+    GIB_ERR_OVERFLOW,      /* a fixed-size buffer or counter would overflow */
+    GIB_ERR_NON_FINITE,    /* a computed value is NaN or infinite */
+    GIB_ERR_REFERENCE,     /* the reference image could not be rendered or read */
+} gib_error_code;
+
 typedef struct gib_error {
     char msg[2048];
+    gib_error_code code;
 } gib_error;
 
-/* Formats the message into err (if non-NULL) and returns -1, so callers can write
- * `return gib_fail(err, "scene '%s': ...", name);`. */
+/* Formats the message into err (if non-NULL), sets its code to GIB_ERR_FAILED and returns -1, so
+ * callers can write `return gib_fail(err, "scene '%s': ...", name);`. */
 int gib_fail(gib_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The same with the failure's code. */
+int gib_fail_code(gib_error *err, gib_error_code code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+/* A code's name as a result row's status uses it ("out_of_memory", "shader_failed", "nonfinite",
+ * ...); NULL for GIB_ERR_NONE and GIB_ERR_FAILED, which have none. */
+const char *gib_error_code_status(gib_error_code code);
 
-/* Prefixes an existing message: "context: old message". Returns -1. */
+/* Prefixes an existing message: "context: old message"; the code is kept. Returns -1. */
 int gib_error_prefix(gib_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Allocation helpers that report failure through err instead of crashing. */

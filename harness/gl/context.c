@@ -258,5 +258,6 @@ int gib_gl_check(const char *where, gib_error *err)
                        : first == GL_OUT_OF_MEMORY     ? "GL_OUT_OF_MEMORY"
                        : first == GL_INVALID_FRAMEBUFFER_OPERATION ? "GL_INVALID_FRAMEBUFFER_OPERATION"
                                                                     : "GL error";
-    return gib_fail(err, "%s: %s (0x%04x)", where, name, (unsigned)first);
+    return gib_fail_code(err, first == GL_OUT_OF_MEMORY ? GIB_ERR_OUT_OF_MEMORY : GIB_ERR_FAILED,
+                         "%s: %s (0x%04x)", where, name, (unsigned)first);
 }

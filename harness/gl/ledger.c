@@ -39,7 +39,8 @@ static int add_entry(gib_ledger *l, const char *label, unsigned name, int is_tex
                      gib_error *err)
 {
     if (l->count >= GIB_LEDGER_MAX)
-        return gib_fail(err, "memory ledger full (%d allocations) at '%s'", GIB_LEDGER_MAX, label);
+        return gib_fail_code(err, GIB_ERR_OVERFLOW,
+                             "memory ledger full (%d allocations) at '%s'", GIB_LEDGER_MAX, label);
     gib_ledger_entry *e = &l->entries[l->count++];
     snprintf(e->label, sizeof e->label, "%s", label);
     e->name = name;
@@ -56,10 +57,11 @@ static int over_budget(const gib_ledger *l, const char *label, uint64_t bytes, g
 {
     if (!l->budget_bytes || l->current_bytes + bytes <= l->budget_bytes)
         return 0;
-    return gib_fail(err, "out of memory: '%s' (%llu bytes) would take the technique to %llu bytes, "
+    return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                         "out of memory: '%s' (%llu bytes) would take the technique to %llu bytes, "
                          "over the budget of %llu bytes", label, (unsigned long long)bytes,
-                    (unsigned long long)(l->current_bytes + bytes),
-                    (unsigned long long)l->budget_bytes);
+                         (unsigned long long)(l->current_bytes + bytes),
+                         (unsigned long long)l->budget_bytes);
 }
 
 unsigned gib_gpu_buffer(gib_ledger *l, const char *label, uint64_t bytes, const void *data,
@@ -174,21 +176,22 @@ static size_t key_len(const char *label, int by_structure)
     return dot ? (size_t)(dot - label) : strlen(label);
 }
 
-static void summary(const gib_ledger *l, int by_structure, char *out, int out_len)
+static void summary(const gib_ledger_entry *entries, int count, int by_structure, char *out,
+                    int out_len)
 {
     int used = 0;
     out[0] = 0;
     char seen[GIB_LEDGER_MAX] = {0};
-    for (int i = 0; i < l->count; i++) {
+    for (int i = 0; i < count; i++) {
         if (seen[i])
             continue;
-        const char *key = l->entries[i].label;
+        const char *key = entries[i].label;
         size_t n_key = key_len(key, by_structure);
         uint64_t sum = 0;
-        for (int j = i; j < l->count; j++)
-            if (key_len(l->entries[j].label, by_structure) == n_key &&
-                !strncmp(l->entries[j].label, key, n_key)) {
-                sum += l->entries[j].bytes;
+        for (int j = i; j < count; j++)
+            if (key_len(entries[j].label, by_structure) == n_key &&
+                !strncmp(entries[j].label, key, n_key)) {
+                sum += entries[j].bytes;
                 seen[j] = 1;
             }
         int n = snprintf(out + used, out_len - used, "%s%.*s=%llu", used ? ";" : "", (int)n_key,
@@ -201,10 +204,34 @@ static void summary(const gib_ledger *l, int by_structure, char *out, int out_le
 
 void gib_ledger_summary(const gib_ledger *l, char *out, int out_len)
 {
-    summary(l, 0, out, out_len);
+    summary(l->entries, l->count, 0, out, out_len);
 }
 
 void gib_ledger_structures(const gib_ledger *l, char *out, int out_len)
 {
-    summary(l, 1, out, out_len);
+    summary(l->entries, l->count, 1, out, out_len);
+}
+
+void gib_ledger_planned_structures(const gib_ledger *l, char *out, int out_len)
+{
+    summary(l->planned, l->planned_count, 1, out, out_len);
+}
+
+void gib_ledger_plan(gib_ledger *l, const char *label, uint64_t bytes)
+{
+    for (int i = 0; i < l->planned_count; i++)
+        if (!strcmp(l->planned[i].label, label)) {
+            l->planned[i].bytes = bytes;
+            return;
+        }
+    if (l->planned_count == GIB_LEDGER_PLAN_MAX) {
+        gib_ledger_entry *last = &l->planned[GIB_LEDGER_PLAN_MAX - 1];
+        snprintf(last->label, sizeof last->label, "other");
+        last->bytes += bytes;
+        return;
+    }
+    gib_ledger_entry *e = &l->planned[l->planned_count++];
+    memset(e, 0, sizeof *e);
+    snprintf(e->label, sizeof e->label, "%s", label);
+    e->bytes = bytes;
 }

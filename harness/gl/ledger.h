@@ -9,6 +9,7 @@
 #include "harness/base/error.h"
 
 #define GIB_LEDGER_MAX 128
+#define GIB_LEDGER_PLAN_MAX 16
 
 typedef struct gib_ledger_entry {
     char label[64];
@@ -25,6 +26,10 @@ typedef struct gib_ledger {
      * error, as a driver's GL_OUT_OF_MEMORY would be: the runner sets it from the environment's
      * GIBENCH_GPU_BUDGET_BYTES, so tests can exhaust "GPU memory" on any machine. */
     uint64_t budget_bytes;
+    /* What a technique planned before allocating (gib_ledger_plan): kept whether or not the
+     * allocations then succeed, so a row refused for memory still says what it would have taken. */
+    gib_ledger_entry planned[GIB_LEDGER_PLAN_MAX];
+    int planned_count;
 } gib_ledger;
 
 void gib_ledger_init(gib_ledger *l);
@@ -47,6 +52,12 @@ uint64_t gib_texture_bytes(unsigned target, int width, int height, int layers,
 unsigned gib_gpu_renderbuffer(gib_ledger *l, const char *label, unsigned internal_format, int width,
                               int height, gib_error *err);
 
+/* Records that the technique plans `bytes` for `label` (nothing is allocated): the plan a technique
+ * checks against a memory budget, reported in the row even when the check refuses it. A label
+ * planned again replaces its bytes; past GIB_LEDGER_PLAN_MAX labels the rest are summed under
+ * "other". */
+void gib_ledger_plan(gib_ledger *l, const char *label, uint64_t bytes);
+
 /* Deletes the GL object and removes its entry. */
 void gib_gpu_free(gib_ledger *l, unsigned name, int is_texture);
 /* Deletes everything still in the ledger. */
@@ -62,5 +73,8 @@ void gib_ledger_summary(const gib_ledger *l, char *out, int out_len);
 /* The same summed by structure, the part of a label before its first '.' ("voxels=...;rsm=..."):
  * the CSV's mem_by_structure (the LRSM paper's Table 2 is per structure). */
 void gib_ledger_structures(const gib_ledger *l, char *out, int out_len);
+/* The plan (gib_ledger_plan) summed by structure, as gib_ledger_structures: the CSV's
+ * mem_planned_by_structure; "" when nothing was planned. */
+void gib_ledger_planned_structures(const gib_ledger *l, char *out, int out_len);
 
 #endif

@@ -284,7 +284,8 @@ static int work_alloc(flip_work *k, int w, int h, float ppd, gib_error *err)
     k->ycc_r = malloc((21 * n + (size_t)w + 2 * (size_t)rmax + 4 * (size_t)w) * sizeof(float));
     if (!k->ycc_r || csf_make(&k->cf, ppd) < 0 || feat_make(&k->ff, ppd) < 0) {
         work_free(k);
-        return gib_fail(err, "FLIP: out of memory for a %dx%d image", w, h);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "FLIP: out of memory for a %dx%d image", w, h);
     }
     k->ycc_t = k->ycc_r + 3 * n;
     k->csf_r = k->ycc_t + 3 * n;
@@ -344,8 +345,9 @@ static int check_inputs(const float *ref, const float *test, int w, int h, gib_e
     size_t n = 3 * (size_t)w * h;
     for (size_t i = 0; i < n; i++)
         if (!isfinite(ref[i]) || !isfinite(test[i]))
-            return gib_fail(err, "FLIP: non-finite sample in the %s image at pixel %zu",
-                            isfinite(ref[i]) ? "test" : "reference", i / 3);
+            return gib_fail_code(err, GIB_ERR_NON_FINITE,
+                                 "FLIP: non-finite sample in the %s image at pixel %zu",
+                                 isfinite(ref[i]) ? "test" : "reference", i / 3);
     return 0;
 }
 
@@ -412,7 +414,7 @@ double gib_flip_hdr(const float *ref, const float *test, int w, int h, float ppd
     float d1 = -0.5f * (qb / qa), xmax = d1 + sqrtf(d1 * d1 - qcc / qa);
     float *lum = malloc(n * sizeof(float));
     if (!lum) {
-        gib_fail(err, "FLIP: out of memory for a %dx%d image", w, h);
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "FLIP: out of memory for a %dx%d image", w, h);
         return NAN;
     }
     float ymax = -INFINITY;
@@ -448,7 +450,8 @@ double gib_flip_hdr(const float *ref, const float *test, int w, int h, float ppd
     float *best = calloc(n, sizeof(float));
     if (!best || work_alloc(&k, w, h, ppd, err) < 0) {
         if (!best)
-            gib_fail(err, "FLIP: out of memory for a %dx%d image", w, h);
+            gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                          "FLIP: out of memory for a %dx%d image", w, h);
         free(best);
         return NAN;
     }
@@ -504,7 +507,7 @@ int gib_flip_write_png(const char *path, const float *map, int w, int h, gib_err
 {
     unsigned char *rgb = malloc(3 * (size_t)w * h);
     if (!rgb)
-        return gib_fail(err, "png '%s': out of memory", path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "png '%s': out of memory", path);
     for (size_t i = 0; i < (size_t)w * h; i++)
         gib_flip_magma(map[i], rgb + 3 * i);
     int rc = gib_png_write8(path, w, h, 3, rgb, err);

@@ -143,7 +143,7 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     lv->first_face = calloc(n ? n : 1, sizeof *lv->first_face);
     lv->faces_of = calloc(n ? n : 1, sizeof *lv->faces_of);
     if (!lv->first_face || !lv->faces_of)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     for (uint32_t i = 0; i < n; i++) {
         int kind = gib_light_view_kind(&s->lights[i]);
         if (kind == GIB_LV_ORTHO && (attributes & GIB_LV_LOCAL_LIGHTS_ONLY))
@@ -156,7 +156,7 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     lv->texel = calloc(n ? n : 1, sizeof *lv->texel);
     lv->table_data = calloc((size_t)lv->table_floats, sizeof(float));
     if (!lv->faces || !lv->texel || !lv->table_data)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     const char *files[] = {"common/gbuffer.vert", "common/light_view.frag"};
     if (!(lv->program = gib_program(files, 2, lv->packed ? "#define PACKED16 1\n" : NULL, err)))
         return -1;

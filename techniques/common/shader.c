@@ -10,7 +10,7 @@ static int expand(const char *path, const char *src, char **buf, size_t *len, si
                   gib_error *err)
 {
     if (depth > 8)
-        return gib_fail(err, "shader '%s': #include nested too deeply", path);
+        return gib_fail_code(err, GIB_ERR_SHADER, "shader '%s': #include nested too deeply", path);
     const char *p = src;
     while (*p) {
         const char *eol = strchr(p, '\n');
@@ -21,12 +21,13 @@ static int expand(const char *path, const char *src, char **buf, size_t *len, si
         if (!strncmp(q, "#include", 8)) {
             const char *a = strchr(q, '"'), *b = a ? strchr(a + 1, '"') : NULL;
             if (!a || !b || b > p + n)
-                return gib_fail(err, "shader '%s': malformed #include", path);
+                return gib_fail_code(err, GIB_ERR_SHADER, "shader '%s': malformed #include", path);
             char inc[256];
             snprintf(inc, sizeof inc, "%.*s", (int)(b - a - 1), a + 1);
             const char *isrc = gib_shader_source(inc);
             if (!isrc)
-                return gib_fail(err, "shader '%s': included file '%s' is not embedded", path, inc);
+                return gib_fail_code(err, GIB_ERR_SHADER,
+                                     "shader '%s': included file '%s' is not embedded", path, inc);
             /* Each file is included once per program: a marker line records it. */
             char marker[300];
             snprintf(marker, sizeof marker, "// included: %s\n", inc);
@@ -40,7 +41,8 @@ static int expand(const char *path, const char *src, char **buf, size_t *len, si
                 *cap = (*len + n + 2) * 2;
                 char *nb = realloc(*buf, *cap);
                 if (!nb)
-                    return gib_fail(err, "out of memory expanding shader '%s'", path);
+                    return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                                         "out of memory expanding shader '%s'", path);
                 *buf = nb;
             }
             memcpy(*buf + *len, p, n);
@@ -52,7 +54,7 @@ static int expand(const char *path, const char *src, char **buf, size_t *len, si
     if (*len + 2 > *cap) {
         char *nb = realloc(*buf, *len + 2);
         if (!nb)
-            return gib_fail(err, "out of memory");
+            return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         *buf = nb;
         *cap = *len + 2;
     }
@@ -82,15 +84,16 @@ unsigned gib_program(const char *const *files, int count, const char *defines, g
         const char *src = gib_shader_source(files[i]);
         GLenum stage = stage_of(files[i]);
         if (!src || !stage) {
-            gib_fail(err, "shader '%s' is not embedded in this build (or has an unknown extension)",
-                     files[i]);
+            gib_fail_code(err, GIB_ERR_SHADER,
+                          "shader '%s' is not embedded in this build (or has an unknown extension)",
+                          files[i]);
             ok = 0;
             break;
         }
         size_t cap = strlen(src) + 1024, len = 0;
         char *buf = malloc(cap);
         if (!buf) {
-            gib_fail(err, "out of memory");
+            gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
             ok = 0;
             break;
         }
@@ -115,7 +118,7 @@ unsigned gib_program(const char *const *files, int count, const char *defines, g
         if (!status) {
             char log[1536] = "";
             glGetShaderInfoLog(shaders[i], sizeof log, NULL, log);
-            gib_fail(err, "shader '%s' failed to compile: %s", files[i], log);
+            gib_fail_code(err, GIB_ERR_SHADER, "shader '%s' failed to compile: %s", files[i], log);
             ok = 0;
             break;
         }
@@ -128,7 +131,8 @@ unsigned gib_program(const char *const *files, int count, const char *defines, g
         if (!status) {
             char log[1536] = "";
             glGetProgramInfoLog(prog, sizeof log, NULL, log);
-            gib_fail(err, "program (%s ...) failed to link: %s", files[0], log);
+            gib_fail_code(err, GIB_ERR_SHADER,
+                          "program (%s ...) failed to link: %s", files[0], log);
             ok = 0;
         }
     }

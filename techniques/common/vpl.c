@@ -117,7 +117,7 @@ int gib_vpls_create(gib_vpls *v, const gib_light_views *views, int count, unsign
     double *u = malloc((size_t)n_alloc * sizeof *u), *w = malloc((size_t)n_alloc * sizeof *w);
     if (!cells || !texels || !owner || !fill || !u || !w) {
         free(cells), free(texels), free(owner), free(fill), free(u), free(w);
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     }
     uint64_t rng = seed;
     int base = 0, list = 0;

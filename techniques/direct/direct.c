@@ -30,7 +30,7 @@ static void *direct_create(const gib_gpu_scene *scene, const gib_params *p, int 
 {
     direct *d = calloc(1, sizeof *d);
     if (!d) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     d->scene = scene;

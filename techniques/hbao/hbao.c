@@ -71,7 +71,7 @@ static void *hbao_create(const gib_gpu_scene *scene, const gib_params *p, int wi
 {
     hbao *h = calloc(1, sizeof *h);
     if (!h) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     const gib_technique *t = &gib_technique_hbao;

@@ -140,7 +140,7 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     const gib_technique *t = &gib_technique_ispm_caustics;
     caustics *c = calloc(1, sizeof *c);
     if (!c) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     c->scene = scene;
@@ -214,7 +214,7 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     size_t nrand = (size_t)c->photon_capacity * 8;
     float *rnd = malloc(nrand * sizeof *rnd);
     if (!rnd) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         goto fail;
     }
     uint64_t state = 0x853c49e6748fea9bull ^ ((uint64_t)gib_param_int(t, p, "seed") << 1);

@@ -30,7 +30,7 @@ static int upload_info(ldm_set *l, gib_ledger *ledger, const uint64_t *counts, g
 {
     ldm_info_gpu *info = calloc(l->count, sizeof *info);
     if (!info)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     for (int i = 0; i < l->count; i++) {
         for (int k = 0; k < 3; k++) {
             info[i].dir_extent[k] = l->dirs[3 * i + k];
@@ -144,7 +144,7 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     int max = directions * 2 + 8;
     l->dirs = calloc((size_t)max * 3, sizeof(float));
     if (!l->dirs)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     l->count = ldm_directions(directions, l->dirs, max);
     if (l->count <= 0)
         return gib_fail(err, "ldm: no direction set for %d directions", directions);
@@ -178,7 +178,7 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     if (!counts32 || !counts || !l->capacity) {
         free(counts32);
         free(counts);
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     }
     count_fragments(l, scene, counts32);
     for (int i = 0; i < l->count; i++) {

@@ -54,7 +54,7 @@ static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int 
     const gib_technique *t = &gib_technique_ldm_ao;
     ldm_ao *a = calloc(1, sizeof *a);
     if (!a) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     a->scene = scene;

@@ -55,7 +55,7 @@ static void *ldm_env_create(const gib_gpu_scene *scene, const gib_params *p, int
     const gib_technique *t = &gib_technique_ldm_env;
     ldm_env *e = calloc(1, sizeof *e);
     if (!e) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     e->scene = scene;

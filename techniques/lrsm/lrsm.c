@@ -97,7 +97,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     }
     lrsm *s = calloc(1, sizeof *s);
     if (!s) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     s->scene = scene;

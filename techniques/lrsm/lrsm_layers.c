@@ -36,7 +36,7 @@ int lrsm_layers_create(lrsm_layers *L, const gib_light_views *views, int depth_p
     L->lights = n;
     L->table_data = calloc((size_t)(n ? n : 1) * 4, sizeof(float));
     if (!L->table_data)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     if (!(L->table = gib_gpu_buffer(ledger, "rsm.partitions", sizeof(float) * 4 * (uint64_t)(n ? n : 1),
                                     L->table_data, GL_DYNAMIC_STORAGE_BIT, err)))
         return -1;

@@ -65,7 +65,7 @@ static void *multires_ir_create(const gib_gpu_scene *scene, const gib_params *p,
     const gib_technique *t = &gib_technique_multires_ir;
     multires_ir *s = calloc(1, sizeof *s);
     if (!s) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     s->scene = scene;

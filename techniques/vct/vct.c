@@ -86,7 +86,7 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     const gib_technique *t = &gib_technique_vct;
     vct *a = calloc(1, sizeof *a);
     if (!a) {
-        gib_fail(err, "vct: out of memory (host)");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "vct: out of memory (host)");
         return NULL;
     }
     a->scene = scene;
@@ -103,7 +103,7 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     int res = gib_param_int(t, p, "voxel_res");
     vct_plan plan;
     vct_plan_bytes(res, (long long)scene->scene->triangle_count, &plan);
-    if (vct_plan_check(&plan, res, gib_param_float(t, p, "memory_budget_mb"), err) < 0) {
+    if (vct_plan_check(&plan, res, gib_param_float(t, p, "memory_budget_mb"), ledger, err) < 0) {
         free(a);
         return NULL;
     }
@@ -119,9 +119,8 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
         gib_fullscreen_create(&a->direct, "vct/vct_shade.frag", "#define DIRECT 1\n", err) < 0 ||
         gib_fullscreen_create(&a->indirect, "vct/vct_shade.frag", "#define INDIRECT 1\n", err) < 0 ||
         gib_fullscreen_create(&a->glossy, "vct/vct_shade.frag", "#define GLOSSY 1\n", err) < 0) {
-        /* A driver's GL_OUT_OF_MEMORY anywhere (the ledger names it) is the row's out_of_memory. */
-        if (strstr(err->msg, "GL_OUT_OF_MEMORY") && !strstr(err->msg, "out of memory"))
-            gib_error_prefix(err, "vct: out of memory");
+        /* A driver's GL_OUT_OF_MEMORY anywhere carries its code (the ledger sets it): the row's
+         * status is out_of_memory. */
         vct_destroy(a);
         return NULL;
     }

@@ -51,13 +51,15 @@ typedef struct vct_volume {
 } vct_volume;
 
 /* Allocates (labels "radiance.base", "normal.base", "aniso.<dir>") for a grid of side `size` at
- * `origin`. A GL_OUT_OF_MEMORY fails with "out of memory". The caller checks the plan against
+ * `origin`. A GL_OUT_OF_MEMORY fails with GIB_ERR_OUT_OF_MEMORY. The caller checks the plan against
  * the budget first (vct_plan_check). */
 int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
                       gib_ledger *ledger, gib_error *err);
-/* The plan against the budget (budget_mb as vct_budget_bytes): over it, fails with "out of
- * memory" and the planned and available bytes. */
-int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_error *err);
+/* The plan against the budget (budget_mb as vct_budget_bytes), recorded in the ledger first
+ * (gib_ledger_plan: the row's mem_planned_by_structure, by the allocations' structure names):
+ * over the budget, fails with GIB_ERR_OUT_OF_MEMORY naming the planned and available bytes. */
+int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *ledger,
+                   gib_error *err);
 /* Clears the base voxels, injects the light views' texels (bound: gib_light_views_bind; `lv_res`
  * texels a side, light l's faces first_face[l] .. + faces_of[l]), resolves the sums into
  * averages and takes the occupancy (alpha) from `occupancy`, the occlusion voxels' R8 texture

@@ -27,13 +27,18 @@ void vct_plan_bytes(int res, long long triangles, vct_plan *p)
     p->total = p->radiance + p->normal + p->aniso + p->voxels;
 }
 
-int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_error *err)
+int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *ledger,
+                   gib_error *err)
 {
+    gib_ledger_plan(ledger, "radiance", plan->radiance);
+    gib_ledger_plan(ledger, "normal", plan->normal);
+    gib_ledger_plan(ledger, "aniso", plan->aniso);
+    gib_ledger_plan(ledger, "voxels", plan->voxels);
     const char *what = "";
     uint64_t budget = vct_budget_bytes(budget_mb, &what);
     if (plan->total <= budget)
         return 0;
-    return gib_fail(err,
+    return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
                     "vct: out of memory: voxel_res %d plans %llu bytes (radiance %llu, normal %llu, "
                     "aniso %llu, voxels %llu), over the %llu bytes available (%s); nothing "
                     "allocated",
@@ -66,11 +71,10 @@ uint64_t vct_budget_bytes(double budget_mb, const char **what)
     return pages > 0 && page > 0 ? (uint64_t)pages * (uint64_t)page / 2 : 0;
 }
 
-/* A failed allocation's message names GL_OUT_OF_MEMORY; say "out of memory" so the runner gives
- * the row status out_of_memory (harness/app/runner.c). */
+/* A driver's GL_OUT_OF_MEMORY (its code set by the ledger) is said against the plan. */
 static int alloc_failed(gib_error *err, const vct_plan *plan)
 {
-    if (strstr(err->msg, "GL_OUT_OF_MEMORY"))
+    if (err->code == GIB_ERR_OUT_OF_MEMORY)
         gib_error_prefix(err, "vct: out of memory allocating the voxels (planned %llu bytes)",
                          (unsigned long long)plan->total);
     return -1;

@@ -1,6 +1,6 @@
 /* ispm_caustics' shaders on synthetic input (thesis 004, Sec. 3.3), run on the GPU as the
  * technique runs them:
- *  1. Phong lobe sampling (caustics.glsl, Sec. 3.3.1.2 as corrected in issue 17): over 2^16
+ *  1. Phong lobe sampling (caustics.glsl, Sec. 3.3.1.2 with its pdf corrected, caustics.glsl says how): over 2^16
  *     samples per lobe the mean cosine to the lobe axis equals (n+1)/(n+2), the mean of the pdf
  *     (n+1)/(2 pi) cos^n, within 4 standard errors (the samples' own); exactly the directions
  *     under the surface are rejected, so none accepted lies below it.

@@ -8,7 +8,7 @@
  *  2. The whole image: relative RMSE below REL_RMSE_MAX. What is left is the shadow map's error at
  *     shadow boundaries (a 1024^2 cube face, 3x3 PCF blurs each edge over ~2 texels) and the normal
  *     offset near contact; at 128x128 those are a few percent of the pixels. The threshold was set
- *     from the measured value (see the closing note of issue 2) with a factor of ~2 of margin, so a
+ *     from the measured value with a factor of ~2 of margin, so a
  *     misplaced light, a flipped image or wrong falloff (errors of tens of percent) fail it. */
 #include <math.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* Scenes that move (issue 15): the GL side and the reference render the same instant.
+/* Scenes that move: the GL side and the reference render the same instant.
  *
  * usage: test_motion SCENE T. On a moving scene, at t = 0 and at t = T:
  *  1. Primary hits: the G-buffer's positions after gib_gpu_scene_set_time(t), as view depth,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Inputs that are legal but hostile (issue 19, section 4): a generated suite of scene files at the
+"""Inputs that are legal but hostile: a generated suite of scene files at the
 edges of what the format allows, each rendered by every technique and by the reference. Each run
 must either render finite output (`nonfinite 0` against the reference) or refuse with a clear error
 (exit 1 or 2 and a message naming the scene, technique, parameter or size) before rendering — never

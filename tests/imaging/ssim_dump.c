@@ -144,7 +144,7 @@ int main(int argc, char **argv)
     int rc = 0;
     for (size_t i = 0; i < sizeof pairs / sizeof pairs[0] && rc == 0; ++i) {
         const pair_spec *p = &pairs[i];
-        gib_error err = {{0}};
+        gib_error err = {0};
         gib_image a, b;
         if (gib_image_alloc(&a, p->w, p->h, 3, &err) || gib_image_alloc(&b, p->w, p->h, 3, &err)) {
             fprintf(stderr, "ssim_dump: %s\n", err.msg);

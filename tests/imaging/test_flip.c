@@ -145,7 +145,7 @@ int main(int argc, char **argv)
     if (argc == 3 && !strcmp(argv[1], "--dump"))
         return dump(argv[2]);
     static float ref[3 * W * H], test[3 * W * H], map[W * H];
-    gib_error err = {{0}};
+    gib_error err = {0};
     const float ppd = gib_flip_default_ppd();
     check_near("default ppd = 0.7*3840/0.7*pi/180", 67.0206432, ppd, 1e-4, "float rounding");
 

@@ -72,7 +72,7 @@ static void test_srgb(void)
 
 static void test_metrics(void)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     gib_image ref, test;
     if (gib_image_alloc(&ref, 64, 48, 3, &err) || gib_image_alloc(&test, 64, 48, 4, &err)) {
         check("alloc", 0, err.msg);
@@ -161,7 +161,7 @@ static void test_ssim_speed(void)
 
 static void test_exr(const char *dir)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     char path[1024];
     snprintf(path, sizeof path, "%s/imaging_roundtrip.exr", dir);
     for (int channels = 1; channels <= 4; ++channels) {
@@ -282,7 +282,7 @@ static void test_exr_half(const char *dir)
     char path[1024], buf[160];
     snprintf(path, sizeof path, "%s/imaging_half.exr", dir);
     check("half exr written with the core API", write_half_exr(path) == 0, path);
-    gib_error err = {{0}};
+    gib_error err = {0};
     gib_image img;
     int rc = gib_exr_read(path, &img, NULL, NULL, &err);
     check("half exr read", rc == 0 && img.width == 3 && img.height == 2, rc ? err.msg : path);
@@ -300,7 +300,7 @@ static void test_exr_half(const char *dir)
 
 static void test_png(const char *dir)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     char path[1024], buf[256];
     gib_image img, other;
     gib_image_alloc(&img, 16, 8, 3, &err);

@@ -41,7 +41,7 @@ KEY = ("scene", "technique", "component", "params", "width", "height")
 
 # twin: (original, RMSE ratio limit, SSIM drop limit, why). hard_tiny and hard_huge are cornell
 # scaled (lights by the square): the same image up to float rounding (the reference's to 3e-6,
-# tests/reference/ref_twins), so 1.25x (issue 15) is room for rasterisation at another scale, not
+# tests/reference/ref_twins), so 1.25x is room for rasterisation at another scale, not
 # for a scale-dependent constant (hbao with a 0.1 m radius in a 1 mm box was 6.2x before lengths
 # were scaled). hard_far is cornell moved 1e5 m, its floats rounded by up to 3.9 mm there:
 # cornell_far_rounded is that same rounded box shifted back to the origin, so hard_far against it

@@ -159,7 +159,7 @@ int main(void)
     bad[5].p.obscurance = 1, bad[5].needle = "obscurance"; /* needs a finite dmax */
     bad[6].p.target_noise = -1.0, bad[6].needle = "target_noise";
     for (int i = 0; i < 7; i++) {
-        gib_error err = {{0}};
+        gib_error err = {0};
         int rc = gib_reference_render(&s, &bad[i].p, &img, NULL, NULL, &err);
         RT_CHECK(rc < 0 && strstr(err.msg, bad[i].needle), "bad %s: rc %d, message '%s'",
                  bad[i].needle, rc, err.msg);
@@ -170,7 +170,7 @@ int main(void)
     rt_floor(&s, 0.0f, -1, 1, -1, 1, m);
     s.indices[4] = 99;
     {
-        gib_error err = {{0}};
+        gib_error err = {0};
         gib_ref_params q = rt_params(GIB_COMP_AO, 8, 8, 2);
         int rc = gib_reference_render(&s, &q, &img, NULL, NULL, &err);
         RT_CHECK(rc < 0 && strstr(err.msg, "vertex 99"), "bad index: rc %d, message '%s'", rc,

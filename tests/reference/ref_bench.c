@@ -91,7 +91,7 @@ int main(int argc, char **argv)
     gib_scene s;
     int loaded = 0;
     if (argc > 1) {
-        gib_error err = {{0}};
+        gib_error err = {0};
         if (gib_scene_load(argv[1], &s, &err) < 0) {
             fprintf(stderr, "ref_bench: %s\n", err.msg);
             return 1;

@@ -280,7 +280,7 @@ static void test_api(void)
     rt_sky(&s, 0.2f, 0.22f, 0.25f);
     RT_CHECK(!gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct with a sky is random");
     gib_image img;
-    gib_error err = {{0}};
+    gib_error err = {0};
     int rc = gib_reference_render(&s, &p, &img, NULL, NULL, &err);
     RT_CHECK(rc < 0 && strstr(err.msg, "at least 2"), "direct with a sky at 1 spp: rc %d '%s'", rc,
              err.msg);

@@ -178,7 +178,7 @@ gib_ref_params rt_params(int component, int w, int h, int spp)
 void rt_render(const gib_scene *s, const gib_ref_params *p, gib_image *img, gib_image *sd,
                gib_ref_stats *st)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     if (gib_reference_render(s, p, img, sd, st, &err) < 0) {
         fprintf(stderr, "FAIL: render of '%s' failed: %s\n", s->name, err.msg);
         exit(1);

@@ -1,5 +1,5 @@
 /* Reference renderer: the Cornell box's transformed twins render as the Cornell box does
- * (ARCHITECTURE.md, "Hard cases"; issue 15). hard_tiny and hard_huge are cornell scaled by 0.0018 and
+ * (ARCHITECTURE.md, "Hard cases"). hard_tiny and hard_huge are cornell scaled by 0.0018 and
  * 18000 (lights by the square), hard_far is cornell moved 1e5 m on each axis, where floats are
  * 7.8 mm apart: its vertices, light and camera are rounded by up to 3.9 mm. Each component
  * (direct; ao unbounded and within a dmax scaled with the scene; indirect) is rendered with the
@@ -53,7 +53,7 @@ static const double SCALE[C_COUNT] = {1.0, 1.0, 0.0018, 18000.0, 1.0};
 
 static void load(const char *name, gib_scene *s)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     if (gib_scene_load(name, s, &err) < 0) {
         fprintf(stderr, "FAIL: cannot load scene %s: %s\n", name, err.msg);
         exit(1);
@@ -107,7 +107,7 @@ static int flipped(const gib_image *ref, const gib_image *test, double *rest)
 static double rel_rmse(const gib_image *ref, const gib_image *test)
 {
     gib_metrics m;
-    gib_error err = {{0}};
+    gib_error err = {0};
     if (gib_metrics_compute(ref, test, 1.0f, &m, &err) < 0) {
         fprintf(stderr, "FAIL: metrics: %s\n", err.msg);
         exit(1);
@@ -158,7 +158,7 @@ int main(void)
         const char *dir = getenv("REF_TWINS_OUT"); /* set: previews and error maps to look at */
         for (int i = 0; dir && i < C_COUNT; i++) {
             char path[1024];
-            gib_error err = {{0}};
+            gib_error err = {0};
             snprintf(path, sizeof path, "%s/%s_%zu.png", dir, NAMES[i], c);
             gib_png_write_preview(path, &img[i], 1.0f, &err);
             snprintf(path, sizeof path, "%s/%s_%zu_err.png", dir, NAMES[i], c);

@@ -15,14 +15,14 @@ static int failures;
 
 static void expect_ok(const char *text)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     int rc = gib_obj_check(text, strlen(text), "t.obj", &err);
     CHECK(rc == 0, "accepted: %s (%s)", text, err.msg);
 }
 
 static void expect_refused(const char *text, const char *where, const char *phrase)
 {
-    gib_error err = {{0}};
+    gib_error err = {0};
     int rc = gib_obj_check(text, strlen(text), "t.obj", &err);
     CHECK(rc < 0 && strstr(err.msg, where) && strstr(err.msg, phrase),
           "refused naming '%s' and '%s': %s -> rc %d '%s'", where, phrase, text, rc, err.msg);
@@ -56,7 +56,7 @@ static int check_tree(const char *dir)
         size_t got = f && buf ? fread(buf, 1, (size_t)st.st_size, f) : 0;
         if (f)
             fclose(f);
-        gib_error err = {{0}};
+        gib_error err = {0};
         CHECK(got == (size_t)st.st_size && gib_obj_check(buf, got, p, &err) == 0,
               "shared OBJ %s accepted: %s", p, err.msg);
         free(buf);
@@ -108,7 +108,7 @@ int main(void)
     /* The fuzzer's second input: a NUL hid the face from the check, and assimp's strtol ran on
      * over vertical tabs past its buffer. */
     static const char nul_face[] = "\0f 0/\v\v\v\n";
-    gib_error err = {{0}};
+    gib_error err = {0};
     int rc = gib_obj_check(nul_face, sizeof nul_face - 1, "t.obj", &err);
     CHECK(rc < 0 && strstr(err.msg, "t.obj':1: a NUL byte"), "a NUL byte refused: %s", err.msg);
     snprintf(buf, sizeof buf, "f -1 1 2\n%s", tri); /* relative before any vertex */

@@ -5,7 +5,8 @@
  *    occlusion voxels the occupancy comes from add gib_voxels_bytes + their work list.
  *  - After a run at voxel_res 64 the ledger's counted bytes per structure equal the plan exactly.
  *  - A budget below the plan (memory_budget_mb 1 at 64^3, 1000 at 512^3): the runner's row has
- *    status out_of_memory, the message carries the planned bytes, and nothing was allocated. */
+ *    status out_of_memory (from the error's code), nothing was allocated, and the plan by
+ *    structure (the row's mem_planned_by_structure, which Table 2 reads) equals the formula's. */
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -92,9 +93,14 @@ int main(void)
         vct_plan_bytes(atoi(cases[i][0]), tris, &pl);
         char planned[32];
         snprintf(planned, sizeof planned, "%" PRIu64, pl.total);
-        int good = !strcmp(r.status, "out_of_memory") && r.technique_bytes == 0 &&
-                   r.memory_by_label[0] == 0 && strstr(r.err.msg, planned) &&
-                   strstr(r.err.msg, "out of memory");
+        char structures[256];
+        snprintf(structures, sizeof structures,
+                 "radiance=%" PRIu64 ";normal=%" PRIu64 ";aniso=%" PRIu64 ";voxels=%" PRIu64,
+                 pl.radiance, pl.normal, pl.aniso, pl.voxels);
+        int good = !strcmp(r.status, "out_of_memory") && r.err.code == GIB_ERR_OUT_OF_MEMORY &&
+                   r.technique_bytes == 0 && r.memory_by_label[0] == 0 &&
+                   strstr(r.err.msg, planned) && !strcmp(r.planned_structures, structures);
+        printf("  planned by structure: '%s' (formula '%s')\n", r.planned_structures, structures);
         printf("%s voxel_res %s, budget %s MB: status %s, %" PRIu64 " bytes allocated: %s\n",
                good ? "PASS" : "FAIL", cases[i][0], cases[i][1], r.status, r.technique_bytes,
                r.err.msg);
