@@ -22,8 +22,8 @@
  * reasons are the per-technique tests', cited; a technique without a band of its own gets its
  * component's default band, which any estimate of that component that loses no more light than the
  * most lossy established technique, creates none, and keeps its units passes (a missing 1/pi, a
- * doubled albedo or a black image does not). Runtime on llvmpipe (2 shared cores): 17 s in the
- * release build, 25 s under ASan, most of it ldm_ao's and ldm_indirect's LDMs. */
+ * doubled albedo or a black image does not). Runtime on llvmpipe (2 shared cores): 16-20 s in
+ * the release build, 25 s under ASan, most of it ldm_ao's and ldm_indirect's LDMs. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -14,7 +14,7 @@
  *  - counters "" or name=value pairs joined by ';' (name [a-z0-9_]+, value a number);
  *  - after destroy the ledger empty: no object, no byte (what destroy forgot would be freed by
  *    the runner and never show up), and no GL error.
- * Runtime on llvmpipe (2 shared cores): ~35 s in the release build and under ASan alike, two
+ * Runtime on llvmpipe (2 shared cores): 31-35 s in the release build, 33-43 s under ASan, two
  * thirds of it ldm_ao's and ldm_indirect's LDMs. */
 #include <glad/gl.h>
 #include <math.h>
