@@ -1,4 +1,9 @@
-/* gibench — the list of techniques, and the parameter handling every technique shares. */
+/* gibench — the list of techniques, and the parameter handling every technique shares.
+ *
+ * Two lists. `registry` is what gibench runs: `gibench list`, matrices and gib_technique_find see
+ * it and nothing else. `test_only` holds techniques that are compiled and tested like the others
+ * but never benchmarked (the template a new technique is copied from): the tests that walk every
+ * technique (tests/techniques/) walk both lists, through gib_techniques_test_only(). */
 #include <stdio.h>
 #include <errno.h>
 #include <math.h>
@@ -17,6 +22,7 @@ extern const gib_technique gib_technique_vct;
 extern const gib_technique gib_technique_rsm_gather;
 extern const gib_technique gib_technique_multires_ir;
 extern const gib_technique gib_technique_ispm_caustics;
+extern const gib_technique gib_technique_template;
 
 static const gib_technique *const registry[] = {
     &gib_technique_direct,
@@ -31,10 +37,20 @@ static const gib_technique *const registry[] = {
     &gib_technique_ispm_caustics,
 };
 
+static const gib_technique *const test_only[] = {
+    &gib_technique_template,
+};
+
 const gib_technique *const *gib_techniques(int *count)
 {
     *count = (int)(sizeof registry / sizeof registry[0]);
     return registry;
+}
+
+const gib_technique *const *gib_techniques_test_only(int *count)
+{
+    *count = (int)(sizeof test_only / sizeof test_only[0]);
+    return test_only;
 }
 
 const gib_technique *gib_technique_find(const char *name)

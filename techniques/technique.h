@@ -103,9 +103,12 @@ typedef struct gib_technique {
     void (*destroy)(void *self);
 } gib_technique;
 
-/* registry.c */
+/* registry.c: the techniques gibench runs, and one of them by name (NULL: none). */
 const gib_technique *const *gib_techniques(int *count);
 const gib_technique *gib_technique_find(const char *name);
+/* Techniques only tests run (the template, techniques/template/): compiled and tested like the
+ * others, never in gib_techniques(), `gibench list` or a matrix. */
+const gib_technique *const *gib_techniques_test_only(int *count);
 
 /* Index of a parameter by name, or -1. */
 int gib_param_index(const gib_technique *t, const char *name);

@@ -1,7 +1,9 @@
 /* Every technique's descriptor against the contract of techniques/technique.h: parameter specs
  * that the CLI and matrices can rely on, reference bindings that name real parameters, and
  * gib_param_int/float stopping the process on an undeclared name in every build (this test is
- * compiled with NDEBUG in the release build, where the old assert did nothing). No GL needed. */
+ * compiled with NDEBUG in the release build, where the old assert did nothing). The test-only
+ * techniques (the template) are held to the same rules, and stay out of what gibench runs: not
+ * in gib_techniques(), not found by name. No GL needed. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -10,6 +12,7 @@
 #include <unistd.h>
 
 #include "techniques/technique.h"
+#include "tests/techniques/every_technique.h"
 
 static int failures;
 #include "tests/common/check.h"
@@ -99,30 +102,52 @@ static int aborts_naming(const gib_technique *t, int as_float, const char *name)
            strstr(msg, name);
 }
 
+/* A test-only technique is checked like the others but gibench never sees it. */
+static void check_test_only(void)
+{
+    int count = 0, n = 0;
+    const gib_technique *const *tests = gib_techniques_test_only(&count);
+    const gib_technique *const *run = gib_techniques(&n);
+    CHECK(count > 0, "no test-only technique (the template)");
+    for (int i = 0; i < count; i++) {
+        CHECK(!gib_technique_find(tests[i]->name), "test-only '%s' is found by name",
+              tests[i]->name);
+        for (int k = 0; k < n; k++)
+            CHECK(run[k] != tests[i] && strcmp(run[k]->name, tests[i]->name),
+                  "test-only '%s' is among the techniques gibench runs", tests[i]->name);
+    }
+}
+
 int main(void)
 {
-    int count = 0;
-    const gib_technique *const *all = gib_techniques(&count);
-    CHECK(count > 0, "empty registry");
-    for (int i = 0; i < count; i++) {
+    const gib_technique *all[EVERY_TECHNIQUE_MAX];
+    int count = every_technique(all, EVERY_TECHNIQUE_MAX), run = 0;
+    gib_techniques(&run);
+    CHECK(run > 0, "empty registry");
+    CHECK(count <= EVERY_TECHNIQUE_MAX, "%d techniques, the test holds %d", count,
+          EVERY_TECHNIQUE_MAX);
+    for (int i = 0; i < count && i < EVERY_TECHNIQUE_MAX; i++) {
         const gib_technique *t = all[i];
         CHECK(t->name && t->name[0] && t->source && t->source[0], "technique %d: no name or source",
               i);
         CHECK(t->components && !(t->components & ~all_outputs), "%s: components 0x%x", t->name,
               t->components);
         CHECK(t->create && t->render && t->destroy, "%s: missing create/render/destroy", t->name);
-        CHECK(gib_technique_find(t->name) == t, "%s: not found by its name", t->name);
+        if (i < run)
+            CHECK(gib_technique_find(t->name) == t, "%s: not found by its name", t->name);
         for (int k = 0; k < i; k++)
             CHECK(strcmp(all[k]->name, t->name), "technique '%s' registered twice", t->name);
         check_params(t);
         check_reference(t);
     }
+    check_test_only();
     /* An undeclared name stops the process (the release build has NDEBUG: no assert). */
     const gib_technique *t = all[0];
     CHECK(aborts_naming(t, 0, "no_such_parameter"), "gib_param_int on an unknown name went on");
     CHECK(aborts_naming(t, 1, "no_such_parameter"), "gib_param_float on an unknown name went on");
     if (t->params && t->params[0].name)
         CHECK(!aborts_naming(t, 1, t->params[0].name), "a declared name stopped the process");
-    printf("%d techniques checked: %s\n", count, failures ? "FAILED" : "ok");
+    printf("%d techniques checked (%d test-only): %s\n", count, count - run,
+           failures ? "FAILED" : "ok");
     return failures ? 1 : 0;
 }
