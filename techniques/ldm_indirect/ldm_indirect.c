@@ -115,6 +115,12 @@ static void ldm_indirect_destroy(void *self)
     gib_gbuffer_destroy(&a->gbuffer, a->ledger);
     gib_light_views_destroy(&a->views, a->ledger);
     ldm_destroy(&a->ldms, a->ledger);
+    const unsigned bufs[3] = {a->photons, a->command, a->audit_buffer};
+    for (int i = 0; i < 3; i++)
+        if (bufs[i])
+            gib_gpu_free(a->ledger, bufs[i], 0);
+    if (a->audit_texture)
+        gib_gpu_free(a->ledger, a->audit_texture, 1);
     if (a->trace_program)
         glDeleteProgram(a->trace_program);
     if (a->splat_program)

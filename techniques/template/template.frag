@@ -3,10 +3,9 @@
 // from the scene's lights, albedos and area) diffusely: L = (rho_d / pi) E. A pixel where the
 // camera sees nothing gets 0, as in every reference component.
 //
-// Slots by name only: the shared ones from the GL runtime's table, the pass's own from its
-// header; shader.c expands these #include lines from the shaders embedded at build time
-// (cmake/gl.cmake embeds techniques/*/*_slots.h with the shaders).
-#include "gl/bindings.h"
+// Slots by name only: the pass's own from its header, which includes the GL runtime's table of
+// the shared ones; shader.c expands the #include lines from the files embedded at build time
+// (cmake/gl.cmake embeds techniques/*/*_slots.h and harness/gl/bindings.h with the shaders).
 #include "template/template_slots.h"
 
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position; // xyz, w = 1 on a hit
