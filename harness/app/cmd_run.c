@@ -15,6 +15,7 @@
 #include "history.h"
 #include "harness/base/hash.h"
 #include "matrix.h"
+#include "progress.h"
 #include "refrank.h"
 #include "schema.h"
 #include "shard.h"
@@ -99,6 +100,7 @@ typedef struct run_ctx {
     gib_shard shard;
     const int *owner; /* with --shard: each run's shard (shard.h) */
     char *state;      /* with --shard: 'e' rows expected, 's' skipped, 'f' failed; 0 not ours */
+    gib_progress progress;
 } run_ctx;
 
 /* Whether run j is this process's to do: every run, or with --shard this shard's share. */
@@ -403,8 +405,11 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
     row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
     fmt_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
     append_row(ctx, r);
-    printf("  %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f  %s\n",
-           mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
+    char tag[32];
+    gib_progress_tag(&ctx->progress, tag, sizeof tag);
+    gib_progress_clear(&ctx->progress);
+    printf("%s %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f  %s\n",
+           tag, mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
            res->gpu_total.median_ms, m.rmse, m.ssim, m.flip, r->v[GIB_C_STATUS]);
     gib_image_free(&ref.image);
 }
@@ -413,6 +418,7 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
 static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
                       const gib_matrix_run *mr, gib_run_result *res)
 {
+    gib_progress_clear(&ctx->progress); /* references may report their own progress */
     char img_dir[2048];
     snprintf(img_dir, sizeof img_dir, "%s/images/%s", ctx->out, ctx->m->name);
     gib_error err;
@@ -452,13 +458,17 @@ static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, s
     return 1;
 }
 
-/* Marks this process's unfinished runs of scene sname (from run `from` on) with state. */
+/* Marks this process's unfinished runs of scene sname (from run `from` on) with state; they
+ * count as done for the progress. */
 static void mark_scene_runs(run_ctx *ctx, int from, const char *sname, char state)
 {
     const gib_matrix *m = ctx->m;
     for (int j = from; j < m->run_count; j++)
-        if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j]))
+        if (!strcmp(m->runs[j].scene, sname) && run_mine(ctx, j) && !run_done(ctx, &m->runs[j])) {
             run_state(ctx, j, state);
+            gib_progress_run_done(&ctx->progress, j);
+        }
+    gib_progress_report(&ctx->progress);
 }
 
 /* Runs this process's unfinished runs of an uploaded scene (from run `from` on). */
@@ -472,9 +482,11 @@ static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const
             continue;
         char why[512];
         if (!scene_wanted(scene, mr->technique, why, sizeof why)) {
+            gib_progress_clear(&ctx->progress);
             printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
             ctx->runs_skipped++;
             run_state(ctx, j, 's');
+            gib_progress_run_done(&ctx->progress, j);
             continue;
         }
         gib_run_result res;
@@ -485,6 +497,8 @@ static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const
                     mr->params_key, res.status, res.err.msg);
         score_run(ctx, scene, gpu, mr, &res);
         gib_run_result_free(&res);
+        gib_progress_run_done(&ctx->progress, j);
+        gib_progress_report(&ctx->progress);
     }
 }
 
@@ -510,15 +524,35 @@ static void run_scene(run_ctx *ctx, int i, int pending)
         mark_scene_runs(ctx, i, sname, 'f');
         return;
     }
+    gib_progress_clear(&ctx->progress);
     printf("%s: %u triangles, %d runs to do\n", sname, scene.triangle_count, pending);
     run_scene_runs(ctx, i, &scene, &gpu);
     gib_gpu_scene_free(&gpu);
     gib_scene_free(&scene);
 }
 
+/* Which runs this process will do (its share, not yet in the table), for the progress. */
+static int start_progress(run_ctx *ctx)
+{
+    const gib_matrix *m = ctx->m;
+    char *todo = calloc(m->run_count ? (size_t)m->run_count : 1, 1);
+    if (!todo)
+        return -1;
+    for (int j = 0; j < m->run_count; j++)
+        todo[j] = run_mine(ctx, j) && !run_done(ctx, &m->runs[j]);
+    int rc = gib_progress_start(&ctx->progress, m, todo);
+    free(todo);
+    return rc;
+}
+
 static void run_matrix(run_ctx *ctx)
 {
     const gib_matrix *m = ctx->m;
+    if (start_progress(ctx) < 0) {
+        fprintf(stderr, "gibench run: out of memory\n");
+        ctx->write_failed = 1;
+        return;
+    }
     char *done_scene = calloc(m->run_count, 1);
     for (int i = 0; done_scene && i < m->run_count && !ctx->write_failed; i++) {
         if (done_scene[i])
@@ -541,6 +575,7 @@ static void run_matrix(run_ctx *ctx)
             run_scene(ctx, i, pending);
     }
     free(done_scene);
+    gib_progress_free(&ctx->progress);
 }
 
 /* DIR/<matrix>.shard (shard.h): this shard's runs, their state and the keys of the rows each
