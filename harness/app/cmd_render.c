@@ -112,7 +112,10 @@ int gib_cmd_render(int argc, char **argv)
     }
     printf("renderer: %s | %s | %s\n", info.backend, info.renderer, info.version);
     gib_run_result r;
-    gib_run_technique_at(&gpu, t, &p, (int)camera, w, h, (int)warmup, (int)frames, time, dt, &r);
+    gib_run(&(gib_run_request){.scene = &gpu, .technique = t, .params = &p, .camera = (int)camera,
+                               .width = w, .height = h, .warmup = (int)warmup,
+                               .frames = (int)frames, .time = time, .dt = dt},
+            &r);
     int status = 0;
     if (!r.ok) {
         fprintf(stderr, "gibench render: %s: status %s: %s\n", t->name, r.status, r.err.msg);

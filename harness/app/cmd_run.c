@@ -490,8 +490,12 @@ static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const
             continue;
         }
         gib_run_result res;
-        gib_run_technique_at(gpu, mr->technique, &mr->params, m->camera, mr->width, mr->height,
-                             m->warmup, m->frames, mr->time, m->dt, &res);
+        gib_run(&(gib_run_request){.scene = gpu, .technique = mr->technique,
+                                   .params = &mr->params, .camera = m->camera,
+                                   .width = mr->width, .height = mr->height,
+                                   .warmup = m->warmup, .frames = m->frames, .time = mr->time,
+                                   .dt = m->dt},
+                &res);
         if (!res.ok)
             fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
                     mr->params_key, res.status, res.err.msg);

@@ -75,131 +75,173 @@ static long long nvx_available_bytes(void)
 void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
                        int camera, int w, int h, int warmup, int frames, gib_run_result *r)
 {
-    gib_run_technique_at(scene, t, params, camera, w, h, warmup, frames, 0.0, 0.0, r);
+    gib_run(&(gib_run_request){.scene = scene, .technique = t, .params = params, .camera = camera,
+                               .width = w, .height = h, .warmup = warmup, .frames = frames},
+            r);
 }
 
 /* The instant frame f of n is rendered at: the last at `time`, each earlier one dt before. */
-static double frame_time(double time, double dt, int f, int n)
+static double frame_time(const gib_run_request *rq, int f, int n)
 {
-    return time - (double)(n - 1 - f) * dt;
+    return rq->time - (double)(n - 1 - f) * rq->dt;
 }
 
-void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
-                          const gib_params *params, int camera, int w, int h, int warmup,
-                          int frames, double time, double dt, gib_run_result *r)
-{
-    const int moves = scene->scene->motion_count > 0, nf = 1 + warmup + frames;
-    memset(r, 0, sizeof *r);
-    set_status(r, "ok");
-    gib_ledger ledger;
-    gib_ledger_init(&ledger);
-    /* Fault injection (tests/faults): a GPU memory budget for the technique's allocations. */
-    const char *budget = getenv("GIBENCH_GPU_BUDGET_BYTES");
-    if (budget && *budget)
-        ledger.budget_bytes = strtoull(budget, NULL, 10);
+/* What one run holds while it runs: the technique's ledger and the harness's (output targets),
+ * the timers, the targets, the technique's state. */
+typedef struct run_state {
+    gib_ledger ledger, out_ledger;
     gib_timers timers;
-    gib_timers_init(&timers);
     gib_image_target targets[GIB_MAX_OUTPUTS];
-    unsigned fbos[GIB_MAX_OUTPUTS] = {0};
-    int nt = 0;
-    void *self = NULL;
-    glGetError();
+    unsigned fbos[GIB_MAX_OUTPUTS];
+    int target_count;
+    void *self;
+} run_state;
 
-    /* Output targets belong to the harness: their memory is not the technique's. */
-    gib_ledger out_ledger;
-    gib_ledger_init(&out_ledger);
-    unsigned depth = gib_gpu_renderbuffer(&out_ledger, "output.depth", GL_DEPTH_COMPONENT24, w, h,
-                                          &r->err);
-    for (unsigned bit = 1; bit && nt < GIB_MAX_OUTPUTS; bit <<= 1) {
-        if (!(t->components & bit))
+/* One RGBA32F target per output component, cleared, sharing one depth buffer. The targets belong
+ * to the harness: their memory is not the technique's. */
+static int make_targets(const gib_run_request *rq, run_state *st, gib_run_result *r)
+{
+    const int w = rq->width, h = rq->height;
+    unsigned depth = gib_gpu_renderbuffer(&st->out_ledger, "output.depth", GL_DEPTH_COMPONENT24, w,
+                                          h, &r->err);
+    for (unsigned bit = 1; bit && st->target_count < GIB_MAX_OUTPUTS; bit <<= 1) {
+        if (!(rq->technique->components & bit))
             continue;
-        unsigned tex = gib_gpu_texture(&out_ledger, "output.color", GL_TEXTURE_2D, w, h, 1,
+        unsigned tex = gib_gpu_texture(&st->out_ledger, "output.color", GL_TEXTURE_2D, w, h, 1,
                                        GL_RGBA32F, 1, &r->err);
-        if (!tex || !depth) {
-            set_status(r, "alloc_failed");
-            goto done;
-        }
-        glCreateFramebuffers(1, &fbos[nt]);
-        glNamedFramebufferTexture(fbos[nt], GL_COLOR_ATTACHMENT0, tex, 0);
-        glNamedFramebufferRenderbuffer(fbos[nt], GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+        if (!tex || !depth)
+            return -1;
+        const int i = st->target_count++;
+        glCreateFramebuffers(1, &st->fbos[i]);
+        glNamedFramebufferTexture(st->fbos[i], GL_COLOR_ATTACHMENT0, tex, 0);
+        glNamedFramebufferRenderbuffer(st->fbos[i], GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
         const float zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(fbos[nt], GL_COLOR, 0, zero);
-        targets[nt] = (gib_image_target){.component = bit, .fbo = fbos[nt], .texture = tex};
-        r->output_components[nt] = bit;
-        nt++;
+        glClearNamedFramebufferfv(st->fbos[i], GL_COLOR, 0, zero);
+        st->targets[i] = (gib_image_target){.component = bit, .fbo = st->fbos[i], .texture = tex};
+        r->output_components[i] = bit;
     }
-    r->output_count = nt;
+    r->output_count = st->target_count;
+    return 0;
+}
 
-    long long avail_before = nvx_available_bytes();
-    r->driver_bytes = -1;
-    /* create() sees the scene as the first frame will (a technique may measure it there). */
-    if (moves && gib_gpu_scene_set_time(scene, frame_time(time, dt, 0, nf), &r->err) < 0) {
-        set_status(r, "scene_update_failed");
-        goto done;
-    }
-    const double create_start = gib_now_ms();
-    self = t->create(scene, params, w, h, &ledger, &r->err);
-    if (!self) {
-        set_failure_status(r, "create_failed");
-        goto done;
-    }
+/* The cold frame, the warm-up and the timed frames (f = 0 is the cold one). A moving scene's
+ * vertices are uploaded for each frame in a pass of their own. Returns -1 with the status set. */
+static int render_frames(const gib_run_request *rq, run_state *st, gib_run_result *r,
+                         double create_start)
+{
+    const gib_gpu_scene *scene = rq->scene;
+    const int moves = scene->scene->motion_count > 0, nf = 1 + rq->warmup + rq->frames;
     gib_view view;
     for (int f = 0; f < nf; f++) {
-        const double tf = frame_time(time, dt, f, nf);
-        gib_view_make(scene->scene, &scene->scene->cameras[camera], w, h, (float)tf, &view);
-        gib_timers_frame_begin(&timers, f > warmup); /* f = 0 is the cold frame */
-        /* A moving scene's vertices for this frame, in a pass of their own (static: no pass). */
+        const double tf = frame_time(rq, f, nf);
+        gib_view_make(scene->scene, &scene->scene->cameras[rq->camera], rq->width, rq->height,
+                      (float)tf, &view);
+        gib_timers_frame_begin(&st->timers, f > rq->warmup);
         if (moves) {
-            gib_timer_begin(&timers, "scene_update");
+            gib_timer_begin(&st->timers, "scene_update");
             int urc = gib_gpu_scene_set_time(scene, tf, &r->err);
-            gib_timer_end(&timers);
+            gib_timer_end(&st->timers);
             if (urc < 0) {
-                gib_timers_frame_end(&timers);
+                gib_timers_frame_end(&st->timers);
                 set_status(r, "scene_update_failed");
-                goto done;
+                return -1;
             }
         }
-        int rc = t->render(self, &view, &timers, targets, nt, &r->err);
-        gib_timers_frame_end(&timers);
+        int rc = rq->technique->render(st->self, &view, &st->timers, st->targets,
+                                       st->target_count, &r->err);
+        gib_timers_frame_end(&st->timers);
         if (f == 0)
             r->first_frame_ms = gib_now_ms() - create_start;
         if (rc < 0) {
             set_failure_status(r, "render_failed");
-            goto done;
+            return -1;
         }
     }
+    return 0;
+}
+
+/* After the frames: the technique's status word and counters, the images read back, the times. */
+static int collect(const gib_run_request *rq, run_state *st, gib_run_result *r)
+{
+    const gib_technique *t = rq->technique;
     if (t->status) {
-        const char *s = t->status(self);
+        const char *s = t->status(st->self);
         if (s && strcmp(s, "ok")) {
             set_status(r, s);
             snprintf(r->err.msg, sizeof r->err.msg, "technique '%s' reported '%s'", t->name, s);
         }
     }
     if (t->counters)
-        t->counters(self, r->counters, sizeof r->counters);
-    for (int i = 0; i < nt; i++)
-        if (read_target(targets[i].texture, w, h, &r->images[i], &r->err) < 0) {
+        t->counters(st->self, r->counters, sizeof r->counters);
+    for (int i = 0; i < st->target_count; i++)
+        if (read_target(st->targets[i].texture, rq->width, rq->height, &r->images[i], &r->err) <
+            0) {
             set_status(r, "readback_failed");
-            goto done;
+            return -1;
         }
-    r->frames = timers.frames;
-    long long avail_after = nvx_available_bytes();
-    if (avail_before >= 0 && avail_after >= 0)
-        r->driver_bytes = avail_before - avail_after;
-    r->pass_count = gib_timers_stats(&timers, r->passes, GIB_TIMER_MAX_PASSES, &r->gpu_total,
+    r->frames = st->timers.frames;
+    r->pass_count = gib_timers_stats(&st->timers, r->passes, GIB_TIMER_MAX_PASSES, &r->gpu_total,
                                      &r->cpu_total);
-done:
-    r->technique_bytes = ledger.peak_bytes;
-    gib_ledger_summary(&ledger, r->memory_by_label, sizeof r->memory_by_label);
-    gib_ledger_structures(&ledger, r->memory_by_structure, sizeof r->memory_by_structure);
-    gib_ledger_planned_structures(&ledger, r->planned_structures, sizeof r->planned_structures);
-    if (self)
-        t->destroy(self);
-    gib_ledger_release_all(&ledger); /* whatever a technique forgot to free */
-    for (int i = 0; i < nt; i++)
-        glDeleteFramebuffers(1, &fbos[i]);
-    gib_ledger_release_all(&out_ledger);
-    gib_timers_destroy(&timers);
+    return 0;
+}
+
+/* The memory columns, then everything released (whatever a technique forgot to free too). */
+static void release(const gib_run_request *rq, run_state *st, gib_run_result *r)
+{
+    r->technique_bytes = st->ledger.peak_bytes;
+    gib_ledger_summary(&st->ledger, r->memory_by_label, sizeof r->memory_by_label);
+    gib_ledger_structures(&st->ledger, r->memory_by_structure, sizeof r->memory_by_structure);
+    gib_ledger_planned_structures(&st->ledger, r->planned_structures,
+                                  sizeof r->planned_structures);
+    if (st->self)
+        rq->technique->destroy(st->self);
+    gib_ledger_release_all(&st->ledger);
+    for (int i = 0; i < st->target_count; i++)
+        glDeleteFramebuffers(1, &st->fbos[i]);
+    gib_ledger_release_all(&st->out_ledger);
+    gib_timers_destroy(&st->timers);
+}
+
+void gib_run(const gib_run_request *rq, gib_run_result *r)
+{
+    memset(r, 0, sizeof *r);
+    set_status(r, "ok");
+    r->driver_bytes = -1;
+    run_state st;
+    memset(&st, 0, sizeof st);
+    gib_ledger_init(&st.ledger);
+    gib_ledger_init(&st.out_ledger);
+    /* Fault injection (tests/faults): a GPU memory budget for the technique's allocations. */
+    const char *budget = getenv("GIBENCH_GPU_BUDGET_BYTES");
+    if (budget && *budget)
+        st.ledger.budget_bytes = strtoull(budget, NULL, 10);
+    gib_timers_init(&st.timers);
+    glGetError();
+    if (make_targets(rq, &st, r) < 0) {
+        set_status(r, "alloc_failed");
+        release(rq, &st, r);
+        return;
+    }
+    const long long avail_before = nvx_available_bytes();
+    /* create() sees the scene as the first frame will (a technique may measure it there). */
+    const int moves = rq->scene->scene->motion_count > 0;
+    const int nf = 1 + rq->warmup + rq->frames;
+    if (moves && gib_gpu_scene_set_time(rq->scene, frame_time(rq, 0, nf), &r->err) < 0) {
+        set_status(r, "scene_update_failed");
+        release(rq, &st, r);
+        return;
+    }
+    const double create_start = gib_now_ms();
+    st.self = rq->technique->create(rq->scene, rq->params, rq->width, rq->height, &st.ledger,
+                                    &r->err);
+    if (!st.self)
+        set_failure_status(r, "create_failed");
+    else if (render_frames(rq, &st, r, create_start) == 0 && collect(rq, &st, r) == 0) {
+        const long long avail_after = nvx_available_bytes();
+        if (avail_before >= 0 && avail_after >= 0)
+            r->driver_bytes = avail_before - avail_after;
+    }
+    release(rq, &st, r);
 }
 
 void gib_run_result_free(gib_run_result *r)

@@ -36,18 +36,26 @@ typedef struct gib_run_result {
     gib_error err;
 } gib_run_result;
 
-/* Never fails outright: problems are reported in result->status and result->err. The cold first
- * frame is rendered before the `warmup` warm-up frames, so warmup 0 still times no cold frame. */
+/* What to run: a technique with validated parameters on an uploaded scene, from `camera`, at
+ * width x height: the cold first frame, then `warmup` warm-up frames, then `frames` timed frames
+ * (warmup 0 still times no cold frame). The last frame (the image read back) shows instant `time`
+ * (seconds), each frame before it, the cold one included, dt earlier (dt 0: all at `time`); for a
+ * moving scene every frame first uploads its vertices in a timed pass "scene_update". */
+typedef struct gib_run_request {
+    const gib_gpu_scene *scene;
+    const gib_technique *technique;
+    const gib_params *params;
+    int camera, width, height;
+    int warmup, frames;
+    double time, dt;
+} gib_run_request;
+
+/* Never fails outright: problems are reported in result->status and result->err. */
+void gib_run(const gib_run_request *request, gib_run_result *result);
+/* gib_run at time 0 with dt 0, for tests that run a static scene. */
 void gib_run_technique(const gib_gpu_scene *scene, const gib_technique *t, const gib_params *params,
                        int camera, int width, int height, int warmup, int frames,
                        gib_run_result *result);
-/* The same on a scene that may move: the last frame (the image read back) shows instant `time`
- * (seconds), each frame before it (the cold one included) dt earlier (dt = 0: all at `time`). For a moving scene every
- * frame first uploads its vertices in a timed pass "scene_update"; gib_run_technique is this at
- * time 0, dt 0. */
-void gib_run_technique_at(const gib_gpu_scene *scene, const gib_technique *t,
-                          const gib_params *params, int camera, int width, int height, int warmup,
-                          int frames, double time, double dt, gib_run_result *result);
 void gib_run_result_free(gib_run_result *r);
 
 /* Name of a GIB_OUT_* bit: "ao", "direct", ... (matching the reference's component names). */

@@ -195,7 +195,9 @@ int main(int argc, char **argv)
     memset(&r, 0, sizeof r);
     gib_image ref_direct[2] = {{0}};
     if (setup_ok) {
-        gib_run_technique_at(&fx.gpu, tech, &p, 0, W, H, 1, 1, T, T, &r);
+        gib_run(&(gib_run_request){.scene = &fx.gpu, .technique = tech, .params = &p, .width = W,
+                                   .height = H, .warmup = 1, .frames = 1, .time = T, .dt = T},
+                &r);
         if (!r.ok) {
             printf("FAIL: direct: %s: %s\n", r.status, r.err.msg);
             setup_ok = 0;
