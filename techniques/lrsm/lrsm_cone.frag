@@ -28,15 +28,15 @@
 //    above that plane. A 60-degree cone tilted 60 degrees from n grazes the plane, and its samples
 //    (2 t tan 30 wide) and their trilinear footprints reach the receiver's own surface from ~20
 //    voxels on; read as a density, the little occupancy they find there is multiplied by the
-//    sample's width in voxels, so open ground blocked its own tilted cones more the finer the
-//    voxels: the Cornell box's indirect mean was 0.48 / 0.36 / 0.28 of the reference's at
-//    voxel_res 64 / 128 / 256, and is 0.57 / 0.56 / 0.51 with the samples kept clear (coverage
-//    0). Twice the height (only the trilinear footprint's centre kept clear) changed nothing.
+//    sample's width in voxels, so open ground blocks its own tilted cones more the finer the
+//    voxels, and the indirect light falls with voxel_res (PERFORMANCE.md, "Quality behind the
+//    voxel techniques' defaults"). Twice the height (only the trilinear footprint's centre kept
+//    clear) changes nothing.
 //  - `coverage` 1 (default): a sample's radiance is the LRSM's over the coverage of the lit
 //    surfaces inside it, L = sum A R V N / max(sum A V, alpha). Eq. 5's L = R V N already carries
 //    the lit surfaces' share V of the footprint, and Eq. 1 multiplies it by the voxels' alpha, the
-//    same surfaces' coverage counted a second time (the paper's reading, coverage 0: Cornell
-//    indirect 0.56 of the reference's at 128^3, now 0.71, furnace 0.42 -> 0.81). The floor alpha
+//    same surfaces' coverage counted a second time (the paper's reading, coverage 0, loses a
+//    quarter of the Cornell box's indirect light and half the furnace's). The floor alpha
 //    keeps a lit surface glimpsed by a Gaussian tail (V of a few percent behind an unlit
 //    occluder) from lending the occluder its whole radiance.
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;

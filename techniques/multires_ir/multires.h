@@ -13,7 +13,7 @@
  *  stencil = 0: the same pass writes 1 into a mask image ("mips.valid", R8) instead, and the
  *    gathering shader discards where the mask is 0. The default, because llvmpipe's
  *    GL_TIME_ELAPSED queries under-count draws into a framebuffer with a depth-stencil
- *    attachment (measured: a gathering pass of 195 ms wall time reported as 28 ms), so the
+ *    attachment (a gathering pass reported at a seventh of its wall time: PERFORMANCE.md), so the
  *    stencil path's per-pass times cannot be reported on this machine; on a GPU both are timed.
  * Interpolation always draws into colour-only framebuffers. */
 #ifndef GIB_MULTIRES_H

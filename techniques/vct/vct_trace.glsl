@@ -25,8 +25,8 @@
 // at level log2(d) - 1 the cells are c = d/2 wide, the trilinear fetch blends the two cell centres
 // within c of the sample on each axis, and each cell holds its whole width, so the data reaches
 // 1.5 c = 0.75 d from the centre: d <= h keeps it h/4 clear of the plane. (d <= 2 h, the sphere
-// alone kept clear, let it reach h/2 behind: Cornell box indirect 1.04 / 0.92 / 0.86 of the
-// reference's at voxel_res 64 / 128 / 256, now 1.10 / 1.05 / 0.95, thick-wall leak 0.11 -> 0.07.)
+// alone kept clear, lets it reach h/2 behind: darker and leakier; PERFORMANCE.md, "Quality behind
+// the voxel techniques' defaults", has the numbers.)
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
