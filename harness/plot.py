@@ -295,6 +295,8 @@ def answer_data(path, ans, resolution):
             r = c[0]
             label = r["technique"] if id(r) in first else ""
             f.write(f"{finite_num(r['gpu_ms_median']):.6g} {answers.relative_error(r)[1]:.6g} {gp_quote(label)}\n")
+        if not ans["front"]:
+            f.write('NaN NaN ""\n')  # keeps the block, so the next one's index holds (not plotted)
         f.write("\n\n# worse than a black image\n")
         worse = [r for r in rows if worse_than_black(r)]
         for r in worse:
@@ -316,9 +318,10 @@ def answer_plot(key, ans, out_dir, resolution):
                     if b is not None)
     plots = [f"{gp_quote(data)} index {i} using 1:2:3:4:5:6 with xyerrorbars pt 7 ps 1 title {gp_quote(t)}"
              for i, t in enumerate(techs)]
-    plots.append(f"{gp_quote(data)} index {n} using 1:2 with lines lw 2 lc rgb 'gray30' title 'Pareto front'")
-    plots.append(f"{gp_quote(data)} index {n} using 1:2:3 with labels font ',9' offset char 0.8,0.9 left "
-                 "noenhanced notitle")
+    if ans["front"]:  # empty where every row is worse than black
+        plots.append(f"{gp_quote(data)} index {n} using 1:2 with lines lw 2 lc rgb 'gray30' title 'Pareto front'")
+        plots.append(f"{gp_quote(data)} index {n} using 1:2:3 with labels font ',9' offset char 0.8,0.9 left "
+                     "noenhanced notitle")
     if worse:
         plots.append(f"{gp_quote(data)} index {n + 1} using 1:2 with points pt 6 ps 2.4 lw 2 lc rgb 'red' "
                      "title 'worse than a black image'")
