@@ -10,8 +10,10 @@ so equal bytes tie and nothing else does. Row a beats row b when a is no worse o
 or tied) and clearly better on one (lower and not tied). A row that beats nothing and is beaten by
 nothing is on the front; a front row whose error interval overlaps another front row's ties with it.
 
-A group is (component, scene, camera, image size, renderer): times from two renderers or two image
-sizes are not one axis. Rows further from the reference than a black image (rmse_over_black > 1)
+A group is (component, scene, camera, image size, renderer, time, the reference's parameters): times
+from two renderers or two image sizes are not one axis, and rows scored against two different
+reference images (two instants of an animation, ambient occlusion at two dmax) estimate different
+things. Rows further from the reference than a black image (rmse_over_black > 1)
 never enter the front; they are listed as such. Rows whose status is not `ok` are left out. A
 group whose reference is black (black_rmse 0: a component the scene does not have, or a view that
 should be dark) ranks nothing: any error there is light that should not be, which the leak claims
@@ -22,13 +24,32 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schema import param  # noqa: E402
 from uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
 
 GROUP = ("component", "scene", "camera", "width", "height", "renderer")
+# The technique parameters that change a component's reference image, with the reference's own
+# value where a technique lacks one (harness/app/util.c, gib_ref_request_match: ao at a dmax, as
+# obscurance or not). Rows at two settings of these estimate two different images: not one group.
+REFERENCE_PARAMS = {"ao": (("dmax", float("inf")), ("obscurance", 0.0))}
+
+
+def reference_text(r):
+    """'dmax=20' for a row whose component's reference has parameters (those at the reference's
+    own default left out), else ''."""
+    out = []
+    for name, default in REFERENCE_PARAMS.get(r.get("component"), ()):
+        v = param(r, name, default)
+        if v != default:
+            out.append(f"{name}={v:g}")
+    return " ".join(out)
 
 
 def group_key(r):
-    return tuple(r.get(k, "") for k in GROUP)
+    """(component, scene, camera, width, height, renderer, time, reference parameters): the rows
+    that estimate one image on one renderer. The first six are GROUP, in its order."""
+    t = fnum(r.get("time")) or 0.0
+    return tuple(r.get(k, "") for k in GROUP) + (f"{t:g}", reference_text(r))
 
 
 def time_cost(r, resolution):
@@ -155,6 +176,10 @@ def segments(fr):
     return out
 
 
+def answers_rows(ans):
+    return usable_rows(ans["rows"])
+
+
 def usable_rows(rows):
     """The candidates of a group that any question of it may rank: distinct settings, status ok,
     with an error and a time."""
@@ -164,7 +189,7 @@ def usable_rows(rows):
 
 def headline(ans_list):
     """One answer per (component, scene, renderer), the group the most techniques estimate (then
-    the largest image, then the most settings): [(key, time answer, memory answer, [keys of the
+    the largest image, then the most settings, then the fewest worse than black): [(key, time answer, memory answer, [keys of the
     other groups of that component and scene: other sizes and cameras])], in the order of ans_list."""
     by = {}
     for a in ans_list:
@@ -173,7 +198,7 @@ def headline(ans_list):
 
     def weight(a):
         key, t, _ = a
-        return (len(t["techniques"]), int(key[3]) * int(key[4]), len(t["front"]) + len(t["black"]))
+        return (len(t["techniques"]), int(key[3]) * int(key[4]), len(answers_rows(t)), -len(t["black"]))
 
     out = []
     for a in ans_list:
@@ -283,10 +308,12 @@ def findings(claims):
 
 def plot_name(key):
     """The file name (no extension) of a group's speed-against-error plot (plot.py writes it, the
-    report links it): answer_<component>_<scene>_cam<camera>_<W>x<H>_<renderer's first word>."""
-    component, scene, camera, w, h, renderer = key
+    report links it): answer_<component>_<scene>_cam<camera>_<W>x<H>[_t<time>][_<reference
+    parameters>]_<renderer's first word>."""
+    component, scene, camera, w, h, renderer, t, ref = key
     word = "".join(ch for ch in (renderer.split() or ["unknown"])[0].lower() if ch.isalnum()) or "unknown"
-    return f"answer_{component}_{scene}_cam{camera}_{w}x{h}_{word}"
+    extra = (f"_t{t}" if t != "0" else "") + ("_" + ref.replace(" ", "_").replace("=", "-") if ref else "")
+    return f"answer_{component}_{scene}_cam{camera}_{w}x{h}{extra}_{word}"
 
 
 def relative_error(r):

@@ -309,7 +309,7 @@ def answer_plot(key, ans, out_dir, resolution):
     against relative error; bars: the time's interval at the machine's resolution and the error's
     95% interval; the Pareto front the table lists, the rows worse than a black image ringed, and
     what a black image scores as a horizontal line."""
-    component, scene, camera, w, h, renderer = key
+    component, scene, camera, w, h, renderer, t, ref = key
     base = os.path.join(out_dir, answers.plot_name(key))
     data = base + ".dat"
     techs, worse = answer_data(data, ans, resolution)
@@ -329,7 +329,8 @@ def answer_plot(key, ans, out_dir, resolution):
         plots.append(f"{blacks[len(blacks) // 2]:.6g} with lines lw 2 dt 3 lc rgb 'black' "
                      "title 'a black image scores'")
     res = f"{100 * resolution:.0f}%" if resolution else "none measured"
-    title = f"{component}, {scene} camera {camera}, {w}x{h} ({renderer}): time resolution {res}"
+    title = (f"{component}, {scene} camera {camera}, {w}x{h}" + (f" t={t}" if t != "0" else "")
+             + (f" {ref}" if ref else "") + f" ({renderer}): time resolution {res}")
     script = []
     for term, ext in (("pngcairo size 900,560 font 'sans,10'", "png"), ("svg size 900,560", "svg")):
         script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",

@@ -46,13 +46,14 @@ def reference_png(img_dir, r):
 
 
 def group_ranks(rows, resolution):
-    """{id(row): (error rank, time rank)} within each (scene, component, size, instant) of a
-    matrix: ordered by the de-noised error and by the median time, rows whose intervals overlap
-    share a rank ("2="), so the reader sees ties, not an order the noise made."""
+    """{id(row): (error rank, time rank)} within each group of a matrix that estimates one image
+    (answers.group_key: scene, component, camera, size, renderer, instant, the reference's
+    parameters): ordered by the de-noised error and by the median time, rows whose intervals
+    overlap share a rank ("2="), so the reader sees ties, not an order the noise made."""
     groups = {}
     for r in rows:
         if r["status"] == "ok":
-            groups.setdefault((r["scene"], r["component"], r["width"], r["height"], r.get("time")), []).append(r)
+            groups.setdefault(answers.group_key(r), []).append(r)
     out = {}
     for g in groups.values():
         errs = [(id(r), error_interval(r)) for r in g if error_interval(r)]
@@ -142,8 +143,8 @@ def mb_text(b):
     return f"{mb:.2g}" if mb < 10 else f"{mb:.0f}"
 
 
-def err_text(e):
-    return f"{e:.3g}"
+def err_text(e, digits=3):
+    return f"{e:.{digits}g}"
 
 
 def span_text(values, show):
@@ -151,29 +152,35 @@ def span_text(values, show):
     return show(lo) if show(lo) == show(hi) else f"{show(lo)}–{show(hi)}"
 
 
-def segment_text(tech, cands, memory):
+def segment_text(tech, cands, memory, digits=3):
     """One technique's step of a front: 'lrsm 168–204 ms 1.62 (9 settings)'."""
     costs = [c[2][1] for c in cands]
-    errs = [answers.relative_error(c[0])[1] for c in cands]
+    errs = [err_text(answers.relative_error(c[0])[1], digits) for c in cands]
     cost = span_text(costs, mb_text) + " MB" if memory else span_text(costs, ms_text) + " ms"
-    errs_t = [err_text(e) for e in errs]
-    err = errs_t[0] if errs_t[0] == errs_t[-1] else f"{errs_t[0]}–{errs_t[-1]}"
+    err = errs[0] if errs[0] == errs[-1] else f"{errs[0]}–{errs[-1]}"
     return f"{tech} {cost} {err}" + (f" ({len(cands)} settings)" if len(cands) > 1 else "")
+
+
+def last_error(cands, digits):
+    return err_text(answers.relative_error(cands[-1][0])[1], digits)
 
 
 def front_parts(ans, memory=False):
     """[(joiner before it, text, settings)] of a front, cheapest first; the joiner is TIE where the
-    step's error interval overlaps the previous step's (a tie: either will do), else STEP."""
+    step's error interval overlaps the previous step's (a tie: either will do), else STEP. A step
+    whose error prints as its predecessor's at 3 digits prints both at 4 (it is clearly less)."""
     fr, ties = ans["front"], ans["ties"]
     index = {id(c): i for i, c in enumerate(fr)}
-    out, prev = [], None
-    for tech, cands in answers.segments(fr):
-        mine = {index[id(c)] for c in cands}
-        tied = prev is not None and any(j in prev for i in mine for j in ties[i])
-        out.append(("" if prev is None else TIE if tied else STEP, segment_text(tech, cands, memory),
-                    "; ".join(c[0]["params"] for c in cands)))
-        prev = mine
-    return out
+    segs = answers.segments(fr)
+    joins, digits = [""], [3] * len(segs)
+    for k in range(1, len(segs)):
+        prev, mine = ({index[id(c)] for c in segs[j][1]} for j in (k - 1, k))
+        tied = any(j in prev for i in mine for j in ties[i])
+        joins.append(TIE if tied else STEP)
+        if not tied and last_error(segs[k - 1][1], 3) == err_text(answers.relative_error(segs[k][1][0][0])[1]):
+            digits[k - 1] = digits[k] = 4
+    return [(joins[k], segment_text(t, cands, memory, digits[k]), "; ".join(c[0]["params"] for c in cands))
+            for k, (t, cands) in enumerate(segs)]
 
 
 def front_plain(ans, memory=False):
@@ -192,8 +199,24 @@ def black_list(ans):
 
 
 def size_text(key):
-    _, _, camera, w, h, _ = key
-    return f"{w}x{h}" + (f" camera {camera}" if camera not in ("", "0") else "")
+    """The image size, and the camera, instant and reference parameters where they matter."""
+    _, _, camera, w, h, _, t, ref = key
+    return (f"{w}x{h}" + (f" camera {camera}" if camera not in ("", "0") else "")
+            + (f" t={t}" if t != "0" else "") + (f" {ref}" if ref else ""))
+
+
+def other_text(key, head):
+    """Another group of a headline's component and scene, by what differs from the headline's."""
+    parts = []
+    if key[3:5] != head[3:5]:
+        parts.append(f"{key[3]}x{key[4]}")
+    if key[2] != head[2]:
+        parts.append(f"camera {key[2]}")
+    if key[6] != head[6]:
+        parts.append(f"t={key[6]}")
+    if key[7] != head[7]:
+        parts.append(key[7] or "reference default")
+    return " ".join(parts)
 
 
 def answer_rows(results, mats):
@@ -207,7 +230,7 @@ def answer_rows(results, mats):
         plot = f"plots/{answers.plot_name(key)}.png"
         return {"key": key, "time": t, "memory": m, "others": others,
                 "plot": plot if os.path.exists(os.path.join(results, plot)) else None,
-                "anchor": "g-" + "-".join(key[:5])}
+                "anchor": "g-" + answers.plot_name(key)}
     return ([entry(k, t, m, []) for k, t, m in every],
             [entry(k, t, m, o) for k, t, m, o in answers.headline(every)])
 
@@ -403,7 +426,7 @@ def answer_table_html(entries, page_dir, results, cls):
         links = [f'<a href="{esc(rel(os.path.join(results, e["plot"]), page_dir))}">plot</a>'] if e["plot"] else []
         if cls == "answers":
             links.append(f'<a href="#{esc(e["anchor"])}">images</a>')
-        also = (f'<div class="also">also {esc(", ".join(size_text(k) for k in e["others"]))}</div>'
+        also = (f'<div class="also">also {esc(", ".join(other_text(k, key) for k in e["others"]))}</div>'
                 if e["others"] else "")
         black = black_list(t)
         out.append(f'<tr class="answer{" first" if key[0] != prev else ""}" data-component="{esc(key[0])}" '
@@ -569,7 +592,7 @@ def answer_table_md(entries, cls="answers"):
              "|---|---|---|---|---|---|---|"]
     for e in entries:
         key, t = e["key"], e["time"]
-        size = size_text(key) + (f" (also {', '.join(size_text(k) for k in e['others'])})" if e["others"] else "")
+        size = size_text(key) + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else "")
         links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
         lines.append("| " + " | ".join(md(x) for x in (key[0], key[1], size, front_plain(t),
                                                           front_plain(e["memory"], memory=True), black_list(t),

@@ -70,7 +70,7 @@ check(names(a) == ["x", "y"], f"duplicate settings counted once ({names(a)})")
 rows = [row("a", 1, 0.5), row("b", 2, 0.4), row("a", 1, 0.5, renderer="NVIDIA H100"),
         row("c", 1, 0.5, width="128", height="128")]
 keys = [k for k, _, _ in answers.answers(rows)]
-check(keys == [("indirect", "cornell", "0", "64", "64", "llvmpipe")],
+check(keys == [("indirect", "cornell", "0", "64", "64", "llvmpipe", "0", "")],
       f"only the group two techniques estimate ({keys})")
 
 # Segments: the front cut where the technique changes.
@@ -118,6 +118,14 @@ check(f["counts"] == {"reproduced": 1, "not reproduced": 2, "not measurable here
 check([(x[0], x[1]) for x in f["not_reproduced"]] == [("leak", 2)], f"one claim at two settings named once ({f['not_reproduced']})")
 check(sorted(x[0] for x in f["unmeasured"]) == ["absolute GPU times", "not run here"],
       f"what would measure the rest ({f['unmeasured']})")
+
+# Ambient occlusion at two dmax estimates two images (two references): two groups, not one; so do
+# two instants of an animation.
+rows = [row("a", 1, 0.5, component="ao", params="dmax=1"), row("b", 2, 0.4, component="ao", params="dmax=1"),
+        row("a", 1, 0.5, component="ao", params="dmax=2"), row("b", 2, 0.4, component="ao", params="dmax=2"),
+        row("a", 1, 0.5, time="0.5"), row("b", 2, 0.4, time="0.5")]
+keys = sorted(k[6:] for k, _, _ in answers.answers(rows))
+check(keys == [("0", "dmax=1"), ("0", "dmax=2"), ("0.5", "")], f"groups split by reference parameters and time ({keys})")
 
 print("FAIL" if failures else "PASS", f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
