@@ -190,6 +190,13 @@ def front_plain(ans, memory=False):
     return "".join(j + t for j, t, _ in parts)
 
 
+def beaten_list(ans):
+    """The techniques compared whose every usable setting another row beats (not worse than black)."""
+    on = {c[0]["technique"] for c in ans["front"]}
+    usable = {c[0]["technique"] for c in answers.candidates(ans["rows"], answers.time_cost, None)[0]}
+    return ", ".join(sorted(usable - on))
+
+
 def black_list(ans):
     """'ldm_indirect ×3, vct': the techniques with rows worse than a black image (settings counted)."""
     counts = {}
@@ -433,6 +440,7 @@ def answer_table_html(entries, page_dir, results, cls):
                    f'data-scene="{esc(key[1])}" data-size="{esc(size_text(key))}"><th>{esc(key[0]) if key[0] != prev else ""}</th>'
                    f'<td>{esc(key[1])} <span class="size">{esc(size_text(key))}</span> {" ".join(links)}{also}</td>'
                    f'<td title="compared: {esc(", ".join(t["techniques"]))}">{front_html(t)}'
+                   + (f'<div class="beaten">beaten: {esc(beaten_list(t))}</div>' if beaten_list(t) else "")
                    + (f'<div class="black">worse than black: {esc(black)}</div>' if black else "")
                    + f'</td><td>{front_html(e["memory"], memory=True)}</td></tr>')
         prev = key[0]
@@ -555,7 +563,7 @@ def write_html(results, claims, mats, plots):
              f'{esc(", ".join(revs) or "unknown")}.</p>',
              '<pre id="image-check"></pre>',
              '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · <a href="#gallery">Gallery</a> · '
-             '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every size and camera</a> · '
+             '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every group</a> · '
              + " · ".join(f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
              f'<h2 id="claims-h">Claims ({len(claims)}: {esc(summary_counts(claims))})</h2>',
              '<p>A verdict is <i>not measurable here</i> where the paper measured absolute times on its '
@@ -565,7 +573,7 @@ def write_html(results, claims, mats, plots):
              gallery_html(results, page_dir, mats, heads),
              '<h2 id="reading">How to read the numbers</h2><ul>'
              + "".join(f"<li>{esc(x)}</li>" for x in reading_guide(results, mats)) + '</ul>',
-             '<h2 id="all-answers">The answer at every size and camera</h2>',
+             '<h2 id="all-answers">The answer for every group: each size, camera, instant and reference setting</h2>',
              '<details class="all-answers"><summary>every group two or more techniques estimate '
              f'({len(every)})</summary>' + answer_table_html(every, page_dir, results, "answers-all") + '</details>',
              '<h2>Matrices</h2>',
@@ -594,7 +602,9 @@ def answer_table_md(entries, cls="answers"):
         key, t = e["key"], e["time"]
         size = size_text(key) + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else "")
         links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
-        lines.append("| " + " | ".join(md(x) for x in (key[0], key[1], size, front_plain(t),
+        beaten = beaten_list(t)
+        lines.append("| " + " | ".join(md(x) for x in (key[0], key[1], size,
+                                                          front_plain(t) + (f" (beaten: {beaten})" if beaten else ""),
                                                           front_plain(e["memory"], memory=True), black_list(t),
                                                           " ".join(links))) + " |")
     return lines
@@ -656,7 +666,7 @@ def write_md(results, claims, mats, plots):
     lines = first_screen_md(results, mats, claims, heads)
     lines += ["Generated from the CSVs in this folder; the page with every row's images is "
               "[report/index.html](report/index.html). Below: the claims, the gallery, how to read the "
-              "numbers, the answer at every size and camera, every matrix, and at the end the papers' "
+              "numbers, the answer for every group, every matrix, and at the end the papers' "
               "absolute GPU times.", "",
               f"## Claims ({len(claims)}: {summary_counts(claims)})", "",
               f"### Claims that do not depend on the machine ({len(mi)}: {summary_counts(mi)})"]
@@ -665,7 +675,7 @@ def write_md(results, claims, mats, plots):
               "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
     lines += gallery_md(results, mats, heads)
     lines += ["## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
-    lines += ["", "## The answer at every size and camera", ""] + answer_table_md(every, "answers-all")
+    lines += ["", "## The answer for every group: each size, camera, instant and reference setting", ""] + answer_table_md(every, "answers-all")
     lines += ["", "## Matrices", ""]
     resolution = time_resolution(results)
     for m, rows in mats.items():
