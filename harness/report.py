@@ -682,7 +682,7 @@ def write_md(results, claims, mats, plots):
         lines += matrix_md(results, m, rows, plots[m], resolution)
     lines += ["## The papers' absolute GPU times", ""]
     for paper, cs in absolute.items():
-        lines += [f"### {paper}", "", why_not_comparable(cs)] + claims_md(cs)[3:] + [""]
+        lines += [f"### {paper}", "", why_not_comparable(cs), ""] + claims_md(cs)[3:] + [""]
     path = os.path.join(results, "REPORT.md")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
