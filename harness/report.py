@@ -427,9 +427,10 @@ def answer_table_html(entries, page_dir, results, cls):
     out = [f'<table class="{cls}"><thead><tr><th></th><th>scene, size</th>'
            '<th>least error for its time: Pareto front, cheapest first (ms, relative error)</th>'
            '<th>for its memory (MB, relative error)</th></tr></thead><tbody>']
-    prev = None
+    prev, many = None, len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
+        size = size_text(key) + (f" on {key[5]}" if many else "")
         links = [f'<a href="{esc(rel(os.path.join(results, e["plot"]), page_dir))}">plot</a>'] if e["plot"] else []
         if cls == "answers":
             links.append(f'<a href="#{esc(e["anchor"])}">images</a>')
@@ -438,7 +439,7 @@ def answer_table_html(entries, page_dir, results, cls):
         black = black_list(t)
         out.append(f'<tr class="answer{" first" if key[0] != prev else ""}" data-component="{esc(key[0])}" '
                    f'data-scene="{esc(key[1])}" data-size="{esc(size_text(key))}"><th>{esc(key[0]) if key[0] != prev else ""}</th>'
-                   f'<td>{esc(key[1])} <span class="size">{esc(size_text(key))}</span> {" ".join(links)}{also}</td>'
+                   f'<td>{esc(key[1])} <span class="size">{esc(size)}</span> {" ".join(links)}{also}</td>'
                    f'<td title="compared: {esc(", ".join(t["techniques"]))}">{front_html(t)}'
                    + (f'<div class="beaten">beaten: {esc(beaten_list(t))}</div>' if beaten_list(t) else "")
                    + (f'<div class="black">worse than black: {esc(black)}</div>' if black else "")
@@ -598,9 +599,11 @@ def answer_table_md(entries, cls="answers"):
     lines = ["| component | scene | size | least error for its time: the Pareto front, cheapest first (ms, "
              "relative error) | for its memory (MB, relative error) | worse than black | |",
              "|---|---|---|---|---|---|---|"]
+    many = len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
-        size = size_text(key) + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else "")
+        size = (size_text(key) + (f" on {key[5]}" if many else "")
+                + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else ""))
         links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
         beaten = beaten_list(t)
         lines.append("| " + " | ".join(md(x) for x in (key[0], key[1], size,
