@@ -10,24 +10,46 @@ so equal bytes tie and nothing else does. Row a beats row b when a is no worse o
 or tied) and clearly better on one (lower and not tied). A row that beats nothing and is beaten by
 nothing is on the front; a front row whose error interval overlaps another front row's ties with it.
 
-A group is (component, scene, camera, image size, renderer): times from two renderers or two image
-sizes are not one axis. Rows further from the reference than a black image (rmse_over_black > 1)
+A group is (component, scene, camera, image size, renderer, time, the reference's parameters): times
+from two renderers or two image sizes are not one axis, and rows scored against two different
+reference images (two instants of an animation, ambient occlusion at two dmax) estimate different
+things. Rows further from the reference than a black image (rmse_over_black > 1)
 never enter the front; they are listed as such. Rows whose status is not `ok` are left out. A
 group whose reference is black (black_rmse 0: a component the scene does not have, or a view that
 should be dark) ranks nothing: any error there is light that should not be, which the leak claims
 judge, so it is not a question of this table.
 """
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from schema import param  # noqa: E402
 from uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
 
 GROUP = ("component", "scene", "camera", "width", "height", "renderer")
+# The technique parameters that change a component's reference image, with the reference's own
+# value where a technique lacks one (harness/app/util.c, gib_ref_request_match: ao at a dmax, as
+# obscurance or not). Rows at two settings of these estimate two different images: not one group.
+REFERENCE_PARAMS = {"ao": (("dmax", float("inf")), ("obscurance", 0.0))}
+
+
+def reference_text(r):
+    """'dmax=20' for a row whose component's reference has parameters (those at the reference's
+    own default left out), else ''."""
+    out = []
+    for name, default in REFERENCE_PARAMS.get(r.get("component"), ()):
+        v = param(r, name, default)
+        if v != default:
+            out.append(f"{name}={v:g}")
+    return " ".join(out)
 
 
 def group_key(r):
-    return tuple(r.get(k, "") for k in GROUP)
+    """(component, scene, camera, width, height, renderer, time, reference parameters): the rows
+    that estimate one image on one renderer. The first six are GROUP, in its order."""
+    t = fnum(r.get("time")) or 0.0
+    return tuple(r.get(k, "") for k in GROUP) + (f"{t:g}", reference_text(r))
 
 
 def time_cost(r, resolution):
@@ -95,13 +117,13 @@ def error_ties(fr):
 def answer(rows, cost=time_cost, resolution=None):
     """One group's answer: {"front": [(row, err, cost), ...] cheapest first, "ties": error_ties,
     "black": [rows worse than black], "techniques": techniques with a usable or black row,
-    "least_error": the technique of the front's lowest error estimate}."""
+    "least_error": the technique of the front's lowest error estimate, "rows": the group's rows}."""
     usable, black = candidates(rows, cost, resolution)
     fr = front(usable)
     techniques = sorted({c[0]["technique"] for c in usable} | {c[0]["technique"] for c in black})
     best = min(fr, key=lambda c: c[1][1])[0]["technique"] if fr else None
     return {"front": fr, "ties": error_ties(fr), "black": [c[0] for c in black],
-            "techniques": techniques, "least_error": best}
+            "techniques": techniques, "least_error": best, "rows": rows}
 
 
 def by_technique(fr):
@@ -139,3 +161,162 @@ def answers(rows, resolution=None):
     for key, grp in groups(rows).items():
         out.append((key, answer(grp, time_cost, resolution), answer(grp, memory_cost)))
     return sorted(out, key=lambda a: (order.get(a[0][0], 9), a[0][1:]))
+
+
+def segments(fr):
+    """The front cut where the technique changes, cheapest first: [(technique, [candidates])]. A
+    technique whose neighbouring settings make several front points shows as one segment (its
+    cheapest to its least error), so a front of ten lrsm settings reads as one step, not ten."""
+    out = []
+    for c in fr:
+        if out and out[-1][0] == c[0]["technique"]:
+            out[-1][1].append(c)
+        else:
+            out.append((c[0]["technique"], [c]))
+    return out
+
+
+def answers_rows(ans):
+    return usable_rows(ans["rows"])
+
+
+def usable_rows(rows):
+    """The candidates of a group that any question of it may rank: distinct settings, status ok,
+    with an error and a time."""
+    usable, black = candidates(rows, time_cost, None)
+    return [c[0] for c in usable + black]
+
+
+def headline(ans_list):
+    """One answer per (component, scene, renderer), the group the most techniques estimate (then
+    the largest image, then the most settings, then the fewest worse than black): [(key, time answer, memory answer, [keys of the
+    other groups of that component and scene: other sizes and cameras])], in the order of ans_list."""
+    by = {}
+    for a in ans_list:
+        key = a[0]
+        by.setdefault((key[0], key[1], key[5]), []).append(a)
+
+    def weight(a):
+        key, t, _ = a
+        return (len(t["techniques"]), int(key[3]) * int(key[4]), len(answers_rows(t)), -len(t["black"]))
+
+    out = []
+    for a in ans_list:
+        peers = by[(a[0][0], a[0][1], a[0][5])]
+        best = max(peers, key=weight)
+        if a is best:
+            out.append((a[0], a[1], a[2], [p[0] for p in peers if p is not a]))
+    return out
+
+
+def at_common_cost(rows):
+    """Each technique's row nearest the group's median time (on a log scale: 10 ms is as far from
+    20 ms as 40 ms is), so a gallery compares techniques at about the same cost: [(row, ...)] in the
+    order of time. Rows are the group's usable ones (worse than black included: the reader sees why)."""
+    usable = [r for r in usable_rows(rows) if fnum(r.get("gpu_ms_median")) and fnum(r["gpu_ms_median"]) > 0]
+    if not usable:
+        return []
+    times = sorted(fnum(r["gpu_ms_median"]) for r in usable)
+    median = times[len(times) // 2]
+    best = {}
+    for r in usable:
+        d = abs(math.log(fnum(r["gpu_ms_median"]) / median))
+        t = r["technique"]
+        if t not in best or d < best[t][0]:
+            best[t] = (d, r)
+    return sorted((v[1] for v in best.values()), key=lambda r: fnum(r["gpu_ms_median"]))
+
+
+# ---- the papers' claims (claims.csv, harness/claims.py) --------------------------------------------
+
+MACHINE_INDEPENDENT, ABSOLUTE_TIME = "machine_independent", "absolute_time"
+REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
+
+
+def claim_kind(c):
+    """A claim's `kind` column where claims.csv has one; else absolute_time for a claim not
+    measurable here because the paper timed its own GPU (the reason says the absolute time is not
+    comparable, or the claim is a table's frame time), machine_independent otherwise (memory, error,
+    orders of stage times, leaks: what this machine measures as the paper's would)."""
+    if c.get("kind"):
+        return c["kind"]
+    if c.get("verdict") != NOT_MEASURABLE:
+        return MACHINE_INDEPENDENT
+    reason, claim = c.get("reason", "").lower(), c.get("claim", "").lower()
+    if "absolute" in reason or claim.endswith("frame time"):
+        return ABSOLUTE_TIME
+    return MACHINE_INDEPENDENT
+
+
+def stem(text):
+    """A claim's words before its settings (the first ' (' or ' ['), to name a claim tested at
+    several settings once."""
+    cut = [i for i in (text.find(" ("), text.find(" [")) if i > 0]
+    return text[:min(cut)] if cut else text
+
+
+def first_clause(text, keep=110, clauses=1):
+    """The first clauses (;-separated) of a reason, cut at `keep` characters."""
+    t = ";".join(text.split(";")[:clauses]).strip()
+    return t if len(t) <= keep else t[:keep].rstrip() + "…"
+
+
+def what_would_measure(c):
+    """Why a claim is not measurable here: (what it is, what would measure it)."""
+    r = c.get("reason", "").lower()
+    if r.startswith("not run here"):
+        return "not run here", "a run at the paper's setting, which our matrices lack"
+    if claim_kind(c) == ABSOLUTE_TIME:
+        return "absolute GPU times", "a GPU: the papers timed theirs"
+    if "out_of_memory" in r or "out of memory" in r:
+        return "out of memory here", "a machine with more memory"
+    if "profile" in r or "settings" in r:
+        return "not at the paper's settings", "make reproduce PROFILE=paper"
+    return "no run of ours matches", first_clause(c.get("reason", ""), 80)
+
+
+def by_stem(claims):
+    """[(stem, [claims])] in first-met order."""
+    out = {}
+    for c in claims:
+        out.setdefault(stem(c["claim"]), []).append(c)
+    return list(out.items())
+
+
+def findings(claims):
+    """Per paper, what its claims came to, from claims.csv alone: [{"paper", "counts": {verdict: n},
+    "not_reproduced": [(stem, n, paper value, our value, first clause of the reason)],
+    "unmeasured": [(what they are, what would measure them, n)]}], papers in first-met order."""
+    papers = {}
+    for c in claims:
+        papers.setdefault(c["paper"], []).append(c)
+    out = []
+    for paper, cs in papers.items():
+        counts = {v: sum(1 for c in cs if c["verdict"] == v) for v in (REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE)}
+        failed = [(s, len(g), g[0]["paper_value"], g[0]["our_value"], first_clause(g[0]["reason"], 140, 2))
+                  for s, g in by_stem([c for c in cs if c["verdict"] == NOT_REPRODUCED])]
+        need = {}
+        for c in cs:
+            if c["verdict"] == NOT_MEASURABLE:
+                w = what_would_measure(c)
+                need[w] = need.get(w, 0) + 1
+        need = [(what, by, n) for (what, by), n in need.items()]
+        out.append({"paper": paper, "counts": counts, "not_reproduced": failed,
+                    "unmeasured": sorted(need, key=lambda x: -x[2])})
+    return out
+
+
+def plot_name(key):
+    """The file name (no extension) of a group's speed-against-error plot (plot.py writes it, the
+    report links it): answer_<component>_<scene>_cam<camera>_<W>x<H>[_t<time>][_<reference
+    parameters>]_<renderer's first word>."""
+    component, scene, camera, w, h, renderer, t, ref = key
+    word = "".join(ch for ch in (renderer.split() or ["unknown"])[0].lower() if ch.isalnum()) or "unknown"
+    extra = (f"_t{t}" if t != "0" else "") + ("_" + ref.replace(" ", "_").replace("=", "-") if ref else "")
+    return f"answer_{component}_{scene}_cam{camera}_{w}x{h}{extra}_{word}"
+
+
+def relative_error(r):
+    """The row's error as the report shows it: the de-noised RMSE over the reference's mean
+    (lo, estimate, hi), the plain RMSE interval where the relative one is undefined."""
+    return error_interval(r, relative=True) or error_interval(r)

@@ -32,7 +32,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import fnum as finite_num, matrices, params, read_csv  # noqa: E402
-from uncertainty import error_interval, worse_than_black  # noqa: E402
+from uncertainty import error_interval, time_interval, time_resolution, worse_than_black  # noqa: E402
+import answers  # noqa: E402
 
 
 def pareto(points):
@@ -274,6 +275,81 @@ def bench_plot(results, out_dir):
     return base + ".png"
 
 
+def answer_data(path, ans, resolution):
+    """Writes the data blocks of one answer plot: one per technique (x, y, x lo, x hi, y lo, y hi),
+    then the front (each technique's step labelled once), then the rows worse than black; returns
+    the techniques and whether any row is worse than black."""
+    rows = answers.usable_rows(ans["rows"])
+    techs = sorted({r["technique"] for r in rows})
+    with open(path, "w") as f:
+        for t in techs:
+            f.write(f"# {t}\n")
+            for r in (r for r in rows if r["technique"] == t):
+                ms, e = finite_num(r["gpu_ms_median"]), answers.relative_error(r)
+                lo, _, hi = time_interval(ms, resolution)
+                f.write(f"{ms:.6g} {e[1]:.6g} {lo:.6g} {hi:.6g} {e[0]:.6g} {e[2]:.6g}\n")
+            f.write("\n\n")
+        f.write("# pareto front (answers.py: ties called)\n")
+        first = {id(seg[0][0]) for _, seg in answers.segments(ans["front"])}
+        for c in ans["front"]:
+            r = c[0]
+            label = r["technique"] if id(r) in first else ""
+            f.write(f"{finite_num(r['gpu_ms_median']):.6g} {answers.relative_error(r)[1]:.6g} {gp_quote(label)}\n")
+        if not ans["front"]:
+            f.write('NaN NaN ""\n')  # keeps the block, so the next one's index holds (not plotted)
+        f.write("\n\n# worse than a black image\n")
+        worse = [r for r in rows if worse_than_black(r)]
+        for r in worse:
+            f.write(f"{finite_num(r['gpu_ms_median']):.6g} {answers.relative_error(r)[1]:.6g}\n")
+    return techs, bool(worse)
+
+
+def answer_plot(key, ans, out_dir, resolution):
+    """The answer table's plot of one group (answers.py): every technique's usable rows, time
+    against relative error; bars: the time's interval at the machine's resolution and the error's
+    95% interval; the Pareto front the table lists, the rows worse than a black image ringed, and
+    what a black image scores as a horizontal line."""
+    component, scene, camera, w, h, renderer, t, ref = key
+    base = os.path.join(out_dir, answers.plot_name(key))
+    data = base + ".dat"
+    techs, worse = answer_data(data, ans, resolution)
+    n = len(techs)
+    blacks = sorted(b for b in (black_level(r, "rel_rmse") for r in answers.usable_rows(ans["rows"]))
+                    if b is not None)
+    plots = [f"{gp_quote(data)} index {i} using 1:2:3:4:5:6 with xyerrorbars pt 7 ps 1 title {gp_quote(t)}"
+             for i, t in enumerate(techs)]
+    if ans["front"]:  # empty where every row is worse than black
+        plots.append(f"{gp_quote(data)} index {n} using 1:2 with lines lw 2 lc rgb 'gray30' title 'Pareto front'")
+        plots.append(f"{gp_quote(data)} index {n} using 1:2:3 with labels font ',9' offset char 0.8,0.9 left "
+                     "noenhanced notitle")
+    if worse:
+        plots.append(f"{gp_quote(data)} index {n + 1} using 1:2 with points pt 6 ps 2.4 lw 2 lc rgb 'red' "
+                     "title 'worse than a black image'")
+    if blacks:
+        plots.append(f"{blacks[len(blacks) // 2]:.6g} with lines lw 2 dt 3 lc rgb 'black' "
+                     "title 'a black image scores'")
+    res = f"{100 * resolution:.0f}%" if resolution else "none measured"
+    title = (f"{component}, {scene} camera {camera}, {w}x{h}" + (f" t={t}" if t != "0" else "")
+             + (f" {ref}" if ref else "") + f" ({renderer}): time resolution {res}")
+    script = []
+    for term, ext in (("pngcairo size 900,560 font 'sans,10'", "png"), ("svg size 900,560", "svg")):
+        script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
+                   f"set title {gp_quote(title)} noenhanced", "set logscale x", "set grid",
+                   "set xlabel 'GPU time per frame, median (ms); bars: the machine''s time resolution'",
+                   "set ylabel 'relative RMSE, reference noise removed (bars: 95% interval)'",
+                   "set key outside right top noenhanced", "plot " + ", ".join(plots), "unset output"]
+    subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
+    os.remove(data)
+    return base + ".png"
+
+
+def answer_plots(results, out_dir):
+    """One speed-against-error plot per group the answer table ranks (answers.py)."""
+    rows = [r for rs in matrices(results).values() for r in rs]
+    resolution = time_resolution(results)
+    return [answer_plot(key, t, out_dir, resolution) for key, t, _ in answers.answers(rows, resolution)]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("results")
@@ -286,6 +362,8 @@ def main():
     bench = bench_plot(a.results, out)
     if bench:
         print("plot.py: wrote", bench)
+    for path in answer_plots(a.results, out):
+        print("plot.py: wrote", path)
     groups, renderers = {}, {}
     for rows in matrices(a.results).values():
         for r in rows:

@@ -27,6 +27,7 @@ from claims import COLUMNS as CLAIM_COLUMNS  # noqa: E402
 from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
+import answers  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 VERDICT_CLASS = {"reproduced": "yes", "not reproduced": "no", "not measurable here": "na"}
@@ -45,13 +46,14 @@ def reference_png(img_dir, r):
 
 
 def group_ranks(rows, resolution):
-    """{id(row): (error rank, time rank)} within each (scene, component, size, instant) of a
-    matrix: ordered by the de-noised error and by the median time, rows whose intervals overlap
-    share a rank ("2="), so the reader sees ties, not an order the noise made."""
+    """{id(row): (error rank, time rank)} within each group of a matrix that estimates one image
+    (answers.group_key: scene, component, camera, size, renderer, instant, the reference's
+    parameters): ordered by the de-noised error and by the median time, rows whose intervals
+    overlap share a rank ("2="), so the reader sees ties, not an order the noise made."""
     groups = {}
     for r in rows:
         if r["status"] == "ok":
-            groups.setdefault((r["scene"], r["component"], r["width"], r["height"], r.get("time")), []).append(r)
+            groups.setdefault(answers.group_key(r), []).append(r)
     out = {}
     for g in groups.values():
         errs = [(id(r), error_interval(r)) for r in g if error_interval(r)]
@@ -122,6 +124,198 @@ def rel(path, start):
     return os.path.relpath(path, start).replace(os.sep, "/")
 
 
+# ---- the answer: which technique for which effect ---------------------------------------------
+
+SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader")
+TIE, STEP = " ≈ ", " → "
+
+
+def is_software(renderer):
+    return any(w in renderer.lower() for w in SOFTWARE_RENDERERS)
+
+
+def ms_text(ms):
+    return f"{ms:.2g}" if ms < 10 else f"{ms:.0f}"
+
+
+def mb_text(b):
+    mb = b / 1e6
+    return f"{mb:.2g}" if mb < 10 else f"{mb:.0f}"
+
+
+def err_text(e, digits=3):
+    return f"{e:.{digits}g}"
+
+
+def span_text(values, show):
+    lo, hi = min(values), max(values)
+    return show(lo) if show(lo) == show(hi) else f"{show(lo)}–{show(hi)}"
+
+
+def segment_text(tech, cands, memory, digits=3):
+    """One technique's step of a front: 'lrsm 168–204 ms 1.62 (9 settings)'."""
+    costs = [c[2][1] for c in cands]
+    errs = [err_text(answers.relative_error(c[0])[1], digits) for c in cands]
+    cost = span_text(costs, mb_text) + " MB" if memory else span_text(costs, ms_text) + " ms"
+    err = errs[0] if errs[0] == errs[-1] else f"{errs[0]}–{errs[-1]}"
+    return f"{tech} {cost} {err}" + (f" ({len(cands)} settings)" if len(cands) > 1 else "")
+
+
+def last_error(cands, digits):
+    return err_text(answers.relative_error(cands[-1][0])[1], digits)
+
+
+def front_parts(ans, memory=False):
+    """[(joiner before it, text, settings)] of a front, cheapest first; the joiner is TIE where the
+    step's error interval overlaps the previous step's (a tie: either will do), else STEP. A step
+    whose error prints as its predecessor's at 3 digits prints both at 4 (it is clearly less)."""
+    fr, ties = ans["front"], ans["ties"]
+    index = {id(c): i for i, c in enumerate(fr)}
+    segs = answers.segments(fr)
+    joins, digits = [""], [3] * len(segs)
+    for k in range(1, len(segs)):
+        prev, mine = ({index[id(c)] for c in segs[j][1]} for j in (k - 1, k))
+        tied = any(j in prev for i in mine for j in ties[i])
+        joins.append(TIE if tied else STEP)
+        if not tied and last_error(segs[k - 1][1], 3) == err_text(answers.relative_error(segs[k][1][0][0])[1]):
+            digits[k - 1] = digits[k] = 4
+    return [(joins[k], segment_text(t, cands, memory, digits[k]), "; ".join(c[0]["params"] for c in cands))
+            for k, (t, cands) in enumerate(segs)]
+
+
+def front_plain(ans, memory=False):
+    parts = front_parts(ans, memory)
+    if not parts:
+        return "none better than a black image" if ans["black"] else ""
+    return "".join(j + t for j, t, _ in parts)
+
+
+def beaten_list(ans):
+    """The techniques compared whose every usable setting another row beats (not worse than black)."""
+    on = {c[0]["technique"] for c in ans["front"]}
+    usable = {c[0]["technique"] for c in answers.candidates(ans["rows"], answers.time_cost, None)[0]}
+    return ", ".join(sorted(usable - on))
+
+
+def black_list(ans):
+    """'ldm_indirect ×3, vct': the techniques with rows worse than a black image (settings counted)."""
+    counts = {}
+    for r in answers.distinct(ans["black"]):
+        counts[r["technique"]] = counts.get(r["technique"], 0) + 1
+    return ", ".join(t + (f" ×{n}" if n > 1 else "") for t, n in sorted(counts.items()))
+
+
+def size_text(key):
+    """The image size, and the camera, instant and reference parameters where they matter."""
+    _, _, camera, w, h, _, t, ref = key
+    return (f"{w}x{h}" + (f" camera {camera}" if camera not in ("", "0") else "")
+            + (f" t={t}" if t != "0" else "") + (f" {ref}" if ref else ""))
+
+
+def other_text(key, head):
+    """Another group of a headline's component and scene, by what differs from the headline's."""
+    parts = []
+    if key[3:5] != head[3:5]:
+        parts.append(f"{key[3]}x{key[4]}")
+    if key[2] != head[2]:
+        parts.append(f"camera {key[2]}")
+    if key[6] != head[6]:
+        parts.append(f"t={key[6]}")
+    if key[7] != head[7]:
+        parts.append(key[7] or "reference default")
+    return " ".join(parts)
+
+
+def answer_rows(results, mats):
+    """Every group two or more techniques estimate, and the headline one per component and scene:
+    (all, headline), each [{key, time, memory, others, plot (path from results or None), anchor}]."""
+    rows = [r for rs in mats.values() for r in rs]
+    resolution = time_resolution(results)
+    every = answers.answers(rows, resolution)
+
+    def entry(key, t, m, others):
+        plot = f"plots/{answers.plot_name(key)}.png"
+        return {"key": key, "time": t, "memory": m, "others": others,
+                "plot": plot if os.path.exists(os.path.join(results, plot)) else None,
+                "anchor": "g-" + answers.plot_name(key)}
+    return ([entry(k, t, m, []) for k, t, m in every],
+            [entry(k, t, m, o) for k, t, m, o in answers.headline(every)])
+
+
+def lone_components(mats, heads):
+    """{component: techniques} of the components present that no two techniques estimate."""
+    comps = {}
+    for rs in mats.values():
+        for r in rs:
+            if r["status"] == "ok" and r["component"] in ANSWER_COMPONENTS:
+                comps.setdefault(r["component"], set()).add(r["technique"])
+    answered = {h["key"][0] for h in heads}
+    return {c: sorted(t) for c, t in comps.items() if c not in answered}
+
+
+ANSWER_COMPONENTS = ("ao", "direct", "indirect", "glossy", "caustic")
+
+
+def renderer_sentences(heads):
+    """One sentence per renderer the answers ranked on; a software renderer's times rank its own speed."""
+    out = []
+    for rend in sorted({h["key"][5] for h in heads}):
+        if is_software(rend):
+            out.append(f"Every time here was measured on {rend}, a CPU rasterizer: the ranking by time is "
+                       f"{rend.split()[0]}'s and a GPU's may differ; memory and error rank the same on any "
+                       "machine.")
+        else:
+            out.append(f"Times measured on {rend}.")
+    return out
+
+
+def findings_text(f):
+    """A paper's findings as (title, sentences), from answers.findings."""
+    c = f["counts"]
+    total = sum(c.values())
+    out = [f"{total} claims: {c['reproduced']} reproduced, {c['not reproduced']} not reproduced, "
+           f"{c['not measurable here']} not measurable here."]
+    if f["not_reproduced"]:
+        items = []
+        for st, n, pv, ov, why in f["not_reproduced"]:
+            why = why.replace("; ", ", ")
+            ours = f"ours {why}" if not ov or why.startswith(ov) else f"ours {ov} ({why})"
+            items.append(f"{st}{f' ({n} settings)' if n > 1 else ''}: paper {pv or '-'}, {ours}")
+        out.append("Not reproduced: " + "; ".join(items) + ".")
+    if f["unmeasured"]:
+        out.append("Not measurable here: " + "; ".join(f"{n} {what} (would take {by})"
+                                                        for what, by, n in f["unmeasured"]) + ".")
+    return f["paper"], out
+
+
+def gallery_cells(results, group_rows):
+    """The gallery of one group: [(caption, numbers, image path or None, error map path or None,
+    error map's scale, params)]: the reference, then each technique's row nearest the group's
+    median time (answers.at_common_cost). Paths are given whether or not the file exists."""
+    picked = answers.at_common_cost(group_rows)
+    ref = named = None
+    # the least noisy reference the group's rows were scored against (a row's samples may have been raised)
+    for r in sorted(group_rows, key=lambda r: -(fnum(r.get("ref_spp")) or 0)):
+        path, _ = reference_png(os.path.join(results, "images", r["matrix"]), r)
+        if path:
+            ref = path
+            break
+        if named is None and r.get("ref_image"):
+            named = os.path.join(results, "images", r["matrix"], r["ref_image"])
+    ref = ref or named
+    cells = [("reference", "path-traced reference", ref, None, "", "")]
+    for r in picked:
+        base = os.path.join(results, "images", r["matrix"], r.get("image") or image_name(r))
+        flip = base + "_flip.png"
+        emap, scale = (flip, "FLIP, 0–1") if os.path.exists(flip) else (base + "_error.png", "RMS error, own scale")
+        e = answers.relative_error(r)
+        nums = (f"{ms_text(fnum(r['gpu_ms_median']))} ms · rel. error {err_text(e[1])}"
+                + (f" · {mb_text(fnum(r['mem_bytes']))} MB" if fnum(r.get("mem_bytes")) else "")
+                + (" · WORSE THAN BLACK" if worse_than_black(r) else ""))
+        cells.append((r["technique"], nums, base + ".png", emap, scale, r["params"]))
+    return cells
+
+
 # ---- HTML -----------------------------------------------------------------------------------------
 
 CHECK_SCRIPT = """
@@ -133,7 +327,6 @@ window.addEventListener('hashchange', openTarget);
 /* ?open=<matrix> opens that matrix in place (the README's screenshot) */
 var om = /[?&]open=([^&#]*)/.exec(location.search);
 if (om) { var od = document.getElementById('m-' + decodeURIComponent(om[1])); if (od) od.open = true; }
-function toggleNa(box) { document.getElementById('claims').classList.toggle('show-na', box.checked); }
 window.addEventListener('load', openTarget);
 if (location.search.indexOf('check') >= 0) {
   document.querySelectorAll('details').forEach(function (d) { d.open = true; });
@@ -144,8 +337,9 @@ if (location.search.indexOf('check') >= 0) {
     if (pending.length) { setTimeout(report, 50); return; }
     var broken = imgs.filter(function (i) { return i.naturalWidth === 0; });
     var out = document.getElementById('image-check');
+    var holders = document.querySelectorAll('.placeholder').length;
     out.textContent = 'images ' + imgs.length + ' loaded ' + (imgs.length - broken.length) +
-      ' broken ' + broken.length + '\\n' +
+      ' broken ' + broken.length + ' placeholders ' + holders + '\\n' +
       broken.map(function (i) { return 'BROKEN ' + i.getAttribute('src'); }).join('\\n');
   }
   window.addEventListener('load', report);
@@ -164,12 +358,10 @@ def long_text(text, keep=180):
     return f"<details class=\"more\"><summary>{esc(text[:keep])}…</summary>{esc(text[keep:])}</details>"
 
 
-def claims_html(claims):
-    out = ['<table id="claims"><thead><tr><th>claim</th><th>paper</th><th>ours</th><th>renderer</th>'
-           '<th>cores</th><th>verdict</th><th>reason</th></tr></thead><tbody>']
-    paper = None
+def claim_rows_html(claims, headers=True):
+    out, paper = [], None
     for c in claims:
-        if c["paper"] != paper:
+        if headers and c["paper"] != paper:
             paper = c["paper"]
             mine = [x for x in claims if x["paper"] == paper]
             out.append(f'<tr class="paper"><th colspan="7">{esc(paper)} '
@@ -178,13 +370,139 @@ def claims_html(claims):
         out.append(f'<tr class="claim {VERDICT_CLASS.get(v, "na")}"><td>{esc(c["claim"])}</td>'
                    f'<td>{esc(c["paper_value"])}</td><td>{esc(c["our_value"])}</td><td>{esc(c["renderer"])}</td>'
                    f'<td>{esc(c["cores"])}</td><td class="verdict">{esc(v)}</td><td>{long_text(c["reason"])}</td></tr>')
-    out.append("</tbody></table>")
+    return out
+
+
+CLAIM_HEAD = ('<thead><tr><th>claim</th><th>paper</th><th>ours</th><th>renderer</th><th>cores</th>'
+              '<th>verdict</th><th>reason</th></tr></thead>')
+
+
+def split_claims(claims):
+    """(machine-independent claims, {paper: its absolute GPU times}) (answers.claim_kind)."""
+    mi = [c for c in claims if answers.claim_kind(c) != answers.ABSOLUTE_TIME]
+    absolute = {}
+    for c in claims:
+        if answers.claim_kind(c) == answers.ABSOLUTE_TIME:
+            absolute.setdefault(c["paper"], []).append(c)
+    return mi, absolute
+
+
+def why_not_comparable(cs):
+    ours = sorted({c["renderer"] for c in cs if c["renderer"]})
+    return ("The paper timed its own GPU and ours ran on " + (", ".join(ours) or "another renderer")
+            + ": a frame time belongs to its machine, so these stand side by side unjudged (the claims "
+            "above compare what carries over: memory, error, orders and ratios).")
+
+
+def claims_html(claims):
+    """The machine-independent claims (memory, error, orders, leaks) in one table, then each paper's
+    absolute GPU times in a table of their own, collapsed."""
+    mi, absolute = split_claims(claims)
+    out = [f'<h3 id="claims-mi">Claims that do not depend on the machine ({len(mi)}: {esc(summary_counts(mi))})</h3>',
+           f'<table id="claims">{CLAIM_HEAD}<tbody>'] + claim_rows_html(mi) + ["</tbody></table>"]
+    n = sum(len(v) for v in absolute.values())
+    out.append(f'<h3 id="claims-abs">The papers\' absolute GPU times ({n}), per paper</h3>')
+    for paper, cs in absolute.items():
+        out.append(f'<details class="absolute"><summary><b>{esc(paper)}</b>: {len(cs)} times. '
+                   f'{esc(why_not_comparable(cs))}</summary><table class="claims-abs">{CLAIM_HEAD}<tbody>')
+        out += claim_rows_html(cs, headers=False) + ["</tbody></table></details>"]
     return "\n".join(out)
 
 
 def figure(src, caption, page_dir, cls=""):
     return (f'<figure class="{cls}"><img src="{esc(rel(src, page_dir))}" alt="{esc(caption)}" '
             f'loading="lazy"><figcaption>{esc(caption)}</figcaption></figure>')
+
+
+def front_html(ans, memory=False):
+    parts = front_parts(ans, memory)
+    if not parts:
+        return "<i>none better than a black image</i>" if ans["black"] else ""
+    return "".join(f'{esc(j)}<span class="step" title="{esc(p)}">{esc(t)}</span>' for j, t, p in parts)
+
+
+def answer_table_html(entries, page_dir, results, cls):
+    """One row per group: component (once per run of rows), scene and size with the links to its plot
+    and gallery, the front by time with the rows worse than black beneath, the front by memory."""
+    out = [f'<table class="{cls}"><thead><tr><th></th><th>scene, size</th>'
+           '<th>least error for its time: Pareto front, cheapest first (ms, relative error)</th>'
+           '<th>for its memory (MB, relative error)</th></tr></thead><tbody>']
+    prev, many = None, len({e["key"][5] for e in entries}) > 1
+    for e in entries:
+        key, t = e["key"], e["time"]
+        size = size_text(key) + (f" on {key[5]}" if many else "")
+        links = [f'<a href="{esc(rel(os.path.join(results, e["plot"]), page_dir))}">plot</a>'] if e["plot"] else []
+        if cls == "answers":
+            links.append(f'<a href="#{esc(e["anchor"])}">images</a>')
+        also = (f'<div class="also">also {esc(", ".join(other_text(k, key) for k in e["others"]))}</div>'
+                if e["others"] else "")
+        black = black_list(t)
+        out.append(f'<tr class="answer{" first" if key[0] != prev else ""}" data-component="{esc(key[0])}" '
+                   f'data-scene="{esc(key[1])}" data-size="{esc(size_text(key))}"><th>{esc(key[0]) if key[0] != prev else ""}</th>'
+                   f'<td>{esc(key[1])} <span class="size">{esc(size)}</span> {" ".join(links)}{also}</td>'
+                   f'<td title="compared: {esc(", ".join(t["techniques"]))}">{front_html(t)}'
+                   + (f'<div class="beaten">beaten: {esc(beaten_list(t))}</div>' if beaten_list(t) else "")
+                   + (f'<div class="black">worse than black: {esc(black)}</div>' if black else "")
+                   + f'</td><td>{front_html(e["memory"], memory=True)}</td></tr>')
+        prev = key[0]
+    out.append("</tbody></table>")
+    return "\n".join(out)
+
+
+def answer_html(results, page_dir, heads, lone, claims):
+    """The first screen: which technique for which effect, beside what each paper's claims came to."""
+    left = ['<h2 id="answer">Which technique for which effect</h2>',
+            "<p>" + esc(" ".join(renderer_sentences(heads))) + " A step → has clearly less error than the "
+            "one before it; ≈ is a tie (error intervals overlap): either will do. Hover a step for its "
+            "settings.</p>",
+            answer_table_html(heads, page_dir, results, "answers")]
+    if lone:
+        left.append("<p>" + esc("Estimated by one technique only, so no comparison: " + "; ".join(
+            f"{c} ({', '.join(t)})" for c, t in sorted(lone.items()))) + ".</p>")
+    right = ['<h2 id="findings">Findings per paper</h2>']
+    for f in answers.findings(claims):
+        title, sentences = findings_text(f)
+        right.append(f'<p class="finding"><b>{esc(title)}</b>. ' + " ".join(esc(x) for x in sentences) + "</p>")
+    return ('<div class="first-screen"><div class="answer-col">' + "\n".join(left) + '</div><div class="findings-col">'
+            + "\n".join(right) + "</div></div>")
+
+
+def media_html(path, page_dir, caption, results):
+    """An image, or a labelled placeholder (not a broken link) where its file is absent."""
+    if path and os.path.exists(path):
+        return f'<img src="{esc(rel(path, page_dir))}" alt="{esc(caption)}" loading="lazy">'
+    where = rel(path, results) if path else "no file named"
+    return f'<div class="placeholder" data-missing="{esc(where)}">{esc(caption)}: not written here<br><small>{esc(where)}</small></div>'
+
+
+def gallery_html(results, page_dir, mats, heads):
+    """Per headline group, the reference and each technique's row at a common cost side by side (at
+    the scene's one exposure), their numbers beneath, then their error maps: the LRSM paper's Fig. 7."""
+    rows = [r for rs in mats.values() for r in rs]
+    out = ['<h2 id="gallery">Gallery: each technique at a common cost</h2>',
+           "<p>Per component and scene, the reference and each technique's setting whose time is nearest "
+           "the group's median time, at the scene's one exposure; their error maps beneath (FLIP maps "
+           "share one scale, 0–1; an RMS error map is scaled to its own 99th percentile).</p>"]
+    if not os.path.isdir(os.path.join(results, "images")):
+        out.append(f"<p><b>This folder holds no images</b> ({esc(os.path.basename(os.path.abspath(results)))}/images/"
+                   "is written by a run, not committed): each cell names the file it would show.</p>")
+    for e in heads:
+        grp = [r for r in rows if answers.group_key(r) == e["key"]]
+        cells = gallery_cells(results, grp)
+        key = e["key"]
+        out.append(f'<section class="gallery" id="{esc(e["anchor"])}"><h3>{esc(key[0])}, {esc(key[1])} '
+                   f'{esc(size_text(key))}</h3><table class="gallery"><tr>')
+        out += [f'<th>{esc(c[0])}</th>' for c in cells]
+        out.append("</tr><tr>")
+        out += [f'<td>{media_html(c[2], page_dir, c[0], results)}</td>' for c in cells]
+        out.append("</tr><tr>")
+        out += [f'<td class="nums">{esc(c[1])}' + (f'<details class="more"><summary>settings</summary>'
+                f'<div class="params">{esc(c[5])}</div></details>' if c[5] else "") + '</td>' for c in cells]
+        out.append("</tr><tr>")
+        out += [f'<td>{media_html(c[3], page_dir, "error map", results) if c[3] else ""}'
+                f'<div class="scale">{esc(c[4])}</div></td>' for c in cells]
+        out.append("</tr></table></section>")
+    return "\n".join(out)
 
 
 def matrix_html(results, page_dir, name, rows, plots, resolution):
@@ -236,25 +554,29 @@ def write_html(results, claims, mats, plots):
     os.makedirs(page_dir, exist_ok=True)
     shutil.copyfile(os.path.join(HERE, "report_style.css"), os.path.join(page_dir, "style.css"))
     revs = sorted({r.get("git_revision", "") for rows in mats.values() for r in rows if r.get("git_revision")})
+    every, heads = answer_rows(results, mats)
     parts = ['<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">',
              '<title>gibench reproduction report</title><link rel="stylesheet" href="style.css"></head><body>',
              '<h1>gibench reproduction report</h1>',
-             f'<p>Generated from the CSVs in <code>{esc(os.path.basename(os.path.abspath(results)))}/</code>: '
+             answer_html(results, page_dir, heads, lone_components(mats, heads), claims),
+             f'<p class="source">Generated from the CSVs in <code>{esc(os.path.basename(os.path.abspath(results)))}/</code>: '
              f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
              f'{esc(", ".join(revs) or "unknown")}.</p>',
              '<pre id="image-check"></pre>',
-             '<nav><a href="#claims-h">Claims</a> · <a href="#reading">Reading the numbers</a> · ' + " · ".join(
-                 f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
+             '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · <a href="#gallery">Gallery</a> · '
+             '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every group</a> · '
+             + " · ".join(f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
              f'<h2 id="claims-h">Claims ({len(claims)}: {esc(summary_counts(claims))})</h2>',
              '<p>A verdict is <i>not measurable here</i> where the paper measured absolute times on its '
              'GPU (ours ran on the renderer shown), where our run did not run or ran out of memory, or '
              'where our settings differ from the paper\'s (quick profile).</p>',
-             f'<label><input type="checkbox" onchange="toggleNa(this)"> show the '
-             f'{sum(1 for c in claims if c["verdict"] == "not measurable here")} claims not measurable here '
-             f'(their rows are in the table, hidden until asked)</label>',
              claims_html(claims),
+             gallery_html(results, page_dir, mats, heads),
              '<h2 id="reading">How to read the numbers</h2><ul>'
              + "".join(f"<li>{esc(x)}</li>" for x in reading_guide(results, mats)) + '</ul>',
+             '<h2 id="all-answers">The answer for every group: each size, camera, instant and reference setting</h2>',
+             '<details class="all-answers"><summary>every group two or more techniques estimate '
+             f'({len(every)})</summary>' + answer_table_html(every, page_dir, results, "answers-all") + '</details>',
              '<h2>Matrices</h2>',
              '<p>Each row: reference, technique and false-colour error map side by side; the RMSE with the '
              'reference\'s own noise beside it (an error near that noise cannot rank techniques).</p>']
@@ -273,46 +595,124 @@ def md(text):
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
-def write_md(results, claims, mats, plots):
-    lines = ["# gibench reproduction report", "",
-             "Generated from the CSVs in this folder; the page with every row's images is "
-             "[report/index.html](report/index.html).", "",
-             f"## Claims ({len(claims)}: {summary_counts(claims)})", ""]
-    paper = None
+def answer_table_md(entries, cls="answers"):
+    lines = ["| component | scene | size | least error for its time: the Pareto front, cheapest first (ms, "
+             "relative error) | for its memory (MB, relative error) | worse than black | |",
+             "|---|---|---|---|---|---|---|"]
+    many = len({e["key"][5] for e in entries}) > 1
+    for e in entries:
+        key, t = e["key"], e["time"]
+        size = (size_text(key) + (f" on {key[5]}" if many else "")
+                + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else ""))
+        links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
+        beaten = beaten_list(t)
+        lines.append("| " + " | ".join(md(x) for x in (key[0], key[1], size,
+                                                          front_plain(t) + (f" (beaten: {beaten})" if beaten else ""),
+                                                          front_plain(e["memory"], memory=True), black_list(t),
+                                                          " ".join(links))) + " |")
+    return lines
+
+
+def claims_md(claims, with_renderer=True):
+    lines, paper = [], None
     for c in claims:
         if c["paper"] != paper:
             paper = c["paper"]
-            lines += ["", f"### {paper}", "", "| claim | paper | ours | renderer | verdict | reason |",
+            lines += ["", f"#### {paper}", "", "| claim | paper | ours | renderer | verdict | reason |",
                       "|---|---|---|---|---|---|"]
         lines.append("| " + " | ".join(md(c[k]) for k in ("claim", "paper_value", "our_value", "renderer",
                                                               "verdict", "reason")) + " |")
-    lines += ["", "## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
+    return lines
+
+
+def gallery_md(results, mats, heads):
+    rows = [r for rs in mats.values() for r in rs]
+    lines = ["## Gallery: each technique at a common cost", "",
+             "Per component and scene, the reference and each technique's setting whose time is nearest the "
+             "group's median time, at the scene's one exposure, error maps beneath (FLIP maps share one scale, "
+             "0–1; an RMS error map is scaled to its own 99th percentile). An image this folder does not hold "
+             "reads *not written here*.", ""]
+
+    def cell(path, what):
+        if path and os.path.exists(path):
+            return f"![{what}]({rel(path, results)})"
+        return f"*{what}: not written here*"
+    for e in heads:
+        cells = gallery_cells(results, [r for r in rows if answers.group_key(r) == e["key"]])
+        lines += [f"### {e['key'][0]}, {e['key'][1]} {size_text(e['key'])}", "",
+                  "| " + " | ".join(md(c[0]) for c in cells) + " |", "|" + "---|" * len(cells),
+                  "| " + " | ".join(cell(c[2], c[0]) for c in cells) + " |",
+                  "| " + " | ".join(md(c[1]) for c in cells) + " |",
+                  "| " + " | ".join(cell(c[3], "error map") if c[3] else "" for c in cells) + " |", ""]
+    return lines
+
+
+def first_screen_md(results, mats, claims, heads):
+    lines = ["# gibench reproduction report", "", "## Which technique for which effect", "",
+             " ".join(renderer_sentences(heads)) + " A step → has clearly less error than the one before "
+             "it; ≈ is a tie (error intervals overlap): either will do.", ""]
+    lines += answer_table_md(heads)
+    lone = lone_components(mats, heads)
+    if lone:
+        lines += ["", "Estimated by one technique only, so no comparison: " + "; ".join(
+            f"{c} ({', '.join(t)})" for c, t in sorted(lone.items())) + "."]
+    lines += ["", "## Findings per paper", ""]
+    for f in answers.findings(claims):
+        title, sentences = findings_text(f)
+        lines += [f"**{title}**. " + " ".join(sentences), ""]
+    return lines
+
+
+def write_md(results, claims, mats, plots):
+    every, heads = answer_rows(results, mats)
+    mi, absolute = split_claims(claims)
+    lines = first_screen_md(results, mats, claims, heads)
+    lines += ["Generated from the CSVs in this folder; the page with every row's images is "
+              "[report/index.html](report/index.html). Below: the claims, the gallery, how to read the "
+              "numbers, the answer for every group, every matrix, and at the end the papers' "
+              "absolute GPU times.", "",
+              f"## Claims ({len(claims)}: {summary_counts(claims)})", "",
+              f"### Claims that do not depend on the machine ({len(mi)}: {summary_counts(mi)})"]
+    lines += claims_md(mi)
+    lines += ["", f"The papers' {sum(len(v) for v in absolute.values())} absolute GPU times are at the end "
+              "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
+    lines += gallery_md(results, mats, heads)
+    lines += ["## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
+    lines += ["", "## The answer for every group: each size, camera, instant and reference setting", ""] + answer_table_md(every, "answers-all")
     lines += ["", "## Matrices", ""]
     resolution = time_resolution(results)
     for m, rows in mats.items():
-        rank = group_ranks(rows, resolution)
-        lines += [f"### {m}", ""]
-        lines += [f"![{p[:-4]}](plots/{p})" for p in plots[m] if "_memory" not in p and "_sweep_" not in p]
-        lines += ["", "| scene | technique | component | size | params | GPU ms (IQR) | first frame ms "
-                  "| RMSE (ref noise) | RMSE without noise [95%] | / black | rank: error, time | rel RMSE "
-                  "| SSIM | status | images |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-        for r in rows:
-            rk = rank.get(id(r), ("", ""))
-            name = image_name(r)
-            imgs = ""
-            if os.path.exists(os.path.join(results, "images", m, name + ".png")):
-                imgs = f"[image](images/{m}/{name}.png) [error](images/{m}/{name}_error.png)"
-            lines.append("| " + " | ".join(md(x) for x in (
-                r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']}", r["params"],
-                time_text(r), fmt(r.get("first_frame_ms")),
-                f"{fmt(r.get('rmse'))} ({fmt(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
-                f"{rk[0]}, {rk[1]}" if rk[0] or rk[1] else "",
-                fmt(r.get("rel_rmse")), fmt(r.get("ssim")), r["status"], imgs)) + " |")
-        lines.append("")
+        lines += matrix_md(results, m, rows, plots[m], resolution)
+    lines += ["## The papers' absolute GPU times", ""]
+    for paper, cs in absolute.items():
+        lines += [f"### {paper}", "", why_not_comparable(cs), ""] + claims_md(cs)[3:] + [""]
     path = os.path.join(results, "REPORT.md")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return path
+
+
+def matrix_md(results, m, rows, plots, resolution):
+    rank = group_ranks(rows, resolution)
+    lines = [f"### {m}", ""]
+    lines += [f"![{p[:-4]}](plots/{p})" for p in plots if "_memory" not in p and "_sweep_" not in p]
+    lines += ["", "| scene | technique | component | size | params | GPU ms (IQR) | first frame ms "
+              "| RMSE (ref noise) | RMSE without noise [95%] | / black | rank: error, time | rel RMSE "
+              "| SSIM | status | images |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        rk = rank.get(id(r), ("", ""))
+        name = image_name(r)
+        imgs = ""
+        if os.path.exists(os.path.join(results, "images", m, name + ".png")):
+            imgs = f"[image](images/{m}/{name}.png) [error](images/{m}/{name}_error.png)"
+        lines.append("| " + " | ".join(md(x) for x in (
+            r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']}", r["params"],
+            time_text(r), fmt(r.get("first_frame_ms")),
+            f"{fmt(r.get('rmse'))} ({fmt(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
+            f"{rk[0]}, {rk[1]}" if rk[0] or rk[1] else "",
+            fmt(r.get("rel_rmse")), fmt(r.get("ssim")), r["status"], imgs)) + " |")
+    lines.append("")
+    return lines
 
 
 def reading_guide(results, mats):

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """harness/answers.py on constructed rows with known answers: the Pareto set over error and time,
 ties at the machine's time resolution and where error intervals overlap, rows worse than a black
-image set apart, memory ties only on equal bytes, and groups split by renderer and image size."""
+image set apart, memory ties only on equal bytes, and groups split by renderer and image size; the
+front's technique segments, the headline group per component and scene, each technique's row at a
+common cost (the gallery's), and the claims: kind (absolute GPU time or not) and findings per paper."""
 import os
 import sys
 
@@ -68,8 +70,62 @@ check(names(a) == ["x", "y"], f"duplicate settings counted once ({names(a)})")
 rows = [row("a", 1, 0.5), row("b", 2, 0.4), row("a", 1, 0.5, renderer="NVIDIA H100"),
         row("c", 1, 0.5, width="128", height="128")]
 keys = [k for k, _, _ in answers.answers(rows)]
-check(keys == [("indirect", "cornell", "0", "64", "64", "llvmpipe")],
+check(keys == [("indirect", "cornell", "0", "64", "64", "llvmpipe", "0", "")],
       f"only the group two techniques estimate ({keys})")
+
+# Segments: the front cut where the technique changes.
+a = answers.answer([row("a", 1, 0.9), row("a", 2, 0.7, params="x=2"), row("b", 5, 0.3), row("a", 9, 0.1, params="x=3")])
+segs = [(t, len(c)) for t, c in answers.segments(a["front"])]
+check(segs == [("a", 2), ("b", 1), ("a", 1)], f"segments cut where the technique changes ({segs})")
+
+# Headline: per component and scene, the group with the most techniques, the other sizes named.
+rows = [row("a", 1, 0.5), row("b", 2, 0.4), row("a", 1, 0.5, width="128", height="128"),
+        row("b", 2, 0.4, width="128", height="128"), row("c", 3, 0.3, width="128", height="128")]
+heads = answers.headline(answers.answers(rows))
+check(len(heads) == 1 and heads[0][0][3] == "128" and [k[3] for k in heads[0][3]] == ["64"],
+      f"headline: the 128 group (3 techniques), 64 named as another size ({[(h[0], h[3]) for h in heads]})")
+
+# A common cost: each technique's row nearest the group's median time (log scale).
+picked = answers.at_common_cost([row("a", 1, 0.5), row("a", 10, 0.4, params="x=2"), row("b", 8, 0.3),
+                                 row("b", 100, 0.2, params="y=2")])
+check([(r["technique"], r["gpu_ms_median"]) for r in picked] == [("b", "8"), ("a", "10")],
+      f"at a common cost: a at 10 ms and b at 8 ms ({[(r['technique'], r['gpu_ms_median']) for r in picked]})")
+
+# Claims: `kind` where present; else absolute times from the reason; findings count and name.
+def claim(verdict, reason, kind=None, claim="Table 1 x: frame time", paper="P"):
+    c = {"paper": paper, "source": "s.csv", "claim": claim, "paper_value": "1 ms", "our_value": "2 ms",
+         "renderer": "llvmpipe", "cores": "2", "verdict": verdict, "reason": reason}
+    if kind:
+        c["kind"] = kind
+    return c
+
+
+check(answers.claim_kind(claim("not measurable here", "absolute time on the paper's GPU")) == "absolute_time",
+      "absolute time from the reason")
+check(answers.claim_kind(claim("not measurable here", "our run ended out_of_memory", claim="Table 2 memory"))
+      == "machine_independent", "out of memory is not an absolute time")
+check(answers.claim_kind(claim("not measurable here", "absolute", kind="machine_independent"))
+      == "machine_independent", "the kind column wins")
+check(answers.claim_kind(claim("not reproduced", "memory differs", claim="Table 2 memory (a)"))
+      == "machine_independent", "a verdict is machine independent")
+cl = [claim("reproduced", "ok", claim="order (a)"), claim("not reproduced", "differs; more", claim="leak (x=1)"),
+      claim("not reproduced", "differs; more", claim="leak (x=2)"),
+      claim("not measurable here", "absolute time on the paper's GPU"),
+      claim("not measurable here", "not run here: no such view", claim="Table 1 y: frame time")]
+f = answers.findings(cl)[0]
+check(f["counts"] == {"reproduced": 1, "not reproduced": 2, "not measurable here": 2},
+      f"findings count the verdicts ({f['counts']})")
+check([(x[0], x[1]) for x in f["not_reproduced"]] == [("leak", 2)], f"one claim at two settings named once ({f['not_reproduced']})")
+check(sorted(x[0] for x in f["unmeasured"]) == ["absolute GPU times", "not run here"],
+      f"what would measure the rest ({f['unmeasured']})")
+
+# Ambient occlusion at two dmax estimates two images (two references): two groups, not one; so do
+# two instants of an animation.
+rows = [row("a", 1, 0.5, component="ao", params="dmax=1"), row("b", 2, 0.4, component="ao", params="dmax=1"),
+        row("a", 1, 0.5, component="ao", params="dmax=2"), row("b", 2, 0.4, component="ao", params="dmax=2"),
+        row("a", 1, 0.5, time="0.5"), row("b", 2, 0.4, time="0.5")]
+keys = sorted(k[6:] for k, _, _ in answers.answers(rows))
+check(keys == [("0", "dmax=1"), ("0", "dmax=2"), ("0.5", "")], f"groups split by reference parameters and time ({keys})")
 
 print("FAIL" if failures else "PASS", f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)

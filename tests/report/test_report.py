@@ -6,9 +6,15 @@ Chromium and checks
 - every <img> loaded (the page's own ?check script writes the count into <pre id="image-check">,
   read back with --dump-dom; --virtual-time-budget lets the loads finish first);
 - every row of the tiny matrix shows its reference, its image and its error map;
-- the claims table has one row per claims.csv row;
+- the answer table comes first and has one row per component and scene that two techniques estimate
+  in the CSVs (counted here from the CSVs, not by harness/answers.py), in the HTML and in REPORT.md;
+- the gallery: every cell is an image that loaded or, where its file is absent, the labelled
+  placeholder (one image file removed must turn into a placeholder, not a broken image);
+- the claims are grouped: machine-independent ones first, then the papers' absolute GPU times in
+  collapsed sections (the HTML) and a section at the end (REPORT.md), every claims.csv row once;
 - the check itself catches a broken image (a copy of the page with one missing file must say so);
-and saves a screenshot (printed path). Exit 77 (ctest SKIP) only where no Chromium is installed.
+and saves screenshots of the first screen and of an opened matrix (printed paths). Exit 77 (ctest
+SKIP) only where no Chromium is installed.
 
 usage: test_report.py --gibench PATH --work DIR
 """
@@ -48,12 +54,109 @@ def browser(exe, *args):
 
 
 def image_check(exe, page):
-    """(images, loaded, broken, broken srcs) as the page's ?check script reports them."""
+    """(images, loaded, broken, broken srcs, placeholders) as the page's ?check script reports them."""
     dom = browser(exe, "--dump-dom", "file://" + page + "?check")
-    m = re.search(r'<pre id="image-check">images (\d+) loaded (\d+) broken (\d+)\n?([^<]*)</pre>', dom)
+    m = re.search(r'<pre id="image-check">images (\d+) loaded (\d+) broken (\d+) placeholders (\d+)'
+                  r'\n?([^<]*)</pre>', dom)
     if not m:
         return None, dom
-    return (int(m.group(1)), int(m.group(2)), int(m.group(3)), m.group(4).strip()), dom
+    return (int(m.group(1)), int(m.group(2)), int(m.group(3)), m.group(5).strip(), int(m.group(4))), dom
+
+
+def expected_answers(results):
+    """{(component, scene)} that two or more techniques estimate in the runs tables: rows ok, with a
+    finite error, against a reference that is not black (what the answer table must show)."""
+    techs, black = {}, {}
+    for name in os.listdir(results):
+        if not name.endswith(".csv") or name.endswith("_passes.csv"):
+            continue
+        with open(os.path.join(results, name), newline="") as f:
+            rows = list(csv.DictReader(f))
+        if not rows or "component" not in rows[0] or "black_rmse" not in rows[0]:
+            continue
+        for r in rows:
+            k = (r["component"], r["scene"])
+            try:
+                ok = r["status"] == "ok" and float(r["rmse"]) == float(r["rmse"])
+            except ValueError:
+                ok = False
+            if ok:
+                techs.setdefault(k, set()).add(r["technique"])
+                black.setdefault(k, []).append(float(r["black_rmse"] or "nan") == 0)
+    return {k for k, t in techs.items() if len(t) >= 2 and not all(black[k])}
+
+
+def check_answer(src, md, results):
+    """The answer table: first on the page and in REPORT.md, a row per expected (component, scene)."""
+    want = expected_answers(results)
+    table = re.search(r'<table class="answers">(.*?)</table>', src, re.S)
+    got = set(re.findall(r'<tr class="answer[^"]*" data-component="([^"]*)" data-scene="([^"]*)"',
+                         table.group(1) if table else ""))
+    check(bool(want) and got == want, f"answer table: a row per component and scene two techniques "
+          f"estimate ({sorted(got)} for {sorted(want)})")
+    check(table is not None and src.index('class="answers"') < src.index('id="claims-h"')
+          and src.index('id="findings"') < src.index('id="claims-h"'),
+          "the answer and the findings per paper come before everything else on the page")
+    lines = md.splitlines()
+    heads = [l for l in lines if l.startswith("## ")]
+    check(heads[:2] == ["## Which technique for which effect", "## Findings per paper"],
+          f"REPORT.md opens with the answer, then the findings ({heads[:2]})")
+    rows = [l for l in lines[:lines.index("## Findings per paper")] if l.startswith("| ") and " --- " not in l]
+    md_keys = {tuple(c.strip() for c in l.split("|")[1:3]) for l in rows[1:]}
+    check(md_keys == want, f"REPORT.md's answer table: a row per expected group ({sorted(md_keys)})")
+
+
+def check_claims(src, md, claims):
+    """Machine-independent claims first, the absolute GPU times after them, collapsed; each once."""
+    mi = re.search(r'<table id="claims">(.*?)</table>', src, re.S)
+    absolute = re.findall(r'<details class="absolute"( open)?>(.*?)</details>', src, re.S)
+    in_mi = len(re.findall(r'<tr class="claim ', mi.group(1))) if mi else 0
+    in_abs = sum(len(re.findall(r'<tr class="claim ', body)) for _, body in absolute)
+    check(mi is not None and in_mi + in_abs == len(claims) and in_abs > 0,
+          f"claims grouped: {in_mi} machine-independent + {in_abs} absolute times = {len(claims)} rows")
+    check(all(not opened for opened, _ in absolute), "the absolute GPU times are collapsed")
+    check(mi is not None and absolute and src.index('<table id="claims">') < src.index('<details class="absolute"'),
+          "machine-independent claims come first")
+    heads = [l for l in md.splitlines() if l.startswith("## ")]
+    check(heads[-1] == "## The papers' absolute GPU times", f"REPORT.md ends with the absolute times ({heads[-1]})")
+
+
+def gallery_cells(src):
+    """Per gallery cell: ('img', src) or ('placeholder', the missing file)."""
+    out = []
+    for sec in re.findall(r'<section class="gallery".*?</section>', src, re.S):
+        for cell in re.findall(r"<td>(.*?)</td>", sec, re.S):
+            img = re.search(r'<img src="([^"]*)"', cell)
+            hold = re.search(r'<div class="placeholder" data-missing="([^"]*)"', cell)
+            if img or hold:
+                out.append(("img", img.group(1)) if img else ("placeholder", hold.group(1)))
+    return out
+
+
+def check_placeholder(exe, results, page, cells):
+    """A gallery image whose file is absent becomes the labelled placeholder, not a broken image:
+    one technique image moved away, the report written again, then put back."""
+    page_dir = os.path.dirname(page)
+    victim = next((os.path.normpath(os.path.join(page_dir, src)) for _, src in cells[1:2]), None)
+    if not victim or not os.path.exists(victim):
+        check(False, f"a gallery image to remove ({victim})")
+        return
+    aside = victim + ".aside"
+    os.rename(victim, aside)
+    try:
+        subprocess.run([sys.executable, os.path.join(ROOT, "harness", "report.py"), results], check=True,
+                       stdout=subprocess.DEVNULL)
+        with open(page) as f:
+            holders = [m for k, m in gallery_cells(f.read()) if k == "placeholder"]
+        got, _ = image_check(exe, page)
+    finally:
+        os.rename(aside, victim)
+        subprocess.run([sys.executable, os.path.join(ROOT, "harness", "report.py"), results], check=True,
+                       stdout=subprocess.DEVNULL)
+    want = os.path.relpath(victim, results)
+    check(holders == [want], f"an absent gallery image is a placeholder naming its file ({holders})")
+    check(got is not None and got[2] == 0 and got[4] >= 1,
+          f"the placeholder is no broken image (broken {got and got[2]}, placeholders {got and got[4]})")
 
 
 def main():
@@ -90,7 +193,7 @@ def main():
 
     with open(os.path.join(results, "report_tiny.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
-    check(len(rows) == 3 and all(r["status"] == "ok" for r in rows), "the tiny matrix ran: 3 rows ok")
+    check(len(rows) == 4 and all(r["status"] == "ok" for r in rows), "the tiny matrix ran: 4 rows ok")
     figures = re.findall(r'<div class="row[^"]*">(.*?)</div></div>', src, re.S)
     check(len(figures) == len(rows), f"one row block per CSV row ({len(figures)} for {len(rows)})")
     for r, block in zip(rows, figures):
@@ -104,21 +207,28 @@ def main():
     n_img = len(re.findall(r"<img ", src))
     got, dom = image_check(exe, page)
     check(got is not None, "the page's image check ran in Chromium")
+    with open(os.path.join(results, "claims.csv"), newline="") as f:
+        claims = list(csv.DictReader(f))
+    with open(os.path.join(results, "REPORT.md")) as f:
+        md = f.read()
     if got:
-        images, loaded, broken, which = got
-        check(images == n_img and images >= 3 * 3 + 1,
-              f"Chromium saw every image of the page ({images} of {n_img}; 3 rows x 3 and a plot at least)")
+        images, loaded, broken, which, holders = got
+        check(images == n_img and images >= 4 * 3 + 1,
+              f"Chromium saw every image of the page ({images} of {n_img}; 4 rows x 3 and a plot at least)")
         check(loaded == images and broken == 0, f"every image loaded ({loaded} of {images}) {which}")
-        with open(os.path.join(results, "claims.csv"), newline="") as f:
-            n_claims = len(list(csv.DictReader(f)))
-        with open(os.path.join(results, "claims.csv"), newline="") as f:
-            same = [c for c in csv.DictReader(f) if c["renderer"] == rows[0]["renderer"]]
+        same = [c for c in claims if c["renderer"] == rows[0]["renderer"]]
         if same:  # the tiny run recorded this renderer's machine in results/history.sqlite
             check(all(c["cores"].isdigit() for c in same),
                   f"claims on {rows[0]['renderer']} name the cores the history recorded ({same[0]['cores']})")
         in_dom = len(re.findall(r'<tr class="claim ', dom))
-        check(n_claims > 0 and in_dom == n_claims,
-              f"claims table: {in_dom} rows for {n_claims} rows of claims.csv")
+        check(len(claims) > 0 and in_dom == len(claims),
+              f"claims tables: {in_dom} rows for {len(claims)} rows of claims.csv")
+    check_answer(src, md, results)
+    check_claims(src, md, claims)
+    cells = gallery_cells(src)
+    check(len(cells) == 3 + 2 and all(k == "img" for k, _ in cells),
+          f"gallery: the reference and both ao techniques, their error maps beneath, every file present "
+          f"({len(cells)} cells)")
 
     # The check must be able to fail: the same page with one image whose file is absent.
     bad = os.path.join(results, "report", "broken_check.html")
@@ -130,10 +240,15 @@ def main():
           f"the image check reports a missing image as broken ({got and got[:3]})")
     os.remove(bad)
 
+    check_placeholder(exe, results, page, cells)
+
+    first = os.path.join(work, "report_first_screen.png")
+    browser(exe, "--window-size=1280,900", "--screenshot=" + first, "file://" + page)
     shot = os.path.join(work, "report_screenshot.png")
     browser(exe, "--window-size=1280,2600", "--screenshot=" + shot, "file://" + page + "?open=report_tiny")
-    with open(shot, "rb") as f:
-        check(f.read(8) == b"\x89PNG\r\n\x1a\n", f"screenshot saved: {shot}")
+    for path in (first, shot):
+        with open(path, "rb") as f:
+            check(f.read(8) == b"\x89PNG\r\n\x1a\n", f"screenshot saved: {path}")
     print(f"{len(failures)} failed" if failures else "all passed")
     return 1 if failures else 0
 
