@@ -188,7 +188,8 @@ static int ref_random_log(const ref_world *w, ref_raylog *log, gib_error *err)
     log->rays = malloc(log->n * sizeof *log->rays);
     log->occl = calloc(log->n, 1);
     if (!log->rays || !log->occl)
-        return gib_fail(err, "bench: out of memory for %zu random rays", log->n);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "bench: out of memory for %zu random rays", log->n);
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t i = 0; i < gs->vertex_count; i++)
         for (int k = 0; k < 3; k++) {
@@ -221,7 +222,8 @@ static int ref_diffuse_log(const ref_world *w, const gib_ref_params *p, ref_rayl
     log->rays = malloc(log->n * sizeof *log->rays);
     log->occl = calloc(log->n, 1);
     if (!log->rays || !log->occl)
-        return gib_fail(err, "bench: out of memory for %zu diffuse rays", log->n);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "bench: out of memory for %zu diffuse rays", log->n);
     ref_pcg32 rng;
     ref_pcg32_seed(&rng, 24680u, 1357u);
     struct RTCIntersectContext ctx;
@@ -265,6 +267,187 @@ static double ref_replay_run(const ref_world *w, const ref_raylog *log, int api,
     return ref_now() - t0;
 }
 
+static const struct {
+    int api;
+    const char *name;
+} ref_apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
+                {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
+enum { NAPI = sizeof ref_apis / sizeof ref_apis[0] };
+/* The measures in the CSV's order; the lean tracer's rows last, where it applies
+ * (ref_lean_applies). */
+enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LAPI, NM = M_LAPI + NAPI };
+
+/* What the benchmark's steps share: the world, the ray logs and every repeat's times. */
+typedef struct ref_bench_run {
+    const gib_scene *scene;
+    const gib_ref_params *p;
+    ref_world w;
+    int threads, lean, reps;
+    ref_raylog rnd, dif, rec, lrec; /* random, diffuse, the path tracer's and the lean tracer's */
+    double t[NM][GIB_REF_BENCH_MAX_REPEATS];
+    double best_replay[GIB_REF_BENCH_MAX_REPEATS], best_lean[GIB_REF_BENCH_MAX_REPEATS];
+    long long nrays[NM];
+    FILE *log;
+    gib_error *err;
+} ref_bench_run;
+
+/* The ray logs: the path tracer's rays, recorded single-threaded at a resolution that gives ~3M
+ * rays, the lean tracer's at the same size, the random and the diffuse rays. */
+static int ref_bench_record(ref_bench_run *b)
+{
+    const gib_ref_params *p = b->p;
+    gib_image img = {0};
+    gib_ref_stats st;
+    gib_ref_params q = *p;
+    q.quiet = 1;
+    q.threads = 1;
+    if (ref_render_world(&b->w, b->scene, &q, &img, NULL, &st, b->err) < 0) /* also warms caches */
+        return -1;
+    gib_image_free(&img);
+    double scale = sqrt(3e6 / fmax((double)st.rays, 1.0));
+    q.width = scale < 1.0 ? (int)fmax(8.0, p->width * scale) : p->width;
+    q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;
+    b->w.log = &b->rec;
+    int ok = ref_render_world(&b->w, b->scene, &q, &img, NULL, NULL, b->err);
+    gib_image_free(&img);
+    long long lean_rays = 0;
+    b->w.log = &b->lrec; /* the lean tracer's rays, at the same size */
+    double lean_t = ok == 0 && b->lean ? ref_lean_render(&b->w, &q, 1, &lean_rays) : 0.0;
+    b->w.log = NULL;
+    if (ok == 0 && b->lean && (lean_t < 0.0 || lean_rays == 0 || b->lrec.n != (size_t)lean_rays))
+        return gib_fail(b->err, "bench: the lean tracer %s (%zu rays logged of %lld)",
+                        lean_t < 0.0 ? "ran out of memory"
+                                     : "cast no ray, or its ray log is incomplete",
+                        b->lrec.n, lean_rays);
+    if (ok < 0 || ref_random_log(&b->w, &b->rnd, b->err) < 0 ||
+        ref_diffuse_log(&b->w, p, &b->dif, b->err) < 0)
+        return -1;
+    return 0;
+}
+
+/* Repeat rep's path tracer rows: the render, and the same render again with the time inside
+ * Embree's calls counted (not in the path_tracer row: the clock reads cost ~2% of it): Embree's
+ * own speed inside the path tracer, whose paired ratio to the replay's shows how much the
+ * renderer's memory traffic slows Embree down. CPU seconds over threads, the replay's wall
+ * time's equivalent. */
+static int ref_bench_path_tracer(ref_bench_run *b, int rep, gib_ref_stats *st)
+{
+    gib_image img = {0};
+    gib_ref_params q = *b->p;
+    q.quiet = 1;
+    if (ref_render_world(&b->w, b->scene, &q, &img, NULL, st, b->err) < 0)
+        return -1;
+    gib_image_free(&img);
+    b->t[M_PT][rep] = st->seconds;
+    b->nrays[M_PT] = st->rays;
+    b->w.time_embree = 1;
+    gib_ref_stats ste;
+    int te = ref_render_world(&b->w, b->scene, &q, &img, NULL, &ste, b->err);
+    b->w.time_embree = 0;
+    if (te < 0)
+        return -1;
+    gib_image_free(&img);
+    if (!(ste.embree_cpu_seconds > 0.0) || ste.threads < 1)
+        return gib_fail(b->err, "bench: the time inside Embree's calls could not be measured "
+                                "(%.3g s on %d threads; calls cheaper than the clock reads?)",
+                        ste.embree_cpu_seconds, ste.threads);
+    b->t[M_PTE][rep] = ste.embree_cpu_seconds / ste.threads; /* the threads it really ran */
+    b->nrays[M_PTE] = ste.rays;
+    return 0;
+}
+
+/* One repeat: every measure once. */
+static int ref_bench_repeat(ref_bench_run *b, int rep)
+{
+    gib_ref_stats st;
+    if (ref_bench_path_tracer(b, rep, &st) < 0)
+        return -1;
+    b->t[M_RND][rep] = ref_replay_run(&b->w, &b->rnd, 1, b->threads);
+    b->t[M_DIF][rep] = ref_replay_run(&b->w, &b->dif, 1, b->threads);
+    double best = INFINITY;
+    for (int i = 0; i < NAPI; i++) {
+        b->t[M_API + i][rep] = ref_replay_run(&b->w, &b->rec, ref_apis[i].api, b->threads);
+        best = fmin(best, b->t[M_API + i][rep]);
+    }
+    b->best_replay[rep] = best;
+    b->best_lean[rep] = INFINITY;
+    if (b->lean) {
+        b->t[M_LEAN][rep] = ref_lean_render(&b->w, b->p, b->threads, &b->nrays[M_LEAN]);
+        if (b->t[M_LEAN][rep] < 0.0)
+            return gib_fail(b->err, "bench: the lean tracer ran out of memory");
+        for (int i = 0; i < NAPI; i++) {
+            b->t[M_LAPI + i][rep] = ref_replay_run(&b->w, &b->lrec, ref_apis[i].api, b->threads);
+            b->best_lean[rep] = fmin(b->best_lean[rep], b->t[M_LAPI + i][rep]);
+        }
+    }
+    if (b->log) {
+        fprintf(b->log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
+                        "paired ratio %.3f",
+                rep + 1, st.seconds, best,
+                ((double)st.rays / st.seconds) / ((double)b->rec.n / best));
+        if (b->lean)
+            fprintf(b->log, "; lean tracer's %.4f",
+                    ((double)b->nrays[M_LEAN] / b->t[M_LEAN][rep]) /
+                        ((double)b->lrec.n / b->best_lean[rep]));
+        fputc('\n', b->log);
+    }
+    return 0;
+}
+
+/* Measure m's row: the best, median and worst time of the repeats, and the paired ratios. */
+static void ref_bench_row(const ref_bench_run *b, int m, gib_ref_bench_row *row)
+{
+    const char *measure = m == M_PT     ? "path_tracer"
+                          : m == M_PTE  ? "path_tracer_embree"
+                          : m == M_RND  ? "raw_random"
+                          : m == M_DIF  ? "raw_diffuse"
+                          : m == M_LEAN ? "lean_tracer"
+                          : m > M_LEAN  ? "lean_replay"
+                                        : "raw_replay";
+    const char *api = m <= M_DIF || m == M_LEAN ? "rtcIntersect1"
+                      : m > M_LEAN               ? ref_apis[m - M_LAPI].name
+                                                 : ref_apis[m - M_API].name;
+    int of_lean = m >= M_LEAN; /* paired with the fastest replay of the lean tracer's rays */
+    double sec[GIB_REF_BENCH_MAX_REPEATS], pair[GIB_REF_BENCH_MAX_REPEATS];
+    for (int rep = 0; rep < b->reps; rep++) {
+        sec[rep] = b->t[m][rep];
+        pair[rep] = ((double)b->nrays[m] / b->t[m][rep]) /
+                    ((double)(of_lean ? b->lrec.n : b->rec.n) /
+                     (of_lean ? b->best_lean : b->best_replay)[rep]);
+    }
+    double med, max, best = ref_sorted_stats(sec, b->reps, &med, &max);
+    ref_row(row, measure, api, b->nrays[m], best);
+    row->seconds_median = med, row->seconds_max = max;
+    row->paired_min = ref_sorted_stats(pair, b->reps, &row->paired_median, &row->paired_max);
+    row->repeats = b->reps;
+}
+
+/* After the world_build row: the ray logs, then `repeats` rounds, each running every measure
+ * once, interleaved: the machine may be shared and its speed drifts (on the 2-core virtual
+ * machine of the committed results, one run's repeats spread by +-10% while the ratio of two
+ * measures within a repeat moves less). Each row keeps the best time (the run least disturbed),
+ * the median and the worst, and the paired ratios: the row's rays/s over the fastest replay's in
+ * the same repeat. Returns the row count, or -1. */
+static int ref_bench_measure(ref_bench_run *b, gib_ref_bench_row *rows, int n, int max_rows)
+{
+    if (ref_bench_record(b) < 0)
+        return -1;
+    const int nm = b->lean ? NM : M_LEAN;
+    b->nrays[M_RND] = (long long)b->rnd.n;
+    b->nrays[M_DIF] = (long long)b->dif.n;
+    for (int i = 0; i < NAPI; i++) {
+        b->nrays[M_API + i] = (long long)b->rec.n;
+        b->nrays[M_LAPI + i] = (long long)b->lrec.n;
+    }
+    b->nrays[M_LEAN] = 0;
+    for (int rep = 0; rep < b->reps; rep++)
+        if (ref_bench_repeat(b, rep) < 0)
+            return -1;
+    for (int m = 0; m < nm && n < max_rows; m++)
+        ref_bench_row(b, m, &rows[n++]);
+    return n;
+}
+
 int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int repeats, FILE *log,
                         gib_ref_bench_row *rows, int max_rows, gib_error *err)
 {
@@ -275,173 +458,32 @@ int gib_reference_bench(const gib_scene *scene, const gib_ref_params *p, int rep
     if (repeats > GIB_REF_BENCH_MAX_REPEATS)
         return gib_fail(err, "bench: at most %d repeats, got %d", GIB_REF_BENCH_MAX_REPEATS,
                         repeats);
-    int threads = p->threads > 0 ? p->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
-    threads = threads < 1 ? 1 : threads;
-    ref_world w;
+    ref_bench_run run, *b = &run;
+    memset(b, 0, sizeof *b);
+    b->scene = scene;
+    b->p = p;
+    b->log = log;
+    b->err = err;
+    b->threads = p->threads > 0 ? p->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    b->threads = b->threads < 1 ? 1 : b->threads;
+    b->lean = ref_lean_applies(scene, p->component); /* `full`'s kind of paths */
+    b->reps = repeats < 1 ? 1 : repeats;
     double t0 = ref_now();
-    if (ref_world_build(&w, scene, err) < 0)
+    if (ref_world_build(&b->w, scene, err) < 0)
         return gib_error_prefix(err, "bench");
     double build = ref_now() - t0;
-    int n = 0, rc = -1;
-    ref_raylog rnd = {0}, dif = {0}, rec = {0}, lrec = {0};
-    gib_image img = {0};
-    gib_ref_stats st;
-    if (max_rows < 1)
-        goto done;
-    if (n < max_rows) {
-        ref_row(&rows[n], "world_build", "rtcCommitScene", 0, build);
-        rows[n].repeats = 1;
-        rows[n].seconds_median = rows[n].seconds_max = build;
-        n++;
+    int rc = -1;
+    if (max_rows >= 1) {
+        ref_row(&rows[0], "world_build", "rtcCommitScene", 0, build);
+        rows[0].repeats = 1;
+        rows[0].seconds_median = rows[0].seconds_max = build;
+        rc = ref_bench_measure(b, rows, 1, max_rows);
     }
-
-    /* The path tracer's rays, recorded single-threaded at a resolution that gives ~3M rays. */
-    gib_ref_params q = *p;
-    q.quiet = 1;
-    q.threads = 1;
-    if (ref_render_world(&w, scene, &q, &img, NULL, &st, err) < 0) /* also warms caches */
-        goto done;
-    gib_image_free(&img);
-    double scale = sqrt(3e6 / fmax((double)st.rays, 1.0));
-    q.width = scale < 1.0 ? (int)fmax(8.0, p->width * scale) : p->width;
-    q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;
-    w.log = &rec;
-    int ok = ref_render_world(&w, scene, &q, &img, NULL, NULL, err);
-    gib_image_free(&img);
-    const int lean = ref_lean_applies(scene, p->component); /* `full`'s kind of paths */
-    long long lean_rays = 0;
-    w.log = &lrec; /* the lean tracer's rays, at the same size */
-    double lean_t = ok == 0 && lean ? ref_lean_render(&w, &q, 1, &lean_rays) : 0.0;
-    w.log = NULL;
-    if (ok == 0 && lean && (lean_t < 0.0 || lean_rays == 0 || lrec.n != (size_t)lean_rays)) {
-        gib_fail(err, "bench: the lean tracer %s (%zu rays logged of %lld)",
-                 lean_t < 0.0 ? "ran out of memory" : "cast no ray, or its ray log is incomplete",
-                 lrec.n, lean_rays);
-        goto done;
+    ref_raylog *logs[] = {&b->rnd, &b->dif, &b->rec, &b->lrec};
+    for (int i = 0; i < 4; i++) {
+        free(logs[i]->rays);
+        free(logs[i]->occl);
     }
-    if (ok < 0 || ref_random_log(&w, &rnd, err) < 0 || ref_diffuse_log(&w, p, &dif, err) < 0)
-        goto done;
-
-    /* `repeats` rounds, each running every measure once, interleaved: the machine may be shared
-     * and its speed drifts (on the 2-core virtual machine of the committed results, one run's
-     * repeats spread by +-10% while the ratio of two measures within a repeat moves less). Each
-     * row keeps the best time (the run least disturbed), the median and the worst, and the
-     * paired ratios: the row's rays/s over the fastest replay's in the same repeat. */
-    static const struct {
-        int api;
-        const char *name;
-    } apis[] = {{1, "rtcIntersect1"}, {0, "rtcIntersect1M"}, {4, "rtcIntersect4"},
-                {8, "rtcIntersect8"}, {16, "rtcIntersect16"}};
-    enum { NAPI = sizeof apis / sizeof apis[0] };
-    /* the CSV's order; the lean tracer's rows last, where it applies (ref_lean_applies) */
-    enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LAPI, NM = M_LAPI + NAPI };
-    const int nm = lean ? NM : M_LEAN;
-    const int reps = repeats < 1 ? 1 : repeats;
-    double t[NM][GIB_REF_BENCH_MAX_REPEATS], best_replay[GIB_REF_BENCH_MAX_REPEATS],
-        best_lean[GIB_REF_BENCH_MAX_REPEATS];
-    long long nrays[NM];
-    nrays[M_RND] = (long long)rnd.n;
-    nrays[M_DIF] = (long long)dif.n;
-    for (int i = 0; i < NAPI; i++) {
-        nrays[M_API + i] = (long long)rec.n;
-        nrays[M_LAPI + i] = (long long)lrec.n;
-    }
-    nrays[M_LEAN] = 0;
-    q = *p;
-    q.quiet = 1;
-    for (int rep = 0; rep < reps; rep++) {
-        if (ref_render_world(&w, scene, &q, &img, NULL, &st, err) < 0)
-            goto done;
-        gib_image_free(&img);
-        t[M_PT][rep] = st.seconds;
-        nrays[M_PT] = st.rays;
-        /* The same render again, with the time inside Embree's calls counted (not in the
-         * path_tracer row: the clock reads cost ~2% of it): Embree's own speed inside the path
-         * tracer, whose paired ratio to the replay's shows how much the renderer's memory traffic
-         * slows Embree down. CPU seconds over threads, the replay's wall time's equivalent. */
-        w.time_embree = 1;
-        gib_ref_stats ste;
-        int te = ref_render_world(&w, scene, &q, &img, NULL, &ste, err);
-        w.time_embree = 0;
-        if (te < 0)
-            goto done;
-        gib_image_free(&img);
-        if (!(ste.embree_cpu_seconds > 0.0) || ste.threads < 1) {
-            gib_fail(err, "bench: the time inside Embree's calls could not be measured (%.3g s "
-                          "on %d threads; calls cheaper than the clock reads?)",
-                     ste.embree_cpu_seconds, ste.threads);
-            goto done;
-        }
-        t[M_PTE][rep] = ste.embree_cpu_seconds / ste.threads; /* the threads it really ran */
-        nrays[M_PTE] = ste.rays;
-        t[M_RND][rep] = ref_replay_run(&w, &rnd, 1, threads);
-        t[M_DIF][rep] = ref_replay_run(&w, &dif, 1, threads);
-        double best = INFINITY;
-        for (int i = 0; i < NAPI; i++) {
-            t[M_API + i][rep] = ref_replay_run(&w, &rec, apis[i].api, threads);
-            best = fmin(best, t[M_API + i][rep]);
-        }
-        best_replay[rep] = best;
-        best_lean[rep] = INFINITY;
-        if (lean) {
-            t[M_LEAN][rep] = ref_lean_render(&w, p, threads, &nrays[M_LEAN]);
-            if (t[M_LEAN][rep] < 0.0) {
-                gib_fail(err, "bench: the lean tracer ran out of memory");
-                goto done;
-            }
-            for (int i = 0; i < NAPI; i++) {
-                t[M_LAPI + i][rep] = ref_replay_run(&w, &lrec, apis[i].api, threads);
-                best_lean[rep] = fmin(best_lean[rep], t[M_LAPI + i][rep]);
-            }
-        }
-        if (log) {
-            fprintf(log, "bench: repeat %d: path tracer %.3f s, replay (fastest API) %.3f s, "
-                         "paired ratio %.3f",
-                    rep + 1, st.seconds, best,
-                    ((double)st.rays / st.seconds) / ((double)rec.n / best));
-            if (lean)
-                fprintf(log, "; lean tracer's %.4f",
-                        ((double)nrays[M_LEAN] / t[M_LEAN][rep]) /
-                            ((double)lrec.n / best_lean[rep]));
-            fputc('\n', log);
-        }
-    }
-    for (int m = 0; m < nm && n < max_rows; m++) {
-        const char *measure = m == M_PT     ? "path_tracer"
-                              : m == M_PTE  ? "path_tracer_embree"
-                              : m == M_RND  ? "raw_random"
-                              : m == M_DIF  ? "raw_diffuse"
-                              : m == M_LEAN ? "lean_tracer"
-                              : m > M_LEAN  ? "lean_replay"
-                                            : "raw_replay";
-        const char *api = m <= M_DIF || m == M_LEAN ? "rtcIntersect1"
-                          : m > M_LEAN               ? apis[m - M_LAPI].name
-                                                     : apis[m - M_API].name;
-        int of_lean = m >= M_LEAN; /* paired with the fastest replay of the lean tracer's rays */
-        double sec[GIB_REF_BENCH_MAX_REPEATS], pair[GIB_REF_BENCH_MAX_REPEATS];
-        for (int rep = 0; rep < reps; rep++) {
-            sec[rep] = t[m][rep];
-            pair[rep] = ((double)nrays[m] / t[m][rep]) /
-                        ((double)(of_lean ? lrec.n : rec.n) /
-                         (of_lean ? best_lean : best_replay)[rep]);
-        }
-        gib_ref_bench_row *row = &rows[n++];
-        double med, max, best = ref_sorted_stats(sec, reps, &med, &max);
-        ref_row(row, measure, api, nrays[m], best);
-        row->seconds_median = med, row->seconds_max = max;
-        row->paired_min = ref_sorted_stats(pair, reps, &row->paired_median, &row->paired_max);
-        row->repeats = reps;
-    }
-    rc = n;
-done:
-    free(rnd.rays);
-    free(rnd.occl);
-    free(dif.rays);
-    free(dif.occl);
-    free(rec.rays);
-    free(rec.occl);
-    free(lrec.rays);
-    free(lrec.occl);
-    ref_world_free(&w);
+    ref_world_free(&b->w);
     return rc;
 }

@@ -103,7 +103,8 @@ int ref_mask_build(ref_mask *m, const gib_texture *t, gib_error *err)
         slot_code[k] = -1;
     m->code = malloc((size_t)tw * (size_t)th * 64);
     if (!m->code)
-        return gib_fail(err, "out of memory for the cut-out mask '%s'", t->path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "out of memory for the cut-out mask '%s'", t->path);
     memset(m->code, 0, (size_t)tw * (size_t)th * 64);
     int distinct = 0;
     for (int y = 0; y < m->h; y++)
@@ -360,7 +361,8 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
     if (!b) {
         ref_free_huge(p8, total8 * sizeof *p8);
         free(a);
-        return gib_fail(err, "out of memory building the mip maps of texture '%s'", t->path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "out of memory building the mip maps of texture '%s'", t->path);
     }
     if (ref_pack8(t->rgba, t->width, t->height, p8, 1)) {
         m->srgb8 = 1;
@@ -387,7 +389,8 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
     if (total > 0) {
         m->owned = malloc(total * sizeof(float));
         if (!m->owned)
-            return gib_fail(err, "out of memory building the mip maps of texture '%s'", t->path);
+            return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                                 "out of memory building the mip maps of texture '%s'", t->path);
     }
     m->lv[0] = t->rgba;
     float *next = m->owned;

@@ -185,8 +185,9 @@ static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
     w->tris = ref_alloc_huge((size_t)gs->triangle_count * sizeof *w->tris);
     w->rec_tri = gib_calloc(gs->triangle_count, sizeof *w->rec_tri, err);
     if (!w->tris || !w->rec_tri)
-        return gib_fail(err, "scene '%s': out of memory for %u triangle records", gs->name,
-                        gs->triangle_count);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "scene '%s': out of memory for %u triangle records", gs->name,
+                             gs->triangle_count);
     /* records in Embree's order: the opaque geometry's triangles, then the masked one's */
     uint32_t count0 = 0;
     for (uint32_t t = 0; t < gs->triangle_count; t++)

@@ -355,11 +355,131 @@ static void ref_ctx_init(ref_ctx *c, const ref_world *w, const gib_scene *scene,
     c->camera_part = comp != GIB_COMP_CAUSTIC || w->has_specular;
 }
 
+/* How a render's rounds went, and when it began. */
+typedef struct ref_tally {
+    int n, rounds, reached, interrupted; /* n: the samples per pixel the image holds */
+    double mean, noise;
+    double t0;   /* ref_now() at the start */
+    uint64_t k0; /* ref_ticks() at the start (with w->time_embree) */
+} ref_tally;
+
+static void ref_progress_init(ref_progress *prog, const ref_run *r, const gib_ref_params *p,
+                              double t0)
+{
+    const gib_ref_params *np = &r->c.p;
+    memset(prog, 0, sizeof *prog);
+    prog->enabled = !p->quiet;
+    prog->tty = isatty(STDERR_FILENO);
+    prog->what = gib_component_name(np->component);
+    prog->t0 = t0;
+    prog->units_per_spp = (r->c.camera_part ? (long long)np->width * np->height : 0) +
+                          (r->c.light_part ? ref_light_particles(&r->c) : 0);
+    prog->target = np->target_noise;
+    prog->noise_rel = -1.0;
+    atomic_init(&prog->units, 0);
+    atomic_init(&prog->rays, 0);
+    atomic_init(&prog->embree_ticks, 0);
+}
+
+/* The rounds: each takes every pixel's samples up to its goal, until the target noise or
+ * max_spp is reached, or an interrupt stops them (a round in progress is then undone). 0, or -1
+ * with err filled. */
+static int ref_rounds(ref_run *r, const gib_ref_params *p, int nthreads, ref_tally *t,
+                      gib_error *err)
+{
+    ref_progress *prog = r->prog;
+    const gib_ref_params *np = &r->c.p;
+    int goal = np->spp;
+    for (;;) {
+        r->s0 = t->n;
+        r->s1 = goal;
+        prog->round = ++t->rounds;
+        prog->spp_goal = goal;
+        prog->units_target = (long long)goal * prog->units_per_spp;
+        if (r->c.camera_part)
+            ref_parallel(nthreads, np->height, ref_row_task, r, prog);
+        if (r->c.light_part && ref_light_round(r, nthreads) < 0)
+            return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                                 "reference: out of memory for light-tracing splats");
+        if (atomic_load(&r->abandoned)) { /* interrupted: back to the last finished round */
+            ref_run_saved(r, 0);
+            t->rounds--;
+            t->interrupted = 1;
+            break;
+        }
+        t->n = goal;
+        ref_summary(r, t->n, &t->mean, &t->noise);
+        double rel = t->mean > 0.0 ? t->noise / t->mean : (t->noise > 0.0 ? INFINITY : 0.0);
+        ref_progress_round(prog, t->n, rel);
+        if (p->interrupt)
+            atomic_store(&p->interrupt->rounds_done, t->rounds);
+        if (!(np->target_noise > 0.0))
+            break;
+        t->reached = rel <= np->target_noise;
+        if (t->reached || t->n >= np->max_spp)
+            break;
+        if (p->interrupt && atomic_load(&p->interrupt->requested)) {
+            t->interrupted = 1;
+            break;
+        }
+        if (r->saved) {
+            ref_run_saved(r, 1);
+            r->can_abandon = 1;
+        }
+        goal = ref_next_goal(t->n, rel, np->target_noise, np->max_spp,
+                             np->sampler == GIB_REF_SAMPLER_SOBOL);
+    }
+    ref_progress_end(prog);
+    return 0;
+}
+
+/* The image (camera and light parts summed) and, when asked, each pixel's standard error. */
+static void ref_write_images(const ref_run *r, int n, gib_image *out, gib_image *stderr_img)
+{
+    const size_t count = (size_t)r->c.p.width * r->c.p.height * 3;
+    for (size_t i = 0; i < count; i++) {
+        double v = r->cm[i] + (r->lm ? r->lm[i] : 0.0);
+        out->px[i] = (float)v;
+        if (stderr_img)
+            stderr_img->px[i] = n > 1 ? (float)sqrt(ref_var_of_mean(r, i, n)) : 0.0f;
+    }
+}
+
+static void ref_fill_stats(gib_ref_stats *stats, const ref_run *r, const gib_scene *scene,
+                           const gib_ref_params *p, const ref_tally *t)
+{
+    const ref_world *w = r->c.w;
+    const gib_ref_params *np = &r->c.p;
+    const ref_progress *prog = r->prog;
+    memset(stats, 0, sizeof *stats);
+    stats->mean = t->mean;
+    stats->noise_rmse = t->noise;
+    stats->rays = atomic_load(&prog->rays);
+    stats->spp = t->n;
+    stats->rounds = t->rounds;
+    /* a target asked of a deterministic estimator is met: normalisation dropped it, the
+     * noise is exactly 0 */
+    stats->target_reached = np->target_noise > 0.0 ? t->reached : p->target_noise > 0.0;
+    stats->interrupted = t->interrupted;
+    stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
+    stats->seconds = ref_now() - t->t0;
+    stats->render_seconds = stats->seconds;
+    stats->threads = prog->threads_used;
+    if (w->time_embree) { /* ticks to seconds at the rate the clock ran during this render,
+                           * less the clock reads themselves (one pair a ray) */
+        double k = (double)(ref_ticks() - t->k0), wall = ref_now() - t->t0;
+        double ke = (double)(atomic_load(&prog->embree_ticks) +
+                             (long long)ref_embree_ticks_take()) -
+                    (double)stats->rays * ref_ticks_overhead();
+        stats->embree_cpu_seconds = k > 0.0 && ke > 0.0 ? ke * wall / k : 0.0;
+    }
+}
+
 int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_params *p,
                      gib_image *out, gib_image *stderr_img, gib_ref_stats *stats, gib_error *err)
 {
-    double t0 = ref_now();
-    uint64_t k0 = w->time_embree ? ref_ticks() : 0;
+    ref_tally t = {.t0 = ref_now()};
+    t.k0 = w->time_embree ? ref_ticks() : 0;
     memset(out, 0, sizeof *out);
     if (stderr_img)
         memset(stderr_img, 0, sizeof *stderr_img);
@@ -369,21 +489,9 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     const gib_ref_params *np = &r.c.p;
     const int W = np->width, H = np->height, nthreads = ref_thread_count(p);
     ref_progress prog;
-    memset(&prog, 0, sizeof prog);
-    prog.enabled = !p->quiet;
-    prog.tty = isatty(STDERR_FILENO);
-    prog.what = gib_component_name(np->component);
-    prog.t0 = t0;
-    prog.units_per_spp = (r.c.camera_part ? (long long)W * H : 0) +
-                         (r.c.light_part ? ref_light_particles(&r.c) : 0);
-    prog.target = np->target_noise;
-    prog.noise_rel = -1.0;
-    atomic_init(&prog.units, 0);
-    atomic_init(&prog.rays, 0);
-    atomic_init(&prog.embree_ticks, 0);
     r.prog = &prog;
-    int rc = -1, n = 0, goal = np->spp, rounds = 0, reached = 0, interrupted = 0;
-    double mean = 0.0, noise = 0.0;
+    ref_progress_init(&prog, &r, p, t.t0);
+    int rc = -1;
     if (ref_run_alloc(&r, err) < 0)
         goto done;
     r.stop = p->interrupt;
@@ -395,79 +503,11 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     if (gib_image_alloc(out, W, H, 3, err) < 0 ||
         (stderr_img && gib_image_alloc(stderr_img, W, H, 3, err) < 0))
         goto done;
-
-    for (;;) {
-        r.s0 = n;
-        r.s1 = goal;
-        prog.round = ++rounds;
-        prog.spp_goal = goal;
-        prog.units_target = (long long)goal * prog.units_per_spp;
-        if (r.c.camera_part)
-            ref_parallel(nthreads, H, ref_row_task, &r, &prog);
-        if (r.c.light_part && ref_light_round(&r, nthreads) < 0) {
-            gib_fail(err, "reference: out of memory for light-tracing splats");
-            goto done;
-        }
-        if (atomic_load(&r.abandoned)) { /* interrupted: back to the last finished round */
-            ref_run_saved(&r, 0);
-            rounds--;
-            interrupted = 1;
-            break;
-        }
-        n = goal;
-        ref_summary(&r, n, &mean, &noise);
-        double rel = mean > 0.0 ? noise / mean : (noise > 0.0 ? INFINITY : 0.0);
-        ref_progress_round(&prog, n, rel);
-        if (p->interrupt)
-            atomic_store(&p->interrupt->rounds_done, rounds);
-        if (!(np->target_noise > 0.0))
-            break;
-        reached = rel <= np->target_noise;
-        if (reached || n >= np->max_spp)
-            break;
-        if (p->interrupt && atomic_load(&p->interrupt->requested)) {
-            interrupted = 1;
-            break;
-        }
-        if (r.saved) {
-            ref_run_saved(&r, 1);
-            r.can_abandon = 1;
-        }
-        goal = ref_next_goal(n, rel, np->target_noise, np->max_spp,
-                             np->sampler == GIB_REF_SAMPLER_SOBOL);
-    }
-    ref_progress_end(&prog);
-
-    for (size_t i = 0; i < (size_t)W * H * 3; i++) {
-        double v = r.cm[i] + (r.lm ? r.lm[i] : 0.0);
-        out->px[i] = (float)v;
-        if (stderr_img)
-            stderr_img->px[i] = n > 1 ? (float)sqrt(ref_var_of_mean(&r, i, n)) : 0.0f;
-    }
-    if (stats) {
-        memset(stats, 0, sizeof *stats);
-        stats->mean = mean;
-        stats->noise_rmse = noise;
-        stats->rays = atomic_load(&prog.rays);
-        stats->spp = n;
-        stats->rounds = rounds;
-        /* a target asked of a deterministic estimator is met: normalisation dropped it, the
-         * noise is exactly 0 */
-        stats->target_reached = np->target_noise > 0.0 ? reached : p->target_noise > 0.0;
-        stats->interrupted = interrupted;
-        stats->deterministic = ref_deterministic(scene, np->component, np->max_depth);
-        stats->seconds = ref_now() - t0;
-        stats->render_seconds = stats->seconds;
-        stats->threads = prog.threads_used;
-        if (w->time_embree) { /* ticks to seconds at the rate the clock ran during this render,
-                               * less the clock reads themselves (one pair a ray) */
-            double k = (double)(ref_ticks() - k0), wall = ref_now() - t0;
-            double ke = (double)(atomic_load(&prog.embree_ticks) +
-                                 (long long)ref_embree_ticks_take()) -
-                        (double)stats->rays * ref_ticks_overhead();
-            stats->embree_cpu_seconds = k > 0.0 && ke > 0.0 ? ke * wall / k : 0.0;
-        }
-    }
+    if (ref_rounds(&r, p, nthreads, &t, err) < 0)
+        goto done;
+    ref_write_images(&r, t.n, out, stderr_img);
+    if (stats)
+        ref_fill_stats(stats, &r, scene, p, &t);
     rc = 0;
 
 done:

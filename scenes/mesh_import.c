@@ -142,7 +142,7 @@ static int read_gz(const char *path, unsigned char **out, size_t *out_len, uint6
     unsigned char *in = malloc(in_len);
     if (!in) {
         fclose(fp);
-        return gib_fail(err, "out of memory reading '%s'", path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
     }
     size_t got = fread(in, 1, in_len, fp);
     fclose(fp);
@@ -187,7 +187,7 @@ static int read_gz(const char *path, unsigned char **out, size_t *out_len, uint6
     inflateEnd(&zs);
     free(in);
     if (!buf)
-        return gib_fail(err, "out of memory decompressing '%s'", path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory decompressing '%s'", path);
     if (zrc != Z_STREAM_END) {
         free(buf);
         return gib_fail(err, "'%s' is not a complete gzip file (zlib: %s)", path,
@@ -376,7 +376,8 @@ static int file_check(const char *path, int (*check)(const char *, size_t, const
     char *buf = size >= 0 ? malloc((size_t)size + 1) : NULL;
     int rc;
     if (!buf || fseek(f, 0, SEEK_SET) != 0 || fread(buf, 1, (size_t)size, f) != (size_t)size)
-        rc = gib_fail(err, "cannot read '%s'%s", path, buf ? "" : " (out of memory)");
+        rc = gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                           "cannot read '%s'%s", path, buf ? "" : " (out of memory)");
     else
         rc = check(buf, (size_t)size, path, err);
     fclose(f);

@@ -165,7 +165,7 @@ int gib_obj_check(const char *data, size_t len, const char *path, gib_error *err
     const size_t cap = 1 << 16; /* a logical line; longer element statements are refused */
     char *line = malloc(cap);
     if (!line)
-        return gib_fail(err, "'%s': out of memory checking it", path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "'%s': out of memory checking it", path);
     int rc = check_lines(data, len, path, line, cap, err);
     free(line);
     return rc;

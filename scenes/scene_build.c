@@ -347,201 +347,261 @@ static void scene_shift(gib_scene *sc, const float t[3])
         }
 }
 
-int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
-{
-    memset(sc, 0, sizeof *sc);
-    gib_geom g;
-    memset(&g, 0, sizeof g);
+/* What the build steps below share. */
+typedef struct build_state {
+    const gib_scene_spec *s;
+    gib_scene *sc;
+    gib_geom g;                 /* every mesh, in world space */
     gib_tex_cache cache;
-    memset(&cache, 0, sizeof cache);
-    uint32_t *tri_mesh_begin = gib_calloc((size_t)s->mesh_count + 1, sizeof(uint32_t), err);
-    uint32_t *vert_mesh_begin = gib_calloc((size_t)s->mesh_count + 1, sizeof(uint32_t), err);
-    int *remap = NULL;
-    int rc = tri_mesh_begin && vert_mesh_begin ? 0 : -1;
+    uint32_t *tri_mesh_begin;   /* mesh i's first triangle; [mesh_count] = the end */
+    uint32_t *vert_mesh_begin;  /* mesh i's first vertex; [mesh_count] = the end */
+    uint32_t nmat;              /* materials kept (drop_unused_materials) */
+    uint64_t hash;
+    gib_error *err;
+} build_state;
 
-    uint64_t hash = gib_hash_str(GIB_HASH_INIT, GIB_SCENE_LOADER_VERSION);
-    if (rc == 0 && gib_hash_file(&hash, s->path) != 0)
-        rc = gib_fail(err, "%s: cannot read the scene file to hash it", s->path);
-
-    const char *root = gib_scene_data_root();
-    for (int i = 0; i < s->mesh_count && rc == 0; i++) {
-        const gib_mesh_spec *m = &s->meshes[i];
-        gib_geom local;
-        memset(&local, 0, sizeof local);
-        tri_mesh_begin[i] = g.tcount;
-        vert_mesh_begin[i] = g.vcount;
-        if (m->procedural[0]) {
-            if (gib_procedural_build(m->procedural, &m->params, &local, &hash, err))
-                rc =
-                    gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->procedural_line, m->name);
-        } else {
-            char joined[GIB_PATH_MAX], path[GIB_PATH_MAX];
-            if (!root)
-                rc = gib_scene_fail_at(s, m->file_line, err,
-                                       "mesh '%s': file '%s' needs the data root; "
-                                       "set GIBENCH_SCENES",
-                                       m->name, m->file);
-            else if (gib_path_join(root, m->file, joined, sizeof joined) ||
-                     gib_path_resolve_ci(joined, path, sizeof path) || !gib_path_is_file(path))
-                rc = gib_scene_fail_at(s, m->file_line, err,
-                                       "mesh '%s': file '%s' not found under the "
-                                       "data root '%s' ($GIBENCH_SCENES, default ../shared/scenes)",
-                                       m->name, m->file, root);
-            else if (gib_mesh_import(path, m->smooth_angle_deg, &local, &hash, err))
-                rc = gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->file_line, m->name);
-        }
-        if (rc == 0) {
-            xform x;
-            make_xform(m, &x);
-            rc = append_mesh(&g, &local, &x, i, err);
-        }
-        gib_geom_free(&local);
+/* Mesh i (generated, or imported from the data root) appended in world space. */
+static int load_mesh(build_state *b, int i, const char *root)
+{
+    const gib_scene_spec *s = b->s;
+    gib_error *err = b->err;
+    const gib_mesh_spec *m = &s->meshes[i];
+    int rc = 0;
+    gib_geom local;
+    memset(&local, 0, sizeof local);
+    b->tri_mesh_begin[i] = b->g.tcount;
+    b->vert_mesh_begin[i] = b->g.vcount;
+    if (m->procedural[0]) {
+        if (gib_procedural_build(m->procedural, &m->params, &local, &b->hash, err))
+            rc = gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->procedural_line, m->name);
+    } else {
+        char joined[GIB_PATH_MAX], path[GIB_PATH_MAX];
+        if (!root)
+            rc = gib_scene_fail_at(s, m->file_line, err,
+                                   "mesh '%s': file '%s' needs the data root; "
+                                   "set GIBENCH_SCENES",
+                                   m->name, m->file);
+        else if (gib_path_join(root, m->file, joined, sizeof joined) ||
+                 gib_path_resolve_ci(joined, path, sizeof path) || !gib_path_is_file(path))
+            rc = gib_scene_fail_at(s, m->file_line, err,
+                                   "mesh '%s': file '%s' not found under the "
+                                   "data root '%s' ($GIBENCH_SCENES, default ../shared/scenes)",
+                                   m->name, m->file, root);
+        else if (gib_mesh_import(path, m->smooth_angle_deg, &local, &b->hash, err))
+            rc = gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->file_line, m->name);
     }
     if (rc == 0) {
-        tri_mesh_begin[s->mesh_count] = g.tcount;
-        vert_mesh_begin[s->mesh_count] = g.vcount;
+        xform x;
+        make_xform(m, &x);
+        rc = append_mesh(&b->g, &local, &x, i, err);
     }
+    gib_geom_free(&local);
+    return rc;
+}
 
-    /* [material.NAME] sections override every material of that name, or create one. */
+static int load_meshes(build_state *b)
+{
+    const char *root = gib_scene_data_root();
+    for (int i = 0; i < b->s->mesh_count; i++)
+        if (load_mesh(b, i, root))
+            return -1;
+    b->tri_mesh_begin[b->s->mesh_count] = b->g.tcount;
+    b->vert_mesh_begin[b->s->mesh_count] = b->g.vcount;
+    return 0;
+}
+
+/* [material.NAME] sections override every material of that name, or create one. */
+static int apply_material_sections(build_state *b)
+{
+    const gib_scene_spec *s = b->s;
+    gib_geom *g = &b->g;
+    int rc = 0;
     for (int i = 0; i < s->material_count && rc == 0; i++) {
         const gib_material_spec *ms = &s->materials[i];
         int found = 0;
-        for (uint32_t k = 0; k < g.mcount && rc == 0; k++)
-            if (strcmp(g.mats[k].m.name, ms->name) == 0) {
+        for (uint32_t k = 0; k < g->mcount && rc == 0; k++)
+            if (strcmp(g->mats[k].m.name, ms->name) == 0) {
                 found = 1;
-                rc = apply_material(s, ms, &g.mats[k], err);
+                rc = apply_material(s, ms, &g->mats[k], b->err);
             }
         if (!found && rc == 0) {
             gib_mat_desc d = gib_mat_desc_diffuse(ms->name, 0.8f, 0.8f, 0.8f);
-            rc = apply_material(s, ms, &d, err);
-            if (rc == 0 && gib_geom_material(&g, &d, err) < 0)
+            rc = apply_material(s, ms, &d, b->err);
+            if (rc == 0 && gib_geom_material(g, &d, b->err) < 0)
                 rc = -1;
         }
     }
-    /* `material = NAME` on a mesh: all its triangles take the first material of that name. */
-    for (int i = 0; i < s->mesh_count && rc == 0; i++) {
+    return rc;
+}
+
+/* `material = NAME` on a mesh: all its triangles take the first material of that name. */
+static int assign_mesh_materials(build_state *b)
+{
+    const gib_scene_spec *s = b->s;
+    gib_geom *g = &b->g;
+    for (int i = 0; i < s->mesh_count; i++) {
         const gib_mesh_spec *m = &s->meshes[i];
         if (!m->material[0])
             continue;
         uint32_t k = 0;
-        while (k < g.mcount && strcmp(g.mats[k].m.name, m->material) != 0)
+        while (k < g->mcount && strcmp(g->mats[k].m.name, m->material) != 0)
             k++;
-        if (k == g.mcount) {
-            rc = gib_scene_fail_at(s, m->material_line, err,
-                                   "mesh '%s': material '%s' is not defined; add "
-                                   "a [material.%s] section or use a name the mesh file defines",
-                                   m->name, m->material, m->material);
-            break;
-        }
-        for (uint32_t t = tri_mesh_begin[i]; t < tri_mesh_begin[i + 1]; t++)
-            g.mat[t] = k;
+        if (k == g->mcount)
+            return gib_scene_fail_at(s, m->material_line, b->err,
+                                     "mesh '%s': material '%s' is not defined; add "
+                                     "a [material.%s] section or use a name the mesh file defines",
+                                     m->name, m->material, m->material);
+        for (uint32_t t = b->tri_mesh_begin[i]; t < b->tri_mesh_begin[i + 1]; t++)
+            g->mat[t] = k;
     }
+    return 0;
+}
 
-    /* Keep only materials some triangle uses: no texture is loaded for nothing. */
+/* Keep only materials some triangle uses, then load their textures: no texture is loaded for
+ * nothing. */
+static int drop_unused_materials(build_state *b)
+{
+    gib_geom *g = &b->g;
+    int *remap = gib_calloc(g->mcount + 1, sizeof *remap, b->err);
+    if (!remap)
+        return -1;
     uint32_t nmat = 0;
-    if (rc == 0 && !(remap = gib_calloc(g.mcount + 1, sizeof *remap, err)))
-        rc = -1;
-    if (rc == 0) {
-        for (uint32_t k = 0; k < g.mcount; k++)
-            remap[k] = -1;
-        for (uint32_t t = 0; t < g.tcount; t++)
-            remap[g.mat[t]] = 0;
-        for (uint32_t k = 0; k < g.mcount; k++)
-            if (remap[k] == 0) {
-                remap[k] = (int)nmat;
-                g.mats[nmat++] = g.mats[k]; /* nmat <= k: moves only backward */
-            }
-        for (uint32_t t = 0; t < g.tcount; t++)
-            g.mat[t] = (uint32_t)remap[g.mat[t]];
-        g.mcount = nmat;
-        rc = load_textures(s, g.mats, nmat, &cache, &hash, err);
-    }
-
-    if (rc == 0 && g.tcount == 0)
-        rc = gib_scene_fail_at(s, s->scene_line, err, "the scene has no triangles");
-    if (rc == 0) {
-        repair_normals(&g);
-        rc = sort_ranges(sc, &g, nmat, err);
-    }
-    if (rc == 0) {
-        sc->materials = gib_calloc(nmat, sizeof *sc->materials, err);
-        sc->lights = gib_calloc((size_t)s->light_count + 1, sizeof *sc->lights, err);
-        sc->cameras = gib_calloc((size_t)s->camera_count, sizeof *sc->cameras, err);
-        if (!sc->materials || !sc->lights || !sc->cameras)
-            rc = -1;
-    }
-    if (rc == 0) {
-        snprintf(sc->name, sizeof sc->name, "%s", s->name);
-        snprintf(sc->file, sizeof sc->file, "%s", s->path);
-        snprintf(sc->description, sizeof sc->description, "%s", s->description);
-        sc->exposure = s->exposure;
-        memcpy(sc->sky, s->sky, sizeof sc->sky);
-        /* The vertex arrays move into the scene as they are (every vertex is referenced). */
-        sc->vertex_count = g.vcount;
-        sc->positions = g.pos;
-        sc->normals = g.nrm;
-        sc->uvs = g.uv;
-        g.pos = g.nrm = g.uv = NULL;
-        for (uint32_t k = 0; k < nmat; k++)
-            sc->materials[k] = g.mats[k].m;
-        sc->material_count = nmat;
-        sc->textures = cache.tex;
-        sc->texture_count = cache.count;
-        cache.tex = NULL;
-        cache.count = 0;
-        for (int i = 0; i < s->light_count; i++)
-            sc->lights[i] = s->lights[i].l;
-        sc->light_count = (uint32_t)s->light_count;
-        for (int i = 0; i < s->camera_count; i++)
-            sc->cameras[i] = s->cameras[i].c;
-        sc->camera_count = (uint32_t)s->camera_count;
-        scene_shift(sc, s->shift);
-
-        for (int k = 0; k < 3; k++) {
-            sc->bounds_min[k] = INFINITY;
-            sc->bounds_max[k] = -INFINITY;
+    for (uint32_t k = 0; k < g->mcount; k++)
+        remap[k] = -1;
+    for (uint32_t t = 0; t < g->tcount; t++)
+        remap[g->mat[t]] = 0;
+    for (uint32_t k = 0; k < g->mcount; k++)
+        if (remap[k] == 0) {
+            remap[k] = (int)nmat;
+            g->mats[nmat++] = g->mats[k]; /* nmat <= k: moves only backward */
         }
-        for (uint32_t v = 0; v < sc->vertex_count; v++)
-            for (int k = 0; k < 3; k++) {
-                float p = sc->positions[3 * (size_t)v + (size_t)k];
-                sc->bounds_min[k] = fminf(sc->bounds_min[k], p);
-                sc->bounds_max[k] = fmaxf(sc->bounds_max[k], p);
-            }
-
-        unsigned f = 0;
-        for (uint32_t k = 0; k < nmat; k++) {
-            const gib_material *m = &sc->materials[k];
-            if (m->albedo_tex >= 0)
-                f |= GIB_FEAT_TEXTURES;
-            if (m->alpha_tex >= 0)
-                f |= GIB_FEAT_ALPHA_MASK;
-            if (m->spec_type == GIB_SPEC_PHONG)
-                f |= GIB_FEAT_SPECULAR;
-            if (m->spec_type == GIB_SPEC_MIRROR)
-                f |= GIB_FEAT_MIRROR;
-        }
-        for (uint32_t i = 0; i < sc->light_count; i++)
-            f |= sc->lights[i].type == GIB_LIGHT_POINT  ? GIB_FEAT_POINT_LIGHT
-                 : sc->lights[i].type == GIB_LIGHT_SPOT ? GIB_FEAT_SPOT_LIGHT
-                                                        : GIB_FEAT_DIR_LIGHT;
-        if (s->closed)
-            f |= GIB_FEAT_CLOSED;
-        if (s->sky[0] > 0 || s->sky[1] > 0 || s->sky[2] > 0)
-            f |= GIB_FEAT_SKY;
-        f |= room_encloses(s);
-        sc->features = f;
-        sc->content_hash = hash;
-        rc = gib_scene_build_motion(s, vert_mesh_begin, sc, err);
-    }
-
-    for (uint32_t k = 0; k < cache.count; k++)
-        free(cache.tex[k].rgba);
-    free(cache.tex);
-    gib_tex_cache_release(&cache);
-    gib_geom_free(&g);
-    free(tri_mesh_begin);
-    free(vert_mesh_begin);
+    for (uint32_t t = 0; t < g->tcount; t++)
+        g->mat[t] = (uint32_t)remap[g->mat[t]];
+    g->mcount = nmat;
+    b->nmat = nmat;
     free(remap);
+    return load_textures(b->s, g->mats, nmat, &b->cache, &b->hash, b->err);
+}
+
+static void scene_bounds(gib_scene *sc)
+{
+    for (int k = 0; k < 3; k++) {
+        sc->bounds_min[k] = INFINITY;
+        sc->bounds_max[k] = -INFINITY;
+    }
+    for (uint32_t v = 0; v < sc->vertex_count; v++)
+        for (int k = 0; k < 3; k++) {
+            float p = sc->positions[3 * (size_t)v + (size_t)k];
+            sc->bounds_min[k] = fminf(sc->bounds_min[k], p);
+            sc->bounds_max[k] = fmaxf(sc->bounds_max[k], p);
+        }
+}
+
+/* enum gib_feature bits of the built scene. */
+static unsigned scene_features(const gib_scene_spec *s, const gib_scene *sc)
+{
+    unsigned f = 0;
+    for (uint32_t k = 0; k < sc->material_count; k++) {
+        const gib_material *m = &sc->materials[k];
+        if (m->albedo_tex >= 0)
+            f |= GIB_FEAT_TEXTURES;
+        if (m->alpha_tex >= 0)
+            f |= GIB_FEAT_ALPHA_MASK;
+        if (m->spec_type == GIB_SPEC_PHONG)
+            f |= GIB_FEAT_SPECULAR;
+        if (m->spec_type == GIB_SPEC_MIRROR)
+            f |= GIB_FEAT_MIRROR;
+    }
+    for (uint32_t i = 0; i < sc->light_count; i++)
+        f |= sc->lights[i].type == GIB_LIGHT_POINT  ? GIB_FEAT_POINT_LIGHT
+             : sc->lights[i].type == GIB_LIGHT_SPOT ? GIB_FEAT_SPOT_LIGHT
+                                                    : GIB_FEAT_DIR_LIGHT;
+    if (s->closed)
+        f |= GIB_FEAT_CLOSED;
+    if (s->sky[0] > 0 || s->sky[1] > 0 || s->sky[2] > 0)
+        f |= GIB_FEAT_SKY;
+    return f | room_encloses(s);
+}
+
+/* The scene's arrays from the geometry (moved, not copied), the cache's textures and the spec's
+ * lights and cameras; then shift, bounds, features, hash and motion. */
+static int fill_scene(build_state *b)
+{
+    const gib_scene_spec *s = b->s;
+    gib_scene *sc = b->sc;
+    gib_geom *g = &b->g;
+    sc->materials = gib_calloc(b->nmat, sizeof *sc->materials, b->err);
+    sc->lights = gib_calloc((size_t)s->light_count + 1, sizeof *sc->lights, b->err);
+    sc->cameras = gib_calloc((size_t)s->camera_count, sizeof *sc->cameras, b->err);
+    if (!sc->materials || !sc->lights || !sc->cameras)
+        return -1;
+    snprintf(sc->name, sizeof sc->name, "%s", s->name);
+    snprintf(sc->file, sizeof sc->file, "%s", s->path);
+    snprintf(sc->description, sizeof sc->description, "%s", s->description);
+    sc->exposure = s->exposure;
+    memcpy(sc->sky, s->sky, sizeof sc->sky);
+    /* The vertex arrays move into the scene as they are (every vertex is referenced). */
+    sc->vertex_count = g->vcount;
+    sc->positions = g->pos;
+    sc->normals = g->nrm;
+    sc->uvs = g->uv;
+    g->pos = g->nrm = g->uv = NULL;
+    for (uint32_t k = 0; k < b->nmat; k++)
+        sc->materials[k] = g->mats[k].m;
+    sc->material_count = b->nmat;
+    sc->textures = b->cache.tex;
+    sc->texture_count = b->cache.count;
+    b->cache.tex = NULL;
+    b->cache.count = 0;
+    for (int i = 0; i < s->light_count; i++)
+        sc->lights[i] = s->lights[i].l;
+    sc->light_count = (uint32_t)s->light_count;
+    for (int i = 0; i < s->camera_count; i++)
+        sc->cameras[i] = s->cameras[i].c;
+    sc->camera_count = (uint32_t)s->camera_count;
+    scene_shift(sc, s->shift);
+    scene_bounds(sc);
+    sc->features = scene_features(s, sc);
+    sc->content_hash = b->hash;
+    return gib_scene_build_motion(s, b->vert_mesh_begin, sc, b->err);
+}
+
+/* The steps in order; the first that fails ends the build. */
+static int build_steps(build_state *b)
+{
+    const gib_scene_spec *s = b->s;
+    if (gib_hash_file(&b->hash, s->path) != 0)
+        return gib_fail(b->err, "%s: cannot read the scene file to hash it", s->path);
+    if (load_meshes(b) || apply_material_sections(b) || assign_mesh_materials(b) ||
+        drop_unused_materials(b))
+        return -1;
+    if (b->g.tcount == 0)
+        return gib_scene_fail_at(s, s->scene_line, b->err, "the scene has no triangles");
+    repair_normals(&b->g);
+    if (sort_ranges(b->sc, &b->g, b->nmat, b->err))
+        return -1;
+    return fill_scene(b);
+}
+
+int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
+{
+    memset(sc, 0, sizeof *sc);
+    build_state b;
+    memset(&b, 0, sizeof b);
+    b.s = s;
+    b.sc = sc;
+    b.err = err;
+    b.hash = gib_hash_str(GIB_HASH_INIT, GIB_SCENE_LOADER_VERSION);
+    b.tri_mesh_begin = gib_calloc((size_t)s->mesh_count + 1, sizeof(uint32_t), err);
+    b.vert_mesh_begin = gib_calloc((size_t)s->mesh_count + 1, sizeof(uint32_t), err);
+    int rc = b.tri_mesh_begin && b.vert_mesh_begin ? build_steps(&b) : -1;
+    for (uint32_t k = 0; k < b.cache.count; k++)
+        free(b.cache.tex[k].rgba);
+    free(b.cache.tex);
+    gib_tex_cache_release(&b.cache);
+    gib_geom_free(&b.g);
+    free(b.tri_mesh_begin);
+    free(b.vert_mesh_begin);
     if (rc != 0) {
         gib_scene_free(sc);
         return -1;

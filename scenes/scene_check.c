@@ -77,42 +77,121 @@ static int check_motion(const gib_scene_spec *s, gib_mesh_spec *m, gib_error *er
     return 0;
 }
 
+/* A mesh's source: a file or a known generator (not both), and generator keys only on a
+ * generator, as that generator takes them. */
+static int check_mesh(const gib_scene_spec *s, gib_mesh_spec *m, gib_error *err)
+{
+    if (!m->file[0] && !m->procedural[0])
+        return gib_scene_fail_at(s, m->line, err, "mesh '%s' needs 'file' or 'procedural'",
+                                 m->name);
+    if (m->file[0] && m->procedural[0])
+        return gib_scene_fail_at(s, m->procedural_line, err,
+                                 "mesh '%s' has both 'file' and "
+                                 "'procedural'; use one [mesh.NAME] section for each",
+                                 m->name);
+    if (m->procedural[0] && !gib_procedural_known(m->procedural))
+        return gib_scene_fail_at(s, m->procedural_line, err,
+                                 "mesh '%s': unknown procedural generator "
+                                 "'%s' (known: %s)",
+                                 m->name, m->procedural, gib_procedural_names());
+    if (m->params.set) {
+        char msg[768];
+        int key = -1;
+        if (!m->procedural[0]) {
+            for (key = 0; !(m->params.set & (1u << key)); key++)
+                ;
+            snprintf(msg, sizeof msg, "'%s' applies only to procedural meshes, not to 'file'",
+                     gib_proc_key_get(key)->name);
+            return gib_scene_fail_at(s, m->params.line[key], err, "mesh '%s': %s", m->name, msg);
+        }
+        if (gib_procedural_check(m->procedural, &m->params, &key, msg, sizeof msg))
+            return gib_scene_fail_at(s, key >= 0 ? m->params.line[key] : m->procedural_line, err,
+                                     "mesh '%s': %s", m->name, msg);
+    }
+    return 0;
+}
+
+/* A light's required keys; its direction (from 'direction' or 'target') made unit length. */
+static int check_light(const gib_scene_spec *s, gib_light_spec *l, gib_error *err)
+{
+    gib_light *L = &l->l;
+    if (!l->type_set)
+        return gib_scene_fail_at(s, l->line, err,
+                                 "light '%s' needs 'type = point | spot | "
+                                 "directional'",
+                                 L->name);
+    if (!l->intensity_set)
+        return gib_scene_fail_at(s, l->line, err,
+                                 "light '%s' needs 'intensity = r g b' (W/sr for "
+                                 "point and spot lights, W/m^2 for directional)",
+                                 L->name);
+    if (L->type != GIB_LIGHT_DIRECTIONAL && !l->position_set)
+        return gib_scene_fail_at(s, l->line, err, "light '%s' needs 'position = x y z'", L->name);
+    if (L->type == GIB_LIGHT_POINT) {
+        /* Unused by a point light, but scene.h promises a unit vector. */
+        float n = len3(L->direction);
+        for (int k = 0; k < 3; k++)
+            L->direction[k] = n > 0.0f ? L->direction[k] / n : (k == 1 ? -1.0f : 0.0f);
+        return 0;
+    }
+    if (l->direction_set && l->target_set)
+        return gib_scene_fail_at(s, l->target_line, err,
+                                 "light '%s': give 'direction' or 'target', "
+                                 "not both",
+                                 L->name);
+    if (l->target_set) {
+        if (L->type == GIB_LIGHT_DIRECTIONAL)
+            return gib_scene_fail_at(s, l->target_line, err,
+                                     "light '%s': a directional light takes "
+                                     "'direction', not 'target'",
+                                     L->name);
+        for (int k = 0; k < 3; k++)
+            L->direction[k] = l->target[k] - L->position[k];
+    } else if (!l->direction_set) {
+        return gib_scene_fail_at(s, l->line, err, "light '%s' needs 'direction = x y z'%s",
+                                 L->name, L->type == GIB_LIGHT_SPOT ? " or 'target = x y z'" : "");
+    }
+    float n = len3(L->direction);
+    if (!(n > 0.0f))
+        return gib_scene_fail_at(s, l->target_set ? l->target_line : l->direction_line, err,
+                                 "light '%s': the direction has zero length", L->name);
+    for (int k = 0; k < 3; k++)
+        L->direction[k] /= n;
+    return 0;
+}
+
+/* A camera's eye and target, apart, with an 'up' not along the view. */
+static int check_camera(const gib_scene_spec *s, const gib_camera_spec *cs, gib_error *err)
+{
+    const gib_camera *C = &cs->c;
+    if (!cs->eye_set || !cs->target_set)
+        return gib_scene_fail_at(s, cs->line, err,
+                                 "camera '%s' needs 'eye = x y z' and "
+                                 "'target = x y z'",
+                                 C->name);
+    const float f[3] = {C->target[0] - C->eye[0], C->target[1] - C->eye[1],
+                        C->target[2] - C->eye[2]};
+    const float x[3] = {f[1] * C->up[2] - f[2] * C->up[1], f[2] * C->up[0] - f[0] * C->up[2],
+                        f[0] * C->up[1] - f[1] * C->up[0]};
+    if (!(len3(f) > 0.0f))
+        return gib_scene_fail_at(s, cs->line, err, "camera '%s': eye and target coincide",
+                                 C->name);
+    if (!(len3(x) > 1e-6f * len3(f) * len3(C->up)))
+        return gib_scene_fail_at(s, cs->line, err,
+                                 "camera '%s': 'up' is parallel to the view "
+                                 "direction (or zero)",
+                                 C->name);
+    return 0;
+}
+
 int gib_scene_validate(gib_scene_spec *s, gib_error *err)
 {
     if (!s->scene_line)
         return gib_scene_fail_at(s, 1, err,
                                  "no [scene] section (every scene file starts with one)");
-    for (int i = 0; i < s->mesh_count; i++) {
-        gib_mesh_spec *m = &s->meshes[i];
-        if (!m->file[0] && !m->procedural[0])
-            return gib_scene_fail_at(s, m->line, err, "mesh '%s' needs 'file' or 'procedural'",
-                                     m->name);
-        if (m->file[0] && m->procedural[0])
-            return gib_scene_fail_at(s, m->procedural_line, err,
-                                     "mesh '%s' has both 'file' and "
-                                     "'procedural'; use one [mesh.NAME] section for each",
-                                     m->name);
-        if (m->procedural[0] && !gib_procedural_known(m->procedural))
-            return gib_scene_fail_at(s, m->procedural_line, err,
-                                     "mesh '%s': unknown procedural generator "
-                                     "'%s' (known: %s)",
-                                     m->name, m->procedural, gib_procedural_names());
-        if (m->params.set) {
-            char msg[768];
-            int key = -1;
-            if (!m->procedural[0]) {
-                for (key = 0; !(m->params.set & (1u << key)); key++)
-                    ;
-                snprintf(msg, sizeof msg, "'%s' applies only to procedural meshes, not to 'file'",
-                         gib_proc_key_get(key)->name);
-                return gib_scene_fail_at(s, m->params.line[key], err, "mesh '%s': %s", m->name,
-                                         msg);
-            }
-            if (gib_procedural_check(m->procedural, &m->params, &key, msg, sizeof msg))
-                return gib_scene_fail_at(s, key >= 0 ? m->params.line[key] : m->procedural_line,
-                                         err, "mesh '%s': %s", m->name, msg);
-        }
-    }
+    for (int i = 0; i < s->mesh_count; i++)
+        if (check_mesh(s, &s->meshes[i], err))
+            return -1;
     for (int i = 0; i < s->mesh_count; i++)
         if (check_motion(s, &s->meshes[i], err))
             return -1;
@@ -128,75 +207,12 @@ int gib_scene_validate(gib_scene_spec *s, gib_error *err)
         /* rho_d + rho_s <= 1 is checked in scene_build, once overrides are merged with what the
          * mesh file said. */
     }
-    for (int i = 0; i < s->light_count; i++) {
-        gib_light_spec *l = &s->lights[i];
-        gib_light *L = &l->l;
-        if (!l->type_set)
-            return gib_scene_fail_at(s, l->line, err,
-                                     "light '%s' needs 'type = point | spot | "
-                                     "directional'",
-                                     L->name);
-        if (!l->intensity_set)
-            return gib_scene_fail_at(s, l->line, err,
-                                     "light '%s' needs 'intensity = r g b' (W/sr for "
-                                     "point and spot lights, W/m^2 for directional)",
-                                     L->name);
-        if (L->type != GIB_LIGHT_DIRECTIONAL && !l->position_set)
-            return gib_scene_fail_at(s, l->line, err, "light '%s' needs 'position = x y z'",
-                                     L->name);
-        if (L->type == GIB_LIGHT_POINT) {
-            /* Unused by a point light, but scene.h promises a unit vector. */
-            float n = len3(L->direction);
-            for (int k = 0; k < 3; k++)
-                L->direction[k] = n > 0.0f ? L->direction[k] / n : (k == 1 ? -1.0f : 0.0f);
-            continue;
-        }
-        if (l->direction_set && l->target_set)
-            return gib_scene_fail_at(s, l->target_line, err,
-                                     "light '%s': give 'direction' or 'target', "
-                                     "not both",
-                                     L->name);
-        if (l->target_set) {
-            if (L->type == GIB_LIGHT_DIRECTIONAL)
-                return gib_scene_fail_at(s, l->target_line, err,
-                                         "light '%s': a directional light takes "
-                                         "'direction', not 'target'",
-                                         L->name);
-            for (int k = 0; k < 3; k++)
-                L->direction[k] = l->target[k] - L->position[k];
-        } else if (!l->direction_set) {
-            return gib_scene_fail_at(s, l->line, err, "light '%s' needs 'direction = x y z'%s",
-                                     L->name,
-                                     L->type == GIB_LIGHT_SPOT ? " or 'target = x y z'" : "");
-        }
-        float n = len3(L->direction);
-        if (!(n > 0.0f))
-            return gib_scene_fail_at(s, l->target_set ? l->target_line : l->direction_line, err,
-                                     "light '%s': the direction has zero length", L->name);
-        for (int k = 0; k < 3; k++)
-            L->direction[k] /= n;
-    }
-    for (int i = 0; i < s->camera_count; i++) {
-        gib_camera_spec *cs = &s->cameras[i];
-        gib_camera *C = &cs->c;
-        if (!cs->eye_set || !cs->target_set)
-            return gib_scene_fail_at(s, cs->line, err,
-                                     "camera '%s' needs 'eye = x y z' and "
-                                     "'target = x y z'",
-                                     C->name);
-        const float f[3] = {C->target[0] - C->eye[0], C->target[1] - C->eye[1],
-                            C->target[2] - C->eye[2]};
-        const float x[3] = {f[1] * C->up[2] - f[2] * C->up[1], f[2] * C->up[0] - f[0] * C->up[2],
-                            f[0] * C->up[1] - f[1] * C->up[0]};
-        if (!(len3(f) > 0.0f))
-            return gib_scene_fail_at(s, cs->line, err, "camera '%s': eye and target coincide",
-                                     C->name);
-        if (!(len3(x) > 1e-6f * len3(f) * len3(C->up)))
-            return gib_scene_fail_at(s, cs->line, err,
-                                     "camera '%s': 'up' is parallel to the view "
-                                     "direction (or zero)",
-                                     C->name);
-    }
+    for (int i = 0; i < s->light_count; i++)
+        if (check_light(s, &s->lights[i], err))
+            return -1;
+    for (int i = 0; i < s->camera_count; i++)
+        if (check_camera(s, &s->cameras[i], err))
+            return -1;
     if (s->camera_count == 0)
         return gib_scene_fail_at(s, s->scene_line, err,
                                  "the scene has no [camera.NAME] section (the first "

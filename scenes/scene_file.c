@@ -115,6 +115,60 @@ static int name_taken(const parse_ctx *c, enum section_kind k, const char *name)
     return 0;
 }
 
+/* A new [mesh|material|light|camera.NAME] section n of kind k, with the kind's defaults; it becomes
+ * the current section. */
+static int append_section(parse_ctx *c, enum section_kind k, const char *n)
+{
+    gib_scene_spec *s = c->spec;
+    c->sec = k;
+    switch (k) {
+    case SEC_MESH: {
+        if (grow_array((void **)&s->meshes, s->mesh_count, sizeof *s->meshes, c->err))
+            return c->failed = 1, -1;
+        gib_mesh_spec *m = &s->meshes[s->mesh_count];
+        snprintf(m->name, sizeof m->name, "%s", n);
+        m->line = c->lineno;
+        m->scale[0] = m->scale[1] = m->scale[2] = 1.0f;
+        m->smooth_angle_deg = 60.0f;
+        c->sec_index = s->mesh_count++;
+        break;
+    }
+    case SEC_MATERIAL: {
+        if (grow_array((void **)&s->materials, s->material_count, sizeof *s->materials, c->err))
+            return c->failed = 1, -1;
+        gib_material_spec *m = &s->materials[s->material_count];
+        snprintf(m->name, sizeof m->name, "%s", n);
+        m->line = c->lineno;
+        c->sec_index = s->material_count++;
+        break;
+    }
+    case SEC_LIGHT: {
+        if (grow_array((void **)&s->lights, s->light_count, sizeof *s->lights, c->err))
+            return c->failed = 1, -1;
+        gib_light_spec *l = &s->lights[s->light_count];
+        snprintf(l->l.name, sizeof l->l.name, "%s", n);
+        l->line = c->lineno;
+        l->l.spot_exponent = 1.0f;
+        l->l.spot_outer_deg = 90.0f;
+        c->sec_index = s->light_count++;
+        break;
+    }
+    case SEC_CAMERA: {
+        if (grow_array((void **)&s->cameras, s->camera_count, sizeof *s->cameras, c->err))
+            return c->failed = 1, -1;
+        gib_camera_spec *cs = &s->cameras[s->camera_count];
+        snprintf(cs->c.name, sizeof cs->c.name, "%s", n);
+        cs->line = c->lineno;
+        cs->c.up[1] = 1.0f;
+        cs->c.vfov_deg = 45.0f;
+        c->sec_index = s->camera_count++;
+        break;
+    }
+    default: break;
+    }
+    return 0;
+}
+
 static int open_section(parse_ctx *c, char *text)
 {
     char *end = strchr(text, ']');
@@ -160,53 +214,7 @@ static int open_section(parse_ctx *c, char *text)
         int first = name_taken(c, kinds[k].kind, n);
         if (first)
             return ctx_fail(c, "section [%s] appears twice (first at line %d)", name, first);
-        c->sec = kinds[k].kind;
-        switch (kinds[k].kind) {
-        case SEC_MESH: {
-            if (grow_array((void **)&s->meshes, s->mesh_count, sizeof *s->meshes, c->err))
-                return c->failed = 1, -1;
-            gib_mesh_spec *m = &s->meshes[s->mesh_count];
-            snprintf(m->name, sizeof m->name, "%s", n);
-            m->line = c->lineno;
-            m->scale[0] = m->scale[1] = m->scale[2] = 1.0f;
-            m->smooth_angle_deg = 60.0f;
-            c->sec_index = s->mesh_count++;
-            break;
-        }
-        case SEC_MATERIAL: {
-            if (grow_array((void **)&s->materials, s->material_count, sizeof *s->materials, c->err))
-                return c->failed = 1, -1;
-            gib_material_spec *m = &s->materials[s->material_count];
-            snprintf(m->name, sizeof m->name, "%s", n);
-            m->line = c->lineno;
-            c->sec_index = s->material_count++;
-            break;
-        }
-        case SEC_LIGHT: {
-            if (grow_array((void **)&s->lights, s->light_count, sizeof *s->lights, c->err))
-                return c->failed = 1, -1;
-            gib_light_spec *l = &s->lights[s->light_count];
-            snprintf(l->l.name, sizeof l->l.name, "%s", n);
-            l->line = c->lineno;
-            l->l.spot_exponent = 1.0f;
-            l->l.spot_outer_deg = 90.0f;
-            c->sec_index = s->light_count++;
-            break;
-        }
-        case SEC_CAMERA: {
-            if (grow_array((void **)&s->cameras, s->camera_count, sizeof *s->cameras, c->err))
-                return c->failed = 1, -1;
-            gib_camera_spec *cs = &s->cameras[s->camera_count];
-            snprintf(cs->c.name, sizeof cs->c.name, "%s", n);
-            cs->line = c->lineno;
-            cs->c.up[1] = 1.0f;
-            cs->c.vfov_deg = 45.0f;
-            c->sec_index = s->camera_count++;
-            break;
-        }
-        default: break;
-        }
-        return 0;
+        return append_section(c, kinds[k].kind, n);
     }
     return ctx_fail(c,
                     "unknown section [%s] (known: [scene], [mesh.NAME], [material.NAME], "
@@ -338,6 +346,13 @@ static void key_list(const char *const *keys, char *out, size_t n)
     }
 }
 
+/* One `key = value` line of the current section, as the section's handler sees it. */
+typedef struct key_line {
+    int k;             /* index of the key in its section's key table */
+    const char *name, *value;
+    char label[192];   /* how messages name the section (section_label) */
+} key_line;
+
 /* Copies a string value into a fixed field, failing when it does not fit. */
 #define COPY_STR(field, value)                                                                     \
     (strlen(value) >= sizeof(field) ? ctx_fail(c, "%s: '%s' is too long (at most %zu characters)", \
@@ -349,14 +364,272 @@ static void key_list(const char *const *keys, char *out, size_t n)
          ? ctx_fail(c, "%s: '%s' %s", label, name, msg)                                            \
          : 0)
 
+/* The handlers below return 0, or -1 after ctx_fail. */
+
+static int scene_key(parse_ctx *c, const key_line *kl)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    gib_scene_spec *s = c->spec;
+    int rc = 0, k = kl->k;
+    if (k == 0)
+        rc = COPY_STR(s->description, value);
+    else if (k == 1) {
+        rc = FLOATS(&s->exposure, 1, 1, NULL);
+        if (!rc && !(s->exposure > 0.0f))
+            rc = ctx_fail(c, "%s: 'exposure' must be positive, got '%s'", label, value);
+    } else if (k == 2) {
+        rc = COPY_STR(s->data, value);
+        s->data_line = c->lineno;
+    } else if (k == 4) {
+        rc = FLOATS(s->sky, 3, 3, NULL);
+        if (!rc && !(s->sky[0] >= 0 && s->sky[1] >= 0 && s->sky[2] >= 0 &&
+                     isfinite(s->sky[0] + s->sky[1] + s->sky[2])))
+            rc = ctx_fail(c, "%s: 'sky' must be 3 finite radiances >= 0, got '%s'", label, value);
+    } else if (k == 5) {
+        rc = FLOATS(s->shift, 3, 3, NULL);
+        if (!rc && !isfinite(s->shift[0] + s->shift[1] + s->shift[2]))
+            rc = ctx_fail(c, "%s: 'shift' must be 3 finite numbers, got '%s'", label, value);
+    } else if (parse_bool(value, &s->closed))
+        rc = ctx_fail(c, "%s: 'closed' expects 0 or 1, got '%s'", label, value);
+    return rc;
+}
+
+/* key_rotate or key_translate: 3 numbers per key. */
+static int mesh_key_transforms(parse_ctx *c, const key_line *kl, gib_mesh_spec *m)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    int got = 0, rot = kl->k == 8;
+    float tmp[3 * GIB_MOTION_MAX_KEYS];
+    int rc = FLOATS(tmp, 3, 3 * GIB_MOTION_MAX_KEYS, &got);
+    if (!rc && got % 3)
+        rc = ctx_fail(c, "%s: '%s' takes 3 numbers per key, got %d numbers", label, name, got);
+    float(*dst)[3] = rot ? m->key_rotate : m->key_translate;
+    for (int i = 0; !rc && i < got; i++)
+        dst[i / 3][i % 3] = tmp[i];
+    *(rot ? &m->key_rotate_n : &m->key_translate_n) = got;
+    *(rot ? &m->key_rotate_line : &m->key_translate_line) = c->lineno;
+    return rc;
+}
+
+/* waves: 4 numbers per wave (amplitude wavelength direction_deg speed). */
+static int mesh_waves(parse_ctx *c, const key_line *kl, gib_mesh_spec *m)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    int got = 0;
+    float tmp[4 * GIB_MOTION_MAX_WAVES];
+    int rc = FLOATS(tmp, 4, 4 * GIB_MOTION_MAX_WAVES, &got);
+    if (!rc && got % 4)
+        rc = ctx_fail(c,
+                      "%s: 'waves' takes 4 numbers per wave (amplitude wavelength "
+                      "direction_deg speed), got %d numbers",
+                      label, got);
+    for (int i = 0; !rc && i < got / 4; i++) {
+        const float *w = tmp + 4 * i;
+        if (!(w[0] >= 0.0f) || !(w[1] > 0.0f))
+            rc = ctx_fail(c,
+                          "%s: wave %d: amplitude must be >= 0 and wavelength > 0, got "
+                          "%g and %g",
+                          label, i + 1, (double)w[0], (double)w[1]);
+        memcpy(m->waves[i], w, sizeof m->waves[i]);
+    }
+    m->wave_count = got / 4;
+    m->waves_line = c->lineno;
+    return rc;
+}
+
+/* The mesh's motion keys (FORMAT.md, "Motion"): keys, key_rotate, key_translate, pivot, loop,
+ * waves. */
+static int mesh_motion_key(parse_ctx *c, const key_line *kl, gib_mesh_spec *m)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    int rc = 0;
+    switch (kl->k) {
+    case 7:
+        rc = FLOATS(m->key_time, 1, GIB_MOTION_MAX_KEYS, &m->key_count);
+        m->keys_line = c->lineno;
+        for (int i = 1; !rc && i < m->key_count; i++)
+            if (!(m->key_time[i] > m->key_time[i - 1]))
+                rc = ctx_fail(c, "%s: 'keys' (times in seconds) must increase, got '%s'", label,
+                              value);
+        break;
+    case 8:
+    case 9: rc = mesh_key_transforms(c, kl, m); break;
+    case 10:
+        rc = FLOATS(m->pivot, 3, 3, NULL);
+        m->pivot_line = c->lineno;
+        break;
+    case 11:
+        m->loop_line = c->lineno;
+        if (parse_bool(value, &m->loop))
+            rc = ctx_fail(c, "%s: 'loop' expects 0 or 1, got '%s'", label, value);
+        break;
+    default: rc = mesh_waves(c, kl, m); break;
+    }
+    return rc;
+}
+
+static int mesh_key(parse_ctx *c, const key_line *kl)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    gib_mesh_spec *m = &c->spec->meshes[c->sec_index];
+    int rc = 0, got = 0;
+    switch (kl->k) {
+    case 0:
+        rc = COPY_STR(m->file, value);
+        m->file_line = c->lineno;
+        break;
+    case 1:
+        rc = COPY_STR(m->procedural, value);
+        m->procedural_line = c->lineno;
+        break;
+    case 2:
+        rc = FLOATS(m->scale, 1, 3, &got);
+        if (!rc && got == 1)
+            m->scale[1] = m->scale[2] = m->scale[0];
+        if (!rc && (m->scale[0] == 0.0f || m->scale[1] == 0.0f || m->scale[2] == 0.0f))
+            rc = ctx_fail(c, "%s: 'scale' must not be 0, got '%s'", label, value);
+        break;
+    case 3: rc = FLOATS(m->rotate_deg, 3, 3, NULL); break;
+    case 4: rc = FLOATS(m->translate, 3, 3, NULL); break;
+    case 5:
+        rc = COPY_STR(m->material, value);
+        m->material_line = c->lineno;
+        break;
+    case 6:
+        rc = FLOATS(&m->smooth_angle_deg, 1, 1, NULL);
+        if (!rc && !(m->smooth_angle_deg >= 0.0f && m->smooth_angle_deg <= 180.0f))
+            rc = ctx_fail(c, "%s: 'smooth_angle' must be 0..180 degrees, got '%s'", label,
+                          value);
+        break;
+    case 7: case 8: case 9: case 10: case 11: case 12: rc = mesh_motion_key(c, kl, m); break;
+    default:
+        if (gib_proc_key_parse(&m->params, name, value, c->lineno, msg, sizeof msg))
+            rc = ctx_fail(c, "%s: %s", label, msg);
+        break;
+    }
+    return rc;
+}
+
+static int material_key(parse_ctx *c, const key_line *kl)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    gib_material_spec *m = &c->spec->materials[c->sec_index];
+    int rc = 0, k = kl->k;
+    m->set |= 1u << k;
+    m->key_line[k] = c->lineno;
+    if (k == 0 || k == 1) {
+        float *dst = k == 0 ? m->albedo : m->specular;
+        rc = FLOATS(dst, 3, 3, NULL);
+        if (!rc &&
+            (dst[0] < 0 || dst[1] < 0 || dst[2] < 0 || dst[0] > 1 || dst[1] > 1 || dst[2] > 1))
+            rc = ctx_fail(c, "%s: '%s' must be between 0 and 1 per channel, got '%s'", label,
+                          name, value);
+    } else if (k == 2) {
+        rc = FLOATS(&m->phong_n, 1, 1, NULL);
+        if (!rc && !(m->phong_n > 0.0f))
+            rc = ctx_fail(c, "%s: 'phong_n' must be positive, got '%s'", label, value);
+    } else if (parse_bool(value, k == 3 ? &m->mirror : &m->two_sided)) {
+        rc = ctx_fail(c, "%s: '%s' expects 0 or 1, got '%s'", label, name, value);
+    }
+    return rc;
+}
+
+static int light_key(parse_ctx *c, const key_line *kl)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    gib_light_spec *l = &c->spec->lights[c->sec_index];
+    int rc = 0;
+    switch (kl->k) {
+    case 0:
+        l->type_set = 1;
+        if (!strcmp(value, "point"))
+            l->l.type = GIB_LIGHT_POINT;
+        else if (!strcmp(value, "spot"))
+            l->l.type = GIB_LIGHT_SPOT;
+        else if (!strcmp(value, "directional"))
+            l->l.type = GIB_LIGHT_DIRECTIONAL;
+        else
+            rc = ctx_fail(c, "%s: unknown light type '%s' (known: point, spot, directional)",
+                          label, value);
+        break;
+    case 1:
+        rc = FLOATS(l->l.position, 3, 3, NULL);
+        l->position_set = 1;
+        break;
+    case 2:
+        rc = FLOATS(l->l.direction, 3, 3, NULL);
+        l->direction_set = 1;
+        l->direction_line = c->lineno;
+        break;
+    case 3:
+        rc = FLOATS(l->target, 3, 3, NULL);
+        l->target_set = 1;
+        l->target_line = c->lineno;
+        break;
+    case 4:
+        rc = FLOATS(l->l.intensity, 3, 3, NULL);
+        l->intensity_set = 1;
+        if (!rc && (l->l.intensity[0] < 0 || l->l.intensity[1] < 0 || l->l.intensity[2] < 0))
+            rc = ctx_fail(c, "%s: 'intensity' must not be negative, got '%s'", label, value);
+        break;
+    case 5:
+        rc = FLOATS(&l->l.spot_exponent, 1, 1, NULL);
+        if (!rc && l->l.spot_exponent < 0.0f)
+            rc = ctx_fail(c, "%s: 'exponent' must be >= 0, got '%s'", label, value);
+        break;
+    default:
+        rc = FLOATS(&l->l.spot_outer_deg, 1, 1, NULL);
+        if (!rc && !(l->l.spot_outer_deg > 0.0f && l->l.spot_outer_deg <= 180.0f))
+            rc = ctx_fail(c,
+                          "%s: 'outer_angle' must be in (0, 180] degrees (a half-angle), "
+                          "got '%s'",
+                          label, value);
+        break;
+    }
+    return rc;
+}
+
+static int camera_key(parse_ctx *c, const key_line *kl)
+{
+    const char *label = kl->label, *name = kl->name, *value = kl->value;
+    char msg[768];
+    gib_camera_spec *cs = &c->spec->cameras[c->sec_index];
+    int rc = 0, k = kl->k;
+    if (k == 0) {
+        rc = FLOATS(cs->c.eye, 3, 3, NULL);
+        cs->eye_set = 1;
+    } else if (k == 1) {
+        rc = FLOATS(cs->c.target, 3, 3, NULL);
+        cs->target_set = 1;
+    } else if (k == 2) {
+        rc = FLOATS(cs->c.up, 3, 3, NULL);
+    } else {
+        rc = FLOATS(&cs->c.vfov_deg, 1, 1, NULL);
+        if (!rc && !(cs->c.vfov_deg > 0.0f && cs->c.vfov_deg < 180.0f))
+            rc = ctx_fail(c, "%s: 'fov' (vertical, degrees) must be in (0, 180), got '%s'",
+                          label, value);
+    }
+    return rc;
+}
+
+/* inih's callback: finds the key in the current section's table, refuses unknown and repeated
+ * keys, and hands the value to the section's handler. */
 static int handler(void *user, const char *section, const char *name, const char *value)
 {
     (void)section; /* the reader tracks sections itself */
     parse_ctx *c = user;
     if (c->failed)
         return 0;
-    char label[192], msg[768], known[256];
-    section_label(c, label, sizeof label);
+    key_line kl = {.name = name, .value = value};
+    char known[256];
+    section_label(c, kl.label, sizeof kl.label);
     const char *const *keys = c->sec == SEC_SCENE      ? scene_keys
                               : c->sec == SEC_MESH     ? mesh_keys
                               : c->sec == SEC_MATERIAL ? material_keys
@@ -366,219 +639,21 @@ static int handler(void *user, const char *section, const char *name, const char
     if (!keys)
         return ctx_fail(c, "'%s = %s' comes before any section; start with [scene]", name, value),
                0;
-    int k = key_index(keys, name);
+    int k = kl.k = key_index(keys, name);
     if (k < 0) {
         key_list(keys, known, sizeof known);
-        return ctx_fail(c, "%s: unknown key '%s' (known: %s)", label, name, known), 0;
+        return ctx_fail(c, "%s: unknown key '%s' (known: %s)", kl.label, name, known), 0;
     }
     if (c->seen & (1u << k))
-        return ctx_fail(c, "%s: '%s' is given twice", label, name), 0;
+        return ctx_fail(c, "%s: '%s' is given twice", kl.label, name), 0;
     c->seen |= 1u << k;
-    gib_scene_spec *s = c->spec;
-    int rc = 0, got = 0;
-
+    int rc = 0;
     switch (c->sec) {
-    case SEC_SCENE:
-        if (k == 0)
-            rc = COPY_STR(s->description, value);
-        else if (k == 1) {
-            rc = FLOATS(&s->exposure, 1, 1, NULL);
-            if (!rc && !(s->exposure > 0.0f))
-                rc = ctx_fail(c, "%s: 'exposure' must be positive, got '%s'", label, value);
-        } else if (k == 2) {
-            rc = COPY_STR(s->data, value);
-            s->data_line = c->lineno;
-        } else if (k == 4) {
-            rc = FLOATS(s->sky, 3, 3, NULL);
-            if (!rc && !(s->sky[0] >= 0 && s->sky[1] >= 0 && s->sky[2] >= 0 &&
-                         isfinite(s->sky[0] + s->sky[1] + s->sky[2])))
-                rc = ctx_fail(c, "%s: 'sky' must be 3 finite radiances >= 0, got '%s'", label, value);
-        } else if (k == 5) {
-            rc = FLOATS(s->shift, 3, 3, NULL);
-            if (!rc && !isfinite(s->shift[0] + s->shift[1] + s->shift[2]))
-                rc = ctx_fail(c, "%s: 'shift' must be 3 finite numbers, got '%s'", label, value);
-        } else if (parse_bool(value, &s->closed))
-            rc = ctx_fail(c, "%s: 'closed' expects 0 or 1, got '%s'", label, value);
-        break;
-    case SEC_MESH: {
-        gib_mesh_spec *m = &s->meshes[c->sec_index];
-        switch (k) {
-        case 0:
-            rc = COPY_STR(m->file, value);
-            m->file_line = c->lineno;
-            break;
-        case 1:
-            rc = COPY_STR(m->procedural, value);
-            m->procedural_line = c->lineno;
-            break;
-        case 2:
-            rc = FLOATS(m->scale, 1, 3, &got);
-            if (!rc && got == 1)
-                m->scale[1] = m->scale[2] = m->scale[0];
-            if (!rc && (m->scale[0] == 0.0f || m->scale[1] == 0.0f || m->scale[2] == 0.0f))
-                rc = ctx_fail(c, "%s: 'scale' must not be 0, got '%s'", label, value);
-            break;
-        case 3: rc = FLOATS(m->rotate_deg, 3, 3, NULL); break;
-        case 4: rc = FLOATS(m->translate, 3, 3, NULL); break;
-        case 5:
-            rc = COPY_STR(m->material, value);
-            m->material_line = c->lineno;
-            break;
-        case 6:
-            rc = FLOATS(&m->smooth_angle_deg, 1, 1, NULL);
-            if (!rc && !(m->smooth_angle_deg >= 0.0f && m->smooth_angle_deg <= 180.0f))
-                rc = ctx_fail(c, "%s: 'smooth_angle' must be 0..180 degrees, got '%s'", label,
-                              value);
-            break;
-        case 7: {
-            rc = FLOATS(m->key_time, 1, GIB_MOTION_MAX_KEYS, &m->key_count);
-            m->keys_line = c->lineno;
-            for (int i = 1; !rc && i < m->key_count; i++)
-                if (!(m->key_time[i] > m->key_time[i - 1]))
-                    rc = ctx_fail(c, "%s: 'keys' (times in seconds) must increase, got '%s'", label,
-                                  value);
-            break;
-        }
-        case 8:
-        case 9: {
-            float tmp[3 * GIB_MOTION_MAX_KEYS];
-            rc = FLOATS(tmp, 3, 3 * GIB_MOTION_MAX_KEYS, &got);
-            if (!rc && got % 3)
-                rc = ctx_fail(c, "%s: '%s' takes 3 numbers per key, got %d numbers", label, name,
-                              got);
-            float(*dst)[3] = k == 8 ? m->key_rotate : m->key_translate;
-            for (int i = 0; !rc && i < got; i++)
-                dst[i / 3][i % 3] = tmp[i];
-            *(k == 8 ? &m->key_rotate_n : &m->key_translate_n) = got;
-            *(k == 8 ? &m->key_rotate_line : &m->key_translate_line) = c->lineno;
-            break;
-        }
-        case 10:
-            rc = FLOATS(m->pivot, 3, 3, NULL);
-            m->pivot_line = c->lineno;
-            break;
-        case 11:
-            m->loop_line = c->lineno;
-            if (parse_bool(value, &m->loop))
-                rc = ctx_fail(c, "%s: 'loop' expects 0 or 1, got '%s'", label, value);
-            break;
-        case 12: {
-            float tmp[4 * GIB_MOTION_MAX_WAVES];
-            rc = FLOATS(tmp, 4, 4 * GIB_MOTION_MAX_WAVES, &got);
-            if (!rc && got % 4)
-                rc = ctx_fail(c,
-                              "%s: 'waves' takes 4 numbers per wave (amplitude wavelength "
-                              "direction_deg speed), got %d numbers",
-                              label, got);
-            for (int i = 0; !rc && i < got / 4; i++) {
-                const float *w = tmp + 4 * i;
-                if (!(w[0] >= 0.0f) || !(w[1] > 0.0f))
-                    rc = ctx_fail(c,
-                                  "%s: wave %d: amplitude must be >= 0 and wavelength > 0, got "
-                                  "%g and %g",
-                                  label, i + 1, (double)w[0], (double)w[1]);
-                memcpy(m->waves[i], w, sizeof m->waves[i]);
-            }
-            m->wave_count = got / 4;
-            m->waves_line = c->lineno;
-            break;
-        }
-        default:
-            if (gib_proc_key_parse(&m->params, name, value, c->lineno, msg, sizeof msg))
-                rc = ctx_fail(c, "%s: %s", label, msg);
-            break;
-        }
-        break;
-    }
-    case SEC_MATERIAL: {
-        gib_material_spec *m = &s->materials[c->sec_index];
-        m->set |= 1u << k;
-        m->key_line[k] = c->lineno;
-        if (k == 0 || k == 1) {
-            float *dst = k == 0 ? m->albedo : m->specular;
-            rc = FLOATS(dst, 3, 3, NULL);
-            if (!rc &&
-                (dst[0] < 0 || dst[1] < 0 || dst[2] < 0 || dst[0] > 1 || dst[1] > 1 || dst[2] > 1))
-                rc = ctx_fail(c, "%s: '%s' must be between 0 and 1 per channel, got '%s'", label,
-                              name, value);
-        } else if (k == 2) {
-            rc = FLOATS(&m->phong_n, 1, 1, NULL);
-            if (!rc && !(m->phong_n > 0.0f))
-                rc = ctx_fail(c, "%s: 'phong_n' must be positive, got '%s'", label, value);
-        } else if (parse_bool(value, k == 3 ? &m->mirror : &m->two_sided)) {
-            rc = ctx_fail(c, "%s: '%s' expects 0 or 1, got '%s'", label, name, value);
-        }
-        break;
-    }
-    case SEC_LIGHT: {
-        gib_light_spec *l = &s->lights[c->sec_index];
-        switch (k) {
-        case 0:
-            l->type_set = 1;
-            if (!strcmp(value, "point"))
-                l->l.type = GIB_LIGHT_POINT;
-            else if (!strcmp(value, "spot"))
-                l->l.type = GIB_LIGHT_SPOT;
-            else if (!strcmp(value, "directional"))
-                l->l.type = GIB_LIGHT_DIRECTIONAL;
-            else
-                rc = ctx_fail(c, "%s: unknown light type '%s' (known: point, spot, directional)",
-                              label, value);
-            break;
-        case 1:
-            rc = FLOATS(l->l.position, 3, 3, NULL);
-            l->position_set = 1;
-            break;
-        case 2:
-            rc = FLOATS(l->l.direction, 3, 3, NULL);
-            l->direction_set = 1;
-            l->direction_line = c->lineno;
-            break;
-        case 3:
-            rc = FLOATS(l->target, 3, 3, NULL);
-            l->target_set = 1;
-            l->target_line = c->lineno;
-            break;
-        case 4:
-            rc = FLOATS(l->l.intensity, 3, 3, NULL);
-            l->intensity_set = 1;
-            if (!rc && (l->l.intensity[0] < 0 || l->l.intensity[1] < 0 || l->l.intensity[2] < 0))
-                rc = ctx_fail(c, "%s: 'intensity' must not be negative, got '%s'", label, value);
-            break;
-        case 5:
-            rc = FLOATS(&l->l.spot_exponent, 1, 1, NULL);
-            if (!rc && l->l.spot_exponent < 0.0f)
-                rc = ctx_fail(c, "%s: 'exponent' must be >= 0, got '%s'", label, value);
-            break;
-        default:
-            rc = FLOATS(&l->l.spot_outer_deg, 1, 1, NULL);
-            if (!rc && !(l->l.spot_outer_deg > 0.0f && l->l.spot_outer_deg <= 180.0f))
-                rc = ctx_fail(c,
-                              "%s: 'outer_angle' must be in (0, 180] degrees (a half-angle), "
-                              "got '%s'",
-                              label, value);
-            break;
-        }
-        break;
-    }
-    case SEC_CAMERA: {
-        gib_camera_spec *cs = &s->cameras[c->sec_index];
-        if (k == 0) {
-            rc = FLOATS(cs->c.eye, 3, 3, NULL);
-            cs->eye_set = 1;
-        } else if (k == 1) {
-            rc = FLOATS(cs->c.target, 3, 3, NULL);
-            cs->target_set = 1;
-        } else if (k == 2) {
-            rc = FLOATS(cs->c.up, 3, 3, NULL);
-        } else {
-            rc = FLOATS(&cs->c.vfov_deg, 1, 1, NULL);
-            if (!rc && !(cs->c.vfov_deg > 0.0f && cs->c.vfov_deg < 180.0f))
-                rc = ctx_fail(c, "%s: 'fov' (vertical, degrees) must be in (0, 180), got '%s'",
-                              label, value);
-        }
-        break;
-    }
+    case SEC_SCENE: rc = scene_key(c, &kl); break;
+    case SEC_MESH: rc = mesh_key(c, &kl); break;
+    case SEC_MATERIAL: rc = material_key(c, &kl); break;
+    case SEC_LIGHT: rc = light_key(c, &kl); break;
+    case SEC_CAMERA: rc = camera_key(c, &kl); break;
     default: break;
     }
     return rc == 0;

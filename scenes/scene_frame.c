@@ -71,7 +71,9 @@ int gib_scene_frame_make(const gib_scene *s, gib_scene_frame *f, gib_error *err)
     t->cameras = f->cameras = gib_calloc(nc ? nc : 1, sizeof(gib_camera), err);
     if (!f->positions || !f->lights || !f->cameras) {
         gib_scene_frame_free(f);
-        return gib_fail(err, "scene '%s': out of memory for its copy moved next to the origin", s->name);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "scene '%s': out of memory for its copy moved next to the origin",
+                             s->name);
     }
     memcpy(f->positions, s->positions, 3 * nv * sizeof(float));
     for (size_t i = 0; i < nv; i++)

@@ -99,7 +99,7 @@ int gib_scene_list(gib_scene_info **out, int *count, gib_error *err)
         }
         names = nn;
         if (!(names[n] = gib_strdup(e->d_name))) {
-            rc = gib_fail(err, "out of memory listing scenes");
+            rc = gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory listing scenes");
             break;
         }
         n++;

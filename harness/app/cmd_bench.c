@@ -80,18 +80,28 @@ typedef struct bench_summary {
     double lean;          /* lean_tracer's paired median (0: not run) */
 } bench_summary;
 
-/* Benchmarks one scene and writes its rows to f (NULL: print only). fallback: an absent sponza
- * is replaced by the built-in cornell (the default scene); in_list: an absent scene is skipped
- * with a message. Returns 0, 3 when the scene's data is absent, 1 on another error. */
-static int bench_scene(const char *name, int fallback, int in_list, const gib_ref_params *p,
-                       const char *comp, int repeat, FILE *f, bench_summary *sum)
+/* One scene's rows and what they are read against: the raw figures and the fastest replays. */
+typedef struct bench_table {
+    const gib_scene *scene;
+    const gib_ref_params *p;
+    const char *comp;
+    long cores;
+    char machine[256];
+    const gib_ref_bench_row *rows;
+    int n;
+    double raw_random, raw_diffuse, raw_best, lean_best; /* Mrays/s */
+    const char *best_api;                                /* the fastest raw_replay's */
+} bench_table;
+
+/* Loads scene `name` (bench_scene's fallback and in_list). Returns 0, 3 when its data is absent,
+ * 1 on another error. */
+static int bench_load_scene(const char *name, int fallback, int in_list, gib_scene *scene)
 {
     gib_error err = {0};
-    gib_scene scene;
-    int rc = gib_scene_load(name, &scene, &err);
+    int rc = gib_scene_load(name, scene, &err);
     if (rc == GIB_SCENE_UNAVAILABLE && fallback) {
         fprintf(stderr, "gibench bench: sponza unavailable (%s); using cornell\n", err.msg);
-        rc = gib_scene_load("cornell", &scene, &err);
+        rc = gib_scene_load("cornell", scene, &err);
     }
     if (rc < 0) {
         if (rc == GIB_SCENE_UNAVAILABLE && in_list)
@@ -100,6 +110,116 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
             fprintf(stderr, "gibench bench: %s\n", err.msg);
         return rc == GIB_SCENE_UNAVAILABLE ? 3 : 1;
     }
+    return 0;
+}
+
+/* The raw figures and the fastest replays among the rows. */
+static void bench_find_yardsticks(bench_table *t)
+{
+    t->raw_random = t->raw_diffuse = t->raw_best = t->lean_best = 0.0;
+    t->best_api = "";
+    for (int i = 0; i < t->n; i++) {
+        const gib_ref_bench_row *r = &t->rows[i];
+        if (!strcmp(r->measure, "raw_random"))
+            t->raw_random = r->mrays_per_s;
+        if (!strcmp(r->measure, "raw_diffuse"))
+            t->raw_diffuse = r->mrays_per_s;
+        if (!strcmp(r->measure, "raw_replay") && r->mrays_per_s > t->raw_best) {
+            t->raw_best = r->mrays_per_s;
+            t->best_api = r->api;
+        }
+        if (!strcmp(r->measure, "lean_replay") && r->mrays_per_s > t->lean_best)
+            t->lean_best = r->mrays_per_s;
+    }
+}
+
+/* Every row printed, and written to f when there is one. */
+static void bench_print_rows(const bench_table *t, FILE *f)
+{
+    const gib_scene *scene = t->scene;
+    const gib_ref_params *p = t->p;
+    printf("scene %s (%u triangles), %s %dx%d at %d spp, %ld cores, %s\n", scene->name,
+           scene->triangle_count, t->comp, p->width, p->height, p->spp, t->cores, t->machine);
+    for (int i = 0; i < t->n; i++) {
+        const gib_ref_bench_row *r = &t->rows[i];
+        double a = t->raw_random > 0 ? r->mrays_per_s / t->raw_random : 0.0;
+        /* best replay: the lean tracer's rows against the replay of its own rays */
+        double best = strncmp(r->measure, "lean_", 5) ? t->raw_best : t->lean_best;
+        double b = best > 0 ? r->mrays_per_s / best : 0.0;
+        double c = t->raw_diffuse > 0 ? r->mrays_per_s / t->raw_diffuse : 0.0;
+        printf("  %-18s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
+               "replay  paired %.3f [%.3f, %.3f]\n",
+               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
+               r->paired_min, r->paired_max);
+        if (f)
+            fprintf(f,
+                    "%s,%u,%s,%d,%d,%d,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,"
+                    "%.6f,%.6f,%.4f,%.4f,%.4f\n",
+                    scene->name, scene->triangle_count, t->comp, p->width, p->height, p->spp,
+                    t->cores, t->machine, RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
+                    r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, c, b, r->repeats,
+                    r->seconds_median, r->seconds_max, r->paired_median, r->paired_min,
+                    r->paired_max);
+    }
+    if (f)
+        fflush(f);
+    printf("fastest API on the replayed path-tracer rays: %s\n", t->best_api);
+}
+
+/* The path tracer's row read against the others, and kept in *sum (when given). */
+static void bench_print_path_tracer(const bench_table *t, bench_summary *sum)
+{
+    double embree_inside = 0.0, lean = 0.0;
+    for (int i = 0; i < t->n; i++) {
+        if (!strcmp(t->rows[i].measure, "path_tracer_embree"))
+            embree_inside = t->rows[i].paired_median;
+        if (!strcmp(t->rows[i].measure, "lean_tracer"))
+            lean = t->rows[i].paired_median;
+    }
+    for (int i = 0; i < t->n; i++) {
+        const gib_ref_bench_row *r = &t->rows[i];
+        if (strcmp(r->measure, "path_tracer"))
+            continue;
+        printf("path tracer against the fastest replay: %.3f, the median of %d paired repeats "
+               "(range %.3f to %.3f); best against best %.3f; against diffuse rays %.3f, "
+               "bounding-box rays %.3f\n",
+               r->paired_median, r->repeats, r->paired_min, r->paired_max,
+               t->raw_best > 0 ? r->mrays_per_s / t->raw_best : 0.0,
+               t->raw_diffuse > 0 ? r->mrays_per_s / t->raw_diffuse : 0.0,
+               t->raw_random > 0 ? r->mrays_per_s / t->raw_random : 0.0);
+        printf("Embree inside the path tracer runs at %.3f of its speed alone on the same rays "
+               "(paired median)\n", embree_inside);
+        if (lean > 0.0)
+            printf("lean tracer (the same kind of paths, almost no other work) against the replay "
+                   "of its own rays: %.3f (paired median); the path tracer reaches %.2f of it\n",
+                   lean, r->paired_median / lean);
+        else
+            printf("lean tracer: not run (it traces `full`'s paths on scenes without a sky or "
+                   "mirrors only)\n");
+        if (sum) {
+            sum->embree_inside = embree_inside;
+            sum->lean = lean;
+            snprintf(sum->scene, sizeof sum->scene, "%s", t->scene->name);
+            sum->triangles = t->scene->triangle_count;
+            sum->mrays = r->mrays_per_s;
+            sum->paired_median = r->paired_median;
+            sum->paired_min = r->paired_min;
+            sum->paired_max = r->paired_max;
+        }
+    }
+}
+
+/* Benchmarks one scene and writes its rows to f (NULL: print only). fallback: an absent sponza
+ * is replaced by the built-in cornell (the default scene); in_list: an absent scene is skipped
+ * with a message. Returns 0, 3 when the scene's data is absent, 1 on another error. */
+static int bench_scene(const char *name, int fallback, int in_list, const gib_ref_params *p,
+                       const char *comp, int repeat, FILE *f, bench_summary *sum)
+{
+    gib_error err = {0};
+    gib_scene scene;
+    int rc = bench_load_scene(name, fallback, in_list, &scene);
+    if (rc)
+        return rc;
     gib_ref_bench_row rows[24];
     int n = gib_reference_bench(&scene, p, repeat, stderr, rows, 24, &err);
     if (n < 0) {
@@ -109,86 +229,12 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
         gib_scene_free(&scene);
         return 1;
     }
-    char machine[256];
-    machine_name(machine, sizeof machine);
-    long cores = p->threads > 0 ? p->threads : sysconf(_SC_NPROCESSORS_ONLN);
-    double raw_random = 0.0, raw_diffuse = 0.0, raw_best = 0.0, lean_best = 0.0;
-    const char *best_api = "";
-    for (int i = 0; i < n; i++) {
-        if (!strcmp(rows[i].measure, "raw_random"))
-            raw_random = rows[i].mrays_per_s;
-        if (!strcmp(rows[i].measure, "raw_diffuse"))
-            raw_diffuse = rows[i].mrays_per_s;
-        if (!strcmp(rows[i].measure, "raw_replay") && rows[i].mrays_per_s > raw_best) {
-            raw_best = rows[i].mrays_per_s;
-            best_api = rows[i].api;
-        }
-        if (!strcmp(rows[i].measure, "lean_replay") && rows[i].mrays_per_s > lean_best)
-            lean_best = rows[i].mrays_per_s;
-    }
-    printf("scene %s (%u triangles), %s %dx%d at %d spp, %ld cores, %s\n", scene.name,
-           scene.triangle_count, comp, p->width, p->height, p->spp, cores, machine);
-    for (int i = 0; i < n; i++) {
-        const gib_ref_bench_row *r = &rows[i];
-        double a = raw_random > 0 ? r->mrays_per_s / raw_random : 0.0;
-        /* best replay: the lean tracer's rows against the replay of its own rays */
-        double best = strncmp(r->measure, "lean_", 5) ? raw_best : lean_best;
-        double b = best > 0 ? r->mrays_per_s / best : 0.0;
-        double c = raw_diffuse > 0 ? r->mrays_per_s / raw_diffuse : 0.0;
-        printf("  %-18s %-15s %11lld rays %8.3f s %8.2f Mrays/s  %5.2fx raw random  %5.2fx best "
-               "replay  paired %.3f [%.3f, %.3f]\n",
-               r->measure, r->api, r->rays, r->seconds, r->mrays_per_s, a, b, r->paired_median,
-               r->paired_min, r->paired_max);
-        if (f)
-            fprintf(f,
-                    "%s,%u,%s,%d,%d,%d,%ld,%s,%d.%d.%d,%s,%s,%lld,%.6f,%.4f,%.4f,%.4f,%.4f,%d,"
-                    "%.6f,%.6f,%.4f,%.4f,%.4f\n",
-                    scene.name, scene.triangle_count, comp, p->width, p->height, p->spp, cores,
-                    machine, RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, r->measure,
-                    r->api, r->rays, r->seconds, r->mrays_per_s, a, c, b, r->repeats,
-                    r->seconds_median, r->seconds_max, r->paired_median, r->paired_min,
-                    r->paired_max);
-    }
-    if (f)
-        fflush(f);
-    printf("fastest API on the replayed path-tracer rays: %s\n", best_api);
-    double embree_inside = 0.0, lean = 0.0;
-    for (int i = 0; i < n; i++) {
-        if (!strcmp(rows[i].measure, "path_tracer_embree"))
-            embree_inside = rows[i].paired_median;
-        if (!strcmp(rows[i].measure, "lean_tracer"))
-            lean = rows[i].paired_median;
-    }
-    for (int i = 0; i < n; i++) {
-        if (strcmp(rows[i].measure, "path_tracer"))
-            continue;
-        printf("path tracer against the fastest replay: %.3f, the median of %d paired repeats "
-               "(range %.3f to %.3f); best against best %.3f; against diffuse rays %.3f, "
-               "bounding-box rays %.3f\n",
-               rows[i].paired_median, rows[i].repeats, rows[i].paired_min, rows[i].paired_max,
-               raw_best > 0 ? rows[i].mrays_per_s / raw_best : 0.0,
-               raw_diffuse > 0 ? rows[i].mrays_per_s / raw_diffuse : 0.0,
-               raw_random > 0 ? rows[i].mrays_per_s / raw_random : 0.0);
-        printf("Embree inside the path tracer runs at %.3f of its speed alone on the same rays "
-               "(paired median)\n", embree_inside);
-        if (lean > 0.0)
-            printf("lean tracer (the same kind of paths, almost no other work) against the replay "
-                   "of its own rays: %.3f (paired median); the path tracer reaches %.2f of it\n",
-                   lean, rows[i].paired_median / lean);
-        else
-            printf("lean tracer: not run (it traces `full`'s paths on scenes without a sky or "
-                   "mirrors only)\n");
-        if (sum) {
-            sum->embree_inside = embree_inside;
-            sum->lean = lean;
-            snprintf(sum->scene, sizeof sum->scene, "%s", scene.name);
-            sum->triangles = scene.triangle_count;
-            sum->mrays = rows[i].mrays_per_s;
-            sum->paired_median = rows[i].paired_median;
-            sum->paired_min = rows[i].paired_min;
-            sum->paired_max = rows[i].paired_max;
-        }
-    }
+    bench_table t = {.scene = &scene, .p = p, .comp = comp, .rows = rows, .n = n};
+    machine_name(t.machine, sizeof t.machine);
+    t.cores = p->threads > 0 ? p->threads : sysconf(_SC_NPROCESSORS_ONLN);
+    bench_find_yardsticks(&t);
+    bench_print_rows(&t, f);
+    bench_print_path_tracer(&t, sum);
     gib_scene_free(&scene);
     return 0;
 }
@@ -221,6 +267,114 @@ static int eff_cmp(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+/* One scene and component: its truth and where the rows go. */
+typedef struct eff_case {
+    const gib_scene *sc;
+    int comp;
+    const eff_opts *o;
+    gib_image truth;
+    gib_ref_stats ts;
+    FILE *f;
+    const char *machine;
+    long cores;
+} eff_case;
+
+/* Each sampler's renders at one spp: their mean squared error, their reported noise, their
+ * seconds and the spp they reached. */
+typedef struct eff_renders {
+    double secs[2][GIB_REF_BENCH_MAX_REPEATS], err2[2], pred2[2];
+    int spp_done[2];
+} eff_renders;
+
+/* The samplers' repeats at spp, alternating, so both ran under the machine's same load. */
+static int eff_render_all(const eff_case *c, int spp, eff_renders *er)
+{
+    const eff_opts *o = c->o;
+    const size_t n = (size_t)o->w * o->h * 3;
+    memset(er, 0, sizeof *er);
+    for (int r = 0; r < o->repeat; r++)
+        for (int si = 0; si < o->nsampler; si++) {
+            gib_image img;
+            gib_ref_stats st;
+            if (eff_render(c->sc, c->comp, spp, o->sampler[si], (uint64_t)r + 1, o, &img, &st) < 0)
+                return -1;
+            double e2 = 0.0;
+            for (size_t i = 0; i < n; i++) {
+                double d = (double)img.px[i] - c->truth.px[i];
+                e2 += d * d;
+            }
+            er->err2[si] += e2 / (double)n / o->repeat;
+            er->pred2[si] += st.noise_rmse * st.noise_rmse / o->repeat;
+            er->secs[si][r] = st.render_seconds;
+            er->spp_done[si] = st.spp;
+            gib_image_free(&img);
+        }
+    return 0;
+}
+
+/* Each sampler's row at one spp: printed, and written to f when there is one. */
+static void eff_rows(const eff_case *c, eff_renders *er)
+{
+    const eff_opts *o = c->o;
+    const double tvar = c->ts.noise_rmse * c->ts.noise_rmse, m2 = c->ts.mean * c->ts.mean;
+    double eff_random = 0.0;
+    for (int si = 0; si < o->nsampler; si++) {
+        const int smp = o->sampler[si];
+        double *sv = er->secs[si], pred2 = er->pred2[si];
+        qsort(sv, (size_t)o->repeat, sizeof *sv, eff_cmp);
+        double t = o->repeat % 2 ? sv[o->repeat / 2]
+                                 : 0.5 * (sv[o->repeat / 2 - 1] + sv[o->repeat / 2]);
+        double var = er->err2[si] - tvar; /* the truth's own noise removed */
+        double rel = m2 > 0.0 ? var / m2 : var;
+        double prel = m2 > 0.0 ? pred2 / m2 : pred2;
+        double eff = var > 0.0 && t > 0.0 ? 1.0 / (rel * t) : INFINITY;
+        double peff = pred2 > 0.0 && t > 0.0 ? 1.0 / (prel * t) : INFINITY;
+        double honest = var > 0.0 ? sqrt(pred2 / var) : INFINITY;
+        if (smp == GIB_REF_SAMPLER_RANDOM)
+            eff_random = eff;
+        double vs = eff_random > 0.0 ? eff / eff_random : 0.0;
+        printf("  %-6s %5d spp: %.3f s (median of %d), relative RMSE %.4g, efficiency "
+               "%.4g /s (reported noise's: %.4g, reported/actual error %.3f)%s",
+               gib_ref_sampler_name(smp), er->spp_done[si], t, o->repeat,
+               sqrt(fmax(rel, 0.0)), eff, peff, honest,
+               vs > 0.0 && smp != GIB_REF_SAMPLER_RANDOM ? "" : "\n");
+        if (vs > 0.0 && smp != GIB_REF_SAMPLER_RANDOM)
+            printf("; %.2fx random's\n", vs);
+        if (c->f)
+            fprintf(c->f,
+                    "%s,%u,%s,%d,%d,%d,%d,%ld,%s,%s,%d,%.6f,%.6f,%.9g,%.9g,%.9g,%.6f,"
+                    "%.6g,%.6g,%.4f\n",
+                    c->sc->name, c->sc->triangle_count, gib_component_name(c->comp), o->w, o->h,
+                    er->spp_done[si], c->ts.spp, c->cores, c->machine, gib_ref_sampler_name(smp),
+                    o->repeat, t, sv[o->repeat - 1], c->ts.mean, sqrt(fmax(rel, 0.0)),
+                    sqrt(prel), honest, eff, peff, vs);
+    }
+}
+
+/* One component: its truth, then every sampler and spp. Returns 0, or -1 after a message. */
+static int eff_component(eff_case *c)
+{
+    const eff_opts *o = c->o;
+    if (eff_render(c->sc, c->comp, o->truth_spp, GIB_REF_SAMPLER_SOBOL, 1000, o, &c->truth,
+                   &c->ts) < 0)
+        return -1;
+    printf("%s %s %dx%d: truth %d spp (sobol) in %.1f s, mean %.6g, its noise %.3g\n",
+           c->sc->name, gib_component_name(c->comp), o->w, o->h, c->ts.spp, c->ts.render_seconds,
+           c->ts.mean, c->ts.noise_rmse);
+    for (int k = 0; k < o->nspp; k++) {
+        eff_renders er;
+        if (eff_render_all(c, o->spp[k], &er) < 0) {
+            gib_image_free(&c->truth);
+            return -1;
+        }
+        eff_rows(c, &er);
+    }
+    if (c->f)
+        fflush(c->f);
+    gib_image_free(&c->truth);
+    return 0;
+}
+
 /* One scene: every component, sampler and spp; rows to f. Returns 0, 3 (data absent), 1. */
 static int eff_scene(const char *name, const eff_opts *o, FILE *f, const char *machine)
 {
@@ -234,79 +388,12 @@ static int eff_scene(const char *name, const eff_opts *o, FILE *f, const char *m
     }
     long cores = o->threads > 0 ? o->threads : sysconf(_SC_NPROCESSORS_ONLN);
     for (int ci = 0; ci < o->ncomp; ci++) {
-        const int comp = o->comp[ci];
-        gib_image truth;
-        gib_ref_stats ts;
-        if (eff_render(&sc, comp, o->truth_spp, GIB_REF_SAMPLER_SOBOL, 1000, o, &truth, &ts) < 0) {
+        eff_case c = {.sc = &sc, .comp = o->comp[ci], .o = o, .f = f, .machine = machine,
+                      .cores = cores};
+        if (eff_component(&c) < 0) {
             gib_scene_free(&sc);
             return 1;
         }
-        const size_t n = (size_t)o->w * o->h * 3;
-        const double tvar = ts.noise_rmse * ts.noise_rmse, m2 = ts.mean * ts.mean;
-        printf("%s %s %dx%d: truth %d spp (sobol) in %.1f s, mean %.6g, its noise %.3g\n",
-               sc.name, gib_component_name(comp), o->w, o->h, ts.spp, ts.render_seconds, ts.mean,
-               ts.noise_rmse);
-        for (int k = 0; k < o->nspp; k++) {
-            /* the samplers' repeats alternate, so both ran under the machine's same load */
-            double secs[2][GIB_REF_BENCH_MAX_REPEATS], err2[2] = {0}, pred2[2] = {0};
-            int spp_done[2] = {0};
-            for (int r = 0; r < o->repeat; r++)
-                for (int si = 0; si < o->nsampler; si++) {
-                    gib_image img;
-                    gib_ref_stats st;
-                    if (eff_render(&sc, comp, o->spp[k], o->sampler[si], (uint64_t)r + 1, o, &img,
-                                   &st) < 0) {
-                        gib_image_free(&truth);
-                        gib_scene_free(&sc);
-                        return 1;
-                    }
-                    double e2 = 0.0;
-                    for (size_t i = 0; i < n; i++) {
-                        double d = (double)img.px[i] - truth.px[i];
-                        e2 += d * d;
-                    }
-                    err2[si] += e2 / (double)n / o->repeat;
-                    pred2[si] += st.noise_rmse * st.noise_rmse / o->repeat;
-                    secs[si][r] = st.render_seconds;
-                    spp_done[si] = st.spp;
-                    gib_image_free(&img);
-                }
-            double eff_random = 0.0;
-            for (int si = 0; si < o->nsampler; si++) {
-                const int smp = o->sampler[si];
-                double *sv = secs[si];
-                qsort(sv, (size_t)o->repeat, sizeof *sv, eff_cmp);
-                double t = o->repeat % 2 ? sv[o->repeat / 2]
-                                         : 0.5 * (sv[o->repeat / 2 - 1] + sv[o->repeat / 2]);
-                double var = err2[si] - tvar; /* the truth's own noise removed */
-                double rel = m2 > 0.0 ? var / m2 : var;
-                double prel = m2 > 0.0 ? pred2[si] / m2 : pred2[si];
-                double eff = var > 0.0 && t > 0.0 ? 1.0 / (rel * t) : INFINITY;
-                double peff = pred2[si] > 0.0 && t > 0.0 ? 1.0 / (prel * t) : INFINITY;
-                double honest = var > 0.0 ? sqrt(pred2[si] / var) : INFINITY;
-                if (smp == GIB_REF_SAMPLER_RANDOM)
-                    eff_random = eff;
-                double vs = eff_random > 0.0 ? eff / eff_random : 0.0;
-                printf("  %-6s %5d spp: %.3f s (median of %d), relative RMSE %.4g, efficiency "
-                       "%.4g /s (reported noise's: %.4g, reported/actual error %.3f)%s",
-                       gib_ref_sampler_name(smp), spp_done[si], t, o->repeat,
-                       sqrt(fmax(rel, 0.0)), eff, peff, honest,
-                       vs > 0.0 && smp != GIB_REF_SAMPLER_RANDOM ? "" : "\n");
-                if (vs > 0.0 && smp != GIB_REF_SAMPLER_RANDOM)
-                    printf("; %.2fx random's\n", vs);
-                if (f)
-                    fprintf(f,
-                            "%s,%u,%s,%d,%d,%d,%d,%ld,%s,%s,%d,%.6f,%.6f,%.9g,%.9g,%.9g,%.6f,"
-                            "%.6g,%.6g,%.4f\n",
-                            sc.name, sc.triangle_count, gib_component_name(comp), o->w, o->h,
-                            spp_done[si], ts.spp, cores, machine, gib_ref_sampler_name(smp),
-                            o->repeat, t, sv[o->repeat - 1], ts.mean, sqrt(fmax(rel, 0.0)),
-                            sqrt(prel), honest, eff, peff, vs);
-            }
-        }
-        if (f)
-            fflush(f);
-        gib_image_free(&truth);
     }
     gib_scene_free(&sc);
     return 0;
@@ -409,20 +496,17 @@ static int eff_run(const char *scenes, const eff_opts *o, const char *out)
     return failed ? 1 : ran ? 0 : 3;
 }
 
-int gib_cmd_bench(int argc, char **argv)
+/* What the command line asks for (NULL: the mode's default). */
+typedef struct bench_opts {
+    const char *scene_name, *size, *out, *comp, *samplers, *spps;
+    long spp, threads, repeat, truth_spp;
+    int efficiency;
+} bench_opts;
+
+#define PROCEED (-1) /* bench_parse_args: go on (else the exit status) */
+
+static int bench_parse_args(int argc, char **argv, bench_opts *o)
 {
-    if (argc < 2 || strcmp(argv[1], "reference") != 0) {
-        if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-            fputs(help, stdout);
-            return 0;
-        }
-        fprintf(stderr, "gibench bench: what to measure? ('reference')\n%s", help);
-        return 2;
-    }
-    const char *scene_name = NULL, *size = NULL, *out = NULL, *comp = NULL;
-    const char *samplers = "random,sobol", *spps = NULL;
-    long spp = 16, threads = 0, repeat = 3, truth_spp = 2048;
-    int efficiency = 0;
     gib_error err = {0};
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -431,7 +515,7 @@ int gib_cmd_bench(int argc, char **argv)
             return 0;
         }
         if (!strcmp(a, "--efficiency")) {
-            efficiency = 1;
+            o->efficiency = 1;
             continue;
         }
         if (!v) {
@@ -440,16 +524,16 @@ int gib_cmd_bench(int argc, char **argv)
         }
         i++;
         int rc = 0;
-        if (!strcmp(a, "--scene")) scene_name = v;
-        else if (!strcmp(a, "--size")) size = v;
-        else if (!strcmp(a, "--out")) out = v;
-        else if (!strcmp(a, "--component")) comp = v;
-        else if (!strcmp(a, "--spp")) spps = v;
-        else if (!strcmp(a, "--sampler")) samplers = v;
+        if (!strcmp(a, "--scene")) o->scene_name = v;
+        else if (!strcmp(a, "--size")) o->size = v;
+        else if (!strcmp(a, "--out")) o->out = v;
+        else if (!strcmp(a, "--component")) o->comp = v;
+        else if (!strcmp(a, "--spp")) o->spps = v;
+        else if (!strcmp(a, "--sampler")) o->samplers = v;
         else if (!strcmp(a, "--truth-spp"))
-            rc = gib_parse_int(a, v, 2, 1 << 20, &truth_spp, &err);
-        else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &threads, &err);
-        else if (!strcmp(a, "--repeat")) rc = gib_parse_int(a, v, 1, 100, &repeat, &err);
+            rc = gib_parse_int(a, v, 2, 1 << 20, &o->truth_spp, &err);
+        else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &o->threads, &err);
+        else if (!strcmp(a, "--repeat")) rc = gib_parse_int(a, v, 1, 100, &o->repeat, &err);
         else {
             fprintf(stderr, "gibench bench: unknown option '%s'\n%s", a, help);
             return 2;
@@ -459,29 +543,40 @@ int gib_cmd_bench(int argc, char **argv)
             return 2;
         }
     }
-    if (efficiency) {
-        eff_opts o = {.truth_spp = (int)truth_spp, .repeat = (int)repeat, .threads = (int)threads};
-        if (gib_parse_size("--size", size ? size : "128x128", &o.w, &o.h, &err) < 0) {
-            fprintf(stderr, "gibench bench: %s\n", err.msg);
-            return 2;
-        }
-        if ((o.nspp = eff_list("--spp", spps ? spps : "16,64", o.spp, 8, eff_parse_spp)) < 0 ||
-            (o.nsampler = eff_list("--sampler", samplers, o.sampler, 2, gib_ref_sampler_parse)) <
-                0 ||
-            (o.ncomp = eff_list("--component", comp ? comp : "full,indirect", o.comp,
-                                GIB_COMP_COUNT, gib_component_parse)) < 0)
-            return 2;
-        return eff_run(scene_name ? scene_name : "cornell,sibenik,sponza", &o, out);
-    }
-    if (!size)
-        size = "256x256";
-    if (!comp)
-        comp = "full";
-    if (spps && gib_parse_int("--spp", spps, 2, 1 << 20, &spp, &err) < 0) {
+    return PROCEED;
+}
+
+/* --efficiency: its lists, then its scenes. Returns the exit status. */
+static int bench_efficiency(const bench_opts *b)
+{
+    gib_error err = {0};
+    eff_opts o = {.truth_spp = (int)b->truth_spp, .repeat = (int)b->repeat,
+                  .threads = (int)b->threads};
+    if (gib_parse_size("--size", b->size ? b->size : "128x128", &o.w, &o.h, &err) < 0) {
         fprintf(stderr, "gibench bench: %s\n", err.msg);
         return 2;
     }
-    if (strcmp(samplers, "random,sobol") != 0) {
+    if ((o.nspp = eff_list("--spp", b->spps ? b->spps : "16,64", o.spp, 8, eff_parse_spp)) < 0 ||
+        (o.nsampler = eff_list("--sampler", b->samplers, o.sampler, 2, gib_ref_sampler_parse)) <
+            0 ||
+        (o.ncomp = eff_list("--component", b->comp ? b->comp : "full,indirect", o.comp,
+                            GIB_COMP_COUNT, gib_component_parse)) < 0)
+        return 2;
+    return eff_run(b->scene_name ? b->scene_name : "cornell,sibenik,sponza", &o, b->out);
+}
+
+/* The throughput run's parameters and scene list from the options. Returns PROCEED or the exit
+ * status. */
+static int bench_throughput_args(const bench_opts *o, gib_ref_params *p, char *list, size_t cap)
+{
+    gib_error err = {0};
+    const char *size = o->size ? o->size : "256x256", *comp = o->comp ? o->comp : "full";
+    long spp = o->spp;
+    if (o->spps && gib_parse_int("--spp", o->spps, 2, 1 << 20, &spp, &err) < 0) {
+        fprintf(stderr, "gibench bench: %s\n", err.msg);
+        return 2;
+    }
+    if (strcmp(o->samplers, "random,sobol") != 0) {
         fprintf(stderr, "gibench bench: --sampler goes with --efficiency\n");
         return 2;
     }
@@ -494,23 +589,50 @@ int gib_cmd_bench(int argc, char **argv)
         fprintf(stderr, "gibench bench: %s\n", err.msg);
         return 2;
     }
-    char list[1024];
-    if (scene_name && (strlen(scene_name) >= sizeof list || !scene_name[strspn(scene_name, ",")])) {
-        fprintf(stderr, "gibench bench: --scene '%.60s%s': %s\n", scene_name,
-                strlen(scene_name) > 60 ? "..." : "",
-                strlen(scene_name) >= sizeof list ? "list too long" : "names no scene");
+    const char *sn = o->scene_name;
+    if (sn && (strlen(sn) >= cap || !sn[strspn(sn, ",")])) {
+        fprintf(stderr, "gibench bench: --scene '%.60s%s': %s\n", sn, strlen(sn) > 60 ? "..." : "",
+                strlen(sn) >= cap ? "list too long" : "names no scene");
         return 2;
     }
-    snprintf(list, sizeof list, "%s", scene_name ? scene_name : "sponza");
-    gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
-                        .seed = 1, .threads = (int)threads, .quiet = 1};
+    snprintf(list, cap, "%s", sn ? sn : "sponza");
+    *p = (gib_ref_params){.component = component, .width = w, .height = h, .spp = (int)spp,
+                          .seed = 1, .threads = (int)o->threads, .quiet = 1};
+    return PROCEED;
+}
+
+/* The table of a multi-scene run: each scene's path tracer against its replay. */
+static void bench_print_summary(const bench_summary *sum, int nsum)
+{
+    printf("path tracer against the fastest replay of its own rays, by scene (paired "
+           "median [least, greatest]; Embree's speed inside it; the lean tracer's ratio):\n");
+    for (int i = 0; i < nsum; i++) {
+        char lean[16] = "n/a";
+        if (sum[i].lean > 0.0)
+            snprintf(lean, sizeof lean, "%.3f", sum[i].lean);
+        printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]  Embree %.3f  "
+               "lean %s\n",
+               sum[i].scene, sum[i].triangles, sum[i].mrays, sum[i].paired_median,
+               sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside, lean);
+    }
+}
+
+/* The throughput benchmark over the scene list. Returns the exit status. */
+static int bench_throughput(const bench_opts *o)
+{
+    char list[1024];
+    gib_ref_params p;
+    int st = bench_throughput_args(o, &p, list, sizeof list);
+    if (st != PROCEED)
+        return st;
+    const char *comp = o->comp ? o->comp : "full";
     char part[4096];
     FILE *f;
-    int st = part_open(out, part, sizeof part,
-                       "scene,triangles,component,width,height,spp,cores,machine,embree,measure,"
-                       "api,rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,"
-                       "vs_raw_replay_best,repeats,seconds_median,seconds_max,"
-                       "vs_replay_paired_median,vs_replay_paired_min,vs_replay_paired_max\n", &f);
+    st = part_open(o->out, part, sizeof part,
+                   "scene,triangles,component,width,height,spp,cores,machine,embree,measure,"
+                   "api,rays,seconds,mrays_per_s,vs_raw_random,vs_raw_diffuse,"
+                   "vs_raw_replay_best,repeats,seconds_median,seconds_max,"
+                   "vs_replay_paired_median,vs_replay_paired_min,vs_replay_paired_max\n", &f);
     if (st)
         return st;
     /* Scenes one after another, each row written as soon as its scene is done: a scene that
@@ -522,7 +644,7 @@ int gib_cmd_bench(int argc, char **argv)
     int nsum = 0;
     for (char *save = NULL, *name = strtok_r(list, ",", &save); name;
          name = strtok_r(NULL, ",", &save)) {
-        int rc = bench_scene(name, !scene_name, nlist > 1, &p, comp, (int)repeat, f,
+        int rc = bench_scene(name, !o->scene_name, nlist > 1, &p, comp, (int)o->repeat, f,
                              nsum < 64 ? &sum[nsum] : NULL);
         if (rc == 0) {
             ran++;
@@ -533,24 +655,30 @@ int gib_cmd_bench(int argc, char **argv)
             failed++;
         }
     }
-    if (f && part_finish(f, part, out, ran) < 0)
+    if (f && part_finish(f, part, o->out, ran) < 0)
         return 1;
-    if (nsum > 1) {
-        printf("path tracer against the fastest replay of its own rays, by scene (paired "
-               "median [least, greatest]; Embree's speed inside it; the lean tracer's ratio):\n");
-        for (int i = 0; i < nsum; i++) {
-            char lean[16] = "n/a";
-            if (sum[i].lean > 0.0)
-                snprintf(lean, sizeof lean, "%.3f", sum[i].lean);
-            printf("  %-12s %9u triangles  %6.2f Mrays/s  %.3f [%.3f, %.3f]  Embree %.3f  "
-                   "lean %s\n",
-                   sum[i].scene, sum[i].triangles, sum[i].mrays, sum[i].paired_median,
-                   sum[i].paired_min, sum[i].paired_max, sum[i].embree_inside, lean);
-        }
-    }
+    if (nsum > 1)
+        bench_print_summary(sum, nsum);
     if (failed > 0)
         return 1;
     if (ran == 0)
         return unavailable > 0 ? 3 : 1;
     return 0;
+}
+
+int gib_cmd_bench(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "reference") != 0) {
+        if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+            fputs(help, stdout);
+            return 0;
+        }
+        fprintf(stderr, "gibench bench: what to measure? ('reference')\n%s", help);
+        return 2;
+    }
+    bench_opts o = {.samplers = "random,sobol", .spp = 16, .repeat = 3, .truth_spp = 2048};
+    int rc = bench_parse_args(argc, argv, &o);
+    if (rc != PROCEED)
+        return rc;
+    return o.efficiency ? bench_efficiency(&o) : bench_throughput(&o);
 }

@@ -166,12 +166,48 @@ static int plot(const char *png, const char *metric, const gib_history_series *s
     return 0;
 }
 
-int gib_cmd_history(int argc, char **argv)
+/* What the command line asks for. */
+typedef struct history_opts {
+    const char *db, *metric, *png;
+    gib_history_filter f;
+    int find, machines, have_tol;
+    double tol, abs_tol;
+} history_opts;
+
+#define PROCEED (-1) /* history_parse_args, history_load: go on (else the exit status) */
+
+/* An option with a value: 0, -1 with err filled, or 1 when a is no such option. */
+static int history_parse_value(history_opts *o, const char *a, const char *v, gib_error *err)
 {
-    const char *db = GIB_PROJECT_ROOT "/results/history.sqlite", *metric = "rmse", *png = NULL;
-    gib_history_filter f = {0};
-    int find = 0, machines = 0, have_tol = 0;
-    double tol = 0, abs_tol = 1e-6;
+    long id;
+    int rc = 0;
+    gib_history_filter *f = &o->f;
+    if (!strcmp(a, "--db")) o->db = v;
+    else if (!strcmp(a, "--metric")) o->metric = v;
+    else if (!strcmp(a, "--matrix")) f->matrix = v;
+    else if (!strcmp(a, "--scene")) f->scene = v;
+    else if (!strcmp(a, "--technique")) f->technique = v;
+    else if (!strcmp(a, "--component")) f->component = v;
+    else if (!strcmp(a, "--params")) f->params = v;
+    else if (!strcmp(a, "--renderer")) f->renderer = v;
+    else if (!strcmp(a, "--plot")) {
+        o->png = v;
+        rc = gib_check_output("--plot", v, ".png", err);
+    } else if (!strcmp(a, "--size")) rc = gib_parse_size(a, v, &f->width, &f->height, err);
+    else if (!strcmp(a, "--machine")) {
+        rc = gib_parse_int(a, v, 1, 1L << 40, &id, err);
+        f->machine = id;
+    } else if (!strcmp(a, "--tol")) {
+        rc = gib_parse_float(a, v, 0, 1e6, &o->tol, err);
+        o->have_tol = 1;
+    } else if (!strcmp(a, "--abs")) rc = gib_parse_float(a, v, 0, 1e30, &o->abs_tol, err);
+    else
+        rc = 1;
+    return rc;
+}
+
+static int history_parse_args(int argc, char **argv, history_opts *o)
+{
     gib_error err;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -180,11 +216,11 @@ int gib_cmd_history(int argc, char **argv)
             return 0;
         }
         if (!strcmp(a, "--find")) {
-            find = 1;
+            o->find = 1;
             continue;
         }
         if (!strcmp(a, "--machines")) {
-            machines = 1;
+            o->machines = 1;
             continue;
         }
         if (a[0] != '-' || i + 1 >= argc) {
@@ -192,29 +228,8 @@ int gib_cmd_history(int argc, char **argv)
                     a[0] != '-' ? "unexpected argument" : "option needs a value:", a, help);
             return 2;
         }
-        const char *v = argv[++i];
-        long id;
-        int rc = 0;
-        if (!strcmp(a, "--db")) db = v;
-        else if (!strcmp(a, "--metric")) metric = v;
-        else if (!strcmp(a, "--matrix")) f.matrix = v;
-        else if (!strcmp(a, "--scene")) f.scene = v;
-        else if (!strcmp(a, "--technique")) f.technique = v;
-        else if (!strcmp(a, "--component")) f.component = v;
-        else if (!strcmp(a, "--params")) f.params = v;
-        else if (!strcmp(a, "--renderer")) f.renderer = v;
-        else if (!strcmp(a, "--plot")) {
-            png = v;
-            rc = gib_check_output("--plot", v, ".png", &err);
-        } else if (!strcmp(a, "--size")) rc = gib_parse_size(a, v, &f.width, &f.height, &err);
-        else if (!strcmp(a, "--machine")) {
-            rc = gib_parse_int(a, v, 1, 1L << 40, &id, &err);
-            f.machine = id;
-        } else if (!strcmp(a, "--tol")) {
-            rc = gib_parse_float(a, v, 0, 1e6, &tol, &err);
-            have_tol = 1;
-        } else if (!strcmp(a, "--abs")) rc = gib_parse_float(a, v, 0, 1e30, &abs_tol, &err);
-        else {
+        int rc = history_parse_value(o, a, argv[++i], &err);
+        if (rc > 0) {
             fprintf(stderr, "gibench history: unknown option '%s'\n%s", a, help);
             return 2;
         }
@@ -223,78 +238,112 @@ int gib_cmd_history(int argc, char **argv)
             return 2;
         }
     }
-    if (access(db, R_OK) != 0) {
+    return PROCEED;
+}
+
+/* The matching series from the history (or, with --machines, the machines printed). Returns
+ * PROCEED with at least one series in *s, or the exit status. */
+static int history_load(const history_opts *o, gib_history_series **s, int *n)
+{
+    gib_error err;
+    if (access(o->db, R_OK) != 0) {
         fprintf(stderr, "gibench history: no history at %s (`gibench run` records one; --db PATH)\n",
-                db);
+                o->db);
         return 3;
     }
     gib_history *h;
-    if (gib_history_open_readonly(&h, db, &err) < 0) {
+    if (gib_history_open_readonly(&h, o->db, &err) < 0) {
         fprintf(stderr, "gibench history: %s\n", err.msg);
         return 1;
     }
-    if (machines) {
+    if (o->machines) {
         int rc = gib_history_print_machines(h, stdout, &err);
         if (rc < 0)
             fprintf(stderr, "gibench history: %s\n", err.msg);
         gib_history_close(h);
         return rc < 0 ? 1 : 0;
     }
-    gib_history_series *s;
-    int n;
-    if (gib_history_query(h, &f, metric, &s, &n, &err) < 0) {
+    if (gib_history_query(h, &o->f, o->metric, s, n, &err) < 0) {
         fprintf(stderr, "gibench history: %s\n", err.msg);
         gib_history_close(h);
         return 2;
     }
     gib_history_close(h);
-    if (!n) {
-        fprintf(stderr, "gibench history: no `ok` row with a numeric %s matches in %s\n", metric,
-                db);
+    if (!*n) {
+        fprintf(stderr, "gibench history: no `ok` row with a numeric %s matches in %s\n",
+                o->metric, o->db);
         return 3;
     }
-    if (!have_tol)
-        tol = is_time_metric(metric) ? 0.10 : 0.02;
-    int higher = gib_history_higher_is_better(metric), status = 0, worse_count = 0;
-    if (png) {
+    return PROCEED;
+}
+
+/* --find on one series: its first revision worse than the best before it, printed. Returns 1
+ * when there is one. */
+static int print_worse(const history_opts *o, const gib_history_series *s, int higher,
+                       const char *title)
+{
+    int w = gib_history_find_worse(s, higher, o->tol, o->abs_tol);
+    if (w < 0)
+        return 0;
+    double best = s->points[0].value;
+    for (int p = 1; p < w; p++)
+        if (higher ? s->points[p].value > best : s->points[p].value < best)
+            best = s->points[p].value;
+    const gib_history_point *last = &s->points[s->count - 1];
+    printf("%s on machine %lld (%s)\n  %s worse at revision %s (first run %s): %.6g, best "
+           "before %.6g (%+.1f%%, allowed %.1f%% + %g); latest %s: %.6g\n",
+           title, s->machine, s->renderer, o->metric, s->points[w].revision,
+           s->points[w].started, s->points[w].value, best,
+           best ? 100.0 * (s->points[w].value / best - 1) : 0.0, 100 * o->tol, o->abs_tol,
+           last->revision, last->value);
+    return 1;
+}
+
+/* One series as a table: revision, first run, rows, value, change. */
+static void print_table(const history_opts *o, const gib_history_series *s, const char *title)
+{
+    printf("%s on machine %lld (%s)\n  %-20s %-20s %4s %14s %9s\n", title, s->machine,
+           s->renderer, "revision", "first run", "rows", o->metric, "change");
+    for (int p = 0; p < s->count; p++) {
+        const gib_history_point *q = &s->points[p];
+        char ch[32] = "";
+        if (p && s->points[p - 1].value)
+            snprintf(ch, sizeof ch, "%+.2f%%", 100 * (q->value / s->points[p - 1].value - 1));
+        printf("  %-20s %-20s %4d %14.6g %9s\n", q->revision, q->started, q->rows, q->value, ch);
+    }
+}
+
+int gib_cmd_history(int argc, char **argv)
+{
+    history_opts o = {.db = GIB_PROJECT_ROOT "/results/history.sqlite", .metric = "rmse",
+                      .abs_tol = 1e-6};
+    int rc = history_parse_args(argc, argv, &o);
+    if (rc != PROCEED)
+        return rc;
+    gib_history_series *s;
+    int n;
+    rc = history_load(&o, &s, &n);
+    if (rc != PROCEED)
+        return rc;
+    if (!o.have_tol)
+        o.tol = is_time_metric(o.metric) ? 0.10 : 0.02;
+    int higher = gib_history_higher_is_better(o.metric), status = 0, worse_count = 0;
+    if (o.png) {
         if (n > 24)
             fprintf(stderr, "gibench history: --plot: %d series match; filter to 24 or fewer\n", n);
-        status = n > 24 ? 2 : plot(png, metric, s, n);
+        status = n > 24 ? 2 : plot(o.png, o.metric, s, n);
     }
-    for (int i = 0; i < n && !png; i++) {
+    for (int i = 0; i < n && !o.png; i++) {
         char t[1400];
         series_title(&s[i], t, sizeof t);
-        if (find) {
-            int w = gib_history_find_worse(&s[i], higher, tol, abs_tol);
-            if (w < 0)
-                continue;
-            double best = s[i].points[0].value;
-            for (int p = 1; p < w; p++)
-                if (higher ? s[i].points[p].value > best : s[i].points[p].value < best)
-                    best = s[i].points[p].value;
-            const gib_history_point *last = &s[i].points[s[i].count - 1];
-            printf("%s on machine %lld (%s)\n  %s worse at revision %s (first run %s): %.6g, best "
-                   "before %.6g (%+.1f%%, allowed %.1f%% + %g); latest %s: %.6g\n",
-                   t, s[i].machine, s[i].renderer, metric, s[i].points[w].revision,
-                   s[i].points[w].started, s[i].points[w].value, best,
-                   best ? 100.0 * (s[i].points[w].value / best - 1) : 0.0, 100 * tol, abs_tol,
-                   last->revision, last->value);
-            worse_count++;
-            continue;
-        }
-        printf("%s on machine %lld (%s)\n  %-20s %-20s %4s %14s %9s\n", t, s[i].machine,
-               s[i].renderer, "revision", "first run", "rows", metric, "change");
-        for (int p = 0; p < s[i].count; p++) {
-            const gib_history_point *q = &s[i].points[p];
-            char ch[32] = "";
-            if (p && s[i].points[p - 1].value)
-                snprintf(ch, sizeof ch, "%+.2f%%", 100 * (q->value / s[i].points[p - 1].value - 1));
-            printf("  %-20s %-20s %4d %14.6g %9s\n", q->revision, q->started, q->rows, q->value, ch);
-        }
+        if (o.find)
+            worse_count += print_worse(&o, &s[i], higher, t);
+        else
+            print_table(&o, &s[i], t);
     }
-    if (find) {
+    if (o.find) {
         printf("gibench history: %d of %d series got worse in %s (tolerance %g relative + %g)\n",
-               worse_count, n, metric, tol, abs_tol);
+               worse_count, n, o.metric, o.tol, o.abs_tol);
         status = worse_count ? 1 : status;
     }
     gib_history_series_free(s, n);

@@ -66,7 +66,7 @@ static int read_lines(const char *path, lines *l, gib_error *err)
                 cap = cap ? 2 * cap : 256;
                 char **nl = realloc(l->line, (size_t)cap * sizeof *nl);
                 if (!nl)
-                    return gib_fail(err, "%s: out of memory", path);
+                    return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
                 l->line = nl;
             }
             l->line[l->count++] = p;
@@ -205,7 +205,7 @@ static int read_manifest(const char *dir, const char *file, manifest *m, gib_err
     }
     free_lines(&l);
     if (!m->rows)
-        return gib_fail(err, "%s: out of memory", path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     if (bad_line)
         return gib_fail(err, "%s:%d: not a gibench shard manifest line (written by another version?)",
                         path, bad_line);
@@ -390,7 +390,7 @@ static int check_run_owners(const manifest *sh, int n, gib_error *err)
                              "missing", name, a->runs, listed);
     int *owner = calloc((size_t)a->runs, sizeof *owner);
     if (!owner)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     int rc = 0;
     for (int i = 0; i < n && !rc; i++)
         for (int r = 0; r < sh[i].nruns && !rc; r++) {
@@ -490,7 +490,7 @@ static int take_shard_rows(merge_state *st, const manifest *m, int i, gib_error 
     }
     char *used = calloc((size_t)m->nrows + 1, 1);
     if (!used)
-        return gib_fail(err, "out of memory");
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     int rc = 0;
     for (int li = 1; li < st->csv[i].count && !rc; li++)
         rc = take_row(st, m, &st->csv[i], li, path, used, err);
@@ -534,7 +534,7 @@ static int take_shard_passes(merge_state *st, const manifest *sh, int i, gib_err
             st->pcap = st->pcap ? 2 * st->pcap : 256;
             mrow *np = realloc(st->passes, (size_t)st->pcap * sizeof *np);
             if (!np)
-                return gib_fail(err, "out of memory");
+                return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
             st->passes = np;
         }
         st->passes[st->npass] = (mrow){.ordinal = ord, .sub = st->npass, .line = p->line[li]};
@@ -609,7 +609,8 @@ static int merge_matrix(manifest *sh, int n, const char *out, gib_error *err)
     st.csv = calloc((size_t)n, sizeof *st.csv);
     st.pcsv = calloc((size_t)n, sizeof *st.pcsv);
     int rc = st.all && st.csv && st.pcsv ? merge_tables(&st, sh, n, out, err)
-                                         : gib_fail(err, "out of memory");
+                                         : gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                                                         "out of memory");
     for (int i = 0; st.csv && st.pcsv && i < n; i++)
         free_lines(&st.csv[i]), free_lines(&st.pcsv[i]);
     free(st.csv), free(st.pcsv), free(st.all), free(st.passes);

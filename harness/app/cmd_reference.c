@@ -128,15 +128,55 @@ static int write_png_beside(const char *exr, const gib_image *img, float exposur
     return gib_png_write_preview(png, img, exposure, err);
 }
 
-int gib_cmd_reference(int argc, char **argv)
+/* What the command line asks for. */
+typedef struct ref_opts {
+    const char *scene_name, *comp, *out, *cache, *se_out, *size;
+    long spp, camera, seed, threads, obsc, max_depth, min_depth, max_spec, max_spp;
+    int sampler, force, quiet;
+    double dmax, target, time;
+    int component, w, h; /* from comp and size (check_args) */
+} ref_opts;
+
+#define PROCEED (-1) /* parse_args, check_args: go on (else the exit status) */
+
+/* An option with a value: 0, -1 with err filled, or 1 when a is no such option. */
+static int parse_value_option(ref_opts *o, const char *a, const char *v, gib_error *err)
 {
-    const char *scene_name = NULL, *comp = NULL, *out = NULL, *size = "256x256", *se_out = NULL;
-    const char *cache = NULL;
-    long spp = 16, camera = 0, seed = 1, threads = 0, obsc = 0, max_depth = 0, min_depth = 0;
-    int sampler = GIB_REF_SAMPLER_DEFAULT;
-    long max_spec = 0, max_spp = 0;
-    int force = 0, quiet = 0;
-    double dmax = INFINITY, target = 0.0, time = 0.0;
+    int rc = 0;
+    if (!strcmp(a, "--scene")) o->scene_name = v;
+    else if (!strcmp(a, "--component")) o->comp = v;
+    else if (!strcmp(a, "--out")) o->out = v;
+    else if (!strcmp(a, "--cache")) o->cache = v;
+    else if (!strcmp(a, "--stderr")) o->se_out = v;
+    else if (!strcmp(a, "--size")) o->size = v;
+    else if (!strcmp(a, "--spp")) rc = gib_parse_int(a, v, 1, 1 << 24, &o->spp, err);
+    else if (!strcmp(a, "--camera")) rc = gib_parse_int(a, v, 0, 64, &o->camera, err);
+    else if (!strcmp(a, "--seed")) rc = gib_parse_int(a, v, 0, 1L << 30, &o->seed, err);
+    else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &o->threads, err);
+    else if (!strcmp(a, "--obscurance")) rc = gib_parse_int(a, v, 0, 1, &o->obsc, err);
+    else if (!strcmp(a, "--max-depth")) rc = gib_parse_int(a, v, 1, 1024, &o->max_depth, err);
+    else if (!strcmp(a, "--min-depth")) rc = gib_parse_int(a, v, 1, 1024, &o->min_depth, err);
+    else if (!strcmp(a, "--max-specular")) rc = gib_parse_int(a, v, 1, 64, &o->max_spec, err);
+    else if (!strcmp(a, "--max-spp")) rc = gib_parse_int(a, v, 2, 1 << 24, &o->max_spp, err);
+    else if (!strcmp(a, "--target-noise")) rc = gib_parse_float(a, v, 1e-9, 10, &o->target, err);
+    else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &o->time, err);
+    else if (!strcmp(a, "--sampler")) {
+        if ((o->sampler = gib_ref_sampler_parse(v)) < 0)
+            rc = gib_fail(err, "--sampler '%s': sobol or random", v);
+    }
+    else if (!strcmp(a, "--dmax")) {
+        if (!strcmp(v, "inf") || !strcmp(v, "unbounded"))
+            o->dmax = INFINITY;
+        else
+            rc = gib_parse_float(a, v, 0, 1e30, &o->dmax, err);
+    } else {
+        rc = 1;
+    }
+    return rc;
+}
+
+static int parse_args(int argc, char **argv, ref_opts *o)
+{
     gib_error err = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -145,11 +185,11 @@ int gib_cmd_reference(int argc, char **argv)
             return 0;
         }
         if (!strcmp(a, "--force")) {
-            force = 1;
+            o->force = 1;
             continue;
         }
         if (!strcmp(a, "--quiet")) {
-            quiet = 1;
+            o->quiet = 1;
             continue;
         }
         if (!v) {
@@ -157,34 +197,8 @@ int gib_cmd_reference(int argc, char **argv)
             return 2;
         }
         i++;
-        int rc = 0;
-        if (!strcmp(a, "--scene")) scene_name = v;
-        else if (!strcmp(a, "--component")) comp = v;
-        else if (!strcmp(a, "--out")) out = v;
-        else if (!strcmp(a, "--cache")) cache = v;
-        else if (!strcmp(a, "--stderr")) se_out = v;
-        else if (!strcmp(a, "--size")) size = v;
-        else if (!strcmp(a, "--spp")) rc = gib_parse_int(a, v, 1, 1 << 24, &spp, &err);
-        else if (!strcmp(a, "--camera")) rc = gib_parse_int(a, v, 0, 64, &camera, &err);
-        else if (!strcmp(a, "--seed")) rc = gib_parse_int(a, v, 0, 1L << 30, &seed, &err);
-        else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &threads, &err);
-        else if (!strcmp(a, "--obscurance")) rc = gib_parse_int(a, v, 0, 1, &obsc, &err);
-        else if (!strcmp(a, "--max-depth")) rc = gib_parse_int(a, v, 1, 1024, &max_depth, &err);
-        else if (!strcmp(a, "--min-depth")) rc = gib_parse_int(a, v, 1, 1024, &min_depth, &err);
-        else if (!strcmp(a, "--max-specular")) rc = gib_parse_int(a, v, 1, 64, &max_spec, &err);
-        else if (!strcmp(a, "--max-spp")) rc = gib_parse_int(a, v, 2, 1 << 24, &max_spp, &err);
-        else if (!strcmp(a, "--target-noise")) rc = gib_parse_float(a, v, 1e-9, 10, &target, &err);
-        else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &time, &err);
-        else if (!strcmp(a, "--sampler")) {
-            if ((sampler = gib_ref_sampler_parse(v)) < 0)
-                rc = gib_fail(&err, "--sampler '%s': sobol or random", v);
-        }
-        else if (!strcmp(a, "--dmax")) {
-            if (!strcmp(v, "inf") || !strcmp(v, "unbounded"))
-                dmax = INFINITY;
-            else
-                rc = gib_parse_float(a, v, 0, 1e30, &dmax, &err);
-        } else {
+        int rc = parse_value_option(o, a, v, &err);
+        if (rc > 0) {
             fprintf(stderr, "gibench reference: unknown option '%s'\n%s", a, help);
             return 2;
         }
@@ -193,166 +207,241 @@ int gib_cmd_reference(int argc, char **argv)
             return 2;
         }
     }
-    if (!scene_name || !comp || (!out && !cache)) {
-        fprintf(stderr, "gibench reference: --scene, --component and --out or --cache are "
-                        "required\n%s", help);
-        return 2;
-    }
-    if (force && !cache) {
-        fprintf(stderr, "gibench reference: --force re-renders a cache entry: give --cache DIR\n");
-        return 2;
-    }
-    if (target > 0 && max_spp > 0 && max_spp < spp) {
-        fprintf(stderr, "gibench reference: --max-spp %ld is below --spp %ld (the first round's "
-                        "count)\n", max_spp, spp);
-        return 2;
-    }
-    if ((out && gib_check_output("--out", out, ".exr", &err) < 0) ||
-        (se_out && gib_check_output("--stderr", se_out, ".exr", &err) < 0)) {
-        fprintf(stderr, "gibench reference: %s\n", err.msg);
-        return 2;
-    }
-    if (out && se_out && same_file(out, se_out)) {
-        fprintf(stderr, "gibench reference: --stderr %s is the --out file: the image and its "
-                        "standard-error map need two files\n", se_out);
-        return 2;
-    }
-    if (cache && seed != 1) {
+    return PROCEED;
+}
+
+/* What the cache cannot hold, and the component and size; sets component, w and h. */
+static int check_cache_args(ref_opts *o)
+{
+    gib_error err = {0};
+    if (o->cache && o->seed != 1) {
         fprintf(stderr, "gibench reference: the cache holds seed 1 renders: --seed goes with "
                         "--out only\n");
         return 2;
     }
-    if (cache && sampler == GIB_REF_SAMPLER_RANDOM) {
+    if (o->cache && o->sampler == GIB_REF_SAMPLER_RANDOM) {
         fprintf(stderr, "gibench reference: the cache holds sobol renders: --sampler random goes "
                         "with --out only\n");
         return 2;
     }
-    if (cache && se_out) {
+    if (o->cache && o->se_out) {
         fprintf(stderr, "gibench reference: --stderr needs a fresh render: use --out without "
                         "--cache\n");
         return 2;
     }
-    int component = gib_component_parse(comp);
-    if (component < 0) {
+    o->component = gib_component_parse(o->comp);
+    if (o->component < 0) {
         fprintf(stderr, "gibench reference: unknown component '%s' (ao, direct, indirect, glossy, "
-                        "caustic, full, higher, albedo, normal, depth)\n", comp);
+                        "caustic, full, higher, albedo, normal, depth)\n", o->comp);
         return 2;
     }
-    int w, h;
-    if (gib_parse_size("--size", size, &w, &h, &err) < 0) {
+    if (gib_parse_size("--size", o->size, &o->w, &o->h, &err) < 0) {
         fprintf(stderr, "gibench reference: %s\n", err.msg);
         return 2;
     }
+    return PROCEED;
+}
+
+/* The options' combinations; sets component, w and h. */
+static int check_args(ref_opts *o)
+{
+    gib_error err = {0};
+    if (!o->scene_name || !o->comp || (!o->out && !o->cache)) {
+        fprintf(stderr, "gibench reference: --scene, --component and --out or --cache are "
+                        "required\n%s", help);
+        return 2;
+    }
+    if (o->force && !o->cache) {
+        fprintf(stderr, "gibench reference: --force re-renders a cache entry: give --cache DIR\n");
+        return 2;
+    }
+    if (o->target > 0 && o->max_spp > 0 && o->max_spp < o->spp) {
+        fprintf(stderr, "gibench reference: --max-spp %ld is below --spp %ld (the first round's "
+                        "count)\n", o->max_spp, o->spp);
+        return 2;
+    }
+    if ((o->out && gib_check_output("--out", o->out, ".exr", &err) < 0) ||
+        (o->se_out && gib_check_output("--stderr", o->se_out, ".exr", &err) < 0)) {
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+        return 2;
+    }
+    if (o->out && o->se_out && same_file(o->out, o->se_out)) {
+        fprintf(stderr, "gibench reference: --stderr %s is the --out file: the image and its "
+                        "standard-error map need two files\n", o->se_out);
+        return 2;
+    }
+    return check_cache_args(o);
+}
+
+/* The render and its outcome, shared by the steps after the options. */
+typedef struct ref_job {
+    const ref_opts *o;
     gib_scene scene;
-    int rc = gib_cli_load_scene("reference", scene_name, camera, &scene);
-    if (rc)
-        return rc;
-    gib_ref_params p = {.component = component, .width = w, .height = h, .spp = (int)spp,
-                        .dmax = (float)dmax, .obscurance = (int)obsc, .max_depth = (int)max_depth,
-                        .min_depth = (int)min_depth, .max_specular = (int)max_spec,
-                        .target_noise = target, .max_spp = (int)max_spp, .seed = (uint64_t)seed,
-                        .threads = (int)threads, .camera = (int)camera, .time = (float)time,
-                        .sampler = sampler, .quiet = quiet};
-    gib_image img = {0}, se = {0};
-    gib_ref_stats st = {0};
-    int status = 0;
-    gib_ref_result res = {0};
-    const char *where = out;
-    if (target > 0) { /* rounds: Ctrl-C keeps the rounds done */
+    gib_ref_params p;
+    gib_image img, se;
+    gib_ref_stats st;
+    gib_ref_result res; /* through the cache */
+    const char *where;  /* the image's EXR: --out, or the cache entry (res.path) */
+} ref_job;
+
+/* Through the cache: the entry, rendered when missing (and its PNG preview then). 0, or the exit
+ * status. */
+static int render_through_cache(ref_job *j)
+{
+    const ref_opts *o = j->o;
+    gib_error err = {0};
+    gib_ref_result *res = &j->res;
+    gib_ref_request rq = {.scene = &j->scene, .camera = (int)o->camera, .width = o->w,
+                          .height = o->h, .component = o->component, .spp = (int)o->spp,
+                          .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
+                          .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
+                          .max_specular = (int)o->max_spec, .target_noise = o->target,
+                          .max_spp = (int)o->max_spp, .cache_dir = o->cache, .force = o->force,
+                          .quiet = o->quiet, .threads = (int)o->threads,
+                          .interrupt = j->p.interrupt, .time = (float)o->time};
+    int grc = gib_reference_get(&rq, res, &err);
+    interrupt_restore();
+    if (grc < 0) {
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+        return res->interrupted ? 130 : 1;
+    }
+    j->img = res->image;
+    j->st.spp = res->spp;
+    j->st.seconds = res->seconds;
+    j->st.noise_rmse = res->noise_rmse;
+    if (!res->from_cache && write_png_beside(res->path, &j->img, j->scene.exposure, &err) < 0)
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+    printf("%s %s %dx%d: %s %s (%d spp, noise RMSE %.4g)\n", j->scene.name, o->comp, o->w, o->h,
+           res->from_cache ? "from cache" : "rendered into cache", res->path, res->spp,
+           res->noise_rmse);
+    j->where = res->path;
+    return 0;
+}
+
+/* The cache entry's own values (time, rounds, mean, ...) for the header's keys. */
+static void take_cache_attrs(const char *entry, gib_kv *attrs, int n)
+{
+    gib_error err = {0};
+    gib_kv *ca = NULL;
+    int cn = 0;
+    gib_image tmp;
+    if (gib_exr_read(entry, &tmp, &ca, &cn, &err) == 0) {
+        gib_image_free(&tmp);
+        for (int i = 0; i < n; i++) {
+            const char *v = gib_kv_get(ca, cn, attrs[i].key);
+            if (v)
+                snprintf(attrs[i].value, sizeof attrs[i].value, "%s", v);
+        }
+    }
+    free(ca);
+}
+
+/* The standard-error map's header: the render's, marked, and no cache key (it is no reference
+ * image); sealed. Returns its count. */
+static int stderr_attrs(const gib_kv *attrs, int n, gib_image *se, gib_kv *se_attrs)
+{
+    memcpy(se_attrs, attrs, (size_t)n * sizeof attrs[0]);
+    int sn = n;
+    for (int i = 0; i < sn; i++)
+        if (!strcmp(se_attrs[i].key, "cache_key"))
+            snprintf(se_attrs[i].value, sizeof se_attrs[i].value, "none");
+    snprintf(se_attrs[sn].key, sizeof se_attrs[sn].key, "image");
+    snprintf(se_attrs[sn].value, sizeof se_attrs[sn].value, "standard_error");
+    return gib_ref_seal(se, se_attrs, sn + 1, GIB_REF_ATTR_COUNT + 2);
+}
+
+/* A fresh render's summary line, and what became of its target. Returns the exit status. */
+static int report_render(const ref_job *j)
+{
+    const ref_opts *o = j->o;
+    const gib_ref_stats *st = &j->st;
+    printf("%s %s %dx%d: %d spp%s in %.2f s (%.2f Mrays/s), mean %.6g, noise RMSE %.4g "
+           "(%.3g%% of the mean) -> %s\n",
+           j->scene.name, o->comp, o->w, o->h, st->spp,
+           st->deterministic ? " (deterministic)" : "", st->seconds,
+           st->seconds > 0 ? st->rays / st->seconds / 1e6 : 0.0, st->mean, st->noise_rmse,
+           st->mean > 0 ? 100.0 * st->noise_rmse / st->mean : 0.0, o->out);
+    if (st->interrupted) {
+        printf("interrupted: the %d spp of the rounds finished are in %s (target noise "
+               "%.3g not reached)\n", st->spp, o->out, o->target);
+        return 130;
+    } else if (o->target > 0 && !st->target_reached) {
+        printf("warning: target noise %.3g not reached within --max-spp\n", o->target);
+    }
+    return 0;
+}
+
+/* --out (with its PNG preview) and --stderr, sealed. Returns the exit status. */
+static int write_outputs(ref_job *j)
+{
+    const ref_opts *o = j->o;
+    gib_error err = {0};
+    gib_kv attrs[GIB_REF_ATTR_COUNT + 1], se_attrs[GIB_REF_ATTR_COUNT + 2];
+    int n = gib_reference_attrs(&j->scene, &j->p, &j->st, attrs, GIB_REF_ATTR_COUNT);
+    if (o->cache)
+        take_cache_attrs(j->where, attrs, n);
+    int sn = o->se_out ? stderr_attrs(attrs, n, &j->se, se_attrs) : 0;
+    n = gib_ref_seal(&j->img, attrs, n, GIB_REF_ATTR_COUNT + 1);
+    if (gib_exr_write(o->out, &j->img, attrs, n, &err) < 0 ||
+        write_png_beside(o->out, &j->img, j->scene.exposure, &err) < 0 ||
+        (o->se_out && gib_exr_write(o->se_out, &j->se, se_attrs, sn, &err) < 0)) {
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+        return 1;
+    }
+    return o->cache ? 0 : report_render(j);
+}
+
+/* The render, through the cache or not, and the files. Returns the exit status. */
+static int run_reference(ref_job *j)
+{
+    const ref_opts *o = j->o;
+    gib_error err = {0};
+    j->p = (gib_ref_params){.component = o->component, .width = o->w, .height = o->h,
+                            .spp = (int)o->spp, .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
+                            .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
+                            .max_specular = (int)o->max_spec, .target_noise = o->target,
+                            .max_spp = (int)o->max_spp, .seed = (uint64_t)o->seed,
+                            .threads = (int)o->threads, .camera = (int)o->camera,
+                            .time = (float)o->time, .sampler = o->sampler, .quiet = o->quiet};
+    j->where = o->out;
+    if (o->target > 0) { /* rounds: Ctrl-C keeps the rounds done */
         atomic_init(&interrupt_req.requested, 0);
         atomic_init(&interrupt_req.rounds_done, 0);
-        p.interrupt = &interrupt_req;
+        j->p.interrupt = &interrupt_req;
         interrupt_install();
     }
-    if (cache) {
-        gib_ref_request rq = {.scene = &scene, .camera = (int)camera, .width = w, .height = h,
-                              .component = component, .spp = (int)spp, .dmax = (float)dmax,
-                              .obscurance = (int)obsc, .max_depth = (int)max_depth,
-                              .min_depth = (int)min_depth, .max_specular = (int)max_spec,
-                              .target_noise = target, .max_spp = (int)max_spp,
-                              .cache_dir = cache, .force = force, .quiet = quiet,
-                              .threads = (int)threads, .interrupt = p.interrupt,
-                              .time = (float)time};
-        int grc = gib_reference_get(&rq, &res, &err);
-        interrupt_restore();
-        if (grc < 0) {
-            fprintf(stderr, "gibench reference: %s\n", err.msg);
-            gib_scene_free(&scene);
-            return res.interrupted ? 130 : 1;
-        }
-        img = res.image;
-        st.spp = res.spp;
-        st.seconds = res.seconds;
-        st.noise_rmse = res.noise_rmse;
-        if (!res.from_cache && write_png_beside(res.path, &img, scene.exposure, &err) < 0)
-            fprintf(stderr, "gibench reference: %s\n", err.msg);
-        printf("%s %s %dx%d: %s %s (%d spp, noise RMSE %.4g)\n", scene.name, comp, w, h,
-               res.from_cache ? "from cache" : "rendered into cache", res.path, res.spp,
-               res.noise_rmse);
-        where = res.path;
+    if (o->cache) {
+        int rc = render_through_cache(j);
+        if (rc)
+            return rc;
     } else {
-        int rrc = gib_reference_render(&scene, &p, &img, se_out ? &se : NULL, &st, &err);
+        int rrc = gib_reference_render(&j->scene, &j->p, &j->img, o->se_out ? &j->se : NULL,
+                                       &j->st, &err);
         interrupt_restore();
         if (rrc < 0) {
             fprintf(stderr, "gibench reference: %s\n", err.msg);
-            gib_scene_free(&scene);
             return 1;
         }
     }
-    if (out) {
-        gib_kv attrs[GIB_REF_ATTR_COUNT + 1], se_attrs[GIB_REF_ATTR_COUNT + 2];
-        int n = gib_reference_attrs(&scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
-        if (cache) { /* the entry's own values (time, rounds, mean, ...) for our keys */
-            gib_kv *ca = NULL;
-            int cn = 0;
-            gib_image tmp;
-            if (gib_exr_read(where, &tmp, &ca, &cn, &err) == 0) {
-                gib_image_free(&tmp);
-                for (int i = 0; i < n; i++) {
-                    const char *v = gib_kv_get(ca, cn, attrs[i].key);
-                    if (v)
-                        snprintf(attrs[i].value, sizeof attrs[i].value, "%s", v);
-                }
-            }
-            free(ca);
-        }
-        /* the standard-error map: the render's header, marked, and no cache key (it is no
-         * reference image) */
-        int sn = 0;
-        if (se_out) {
-            memcpy(se_attrs, attrs, (size_t)n * sizeof attrs[0]);
-            sn = n;
-            for (int i = 0; i < sn; i++)
-                if (!strcmp(se_attrs[i].key, "cache_key"))
-                    snprintf(se_attrs[i].value, sizeof se_attrs[i].value, "none");
-            snprintf(se_attrs[sn].key, sizeof se_attrs[sn].key, "image");
-            snprintf(se_attrs[sn].value, sizeof se_attrs[sn].value, "standard_error");
-            sn = gib_ref_seal(&se, se_attrs, sn + 1, GIB_REF_ATTR_COUNT + 2);
-        }
-        n = gib_ref_seal(&img, attrs, n, GIB_REF_ATTR_COUNT + 1);
-        if (gib_exr_write(out, &img, attrs, n, &err) < 0 ||
-            write_png_beside(out, &img, scene.exposure, &err) < 0 ||
-            (se_out && gib_exr_write(se_out, &se, se_attrs, sn, &err) < 0)) {
-            fprintf(stderr, "gibench reference: %s\n", err.msg);
-            status = 1;
-        } else if (!cache) {
-            printf("%s %s %dx%d: %d spp%s in %.2f s (%.2f Mrays/s), mean %.6g, noise RMSE %.4g "
-                   "(%.3g%% of the mean) -> %s\n",
-                   scene.name, comp, w, h, st.spp,
-                   st.deterministic ? " (deterministic)" : "", st.seconds,
-                   st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.mean, st.noise_rmse,
-                   st.mean > 0 ? 100.0 * st.noise_rmse / st.mean : 0.0, out);
-            if (st.interrupted) {
-                printf("interrupted: the %d spp of the rounds finished are in %s (target noise "
-                       "%.3g not reached)\n", st.spp, out, target);
-                status = 130;
-            } else if (target > 0 && !st.target_reached) {
-                printf("warning: target noise %.3g not reached within --max-spp\n", target);
-            }
-        }
-    }
-    gib_image_free(&img);
-    gib_image_free(&se);
-    gib_scene_free(&scene);
-    return status;
+    return o->out ? write_outputs(j) : 0;
+}
+
+int gib_cmd_reference(int argc, char **argv)
+{
+    ref_opts o = {.size = "256x256", .spp = 16, .seed = 1, .sampler = GIB_REF_SAMPLER_DEFAULT,
+                  .dmax = INFINITY};
+    int rc = parse_args(argc, argv, &o);
+    if (rc == PROCEED)
+        rc = check_args(&o);
+    if (rc != PROCEED)
+        return rc;
+    ref_job j = {.o = &o};
+    rc = gib_cli_load_scene("reference", o.scene_name, o.camera, &j.scene);
+    if (rc)
+        return rc;
+    rc = run_reference(&j);
+    gib_image_free(&j.img);
+    gib_image_free(&j.se);
+    gib_scene_free(&j.scene);
+    return rc;
 }

@@ -260,7 +260,8 @@ int gib_csv_append(gib_csv *c, const char *const *values, gib_error *err)
     if (fflush(c->f) != 0 || ferror(c->f))
         return gib_fail(err, "writing %s failed: %s", c->path, strerror(errno));
     if (c->nkey && add_key(c, key) < 0)
-        return gib_fail(err, "out of memory keeping the keys of %s", c->path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "out of memory keeping the keys of %s", c->path);
     return 1;
 }
 

@@ -362,7 +362,8 @@ int gib_history_add_row(gib_history *h, long long run_id, const char *const *nam
     sb_put(&js, "}", 1);
     if (js.oom) {
         free(js.p);
-        return gib_fail(err, "history %s: out of memory building a row", h->path);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "history %s: out of memory building a row", h->path);
     }
     sqlite3_stmt *st = h->insert;
     sqlite3_reset(st);
@@ -472,13 +473,18 @@ typedef struct vals {
     int n, cap;
 } vals;
 
-int gib_history_query(gib_history *h, const gib_history_filter *f, const char *metric,
-                      gib_history_series **out, int *count, gib_error *err)
+/* The series gathered so far, with each point's values before the median is taken. */
+typedef struct gather {
+    gib_history_series *ser;
+    vals **pv; /* per series, per point */
+    int ns, caps;
+    gib_error *err;
+} gather;
+
+/* The query of a metric's `ok` rows through the filter, ordered by series. */
+static int prepare_query(gib_history *h, const gib_history_filter *f, const char *metric,
+                         sqlite3_stmt **out, gib_error *err)
 {
-    *out = NULL;
-    *count = 0;
-    if (!metric_ok(metric))
-        return gib_fail(err, "history: metric '%s' is not a column name", metric);
     static const char sql[] =
         "SELECT r.matrix, r.scene, r.camera, r.technique, r.component, r.params, r.width,"
         " r.height, r.time, ru.machine_id, m.renderer, r.revision, ru.started, r.run_id,"
@@ -503,106 +509,159 @@ int gib_history_query(gib_history *h, const gib_history_filter *f, const char *m
     sqlite3_bind_int(st, 8, f->width);
     sqlite3_bind_int(st, 9, f->height);
     sqlite3_bind_int64(st, 10, f->machine);
+    *out = st;
+    return 0;
+}
 
-    gib_history_series *ser = NULL;
-    vals **pv = NULL; /* per series, per point */
-    int ns = 0, caps = 0, rc, failed = 0;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        gib_history_series key = {0};
-        snprintf(key.matrix, sizeof key.matrix, "%s", col_text(st, 0));
-        snprintf(key.scene, sizeof key.scene, "%s", col_text(st, 1));
-        key.camera = sqlite3_column_int(st, 2);
-        snprintf(key.technique, sizeof key.technique, "%s", col_text(st, 3));
-        snprintf(key.component, sizeof key.component, "%s", col_text(st, 4));
-        snprintf(key.params, sizeof key.params, "%s", col_text(st, 5));
-        key.width = sqlite3_column_int(st, 6);
-        key.height = sqlite3_column_int(st, 7);
-        key.time = sqlite3_column_double(st, 8);
-        key.machine = sqlite3_column_int64(st, 9);
-        snprintf(key.renderer, sizeof key.renderer, "%s", col_text(st, 10));
+/* The series a query row belongs to (no points). */
+static void row_key(sqlite3_stmt *st, gib_history_series *key)
+{
+    memset(key, 0, sizeof *key);
+    snprintf(key->matrix, sizeof key->matrix, "%s", col_text(st, 0));
+    snprintf(key->scene, sizeof key->scene, "%s", col_text(st, 1));
+    key->camera = sqlite3_column_int(st, 2);
+    snprintf(key->technique, sizeof key->technique, "%s", col_text(st, 3));
+    snprintf(key->component, sizeof key->component, "%s", col_text(st, 4));
+    snprintf(key->params, sizeof key->params, "%s", col_text(st, 5));
+    key->width = sqlite3_column_int(st, 6);
+    key->height = sqlite3_column_int(st, 7);
+    key->time = sqlite3_column_double(st, 8);
+    key->machine = sqlite3_column_int64(st, 9);
+    snprintf(key->renderer, sizeof key->renderer, "%s", col_text(st, 10));
+}
+
+static int same_series(const gib_history_series *s, const gib_history_series *key)
+{
+    return !strcmp(s->matrix, key->matrix) && !strcmp(s->scene, key->scene) &&
+           s->camera == key->camera && !strcmp(s->technique, key->technique) &&
+           !strcmp(s->component, key->component) && !strcmp(s->params, key->params) &&
+           s->width == key->width && s->height == key->height && s->time == key->time &&
+           s->machine == key->machine;
+}
+
+/* The series of key: the last one when it is the same (rows come ordered by series), else a new
+ * one. NULL when out of memory. */
+static gib_history_series *gather_series(gather *g, const gib_history_series *key)
+{
+    gib_history_series *s = g->ns ? &g->ser[g->ns - 1] : NULL;
+    if (s && same_series(s, key))
+        return s;
+    if (g->ns == g->caps) {
+        g->caps = g->caps ? 2 * g->caps : 16;
+        gib_history_series *a = gib_realloc_array(g->ser, g->caps, sizeof *g->ser, g->err);
+        vals **b = a ? gib_realloc_array(g->pv, g->caps, sizeof *g->pv, g->err) : NULL;
+        if (a)
+            g->ser = a;
+        if (!a || !b)
+            return NULL;
+        g->pv = b;
+    }
+    g->ser[g->ns] = *key;
+    g->pv[g->ns] = NULL;
+    return &g->ser[g->ns++];
+}
+
+/* The last series' point of revision rev, added when new. Its index, or -1 when out of
+ * memory. */
+static int gather_point(gather *g, const char *rev, const char *started)
+{
+    gib_history_series *s = &g->ser[g->ns - 1];
+    int p = 0;
+    while (p < s->count && strcmp(s->points[p].revision, rev))
+        p++;
+    if (p < s->count)
+        return p;
+    gib_history_point *a = gib_realloc_array(s->points, s->count + 1, sizeof *a, g->err);
+    vals *b = a ? gib_realloc_array(g->pv[g->ns - 1], s->count + 1, sizeof *b, g->err) : NULL;
+    if (a)
+        s->points = a;
+    if (!a || !b)
+        return -1;
+    g->pv[g->ns - 1] = b;
+    memset(&s->points[p], 0, sizeof s->points[p]);
+    memset(&b[p], 0, sizeof b[p]);
+    snprintf(s->points[p].revision, sizeof s->points[p].revision, "%s", rev);
+    snprintf(s->points[p].started, sizeof s->points[p].started, "%s", started);
+    s->count++;
+    return p;
+}
+
+static int vals_add(vals *x, double v, gib_error *err)
+{
+    if (x->n == x->cap) {
+        int cap = x->cap ? 2 * x->cap : 4;
+        double *d = gib_realloc_array(x->v, cap, sizeof *d, err);
+        if (!d)
+            return -1;
+        x->v = d;
+        x->cap = cap;
+    }
+    x->v[x->n++] = v;
+    return 0;
+}
+
+/* Every row of the query into its series and point. 0, or -1 when out of memory. */
+static int gather_rows(gather *g, sqlite3_stmt *st, int *rc)
+{
+    while ((*rc = sqlite3_step(st)) == SQLITE_ROW) {
+        gib_history_series key;
+        row_key(st, &key);
         double v = sqlite3_column_double(st, 14);
         if (!isfinite(v))
             continue;
-        gib_history_series *s = ns ? &ser[ns - 1] : NULL;
-        if (!s || strcmp(s->matrix, key.matrix) || strcmp(s->scene, key.scene) ||
-            s->camera != key.camera || strcmp(s->technique, key.technique) ||
-            strcmp(s->component, key.component) || strcmp(s->params, key.params) ||
-            s->width != key.width || s->height != key.height || s->time != key.time ||
-            s->machine != key.machine) {
-            if (ns == caps) {
-                caps = caps ? 2 * caps : 16;
-                gib_history_series *a = gib_realloc_array(ser, caps, sizeof *ser, err);
-                vals **b = a ? gib_realloc_array(pv, caps, sizeof *pv, err) : NULL;
-                if (a)
-                    ser = a;
-                if (!a || !b) {
-                    failed = 1;
-                    break;
-                }
-                pv = b;
-            }
-            ser[ns] = key;
-            pv[ns] = NULL;
-            s = &ser[ns++];
-        }
-        const char *rev = col_text(st, 11);
-        int p = 0;
-        while (p < s->count && strcmp(s->points[p].revision, rev))
-            p++;
-        if (p == s->count) {
-            gib_history_point *a = gib_realloc_array(s->points, s->count + 1, sizeof *a, err);
-            vals *b = a ? gib_realloc_array(pv[ns - 1], s->count + 1, sizeof *b, err) : NULL;
-            if (a)
-                s->points = a;
-            if (!a || !b) {
-                failed = 1;
-                break;
-            }
-            pv[ns - 1] = b;
-            memset(&s->points[p], 0, sizeof s->points[p]);
-            memset(&b[p], 0, sizeof b[p]);
-            snprintf(s->points[p].revision, sizeof s->points[p].revision, "%s", rev);
-            snprintf(s->points[p].started, sizeof s->points[p].started, "%s", col_text(st, 12));
-            s->count++;
-        }
-        vals *pvv = &pv[ns - 1][p];
-        if (pvv->n == pvv->cap) {
-            int cap = pvv->cap ? 2 * pvv->cap : 4;
-            double *d = gib_realloc_array(pvv->v, cap, sizeof *d, err);
-            if (!d) {
-                failed = 1;
-                break;
-            }
-            pvv->v = d;
-            pvv->cap = cap;
-        }
-        pvv->v[pvv->n++] = v;
+        if (!gather_series(g, &key))
+            return -1;
+        int p = gather_point(g, col_text(st, 11), col_text(st, 12));
+        if (p < 0 || vals_add(&g->pv[g->ns - 1][p], v, g->err) < 0)
+            return -1;
     }
+    return 0;
+}
+
+/* Each point's value: the median of its rows'; the gathered values freed. */
+static void take_medians(gather *g)
+{
+    for (int i = 0; i < g->ns; i++) {
+        for (int p = 0; p < g->ser[i].count; p++) {
+            vals *x = &g->pv[i][p];
+            if (x->n) {
+                qsort(x->v, x->n, sizeof *x->v, cmp_double);
+                g->ser[i].points[p].value =
+                    x->n % 2 ? x->v[x->n / 2] : 0.5 * (x->v[x->n / 2 - 1] + x->v[x->n / 2]);
+            }
+            g->ser[i].points[p].rows = x->n;
+            free(x->v);
+        }
+        free(g->pv[i]);
+    }
+    free(g->pv);
+    g->pv = NULL;
+}
+
+int gib_history_query(gib_history *h, const gib_history_filter *f, const char *metric,
+                      gib_history_series **out, int *count, gib_error *err)
+{
+    *out = NULL;
+    *count = 0;
+    if (!metric_ok(metric))
+        return gib_fail(err, "history: metric '%s' is not a column name", metric);
+    sqlite3_stmt *st = NULL;
+    if (prepare_query(h, f, metric, &st, err) < 0)
+        return -1;
+    gather g = {.err = err};
+    int rc, failed = gather_rows(&g, st, &rc) < 0;
     if (!failed && rc != SQLITE_DONE) {
         db_fail(h, err, "query");
         failed = 1;
     }
     sqlite3_finalize(st);
-    for (int i = 0; i < ns; i++) {
-        for (int p = 0; p < ser[i].count; p++) {
-            vals *x = &pv[i][p];
-            if (x->n) {
-                qsort(x->v, x->n, sizeof *x->v, cmp_double);
-                ser[i].points[p].value =
-                    x->n % 2 ? x->v[x->n / 2] : 0.5 * (x->v[x->n / 2 - 1] + x->v[x->n / 2]);
-            }
-            ser[i].points[p].rows = x->n;
-            free(x->v);
-        }
-        free(pv[i]);
-    }
-    free(pv);
+    take_medians(&g);
     if (failed) {
-        gib_history_series_free(ser, ns);
+        gib_history_series_free(g.ser, g.ns);
         return -1;
     }
-    *out = ser;
-    *count = ns;
+    *out = g.ser;
+    *count = g.ns;
     return 0;
 }
 

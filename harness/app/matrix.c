@@ -124,22 +124,10 @@ static int known_matrix_key(const char *k)
     return ref_spp_component(k) >= 0;
 }
 
-int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_error *err)
+/* The file's name, path and the chosen profile; psec receives the profile's section name. */
+static void name_matrix(gib_matrix *m, const char *path, const char *profile, char *psec,
+                        size_t psec_len)
 {
-    memset(m, 0, sizeof *m);
-    parse_state s = {.path = path, .err = err};
-    s.f = fopen(path, "r");
-    if (!s.f)
-        return gib_fail(err, "matrix file '%s' cannot be opened", path);
-    int rc = ini_parse_stream(reader, &s, handler, &s);
-    fclose(s.f);
-    int status = -1;
-    if (rc != 0 || s.failed) {
-        if (!s.failed)
-            gib_fail(err, "%s:%d: syntax error (expected [section] or key = value)", path,
-                     rc > 0 ? rc : s.line);
-        goto out;
-    }
     snprintf(m->path, sizeof m->path, "%s", path);
     const char *base = strrchr(path, '/');
     snprintf(m->name, sizeof m->name, "%s", base ? base + 1 : path);
@@ -147,42 +135,43 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
     if (dot)
         *dot = 0;
     snprintf(m->profile, sizeof m->profile, "%s", profile);
-    char psec[64];
-    snprintf(psec, sizeof psec, "profile.%s", profile);
+    snprintf(psec, psec_len, "profile.%s", profile);
+}
 
-    /* Every section and key is checked, so a typo never silently changes what runs. */
+/* Every section and key is checked, so a typo never silently changes what runs. */
+static int check_sections(const parse_state *s, const char *profile, const char *psec)
+{
     int have_profile = 0;
-    for (int i = 0; i < s.nsections; i++)
-        have_profile |= !strcmp(s.sections[i], psec);
-    for (int i = 0; i < s.count; i++) {
-        raw_value *v = &s.vals[i];
+    for (int i = 0; i < s->nsections; i++)
+        have_profile |= !strcmp(s->sections[i], psec);
+    for (int i = 0; i < s->count; i++) {
+        const raw_value *v = &s->vals[i];
         if (!strcmp(v->section, "matrix") || !strncmp(v->section, "profile.", 8)) {
             const char *dotk = strchr(v->key, '.');
-            if (!known_matrix_key(v->key) && !(dotk && !strncmp(v->section, "profile.", 8))) {
-                gib_fail(err, "%s:%d: unknown key '%s' in [%s]", path, v->line, v->key,
-                         v->section);
-                goto out;
-            }
+            if (!known_matrix_key(v->key) && !(dotk && !strncmp(v->section, "profile.", 8)))
+                return gib_fail(s->err, "%s:%d: unknown key '%s' in [%s]", s->path, v->line,
+                                v->key, v->section);
         } else if (!strcmp(v->section, "scene_scale")) {
-            continue; /* checked against the scene list below */
+            continue; /* checked against the scene list (load_scene_scale) */
         } else if (!strncmp(v->section, "params.", 7)) {
-            const gib_technique *t = gib_technique_find(v->section + 7);
-            if (!t) {
-                gib_fail(err, "%s:%d: [%s]: unknown technique '%s'", path, v->line, v->section,
-                         v->section + 7);
-                goto out;
-            }
+            if (!gib_technique_find(v->section + 7))
+                return gib_fail(s->err, "%s:%d: [%s]: unknown technique '%s'", s->path, v->line,
+                                v->section, v->section + 7);
         } else {
-            gib_fail(err, "%s:%d: unknown section [%s] (expected [matrix], [params.TECHNIQUE], "
-                     "[scene_scale] or [profile.NAME])", path, v->line, v->section);
-            goto out;
+            return gib_fail(s->err, "%s:%d: unknown section [%s] (expected [matrix], "
+                            "[params.TECHNIQUE], [scene_scale] or [profile.NAME])", s->path,
+                            v->line, v->section);
         }
     }
-    if (!have_profile && strcmp(profile, "default")) {
-        gib_fail(err, "%s: has no [profile.%s] section", path, profile);
-        goto out;
-    }
+    if (!have_profile && strcmp(profile, "default"))
+        return gib_fail(s->err, "%s: has no [profile.%s] section", s->path, profile);
+    return 0;
+}
 
+/* The integer keys (camera, frames, warmup, ref_spp_growth, ref_spp_<component>) and the
+ * description, with their defaults. */
+static int load_settings(const parse_state *s, const char *psec, gib_matrix *m)
+{
     const raw_value *v;
     m->frames = 5;
     m->warmup = 2;
@@ -198,210 +187,290 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
         ints[nints].max = 1 << 24;
     }
     for (size_t i = 0; i < nints; i++) {
-        if (!(v = lookup(&s, psec, ints[i].key)))
+        if (!(v = lookup(s, psec, ints[i].key)))
             continue;
         long x;
-        if (gib_parse_int(ints[i].key, trim((char *)v->value), ints[i].min, ints[i].max, &x, err) < 0) {
-            gib_error_prefix(err, "%s:%d", path, v->line);
-            goto out;
-        }
+        if (gib_parse_int(ints[i].key, trim((char *)v->value), ints[i].min, ints[i].max, &x,
+                          s->err) < 0)
+            return gib_error_prefix(s->err, "%s:%d", s->path, v->line);
         *ints[i].dst = (int)x;
     }
-    if ((v = lookup(&s, psec, "description")))
+    if ((v = lookup(s, psec, "description")))
         snprintf(m->description, sizeof m->description, "%s", v->value);
-    /* Instants and frame spacing for moving scenes (a static scene looks the same at each). */
-    double times[GIB_MATRIX_MAX_LIST] = {0.0};
-    int ntimes = 1;
-    if ((v = lookup(&s, psec, "times"))) {
+    return 0;
+}
+
+/* The matrix's lists, crossed with each technique's parameter lists into runs. */
+typedef struct matrix_axes {
+    char scenes_buf[512], techs_buf[512], sizes_buf[512];
+    char *scenes[GIB_MATRIX_MAX_LIST], *techs[GIB_MATRIX_MAX_LIST];
+    int ns, nt, nz;
+    int techs_line;                       /* where techniques is set, for its errors */
+    int ws[GIB_MATRIX_MAX_LIST], hs[GIB_MATRIX_MAX_LIST];
+    double times[GIB_MATRIX_MAX_LIST];
+    int ntimes;
+    double scale[GIB_MATRIX_MAX_LIST];    /* [scene_scale] per scene (1: none) */
+    int scale_line[GIB_MATRIX_MAX_LIST];
+} matrix_axes;
+
+/* Instants and frame spacing for moving scenes (a static scene looks the same at each). */
+static int load_times(const parse_state *s, const char *psec, gib_matrix *m, matrix_axes *ax)
+{
+    const raw_value *v;
+    ax->times[0] = 0.0;
+    ax->ntimes = 1;
+    if ((v = lookup(s, psec, "times"))) {
         char times_buf[512], *items[GIB_MATRIX_MAX_LIST];
         snprintf(times_buf, sizeof times_buf, "%s", v->value);
-        ntimes = split_list(times_buf, items, GIB_MATRIX_MAX_LIST);
-        if (!ntimes) {
-            gib_fail(err, "%s:%d: empty list for times", path, v->line);
-            goto out;
-        }
-        for (int i = 0; i < ntimes; i++)
-            if (gib_parse_float("times", items[i], -1e6, 1e6, &times[i], err) < 0) {
-                gib_error_prefix(err, "%s:%d", path, v->line);
-                goto out;
-            }
+        ax->ntimes = split_list(times_buf, items, GIB_MATRIX_MAX_LIST);
+        if (!ax->ntimes)
+            return gib_fail(s->err, "%s:%d: empty list for times", s->path, v->line);
+        for (int i = 0; i < ax->ntimes; i++)
+            if (gib_parse_float("times", items[i], -1e6, 1e6, &ax->times[i], s->err) < 0)
+                return gib_error_prefix(s->err, "%s:%d", s->path, v->line);
     }
-    if ((v = lookup(&s, psec, "dt")) &&
-        gib_parse_float("dt", trim((char *)v->value), 0.0, 1e4, &m->dt, err) < 0) {
-        gib_error_prefix(err, "%s:%d", path, v->line);
-        goto out;
-    }
+    if ((v = lookup(s, psec, "dt")) &&
+        gib_parse_float("dt", trim((char *)v->value), 0.0, 1e4, &m->dt, s->err) < 0)
+        return gib_error_prefix(s->err, "%s:%d", s->path, v->line);
+    return 0;
+}
 
-    char scenes_buf[512], techs_buf[512], sizes_buf[512];
-    char *scenes[GIB_MATRIX_MAX_LIST], *techs[GIB_MATRIX_MAX_LIST], *sizes[GIB_MATRIX_MAX_LIST];
-    const raw_value *vs = lookup(&s, psec, "scenes"), *vt = lookup(&s, psec, "techniques"),
-                    *vz = lookup(&s, psec, "sizes");
-    if (!vs || !vt || !vz) {
-        gib_fail(err, "%s: [matrix] needs scenes, techniques and sizes", path);
-        goto out;
-    }
-    snprintf(scenes_buf, sizeof scenes_buf, "%s", vs->value);
-    snprintf(techs_buf, sizeof techs_buf, "%s", vt->value);
-    snprintf(sizes_buf, sizeof sizes_buf, "%s", vz->value);
-    int ns = split_list(scenes_buf, scenes, GIB_MATRIX_MAX_LIST);
-    int nt = split_list(techs_buf, techs, GIB_MATRIX_MAX_LIST);
-    int nz = split_list(sizes_buf, sizes, GIB_MATRIX_MAX_LIST);
-    int ws[GIB_MATRIX_MAX_LIST], hs[GIB_MATRIX_MAX_LIST];
-    for (int i = 0; i < nz; i++)
-        if (gib_parse_size("sizes", sizes[i], &ws[i], &hs[i], err) < 0) {
-            gib_error_prefix(err, "%s:%d", path, vz->line);
-            goto out;
-        }
-    for (int i = 0; i < ns; i++) {
+/* scenes, techniques and sizes: each size parsed, each scene's file present. */
+static int load_lists(const parse_state *s, const char *psec, matrix_axes *ax)
+{
+    char *sizes[GIB_MATRIX_MAX_LIST];
+    const raw_value *vs = lookup(s, psec, "scenes"), *vt = lookup(s, psec, "techniques"),
+                    *vz = lookup(s, psec, "sizes");
+    if (!vs || !vt || !vz)
+        return gib_fail(s->err, "%s: [matrix] needs scenes, techniques and sizes", s->path);
+    snprintf(ax->scenes_buf, sizeof ax->scenes_buf, "%s", vs->value);
+    snprintf(ax->techs_buf, sizeof ax->techs_buf, "%s", vt->value);
+    snprintf(ax->sizes_buf, sizeof ax->sizes_buf, "%s", vz->value);
+    ax->ns = split_list(ax->scenes_buf, ax->scenes, GIB_MATRIX_MAX_LIST);
+    ax->nt = split_list(ax->techs_buf, ax->techs, GIB_MATRIX_MAX_LIST);
+    ax->nz = split_list(ax->sizes_buf, sizes, GIB_MATRIX_MAX_LIST);
+    ax->techs_line = vt->line;
+    for (int i = 0; i < ax->nz; i++)
+        if (gib_parse_size("sizes", sizes[i], &ax->ws[i], &ax->hs[i], s->err) < 0)
+            return gib_error_prefix(s->err, "%s:%d", s->path, vz->line);
+    for (int i = 0; i < ax->ns; i++) {
         char sf[1200];
-        snprintf(sf, sizeof sf, "%s/%s.scene", gib_scene_dir(), scenes[i]);
+        snprintf(sf, sizeof sf, "%s/%s.scene", gib_scene_dir(), ax->scenes[i]);
         FILE *f = fopen(sf, "r");
-        if (!f) {
-            gib_fail(err, "%s:%d: unknown scene '%s' (no %s)", path, vs->line, scenes[i], sf);
-            goto out;
-        }
+        if (!f)
+            return gib_fail(s->err, "%s:%d: unknown scene '%s' (no %s)", s->path, vs->line,
+                            ax->scenes[i], sf);
         fclose(f);
     }
-    /* [scene_scale]: scene = factor; the length parameters (GIB_PARAM_LENGTH) of that
-     * scene's runs are multiplied by it. */
-    double scale[GIB_MATRIX_MAX_LIST];
-    int scale_line[GIB_MATRIX_MAX_LIST];
-    for (int i = 0; i < ns; i++) {
-        scale[i] = 1.0;
-        scale_line[i] = 0;
+    return 0;
+}
+
+/* [scene_scale]: scene = factor; the length parameters (GIB_PARAM_LENGTH) of that
+ * scene's runs are multiplied by it. */
+static int load_scene_scale(const parse_state *s, matrix_axes *ax)
+{
+    for (int i = 0; i < ax->ns; i++) {
+        ax->scale[i] = 1.0;
+        ax->scale_line[i] = 0;
     }
-    for (int k = 0; k < s.count; k++) {
-        const raw_value *rv = &s.vals[k];
+    for (int k = 0; k < s->count; k++) {
+        const raw_value *rv = &s->vals[k];
         if (strcmp(rv->section, "scene_scale"))
             continue;
         int si = -1;
-        for (int i = 0; i < ns; i++)
-            if (!strcmp(scenes[i], rv->key))
+        for (int i = 0; i < ax->ns; i++)
+            if (!strcmp(ax->scenes[i], rv->key))
                 si = i;
-        if (si < 0) {
-            gib_fail(err, "%s:%d: [scene_scale]: '%s' is not one of the matrix's scenes", path,
-                     rv->line, rv->key);
-            goto out;
-        }
+        if (si < 0)
+            return gib_fail(s->err, "%s:%d: [scene_scale]: '%s' is not one of the matrix's scenes",
+                            s->path, rv->line, rv->key);
         char *end;
         double x = strtod(rv->value, &end);
-        if (end == rv->value || *trim(end) || !(x > 0.0) || !isfinite(x)) {
-            gib_fail(err, "%s:%d: [scene_scale]: %s expects a finite number > 0, got '%s'", path,
-                     rv->line, rv->key, rv->value);
-            goto out;
-        }
-        scale[si] = x;
-        scale_line[si] = rv->line;
+        if (end == rv->value || *trim(end) || !(x > 0.0) || !isfinite(x))
+            return gib_fail(s->err, "%s:%d: [scene_scale]: %s expects a finite number > 0, got '%s'",
+                            s->path, rv->line, rv->key, rv->value);
+        ax->scale[si] = x;
+        ax->scale_line[si] = rv->line;
     }
-    for (int ti = 0; ti < nt; ti++) {
-        const gib_technique *t = gib_technique_find(techs[ti]);
-        if (!t) {
-            gib_fail(err, "%s:%d: unknown technique '%s' (see gibench list)", path, vt->line,
-                     techs[ti]);
-            goto out;
+    return 0;
+}
+
+/* One technique's parameter lists: [params.T] key, overridden by [profile.P] T.key. */
+typedef struct param_lists {
+    const gib_technique *t;
+    int np;
+    char sec[80]; /* "params.T" */
+    int counts[GIB_MAX_PARAMS];
+    double values[GIB_MAX_PARAMS][GIB_MATRIX_MAX_LIST];
+} param_lists;
+
+/* Every key naming a parameter of the technique names one it has. */
+static int check_param_names(const parse_state *s, const char *psec, const param_lists *pl)
+{
+    const gib_technique *t = pl->t;
+    for (int k = 0; k < s->count; k++) {
+        const raw_value *rv = &s->vals[k];
+        int in_params = !strcmp(rv->section, pl->sec);
+        int in_prof = !strcmp(rv->section, psec) && !strncmp(rv->key, t->name, strlen(t->name)) &&
+                      rv->key[strlen(t->name)] == '.';
+        if (!in_params && !in_prof)
+            continue;
+        const char *pname = in_params ? rv->key : rv->key + strlen(t->name) + 1;
+        if (gib_param_index(t, pname) < 0) {
+            gib_error e2;
+            gib_param_set(t, &(gib_params){0}, pname, "0", &e2);
+            return gib_fail(s->err, "%s:%d: %s", s->path, rv->line, e2.msg);
         }
-        /* Parameter lists: [params.T] key, overridden by [profile.P] T.key. */
-        int np = 0;
-        while (t->params && t->params[np].name)
-            np++;
-        char lists[GIB_MAX_PARAMS][512];
-        int counts[GIB_MAX_PARAMS];
-        double values[GIB_MAX_PARAMS][GIB_MATRIX_MAX_LIST];
-        char sec[80];
-        snprintf(sec, sizeof sec, "params.%s", t->name);
-        for (int k = 0; k < s.count; k++) {
-            raw_value *rv = &s.vals[k];
-            int in_params = !strcmp(rv->section, sec);
-            int in_prof = !strcmp(rv->section, psec) && !strncmp(rv->key, t->name, strlen(t->name)) &&
-                          rv->key[strlen(t->name)] == '.';
-            if (!in_params && !in_prof)
-                continue;
-            const char *pname = in_params ? rv->key : rv->key + strlen(t->name) + 1;
-            if (gib_param_index(t, pname) < 0) {
-                gib_error e2;
-                gib_param_set(t, &(gib_params){0}, pname, "0", &e2);
-                gib_fail(err, "%s:%d: %s", path, rv->line, e2.msg);
-                goto out;
-            }
-        }
-        for (int pi = 0; pi < np; pi++) {
-            const raw_value *pv = NULL;
-            char pkey[128];
-            for (int k = 0; k < s.count; k++)
-                if (!strcmp(s.vals[k].section, sec) && !strcmp(s.vals[k].key, t->params[pi].name))
-                    pv = &s.vals[k];
-            snprintf(pkey, sizeof pkey, "%s.%s", t->name, t->params[pi].name);
-            for (int k = 0; k < s.count; k++)
-                if (!strcmp(s.vals[k].section, psec) && !strcmp(s.vals[k].key, pkey))
-                    pv = &s.vals[k];
-            if (!pv) {
-                counts[pi] = 1;
-                values[pi][0] = t->params[pi].def;
-                continue;
-            }
-            snprintf(lists[pi], sizeof lists[pi], "%s", pv->value);
-            char *items[GIB_MATRIX_MAX_LIST];
-            counts[pi] = split_list(lists[pi], items, GIB_MATRIX_MAX_LIST);
-            if (!counts[pi]) {
-                gib_fail(err, "%s:%d: empty list for %s", path, pv->line, t->params[pi].name);
-                goto out;
-            }
-            for (int k = 0; k < counts[pi]; k++) {
-                gib_params tmp;
-                gib_params_default(t, &tmp);
-                if (gib_param_set(t, &tmp, t->params[pi].name, items[k], err) < 0) {
-                    gib_error_prefix(err, "%s:%d", path, pv->line);
-                    goto out;
-                }
-                values[pi][k] = tmp.values[pi];
-            }
-        }
-        int combos = 1;
-        for (int pi = 0; pi < np; pi++)
-            combos *= counts[pi];
-        for (int si = 0; si < ns; si++)
-            for (int c = 0; c < combos; c++)
-                for (int zi = 0; zi < nz * ntimes; zi++) {
-                    gib_matrix_run *nr = realloc(m->runs, sizeof *nr * (m->run_count + 1));
-                    if (!nr) {
-                        gib_fail(err, "out of memory");
-                        goto out;
-                    }
-                    m->runs = nr;
-                    gib_matrix_run *r = &m->runs[m->run_count++];
-                    memset(r, 0, sizeof *r);
-                    snprintf(r->scene, sizeof r->scene, "%s", scenes[si]);
-                    r->technique = t;
-                    gib_params_default(t, &r->params);
-                    int rest = c;
-                    for (int pi = 0; pi < np; pi++) {
-                        const gib_param_spec *ps = &t->params[pi];
-                        double x = values[pi][rest % counts[pi]];
-                        rest /= counts[pi];
-                        if (ps->type == GIB_PARAM_LENGTH && scale[si] != 1.0) {
-                            x *= scale[si];
-                            if (!(x >= ps->min && x <= ps->max)) {
-                                gib_fail(err, "%s:%d: [scene_scale] %s = %g makes %s.%s %g, "
-                                         "outside [%g, %g]", path, scale_line[si], scenes[si],
-                                         scale[si], t->name, ps->name, x, ps->min, ps->max);
-                                goto out;
-                            }
-                        }
-                        r->params.values[pi] = x;
-                    }
-                    gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
-                    r->width = ws[zi % nz];
-                    r->height = hs[zi % nz];
-                    r->time = times[zi / nz];
-                }
     }
-    status = 0;
-out:
+    return 0;
+}
+
+/* Parameter pi's list of values: its default alone when no section sets it. */
+static int load_param_list(const parse_state *s, const char *psec, param_lists *pl, int pi)
+{
+    const gib_technique *t = pl->t;
+    const raw_value *pv = NULL;
+    char pkey[128];
+    for (int k = 0; k < s->count; k++)
+        if (!strcmp(s->vals[k].section, pl->sec) && !strcmp(s->vals[k].key, t->params[pi].name))
+            pv = &s->vals[k];
+    snprintf(pkey, sizeof pkey, "%s.%s", t->name, t->params[pi].name);
+    for (int k = 0; k < s->count; k++)
+        if (!strcmp(s->vals[k].section, psec) && !strcmp(s->vals[k].key, pkey))
+            pv = &s->vals[k];
+    if (!pv) {
+        pl->counts[pi] = 1;
+        pl->values[pi][0] = t->params[pi].def;
+        return 0;
+    }
+    char list[512], *items[GIB_MATRIX_MAX_LIST];
+    snprintf(list, sizeof list, "%s", pv->value);
+    pl->counts[pi] = split_list(list, items, GIB_MATRIX_MAX_LIST);
+    if (!pl->counts[pi])
+        return gib_fail(s->err, "%s:%d: empty list for %s", s->path, pv->line, t->params[pi].name);
+    for (int k = 0; k < pl->counts[pi]; k++) {
+        gib_params tmp;
+        gib_params_default(t, &tmp);
+        if (gib_param_set(t, &tmp, t->params[pi].name, items[k], s->err) < 0)
+            return gib_error_prefix(s->err, "%s:%d", s->path, pv->line);
+        pl->values[pi][k] = tmp.values[pi];
+    }
+    return 0;
+}
+
+static int load_param_lists(const parse_state *s, const char *psec, param_lists *pl)
+{
+    const gib_technique *t = pl->t;
+    pl->np = 0;
+    while (t->params && t->params[pl->np].name)
+        pl->np++;
+    snprintf(pl->sec, sizeof pl->sec, "params.%s", t->name);
+    if (check_param_names(s, psec, pl) < 0)
+        return -1;
+    for (int pi = 0; pi < pl->np; pi++)
+        if (load_param_list(s, psec, pl, pi) < 0)
+            return -1;
+    return 0;
+}
+
+/* Combination c of the parameter lists (the first parameter varying fastest), with scene si's
+ * [scene_scale] applied to its lengths. */
+static int set_combo(const matrix_axes *ax, const param_lists *pl, int si, int c, gib_params *out,
+                     const char *path, gib_error *err)
+{
+    const gib_technique *t = pl->t;
+    int rest = c;
+    for (int pi = 0; pi < pl->np; pi++) {
+        const gib_param_spec *ps = &t->params[pi];
+        double x = pl->values[pi][rest % pl->counts[pi]];
+        rest /= pl->counts[pi];
+        if (ps->type == GIB_PARAM_LENGTH && ax->scale[si] != 1.0) {
+            x *= ax->scale[si];
+            if (!(x >= ps->min && x <= ps->max))
+                return gib_fail(err, "%s:%d: [scene_scale] %s = %g makes %s.%s %g, "
+                                "outside [%g, %g]", path, ax->scale_line[si], ax->scenes[si],
+                                ax->scale[si], t->name, ps->name, x, ps->min, ps->max);
+        }
+        out->values[pi] = x;
+    }
+    return 0;
+}
+
+/* Appends the technique's runs: scenes x parameter combinations x instants x sizes. */
+static int expand_runs(gib_matrix *m, const matrix_axes *ax, const param_lists *pl,
+                       const char *path, gib_error *err)
+{
+    const gib_technique *t = pl->t;
+    int combos = 1;
+    for (int pi = 0; pi < pl->np; pi++)
+        combos *= pl->counts[pi];
+    for (int si = 0; si < ax->ns; si++)
+        for (int c = 0; c < combos; c++)
+            for (int zi = 0; zi < ax->nz * ax->ntimes; zi++) {
+                gib_matrix_run *nr = realloc(m->runs, sizeof *nr * (m->run_count + 1));
+                if (!nr)
+                    return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
+                m->runs = nr;
+                gib_matrix_run *r = &m->runs[m->run_count++];
+                memset(r, 0, sizeof *r);
+                snprintf(r->scene, sizeof r->scene, "%s", ax->scenes[si]);
+                r->technique = t;
+                gib_params_default(t, &r->params);
+                if (set_combo(ax, pl, si, c, &r->params, path, err) < 0)
+                    return -1;
+                gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
+                r->width = ax->ws[zi % ax->nz];
+                r->height = ax->hs[zi % ax->nz];
+                r->time = ax->times[zi / ax->nz];
+            }
+    return 0;
+}
+
+/* Everything after the file is read: checks, settings, lists and the runs, in that order (so
+ * the first error a file has is the one reported). */
+static int build_matrix(const parse_state *s, const char *profile, gib_matrix *m)
+{
+    char psec[64];
+    name_matrix(m, s->path, profile, psec, sizeof psec);
+    matrix_axes ax;
+    if (check_sections(s, profile, psec) < 0 || load_settings(s, psec, m) < 0 ||
+        load_times(s, psec, m, &ax) < 0 || load_lists(s, psec, &ax) < 0 ||
+        load_scene_scale(s, &ax) < 0)
+        return -1;
+    for (int ti = 0; ti < ax.nt; ti++) {
+        param_lists pl = {.t = gib_technique_find(ax.techs[ti])};
+        if (!pl.t)
+            return gib_fail(s->err, "%s:%d: unknown technique '%s' (see gibench list)", s->path,
+                            ax.techs_line, ax.techs[ti]);
+        if (load_param_lists(s, psec, &pl) < 0 || expand_runs(m, &ax, &pl, s->path, s->err) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_error *err)
+{
+    memset(m, 0, sizeof *m);
+    parse_state s = {.path = path, .err = err};
+    s.f = fopen(path, "r");
+    if (!s.f)
+        return gib_fail(err, "matrix file '%s' cannot be opened", path);
+    int rc = ini_parse_stream(reader, &s, handler, &s);
+    fclose(s.f);
+    int status = -1;
+    if (rc != 0 || s.failed) {
+        if (!s.failed)
+            gib_fail(err, "%s:%d: syntax error (expected [section] or key = value)", path,
+                     rc > 0 ? rc : s.line);
+    } else {
+        status = build_matrix(&s, profile, m);
+    }
     free(s.vals);
     if (status < 0)
         gib_matrix_free(m);
     return status;
 }
+
 
 void gib_matrix_free(gib_matrix *m)
 {

@@ -43,7 +43,8 @@ static int read_target(unsigned texture, int w, int h, gib_image *img, gib_error
     size_t n = (size_t)w * h;
     float *rgba = malloc(n * 16);
     if (!rgba)
-        return gib_fail(err, "out of memory reading back a %dx%d image", w, h);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "out of memory reading back a %dx%d image", w, h);
     glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * 16), rgba);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)

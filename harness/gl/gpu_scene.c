@@ -15,7 +15,7 @@ static unsigned upload_texture(gib_gpu_scene *gpu, const gib_texture *t, int srg
     size_t n = (size_t)t->width * t->height;
     unsigned char *bytes = malloc(n * 4);
     if (!bytes) {
-        gib_fail(err, "out of memory uploading texture '%s'", t->path);
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory uploading texture '%s'", t->path);
         return 0;
     }
     for (size_t i = 0; i < n * 4; i++) {
@@ -56,6 +56,103 @@ static float *pose_room(const gib_scene *s, gib_error *err)
     return gib_calloc(most ? 6 * most : 1, sizeof(float), err);
 }
 
+/* Vertex and index buffers, and the vertex array that reads them. */
+static int upload_geometry(gib_gpu_scene *gpu, const gib_scene *s, gib_error *err)
+{
+    size_t nv = s->vertex_count;
+    /* A moving scene rewrites positions and normals every frame (gib_gpu_scene_set_time). */
+    const unsigned vflags = s->motion_count ? GL_DYNAMIC_STORAGE_BIT : 0;
+    if (!(gpu->positions = gib_gpu_buffer(&gpu->ledger, "scene.positions", nv * 12, s->positions,
+                                          vflags, err)) ||
+        !(gpu->normals = gib_gpu_buffer(&gpu->ledger, "scene.normals", nv * 12, s->normals, vflags,
+                                        err)) ||
+        !(gpu->uvs = upload_array(gpu, "scene.uvs", s->uvs, nv * 8, err)) ||
+        !(gpu->pose = pose_room(s, err)) ||
+        !(gpu->indices = upload_array(gpu, "scene.indices", s->indices,
+                                      (size_t)s->triangle_count * 12, err)))
+        return -1;
+    glCreateVertexArrays(1, &gpu->vao);
+    const unsigned bufs[3] = {gpu->positions, gpu->normals, gpu->uvs};
+    const int comps[3] = {3, 3, 2};
+    for (int i = 0; i < 3; i++) {
+        glVertexArrayVertexBuffer(gpu->vao, i, bufs[i], 0, comps[i] * 4);
+        glVertexArrayAttribFormat(gpu->vao, i, comps[i], GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(gpu->vao, i, i);
+        glEnableVertexArrayAttrib(gpu->vao, i);
+    }
+    glVertexArrayElementBuffer(gpu->vao, gpu->indices);
+    return 0;
+}
+
+/* The materials' SSBO: std430 struct Material { vec4 albedo; vec4 specular; ivec4 flags; } = 48
+ * bytes. */
+static int upload_materials(gib_gpu_scene *gpu, const gib_scene *s, gib_error *err)
+{
+    struct { float albedo[4], specular[4]; int flags[4]; } *mats =
+        calloc(s->material_count ? s->material_count : 1, sizeof *mats);
+    if (!mats)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
+    for (uint32_t i = 0; i < s->material_count; i++) {
+        const gib_material *m = &s->materials[i];
+        memcpy(mats[i].albedo, m->albedo, 12);
+        mats[i].albedo[3] = m->albedo_tex >= 0 ? 1.0f : 0.0f;
+        memcpy(mats[i].specular, m->specular, 12);
+        mats[i].specular[3] = m->phong_n;
+        mats[i].flags[0] = m->spec_type;
+        mats[i].flags[1] = m->two_sided;
+        mats[i].flags[2] = m->alpha_tex >= 0;
+    }
+    gpu->materials = upload_array(gpu, "scene.materials", mats,
+                                  sizeof *mats * (s->material_count ? s->material_count : 1), err);
+    free(mats);
+    return gpu->materials ? 0 : -1;
+}
+
+/* The lights' SSBO: std430 struct Light { vec4 position_type; vec4 direction_exponent;
+ * vec4 intensity_outer; } */
+static int upload_lights(gib_gpu_scene *gpu, const gib_scene *s, gib_error *err)
+{
+    float *lights = calloc(s->light_count ? s->light_count : 1, 48);
+    if (!lights)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
+    for (uint32_t i = 0; i < s->light_count; i++) {
+        const gib_light *l = &s->lights[i];
+        float *o = lights + i * 12;
+        memcpy(o, l->position, 12);
+        o[3] = (float)l->type;
+        memcpy(o + 4, l->direction, 12);
+        o[7] = l->spot_exponent;
+        memcpy(o + 8, l->intensity, 12);
+        o[11] = l->type == GIB_LIGHT_SPOT ? gib_spot_cos_outer(l) : -2.0f; /* as the reference */
+    }
+    gpu->lights = upload_array(gpu, "scene.lights", lights,
+                               48 * (size_t)(s->light_count ? s->light_count : 1), err);
+    free(lights);
+    return gpu->lights ? 0 : -1;
+}
+
+/* The scene's textures, and the white one that stands in for none. */
+static int upload_textures(gib_gpu_scene *gpu, const gib_scene *s, gib_error *err)
+{
+    gpu->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *gpu->textures);
+    if (!gpu->textures)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
+    /* A texture used as an alpha mask keeps its bytes linear; colour textures are sRGB. */
+    for (uint32_t i = 0; i < s->texture_count; i++) {
+        int srgb = 1;
+        for (uint32_t m = 0; m < s->material_count; m++)
+            if (s->materials[m].alpha_tex == (int)i)
+                srgb = 0;
+        if (!(gpu->textures[i] = upload_texture(gpu, &s->textures[i], srgb, err)))
+            return -1;
+    }
+    gib_texture white = {.width = 1, .height = 1, .rgba = (float[4]){1, 1, 1, 1}};
+    strcpy(white.path, "white");
+    if (!(gpu->white = upload_texture(gpu, &white, 0, err)))
+        return -1;
+    return 0;
+}
+
 int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *err)
 {
     memset(gpu, 0, sizeof *gpu);
@@ -70,97 +167,13 @@ int gib_gpu_scene_upload(const gib_scene *scene, gib_gpu_scene *gpu, gib_error *
         return gib_error_prefix(err, "scene '%s' upload", scene->name);
     }
     const gib_scene *s = gpu->scene = &gpu->frame->scene;
-    size_t nv = s->vertex_count;
-    /* A moving scene rewrites positions and normals every frame (gib_gpu_scene_set_time). */
-    const unsigned vflags = s->motion_count ? GL_DYNAMIC_STORAGE_BIT : 0;
-    if (!(gpu->positions = gib_gpu_buffer(&gpu->ledger, "scene.positions", nv * 12, s->positions,
-                                          vflags, err)) ||
-        !(gpu->normals = gib_gpu_buffer(&gpu->ledger, "scene.normals", nv * 12, s->normals, vflags,
-                                        err)) ||
-        !(gpu->uvs = upload_array(gpu, "scene.uvs", s->uvs, nv * 8, err)) ||
-        !(gpu->pose = pose_room(s, err)) ||
-        !(gpu->indices = upload_array(gpu, "scene.indices", s->indices,
-                                      (size_t)s->triangle_count * 12, err)))
-        goto fail;
-    glCreateVertexArrays(1, &gpu->vao);
-    const unsigned bufs[3] = {gpu->positions, gpu->normals, gpu->uvs};
-    const int comps[3] = {3, 3, 2};
-    for (int i = 0; i < 3; i++) {
-        glVertexArrayVertexBuffer(gpu->vao, i, bufs[i], 0, comps[i] * 4);
-        glVertexArrayAttribFormat(gpu->vao, i, comps[i], GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(gpu->vao, i, i);
-        glEnableVertexArrayAttrib(gpu->vao, i);
+    if (upload_geometry(gpu, s, err) < 0 || upload_materials(gpu, s, err) < 0 ||
+        upload_lights(gpu, s, err) < 0 || upload_textures(gpu, s, err) < 0) {
+        gib_error_prefix(err, "scene '%s' upload", s->name);
+        gib_gpu_scene_free(gpu);
+        return -1;
     }
-    glVertexArrayElementBuffer(gpu->vao, gpu->indices);
-
-    /* std430 struct Material { vec4 albedo; vec4 specular; ivec4 flags; } = 48 bytes. */
-    struct { float albedo[4], specular[4]; int flags[4]; } *mats =
-        calloc(s->material_count ? s->material_count : 1, sizeof *mats);
-    if (!mats) {
-        gib_fail(err, "out of memory");
-        goto fail;
-    }
-    for (uint32_t i = 0; i < s->material_count; i++) {
-        const gib_material *m = &s->materials[i];
-        memcpy(mats[i].albedo, m->albedo, 12);
-        mats[i].albedo[3] = m->albedo_tex >= 0 ? 1.0f : 0.0f;
-        memcpy(mats[i].specular, m->specular, 12);
-        mats[i].specular[3] = m->phong_n;
-        mats[i].flags[0] = m->spec_type;
-        mats[i].flags[1] = m->two_sided;
-        mats[i].flags[2] = m->alpha_tex >= 0;
-    }
-    gpu->materials = upload_array(gpu, "scene.materials", mats,
-                                  sizeof *mats * (s->material_count ? s->material_count : 1), err);
-    free(mats);
-    if (!gpu->materials)
-        goto fail;
-
-    /* std430 struct Light { vec4 position_type; vec4 direction_exponent; vec4 intensity_outer; } */
-    float *lights = calloc(s->light_count ? s->light_count : 1, 48);
-    if (!lights) {
-        gib_fail(err, "out of memory");
-        goto fail;
-    }
-    for (uint32_t i = 0; i < s->light_count; i++) {
-        const gib_light *l = &s->lights[i];
-        float *o = lights + i * 12;
-        memcpy(o, l->position, 12);
-        o[3] = (float)l->type;
-        memcpy(o + 4, l->direction, 12);
-        o[7] = l->spot_exponent;
-        memcpy(o + 8, l->intensity, 12);
-        o[11] = l->type == GIB_LIGHT_SPOT ? gib_spot_cos_outer(l) : -2.0f; /* as the reference */
-    }
-    gpu->lights = upload_array(gpu, "scene.lights", lights,
-                               48 * (size_t)(s->light_count ? s->light_count : 1), err);
-    free(lights);
-    if (!gpu->lights)
-        goto fail;
-
-    gpu->textures = calloc(s->texture_count ? s->texture_count : 1, sizeof *gpu->textures);
-    if (!gpu->textures) {
-        gib_fail(err, "out of memory");
-        goto fail;
-    }
-    /* A texture used as an alpha mask keeps its bytes linear; colour textures are sRGB. */
-    for (uint32_t i = 0; i < s->texture_count; i++) {
-        int srgb = 1;
-        for (uint32_t m = 0; m < s->material_count; m++)
-            if (s->materials[m].alpha_tex == (int)i)
-                srgb = 0;
-        if (!(gpu->textures[i] = upload_texture(gpu, &s->textures[i], srgb, err)))
-            goto fail;
-    }
-    gib_texture white = {.width = 1, .height = 1, .rgba = (float[4]){1, 1, 1, 1}};
-    strcpy(white.path, "white");
-    if (!(gpu->white = upload_texture(gpu, &white, 0, err)))
-        goto fail;
     return gib_gl_check("uploading the scene", err);
-fail:
-    gib_error_prefix(err, "scene '%s' upload", s->name);
-    gib_gpu_scene_free(gpu);
-    return -1;
 }
 
 int gib_gpu_scene_set_time(const gib_gpu_scene *gpu, double t, gib_error *err)

@@ -79,6 +79,64 @@ static exr_result_t compress_chunk(exr_encode_pipeline_t *enc)
     return EXR_ERR_SUCCESS;
 }
 
+/* Points the encoder's channels at one chunk's rows of img. The pipeline lists channels
+ * alphabetically (A, B, G, R), so they are matched by name. */
+static void point_encode_channels(exr_encode_pipeline_t *enc, const gib_image *img, int start_y)
+{
+    const int c = img->channels;
+    const int32_t pixel_stride = (int32_t)(c * sizeof(float));
+    const int32_t line_stride = pixel_stride * img->width;
+    for (int ch = 0; ch < enc->channel_count; ++ch) {
+        exr_coding_channel_info_t *info = &enc->channels[ch];
+        int k = 0;
+        while (k < c && strcmp(info->channel_name, channel_names(c, k)) != 0)
+            ++k;
+        info->user_pixel_stride = pixel_stride;
+        info->user_line_stride = line_stride;
+        info->user_data_type = EXR_PIXEL_FLOAT;
+        info->user_bytes_per_element = 4;
+        info->encode_from_ptr = (const uint8_t *)(img->px + ((size_t)start_y * img->width) * c + k);
+    }
+}
+
+/* Every chunk of img encoded and written, through compress_chunk. */
+static exr_result_t encode_pixels(exr_context_t ctxt, int part, const gib_image *img)
+{
+    int32_t lines = 1;
+    exr_result_t rv = exr_get_scanlines_per_chunk(ctxt, part, &lines);
+    exr_writer writer;
+    memset(&writer, 0, sizeof writer);
+    exr_encode_pipeline_t *const enc = &writer.enc;
+    int have_enc = 0;
+    for (int y = 0; y < img->height && rv == EXR_ERR_SUCCESS; y += lines) {
+        exr_chunk_info_t cinfo;
+        rv = exr_write_scanline_chunk_info(ctxt, part, y, &cinfo);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        rv = have_enc ? exr_encoding_update(ctxt, part, &cinfo, enc)
+                      : exr_encoding_initialize(ctxt, part, &cinfo, enc);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        point_encode_channels(enc, img, cinfo.start_y);
+        if (!have_enc) {
+            rv = exr_encoding_choose_default_routines(ctxt, part, enc);
+            have_enc = 1;
+            if (rv != EXR_ERR_SUCCESS)
+                break;
+            if (!enc->compress_fn) { /* every chunk is ZIP: the library always sets one */
+                rv = EXR_ERR_INVALID_ARGUMENT;
+                break;
+            }
+            writer.library_compress = enc->compress_fn;
+            enc->compress_fn = compress_chunk;
+        }
+        rv = exr_encoding_run(ctxt, part, enc);
+    }
+    if (have_enc)
+        exr_encoding_destroy(ctxt, enc);
+    return rv;
+}
+
 int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, int nattrs,
                   gib_error *err)
 {
@@ -121,52 +179,7 @@ int gib_exr_write(const char *path, const gib_image *img, const gib_kv *attrs, i
         return -1;
     }
 
-    int32_t lines = 1;
-    rv = exr_get_scanlines_per_chunk(ctxt, part, &lines);
-    exr_writer writer;
-    memset(&writer, 0, sizeof writer);
-    exr_encode_pipeline_t *const enc = &writer.enc;
-    int have_enc = 0;
-    const int32_t pixel_stride = (int32_t)(c * sizeof(float));
-    const int32_t line_stride = pixel_stride * img->width;
-    for (int y = 0; y < img->height && rv == EXR_ERR_SUCCESS; y += lines) {
-        exr_chunk_info_t cinfo;
-        rv = exr_write_scanline_chunk_info(ctxt, part, y, &cinfo);
-        if (rv != EXR_ERR_SUCCESS)
-            break;
-        rv = have_enc ? exr_encoding_update(ctxt, part, &cinfo, enc)
-                      : exr_encoding_initialize(ctxt, part, &cinfo, enc);
-        if (rv != EXR_ERR_SUCCESS)
-            break;
-        /* The pipeline lists channels alphabetically (A, B, G, R), so match them by name. */
-        for (int ch = 0; ch < enc->channel_count; ++ch) {
-            exr_coding_channel_info_t *info = &enc->channels[ch];
-            int k = 0;
-            while (k < c && strcmp(info->channel_name, channel_names(c, k)) != 0)
-                ++k;
-            info->user_pixel_stride = pixel_stride;
-            info->user_line_stride = line_stride;
-            info->user_data_type = EXR_PIXEL_FLOAT;
-            info->user_bytes_per_element = 4;
-            info->encode_from_ptr =
-                (const uint8_t *)(img->px + ((size_t)cinfo.start_y * img->width) * c + k);
-        }
-        if (!have_enc) {
-            rv = exr_encoding_choose_default_routines(ctxt, part, enc);
-            have_enc = 1;
-            if (rv != EXR_ERR_SUCCESS)
-                break;
-            if (!enc->compress_fn) { /* every chunk is ZIP: the library always sets one */
-                rv = EXR_ERR_INVALID_ARGUMENT;
-                break;
-            }
-            writer.library_compress = enc->compress_fn;
-            enc->compress_fn = compress_chunk;
-        }
-        rv = exr_encoding_run(ctxt, part, enc);
-    }
-    if (have_enc)
-        exr_encoding_destroy(ctxt, enc);
+    rv = encode_pixels(ctxt, part, img);
     if (rv != EXR_ERR_SUCCESS) {
         exr_fail(err, "cannot write exr", path, rv);
         exr_finish(&ctxt);
@@ -215,6 +228,145 @@ static int read_string_attrs(exr_context_t ctxt, const char *path, gib_kv **out,
     return 0;
 }
 
+/* File channels that feed output channels 0..2: RGB, or Y replicated afterwards. */
+static const char *const read_wanted[4] = {"R", "G", "B", "Y"};
+
+/* Which of R, G, B and Y the file has (half or float, not subsampled); *luminance: Y alone feeds
+ * the image. */
+static int check_channels(const exr_attr_chlist_t *chl, const char *path, int *luminance,
+                          gib_error *err)
+{
+    int has[4] = {0, 0, 0, 0}; /* R, G, B, Y */
+    for (int i = 0; i < chl->num_channels; ++i) {
+        const exr_attr_chlist_entry_t *e = &chl->entries[i];
+        for (int k = 0; k < 4; ++k) {
+            if (strcmp(e->name.str, read_wanted[k]) != 0)
+                continue;
+            if (e->pixel_type == EXR_PIXEL_UINT || e->x_sampling != 1 || e->y_sampling != 1)
+                return gib_fail(err, "exr '%s': channel %s must be half or float, not subsampled",
+                                path, read_wanted[k]);
+            has[k] = 1;
+        }
+    }
+    *luminance = !(has[0] && has[1] && has[2]);
+    if (*luminance && !has[3])
+        return gib_fail(err, "exr '%s': needs R, G, B or Y channels", path);
+    return 0;
+}
+
+/* A header can claim any data window: it is held to sides and a pixel count gibench can hold
+ * (2^26 RGB floats: 768 MiB), and to the offset table its chunks need (8 bytes each), before
+ * anything is allocated (found by tests/fuzz/fuzz_exr: a 40-byte file claimed 36 GB). */
+static int check_window(exr_context_t ctxt, const char *path, const exr_attr_box2i_t *dw,
+                        gib_error *err)
+{
+    const int64_t w64 = (int64_t)dw->max.x - dw->min.x + 1, h64 = (int64_t)dw->max.y - dw->min.y + 1;
+    if (w64 < 1 || h64 < 1 || w64 > GIB_EXR_MAX_SIDE || h64 > GIB_EXR_MAX_SIDE ||
+        w64 * h64 > GIB_EXR_MAX_PIXELS)
+        return gib_fail(err, "exr '%s': data window %lld x %lld outside what gibench reads (sides "
+                             "1 to %d, at most %lld pixels)", path, (long long)w64, (long long)h64,
+                        GIB_EXR_MAX_SIDE, (long long)GIB_EXR_MAX_PIXELS);
+    int32_t chunk_count = 0;
+    struct stat file_st;
+    if (exr_get_chunk_count(ctxt, 0, &chunk_count) != EXR_ERR_SUCCESS || chunk_count < 1 ||
+        stat(path, &file_st) != 0 || (long long)file_st.st_size < 8LL * chunk_count)
+        return gib_fail(err, "exr '%s': truncated or inconsistent: %d chunks need an offset table "
+                             "of %lld bytes", path, chunk_count, 8LL * chunk_count);
+    return 0;
+}
+
+/* Points the decoder's channels at one chunk's rows of img (RGB interleaved); channels that feed
+ * none are skipped. */
+static void point_channels(exr_decode_pipeline_t *dec, float *row, int width, int luminance)
+{
+    for (int ch = 0; ch < dec->channel_count; ++ch) {
+        exr_coding_channel_info_t *info = &dec->channels[ch];
+        int k = -1;
+        if (!luminance) {
+            for (int j = 0; j < 3; ++j)
+                if (strcmp(info->channel_name, read_wanted[j]) == 0)
+                    k = j;
+        } else if (strcmp(info->channel_name, "Y") == 0) {
+            k = 0;
+        }
+        /* A NULL pointer tells the decoder to skip the channel (alpha, extra layers). */
+        info->decode_to_ptr = k < 0 ? NULL : (uint8_t *)(row + k);
+        info->user_pixel_stride = 3 * (int32_t)sizeof(float);
+        info->user_line_stride = 3 * (int32_t)sizeof(float) * width;
+        info->user_data_type = EXR_PIXEL_FLOAT; /* converts half on the fly */
+        info->user_bytes_per_element = 4;
+    }
+}
+
+/* Every chunk decoded into img (allocated to the data window); Y replicated into G and B. */
+static exr_result_t decode_pixels(exr_context_t ctxt, const exr_attr_box2i_t *dw, int luminance,
+                                  gib_image *img)
+{
+    const int width = img->width;
+    int32_t lines = 1;
+    exr_get_scanlines_per_chunk(ctxt, 0, &lines);
+    exr_decode_pipeline_t dec;
+    memset(&dec, 0, sizeof dec);
+    int have_dec = 0;
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    for (int y = dw->min.y; y <= dw->max.y && rv == EXR_ERR_SUCCESS; y += lines) {
+        exr_chunk_info_t cinfo;
+        rv = exr_read_scanline_chunk_info(ctxt, 0, y, &cinfo);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        rv = have_dec ? exr_decoding_update(ctxt, 0, &cinfo, &dec)
+                      : exr_decoding_initialize(ctxt, 0, &cinfo, &dec);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        point_channels(&dec, img->px + (size_t)(cinfo.start_y - dw->min.y) * (size_t)width * 3,
+                       width, luminance);
+        if (!have_dec) {
+            rv = exr_decoding_choose_default_routines(ctxt, 0, &dec);
+            have_dec = 1;
+            if (rv != EXR_ERR_SUCCESS)
+                break;
+        }
+        rv = exr_decoding_run(ctxt, 0, &dec);
+    }
+    if (have_dec)
+        exr_decoding_destroy(ctxt, &dec);
+    if (rv == EXR_ERR_SUCCESS && luminance) {
+        for (size_t i = 0; i < (size_t)width * (size_t)img->height; ++i)
+            img->px[i * 3 + 1] = img->px[i * 3 + 2] = img->px[i * 3];
+    }
+    return rv;
+}
+
+/* The open file's header checked, its pixels read into img and, when asked, its string
+ * attributes into *kv. */
+static int read_opened(exr_context_t ctxt, const char *path, gib_image *img, gib_kv **kv,
+                       int *nkv, gib_error *err)
+{
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t *chl = NULL;
+    exr_result_t rv;
+    if (exr_get_storage(ctxt, 0, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE)
+        return gib_fail(err, "exr '%s': only scanline images are supported (tiled or deep found)",
+                        path);
+    if ((rv = exr_get_data_window(ctxt, 0, &dw)) != EXR_ERR_SUCCESS ||
+        (rv = exr_get_channels(ctxt, 0, &chl)) != EXR_ERR_SUCCESS)
+        return exr_fail(err, "cannot read exr header", path, rv);
+    int luminance;
+    if (check_channels(chl, path, &luminance, err) < 0 || check_window(ctxt, path, &dw, err) < 0)
+        return -1;
+    const int width = (int)((int64_t)dw.max.x - dw.min.x + 1);
+    const int height = (int)((int64_t)dw.max.y - dw.min.y + 1);
+    if (gib_image_alloc(img, width, height, 3, err) != 0)
+        return gib_error_prefix(err, "exr '%s'", path);
+    rv = decode_pixels(ctxt, &dw, luminance, img);
+    if (rv != EXR_ERR_SUCCESS)
+        return exr_fail(err, "cannot read exr pixels", path, rv);
+    if (kv && read_string_attrs(ctxt, path, kv, nkv, err) != 0)
+        return -1;
+    return 0;
+}
+
 int gib_exr_read(const char *path, gib_image *img, gib_kv **attrs, int *nattrs, gib_error *err)
 {
     img->px = NULL;
@@ -233,124 +385,9 @@ int gib_exr_read(const char *path, gib_image *img, gib_kv **attrs, int *nattrs, 
         exr_finish(&ctxt);
         return -1;
     }
-
-    int ret = -1;
     gib_kv *kv = NULL;
     int nkv = 0;
-    exr_storage_t storage;
-    exr_attr_box2i_t dw;
-    const exr_attr_chlist_t *chl = NULL;
-    if (exr_get_storage(ctxt, 0, &storage) != EXR_ERR_SUCCESS || storage != EXR_STORAGE_SCANLINE) {
-        gib_fail(err, "exr '%s': only scanline images are supported (tiled or deep found)", path);
-        goto done;
-    }
-    if ((rv = exr_get_data_window(ctxt, 0, &dw)) != EXR_ERR_SUCCESS ||
-        (rv = exr_get_channels(ctxt, 0, &chl)) != EXR_ERR_SUCCESS) {
-        exr_fail(err, "cannot read exr header", path, rv);
-        goto done;
-    }
-    /* Which file channels feed output channels 0..2: RGB, or Y replicated afterwards. */
-    int has[4] = {0, 0, 0, 0}; /* R, G, B, Y */
-    static const char *const wanted[4] = {"R", "G", "B", "Y"};
-    for (int i = 0; i < chl->num_channels; ++i) {
-        const exr_attr_chlist_entry_t *e = &chl->entries[i];
-        for (int k = 0; k < 4; ++k) {
-            if (strcmp(e->name.str, wanted[k]) != 0)
-                continue;
-            if (e->pixel_type == EXR_PIXEL_UINT || e->x_sampling != 1 || e->y_sampling != 1) {
-                gib_fail(err, "exr '%s': channel %s must be half or float, not subsampled", path,
-                         wanted[k]);
-                goto done;
-            }
-            has[k] = 1;
-        }
-    }
-    const int luminance = !(has[0] && has[1] && has[2]);
-    if (luminance && !has[3]) {
-        gib_fail(err, "exr '%s': needs R, G, B or Y channels", path);
-        goto done;
-    }
-    /* A header can claim any data window: it is held to sides and a pixel count gibench can hold
-     * (2^26 RGB floats: 768 MiB), and to the offset table its chunks need (8 bytes each), before
-     * anything is allocated (found by tests/fuzz/fuzz_exr: a 40-byte file claimed 36 GB). */
-    const int64_t w64 = (int64_t)dw.max.x - dw.min.x + 1, h64 = (int64_t)dw.max.y - dw.min.y + 1;
-    if (w64 < 1 || h64 < 1 || w64 > GIB_EXR_MAX_SIDE || h64 > GIB_EXR_MAX_SIDE ||
-        w64 * h64 > GIB_EXR_MAX_PIXELS) {
-        gib_fail(err, "exr '%s': data window %lld x %lld outside what gibench reads (sides 1 to %d, "
-                      "at most %lld pixels)", path, (long long)w64, (long long)h64,
-                 GIB_EXR_MAX_SIDE, (long long)GIB_EXR_MAX_PIXELS);
-        goto done;
-    }
-    int32_t chunk_count = 0;
-    struct stat file_st;
-    if (exr_get_chunk_count(ctxt, 0, &chunk_count) != EXR_ERR_SUCCESS || chunk_count < 1 ||
-        stat(path, &file_st) != 0 || (long long)file_st.st_size < 8LL * chunk_count) {
-        gib_fail(err, "exr '%s': truncated or inconsistent: %d chunks need an offset table of %lld "
-                      "bytes", path, chunk_count, 8LL * chunk_count);
-        goto done;
-    }
-    const int width = (int)w64, height = (int)h64;
-    if (gib_image_alloc(img, width, height, 3, err) != 0) {
-        gib_error_prefix(err, "exr '%s'", path);
-        goto done;
-    }
-
-    int32_t lines = 1;
-    exr_get_scanlines_per_chunk(ctxt, 0, &lines);
-    exr_decode_pipeline_t dec;
-    memset(&dec, 0, sizeof dec);
-    int have_dec = 0;
-    rv = EXR_ERR_SUCCESS;
-    for (int y = dw.min.y; y <= dw.max.y && rv == EXR_ERR_SUCCESS; y += lines) {
-        exr_chunk_info_t cinfo;
-        rv = exr_read_scanline_chunk_info(ctxt, 0, y, &cinfo);
-        if (rv != EXR_ERR_SUCCESS)
-            break;
-        rv = have_dec ? exr_decoding_update(ctxt, 0, &cinfo, &dec)
-                      : exr_decoding_initialize(ctxt, 0, &cinfo, &dec);
-        if (rv != EXR_ERR_SUCCESS)
-            break;
-        float *row = img->px + (size_t)(cinfo.start_y - dw.min.y) * (size_t)width * 3;
-        for (int ch = 0; ch < dec.channel_count; ++ch) {
-            exr_coding_channel_info_t *info = &dec.channels[ch];
-            int k = -1;
-            if (!luminance) {
-                for (int j = 0; j < 3; ++j)
-                    if (strcmp(info->channel_name, wanted[j]) == 0)
-                        k = j;
-            } else if (strcmp(info->channel_name, "Y") == 0) {
-                k = 0;
-            }
-            /* A NULL pointer tells the decoder to skip the channel (alpha, extra layers). */
-            info->decode_to_ptr = k < 0 ? NULL : (uint8_t *)(row + k);
-            info->user_pixel_stride = 3 * (int32_t)sizeof(float);
-            info->user_line_stride = 3 * (int32_t)sizeof(float) * width;
-            info->user_data_type = EXR_PIXEL_FLOAT; /* converts half on the fly */
-            info->user_bytes_per_element = 4;
-        }
-        if (!have_dec) {
-            rv = exr_decoding_choose_default_routines(ctxt, 0, &dec);
-            have_dec = 1;
-            if (rv != EXR_ERR_SUCCESS)
-                break;
-        }
-        rv = exr_decoding_run(ctxt, 0, &dec);
-    }
-    if (have_dec)
-        exr_decoding_destroy(ctxt, &dec);
-    if (rv != EXR_ERR_SUCCESS) {
-        exr_fail(err, "cannot read exr pixels", path, rv);
-        goto done;
-    }
-    if (luminance) {
-        for (size_t i = 0; i < (size_t)width * (size_t)height; ++i)
-            img->px[i * 3 + 1] = img->px[i * 3 + 2] = img->px[i * 3];
-    }
-    if (attrs && read_string_attrs(ctxt, path, &kv, &nkv, err) != 0)
-        goto done;
-    ret = 0;
-
-done:
+    int ret = read_opened(ctxt, path, img, attrs ? &kv : NULL, &nkv, err);
     exr_finish(&ctxt);
     if (ret != 0) {
         gib_image_free(img);

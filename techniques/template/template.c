@@ -141,7 +141,7 @@ static void *template_create(const gib_gpu_scene *scene, const gib_params *p, in
 {
     template_state *s = calloc(1, sizeof *s);
     if (!s) {
-        gib_fail(err, "out of memory");
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
     s->scene = scene;
