@@ -39,7 +39,7 @@ vec3 oct_decode(uint u)
 }
 
 // Orthonormal basis about unit z, robust for every z (Duff et al. 2017, "Building an orthonormal
-// basis, revisited"); Algorithm 3.3's "parallel to Oy" test is replaced by it (issue 17).
+// basis, revisited"); Algorithm 3.3's "parallel to Oy" test is replaced by it.
 void onb(vec3 z, out vec3 x, out vec3 y)
 {
     float s = z.z >= 0.0 ? 1.0 : -1.0;
@@ -50,7 +50,7 @@ void onb(vec3 z, out vec3 x, out vec3 y)
 }
 
 // Sec. 3.3.1.2, Phong lobe about the mirror direction r: theta = arccos(xi1^(1/(n+1))),
-// phi = 2 pi xi2 (the text's arccos(1/xi^(n+1)) is undefined for xi < 1: issue 17), i.e. the pdf
+// phi = 2 pi xi2 (the text's arccos(1/xi^(n+1)) is undefined for xi < 1), i.e. the pdf
 // (n+1)/(2 pi) cos^n. Directions under the surface (d . normal <= 0) are rejected: returns false
 // and the photon dies (resampling would bias the flux). weight = f cos / pdf / rho_s of the
 // normalised Phong BRDF rho_s (n+2)/(2 pi) cos^n: (n+2)/(n+1) (d . normal).

@@ -3,7 +3,7 @@
 // h of its hit: Phi kappa(r) / K with the Gaussian kappa(r) = exp(-(r/h)^2 / (2 delta)) cut at
 // r = h and K its integral over that disk, 2 pi delta h^2 (1 - exp(-1/(2 delta))): one photon's
 // splat integrates to its flux on its plane (the thesis divides by pi h^2, right only for a
-// constant kernel: issue 17). Additive blending sums the photons.
+// constant kernel). Additive blending sums the photons.
 #include "ispm_caustics/caustics.glsl"
 layout(std430, binding = ISPM_SSBO_PHOTONS) readonly buffer Photons { Photon photons[]; };
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;

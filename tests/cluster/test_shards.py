@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Shards and merge (issue 18, section 3): tests/cluster/tiny.matrix run once unsharded, then in 3
+"""Shards and merge: tests/cluster/tiny.matrix run once unsharded, then in 3
 shards through the repository's recipe (GNU parallel, or a Slurm job array on a one-node cluster
 started here), merged, must give the unsharded table row for row: every column but the times
 (gpu_ms_*, cpu_ms, the timestamp), compared exactly, because a shard renders the same images from

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Faults injected into a matrix run (issue 19, section 3), each row's status and message checked:
+"""Faults injected into a matrix run, each row's status and message checked:
 
 - GPU memory exhausted: GIBENCH_GPU_BUDGET_BYTES (the ledger refuses an allocation that would
   pass it, as a driver's GL_OUT_OF_MEMORY would). With 2 MB, `direct` at shadow_res 512 and 1024

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A matrix run killed with SIGKILL at random points, ten times, then resumed (issue 19, section 3).
+"""A matrix run killed with SIGKILL at random points, ten times, then resumed.
 
 faults.matrix runs once uninterrupted (the expected table). Then, into a fresh output folder and
 reference cache, `gibench run` is started and killed with SIGKILL at a random point (once it has
