@@ -173,9 +173,9 @@ static int plan_check(ldm_set *l, const uint64_t *capacity, uint64_t budget_byte
     if (!budget_bytes || p->total <= budget_bytes)
         return 0;
     return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                         "ldm: out of memory: %d LDMs of %dx%d plan %llu bytes (heads %llu, nodes "
-                         "%llu for %llu fragments), over the %llu bytes of memory_budget_mb; only the "
-                         "counting pass's buffers allocated",
+                         "ldm: out of memory: %d LDMs of %dx%d plan %llu bytes (heads %llu, "
+                         "nodes %llu for %llu fragments), over the %llu bytes of "
+                         "memory_budget_mb; only the counting pass's buffers allocated",
                          l->count, l->res, l->res, (unsigned long long)p->total,
                          (unsigned long long)p->heads, (unsigned long long)p->nodes,
                          (unsigned long long)l->fragments, (unsigned long long)budget_bytes);

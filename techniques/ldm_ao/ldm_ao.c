@@ -72,9 +72,10 @@ static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int 
         return NULL;
     }
     /* The LDMs first: a plan over the budget fails before anything else is allocated. */
-    if (ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
-                   gib_param_float(t, p, "node_budget"),
-                   (uint64_t)(gib_param_float(t, p, "memory_budget_mb") * 1e6), ledger, err) < 0 ||
+    const uint64_t budget = (uint64_t)(gib_param_float(t, p, "memory_budget_mb") * 1e6);
+    if (ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"),
+                   gib_param_int(t, p, "ldm_res"), gib_param_float(t, p, "node_budget"), budget,
+                   ledger, err) < 0 ||
         gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         gib_fullscreen_create(&a->trace, "ldm_ao/ldm_ao.frag", NULL, err) < 0) {
         ldm_ao_destroy(a);

@@ -76,8 +76,9 @@ static int check_technique(gib_gl_fixture *fx, const char *tech)
     uint64_t planned = structure_bytes(r.planned_structures, "ldm"),
              counted = structure_bytes(r.memory_by_structure, "ldm");
     int ok = r.ok && planned && planned == counted;
-    printf("%s %s at 8 x 32^2: status %s, planned ldm %" PRIu64 " bytes, the ledger counted %" PRIu64
-           "\n", ok ? "PASS" : "FAIL", tech, r.status, planned, counted);
+    printf("%s %s at 8 x 32^2: status %s, planned ldm %" PRIu64
+           " bytes, the ledger counted %" PRIu64 "\n",
+           ok ? "PASS" : "FAIL", tech, r.status, planned, counted);
     gib_run_result_free(&r);
 
     if (run(fx, tech, "0.01", &r) < 0)
