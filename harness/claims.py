@@ -1,18 +1,22 @@
 #!/usr/bin/env python3
 """Gathers every claim of every paper that paper_tables.py set beside our numbers into one table,
-RESULTS_DIR/claims.csv: a row per claim with the paper's value, ours, the machine ours ran on and a
-verdict `reproduced` / `not reproduced` / `not measurable here`, with the reason.
+RESULTS_DIR/claims.csv: a row per claim with the paper's value, ours, the machine ours ran on, its
+kind and a verdict `reproduced` / `not reproduced` / `not measurable here`, with the reason.
 
 usage: claims.py RESULTS_DIR
 
 Reads only the CSVs paper_tables.py writes (thesis_tables.csv, lrsm_table2.csv, lrsm_table3.csv,
-lrsm_fig7.csv, lrsm_dynamic.csv, ldm_figures_vs_ours.csv); a missing file gives no rows.
+lrsm_fig7.csv, lrsm_dynamic.csv, ldm_figures_vs_ours.csv, ldm_claims.csv); a missing file gives no
+rows.
+Kinds: `machine_independent` (memory, error, orders, ratios, leaks: what this machine can judge)
+or `absolute_time` (a paper's absolute time on its GPU).
 Verdict rules (the choice this file makes, stated once):
 - a row whose table already says reproduced yes/no keeps that verdict;
 - an absolute time measured on the paper's GPU is `not measurable here` on another renderer (a
-  time on llvmpipe says nothing about a GTX 770's), as is a row that did not run or ran out of memory;
+  time on llvmpipe says nothing about a GTX 770's), as is a row that did not run;
 - a memory figure is compared exactly (the table's own `matches` column: byte counts do not depend
-  on the renderer).
+  on the renderer); a run refused for memory is measured by its plan (what the ledger recorded
+  before it would have allocated), which is the same bytes.
 The result CSVs do not record the CPU's cores; `cores` comes from RESULTS_DIR/history.sqlite (the
 machines `gibench run` recorded) where exactly one core count was recorded with the row's renderer,
 and stays empty otherwise (a renderer string alone does not name a machine).
@@ -24,8 +28,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import read_csv, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
 
-COLUMNS = ["paper", "source", "claim", "paper_value", "our_value", "renderer", "cores", "verdict",
-           "reason"]
+COLUMNS = ["paper", "source", "claim", "kind", "paper_value", "our_value", "renderer", "cores",
+           "verdict", "reason"]
+MACHINE_INDEPENDENT, ABSOLUTE_TIME = "machine_independent", "absolute_time"
 REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
 THESIS = "Le 2014 (thesis): interactive caustics and multi-resolution indirect illumination"
 LRSM = "Sugihara et al. 2014: Layered Reflective Shadow Maps (LRSM)"
@@ -46,8 +51,9 @@ def verdict_of(text):
     return NOT_MEASURABLE, text or "no run of ours matches (missing)"
 
 
-def row(paper, source, claim, paper_value, our_value, renderer, verdict, reason, cores=""):
-    return {"paper": paper, "source": source, "claim": claim, "paper_value": paper_value,
+def row(paper, source, claim, paper_value, our_value, renderer, verdict, reason, cores="",
+        kind=MACHINE_INDEPENDENT):
+    return {"paper": paper, "source": source, "claim": claim, "kind": kind, "paper_value": paper_value,
             "our_value": our_value, "renderer": renderer, "cores": cores, "verdict": verdict,
             "reason": reason}
 
@@ -60,8 +66,8 @@ def thesis(results):
     for r in rows:
         if r["kind"] == "claim":
             v, why = verdict_of(r["reproduced"])
-            out.append(row(THESIS, "thesis_tables.csv", r["claim"], "", "",
-                           r["renderer"] or "; ".join(renderers), v,
+            out.append(row(THESIS, "thesis_tables.csv", r["claim"], r.get("paper_value", ""),
+                           r.get("our_value", ""), r["renderer"] or "; ".join(renderers), v,
                            r["evidence"] if v != NOT_MEASURABLE else why + "; " + r["evidence"]))
         elif r["kind"] == "row":
             what = (f"Table {r['table']} {r['paper_scene']}: {r['resolution']}^2 image, "
@@ -77,21 +83,30 @@ def thesis(results):
             out.append(row(THESIS, "thesis_tables.csv", what,
                            f"{r['paper_frame_ms']} ms ({r['paper_fps']} fps)" if r["paper_frame_ms"] else "",
                            f"{r['our_frame_ms']} ms" if r["our_frame_ms"] else "", r["renderer"],
-                           NOT_MEASURABLE, reason))
+                           NOT_MEASURABLE, reason, kind=ABSOLUTE_TIME))
     return out
 
 
 def lrsm_table2(results):
-    """Table 2: memory per structure, compared exactly (byte counts do not depend on the renderer)."""
+    """Table 2: memory per structure, compared exactly (byte counts do not depend on the renderer),
+    and its frame times (absolute, on the paper's GPUs)."""
     out = []
     for r in read(results, "lrsm_table2.csv"):
+        if r["structure"] == "frame_ms":
+            out.append(lrsm_table2_time(r))
+            continue
         if not r["paper_mb"]:
             continue  # a formula's figure with no number of the paper's beside it
         what = f"Table 2 {r['paper_scene']} {r['technique']} {r['structure']} memory ({r['setting']})"
+        planned = r["status"] == "out_of_memory" and r["ours_mb"]
         if r["status"] == "missing" or not r["ours_mb"]:
             v, why = NOT_MEASURABLE, "no run of ours measured this structure"
-        elif r["status"] != "ok":
+        elif r["status"] != "ok" and not planned:
             v, why = NOT_MEASURABLE, f"our run ended {r['status']} on this machine ({r['note']})".rstrip(" ()")
+        elif planned:
+            v = REPRODUCED if r["matches"] == "yes" else NOT_REPRODUCED
+            why = (f"ours planned, not allocated (over memory_budget_mb), against the formula: "
+                   f"{r['ours_vs_formula']}; paper {r['paper_vs_formula']}")
         elif r["matches"] == "yes":
             v, why = REPRODUCED, f"ours {r['ours_vs_formula']} the formula; paper {r['paper_vs_formula']}"
         else:
@@ -99,6 +114,16 @@ def lrsm_table2(results):
         out.append(row(LRSM, "lrsm_table2.csv", what, f"{r['paper_mb']} MB",
                        f"{r['ours_mb']} MB" if r["ours_mb"] else "", "", v, why))
     return out
+
+
+def lrsm_table2_time(r):
+    """Table 2's performance row: a frame time on the paper's GPUs."""
+    paper = r["note"].split("; ours ")[0].replace("paper: ", "")
+    ours = r["note"].split("; ours ", 1)[1] if "; ours " in r["note"] else ""
+    return row(LRSM, "lrsm_table2.csv", f"Table 2 {r['paper_scene']}: frame time ({r['setting']})", paper,
+               "" if ours.startswith("not measured") else ours, "", NOT_MEASURABLE,
+               "absolute frame time on the paper's GPUs" + ("; ours: " + ours if ours else ""),
+               kind=ABSOLUTE_TIME)
 
 
 def lrsm_table3(results):
@@ -115,7 +140,8 @@ def lrsm_table3(results):
                            f"{r['paper_gtx770_ms']} ms (GTX 770), {r['paper_iris_pro_ms']} ms (Iris Pro)",
                            r["our_ms"] + " ms" if r["our_ms"] else "", r["our_renderer"], NOT_MEASURABLE,
                            "absolute stage time on the paper's GPUs; ours on "
-                           + (r["our_renderer"] or "no run") + " (the stage-order claims compare ratios)"))
+                           + (r["our_renderer"] or "no run") + " (the stage-order claims compare ratios)",
+                           kind=ABSOLUTE_TIME))
     return out
 
 
@@ -140,7 +166,7 @@ def lrsm_dynamic(results):
             continue
         v, why = verdict_of(r["reproduced"])
         out.append(row(LRSM, "lrsm_dynamic.csv", "SPONZA DRAGON: " + r["claim"], "", r["note"],
-                       r["renderer"], v, why or r["note"]))
+                       r["renderer"], v, why or r["note"], kind=ABSOLUTE_TIME))
     return out
 
 
@@ -149,6 +175,24 @@ def lrsm(results):
 
 
 def ldm(results):
+    return ldm_claims(results) + ldm_times(results)
+
+
+def ldm_claims(results):
+    """The LDM paper's machine-independent claims (ldm_claims.csv): accuracy, orders, shares,
+    memory."""
+    out = []
+    for r in read(results, "ldm_claims.csv"):
+        v, why = verdict_of(r["reproduced"])
+        out.append(row(LDM, "ldm_claims.csv", f"Figure {r['figure']}: {r['claim']}", r["paper_value"],
+                       r["our_value"], r["renderer"], v,
+                       r["evidence"] if v != NOT_MEASURABLE else why + ("; " + r["evidence"] if r["evidence"] else ""),
+                       kind=r.get("kind") or MACHINE_INDEPENDENT))
+    return out
+
+
+def ldm_times(results):
+    """The LDM paper's absolute times (its figures' captions)."""
     out = []
     for r in read(results, "ldm_figures_vs_ours.csv"):
         what = f"Figure {r['figure']} {r['scene']} {r['method']} ({r['paper_settings']}): time"
@@ -159,7 +203,8 @@ def ldm(results):
         else:
             why = (f"absolute time on the paper's {r['paper_gpu']}; ours on {r['our_renderer']}"
                    + ("; and not at the paper's settings (quick profile)" if "NOT" in r["our_settings"] else ""))
-        out.append(row(LDM, "ldm_figures_vs_ours.csv", what, pv, ov, r["our_renderer"], NOT_MEASURABLE, why))
+        out.append(row(LDM, "ldm_figures_vs_ours.csv", what, pv, ov, r["our_renderer"], NOT_MEASURABLE, why,
+                       kind=ABSOLUTE_TIME))
     return out
 
 

@@ -2,11 +2,17 @@
 paper-values/ldm_figures.csv) beside ours: RESULTS/ldm_figures_vs_ours.csv, written by
 paper_tables.py. "Best match" is the run with the paper's settings when the profile ran them
 (profile `paper`), else the run closest to them (the same scene and technique, the most directions
-and resolution that ran): the `our_settings` column says which."""
+and resolution that ran): the `our_settings` column says which. `our_planned_mb` is the LDMs'
+memory at the paper's own settings, planned (matrix ldm_memory) though not allocated.
+
+The paper's machine-independent claims, judged: RESULTS/ldm_claims.csv (ldm_claims.py's rules,
+below), one row per claim, which claims.py gathers.
+"""
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ldm_claims import CLAIM_COLUMNS, ldm_claims, planned_ldm  # noqa: E402
 from schema import params, passes_of, read_csv, run_key, runs_table, write_csv  # noqa: E402
 
 
@@ -41,13 +47,16 @@ def ldm_rows(results, paper_csv):
         elif tech == "ldm_ao":
             want["dmax"] = float("inf")
         rows = [r for r in runs_table(results, matrix, ok_only=True) if r["scene"] == scene and r["technique"] == tech]
+        plan = None if tech == "hbao" else planned_ldm(results, scene, want.get("directions"),
+                                                       want.get("ldm_res"), tech)
         if "dmax" in want:
             rows = [r for r in rows if params(r).get("dmax") == want["dmax"]] or rows
         best = max(rows, key=lambda r: closeness(r, want)) if rows else None
         rec = {"figure": fig, "scene": pr["scene"], "method": pr["method"], "paper_settings":
                f"N={pr['ldm_count'] or '-'} ldm_res={pr['ldm_res'] or '-'} image={pr['image_res']}"
                + (f" dmax={pr['dmax_m'] or 'inf'}" if pr["effect"].startswith("ao") else ""),
-               "paper_ms": pr["ms"], "paper_mb": pr["mb"], "paper_gpu": pr["gpu"], "paper_note": pr["note"]}
+               "paper_ms": pr["ms"], "paper_mb": pr["mb"], "paper_gpu": pr["gpu"], "paper_note": pr["note"],
+               "our_planned_mb": f"{plan['bytes'] / 1e6:.4g}" if plan else ""}
         if best:
             exact = all(params(best).get(k) == v for k, v in want.items()) and \
                 best["width"] == pr["image_res"]
@@ -66,8 +75,9 @@ def ldm_rows(results, paper_csv):
 
 
 LDM_COLUMNS = ["figure", "scene", "method", "paper_settings", "paper_ms", "paper_mb", "paper_gpu", "paper_note",
-               "our_settings", "our_ms", "our_photon_trace_ms", "our_mb", "our_rmse", "our_rel_rmse", "our_ssim",
-               "our_ref_spp", "our_renderer"]
+               "our_settings", "our_ms", "our_photon_trace_ms", "our_mb", "our_planned_mb", "our_rmse",
+               "our_rel_rmse", "our_ssim", "our_ref_spp", "our_renderer"]
+
 
 
 def ldm_table(results, paper_dir, source):
@@ -78,3 +88,5 @@ def ldm_table(results, paper_dir, source):
         return
     print("paper_tables.py: wrote", write_csv(os.path.join(results, "ldm_figures_vs_ours.csv"),
                                              ldm_rows(results, ldm), LDM_COLUMNS))
+    print("paper_tables.py: wrote", write_csv(os.path.join(results, "ldm_claims.csv"),
+                                             ldm_claims(results, read_csv(ldm)), CLAIM_COLUMNS))

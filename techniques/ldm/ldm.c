@@ -83,14 +83,56 @@ static void count_fragments(ldm_set *l, const gib_gpu_scene *scene, uint32_t *co
     glGetNamedBufferSubData(l->counters, 0, 4 * (GLsizeiptr)l->count, counts);
 }
 
+/* The page that starts at LDM i: consecutive LDMs while their heads and nodes (capacity[k] nodes
+ * for LDM k) both fit one buffer of `limit` bytes. Sets *count (0: LDM i alone is too large) and
+ * *nodes. */
+static void next_page(const ldm_set *l, const uint64_t *capacity, uint64_t limit, int i, int *count,
+                      uint64_t *nodes)
+{
+    const uint64_t heads_per_ldm = 4ull * l->res * l->res;
+    *count = 0;
+    *nodes = 0;
+    while (i + *count < l->count && (uint64_t)(*count + 1) * heads_per_ldm <= limit &&
+           (*nodes + capacity[i + *count]) * 8 <= limit) {
+        *nodes += capacity[i + *count];
+        (*count)++;
+    }
+}
+
+static uint64_t max_block_bytes(void)
+{
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    return (uint64_t)max_block;
+}
+
+void ldm_plan_bytes(const ldm_set *l, const uint64_t *capacity, uint64_t limit, ldm_plan *p)
+{
+    memset(p, 0, sizeof *p);
+    p->heads = 4ull * l->res * l->res * (uint64_t)l->count;
+    for (int i = 0; i < l->count;) {
+        int n;
+        uint64_t nodes;
+        next_page(l, capacity, limit, i, &n, &nodes);
+        if (!n) { /* one LDM larger than a buffer: lay_out_pages refuses it; planned all the same */
+            n = 1;
+            nodes = capacity[i];
+        }
+        p->nodes += 8 * (nodes ? nodes : 1); /* an empty page still holds one node */
+        i += n;
+    }
+    p->info = sizeof(ldm_info_gpu) * (uint64_t)l->count;
+    p->counters = 4 * (uint64_t)l->count;
+    p->status = 16;
+    p->total = p->heads + p->nodes + p->info + p->counters + p->status;
+}
+
 /* Pages: consecutive LDMs while heads and nodes (capacity[i] nodes for LDM i) both fit one SSBO;
  * allocates them and uploads the per-LDM info. */
 static int lay_out_pages(ldm_set *l, const uint64_t *capacity, gib_ledger *ledger, gib_error *err)
 {
-    GLint64 max_block = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    uint64_t limit = (uint64_t)max_block;
-    uint64_t heads_per_ldm = 4ull * l->res * l->res;
+    const uint64_t limit = max_block_bytes();
+    const uint64_t heads_per_ldm = 4ull * l->res * l->res;
     l->page_count = 0;
     for (int i = 0; i < l->count;) {
         if (l->page_count == LDM_MAX_PAGES)
@@ -99,17 +141,13 @@ static int lay_out_pages(ldm_set *l, const uint64_t *capacity, gib_ledger *ledge
         ldm_page *pg = &l->pages[l->page_count++];
         memset(pg, 0, sizeof *pg); /* page 0 was borrowed by the counting pass */
         pg->first = i;
-        uint64_t nodes = 0;
-        while (i < l->count && (pg->count + 1) * heads_per_ldm <= limit &&
-               (nodes + capacity[i]) * 8 <= limit) {
-            nodes += capacity[i];
-            pg->count++;
-            i++;
-        }
+        uint64_t nodes;
+        next_page(l, capacity, limit, i, &pg->count, &nodes);
         if (!pg->count)
             return gib_fail(err, "ldm: one %dx%d LDM needs %llu nodes, more than one buffer of "
                             "%llu bytes holds", l->res, l->res,
                             (unsigned long long)capacity[i], (unsigned long long)limit);
+        i += pg->count;
         pg->node_capacity = nodes;
         if (!(pg->heads = gib_gpu_buffer(ledger, "ldm.heads", heads_per_ldm * pg->count, NULL,
                                          GL_DYNAMIC_STORAGE_BIT, err)) ||
@@ -119,6 +157,28 @@ static int lay_out_pages(ldm_set *l, const uint64_t *capacity, gib_ledger *ledge
     }
     memcpy(l->capacity, capacity, sizeof *capacity * (size_t)l->count);
     return upload_info(l, ledger, capacity, err);
+}
+
+/* Records the plan in the ledger (structure "ldm") and holds it against budget_bytes (0: none). */
+static int plan_check(ldm_set *l, const uint64_t *capacity, uint64_t budget_bytes,
+                      gib_ledger *ledger, gib_error *err)
+{
+    ldm_plan_bytes(l, capacity, max_block_bytes(), &l->plan);
+    const ldm_plan *p = &l->plan;
+    gib_ledger_plan(ledger, "ldm.heads", p->heads);
+    gib_ledger_plan(ledger, "ldm.nodes", p->nodes);
+    gib_ledger_plan(ledger, "ldm.info", p->info);
+    gib_ledger_plan(ledger, "ldm.counters", p->counters);
+    gib_ledger_plan(ledger, "ldm.status", p->status);
+    if (!budget_bytes || p->total <= budget_bytes)
+        return 0;
+    return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                         "ldm: out of memory: %d LDMs of %dx%d plan %llu bytes (heads %llu, "
+                         "nodes %llu for %llu fragments), over the %llu bytes of "
+                         "memory_budget_mb; only the counting pass's buffers allocated",
+                         l->count, l->res, l->res, (unsigned long long)p->total,
+                         (unsigned long long)p->heads, (unsigned long long)p->nodes,
+                         (unsigned long long)l->fragments, (unsigned long long)budget_bytes);
 }
 
 static void free_pages(ldm_set *l, gib_ledger *ledger)
@@ -133,7 +193,7 @@ static void free_pages(ldm_set *l, gib_ledger *ledger)
 }
 
 int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, double node_budget,
-               gib_ledger *ledger, gib_error *err)
+               uint64_t budget_bytes, gib_ledger *ledger, gib_error *err)
 {
     memset(l, 0, sizeof *l);
     snprintf(l->status_word, sizeof l->status_word, "ok");
@@ -187,7 +247,9 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
     }
     free(counts32);
     l->mean_depth_complexity = (double)l->fragments / ((double)l->count * res * res);
-    int rc = lay_out_pages(l, counts, ledger, err);
+    int rc = plan_check(l, counts, budget_bytes, ledger, err);
+    if (rc == 0)
+        rc = lay_out_pages(l, counts, ledger, err);
     free(counts);
     return rc < 0 ? rc : gib_gl_check("ldm create", err);
 }

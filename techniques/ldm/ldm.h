@@ -10,7 +10,12 @@
  * frame's construction checks every allocation against that capacity, and an
  * overflow is reported through ldm_status() — the row's status — never rendered silently wrong.
  * Nodes are split over "pages" (SSBOs) no larger than GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB on
- * llvmpipe); a pass that traces LDMs runs once per page. */
+ * llvmpipe); a pass that traces LDMs runs once per page.
+ * The plan: once the counting pass has measured the node counts, and before any page is allocated,
+ * ldm_create records what the LDMs will take in the ledger (gib_ledger_plan, structure "ldm":
+ * heads, nodes, info, counters, status, exactly what the ledger then counts) and holds it against
+ * a budget; over it, create fails with GIB_ERR_OUT_OF_MEMORY having allocated only the counting
+ * pass's own info, counters and status (part of the plan, freed by ldm_destroy). */
 #ifndef LDM_H
 #define LDM_H
 
@@ -25,6 +30,11 @@ typedef struct ldm_page {
     unsigned heads, nodes;   /* SSBOs, bound to 4 and 5 while this page is used */
     uint64_t node_capacity;
 } ldm_page;
+
+/* Bytes of each LDM buffer, as the ledger counts them once allocated. */
+typedef struct ldm_plan {
+    uint64_t heads, nodes, info, counters, status, total;
+} ldm_plan;
 
 typedef struct ldm_set {
     int count;               /* number of LDMs (directions) */
@@ -43,15 +53,20 @@ typedef struct ldm_set {
     gib_ledger *ledger;      /* where pages are reallocated when a moving scene needs more */
     uint64_t fragments;      /* total nodes (measured at create) */
     double mean_depth_complexity;
+    ldm_plan plan;           /* what create planned (and, within the budget, allocated) */
     char status_word[32];
 } ldm_set;
 
-/* Builds the direction set, measures node counts, allocates heads and nodes through the ledger
- * (labels "ldm.heads", "ldm.nodes"). node_budget scales the measured node counts into the
+/* Builds the direction set, measures node counts, plans, allocates heads and nodes through the
+ * ledger (labels "ldm.heads", "ldm.nodes"). node_budget scales the measured node counts into the
  * capacity (1: exact; below 1 caps memory, and the fragments that do not fit are reported as
- * status `overflow`). */
+ * status `overflow`). budget_bytes > 0: a plan over it fails with GIB_ERR_OUT_OF_MEMORY before
+ * any page is allocated (0: no limit but the driver's). */
 int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, double node_budget,
-               gib_ledger *ledger, gib_error *err);
+               uint64_t budget_bytes, gib_ledger *ledger, gib_error *err);
+/* The plan of l's LDMs with capacity[i] nodes for LDM i, in pages of at most `limit` bytes (what
+ * ldm_create allocates with GL_MAX_SHADER_STORAGE_BLOCK_SIZE as the limit). */
+void ldm_plan_bytes(const ldm_set *l, const uint64_t *capacity, uint64_t limit, ldm_plan *plan);
 /* Constructs every LDM for this frame (pass "ldm_build"). */
 void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers);
 /* Binds page p's heads and nodes (bindings 4, 5) and the info SSBO (3). */

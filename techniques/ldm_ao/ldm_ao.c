@@ -35,6 +35,9 @@ static const gib_param_spec ldm_ao_params[] = {
     {"normal_offset", GIB_PARAM_FLOAT, 1.0, 0, 16, "ray origin offset along the normal, LDM texels"},
     {"node_budget", GIB_PARAM_FLOAT, 1.0, 0.01, 1.0,
      "LDM nodes allocated, as a fraction of the fragments counted at create (<1: overflow reported)"},
+    {"memory_budget_mb", GIB_PARAM_FLOAT, 0, 0, 1e7,
+     "the most the LDMs may take, decimal MB (0: no limit); over it create ends out_of_memory with "
+     "the plan recorded"},
     {0},
 };
 
@@ -68,9 +71,12 @@ static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int 
         free(a);
         return NULL;
     }
-    if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
-        ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
-                   gib_param_float(t, p, "node_budget"), ledger, err) < 0 ||
+    /* The LDMs first: a plan over the budget fails before anything else is allocated. */
+    const uint64_t budget = (uint64_t)(gib_param_float(t, p, "memory_budget_mb") * 1e6);
+    if (ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"),
+                   gib_param_int(t, p, "ldm_res"), gib_param_float(t, p, "node_budget"), budget,
+                   ledger, err) < 0 ||
+        gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         gib_fullscreen_create(&a->trace, "ldm_ao/ldm_ao.frag", NULL, err) < 0) {
         ldm_ao_destroy(a);
         return NULL;

@@ -67,7 +67,7 @@ static void *ldm_env_create(const gib_gpu_scene *scene, const gib_params *p, int
                                 gib_param_int(t, p, "pcf"),
                                 (float)gib_param_float(t, p, "normal_offset"), ledger, err) < 0 ||
         ldm_create(&e->ldms, scene, gib_param_int(t, p, "directions"), gib_param_int(t, p, "ldm_res"),
-                   1.0, ledger, err) < 0 ||
+                   1.0, 0, ledger, err) < 0 ||
         gib_fullscreen_create(&e->sky, "ldm_ao/ldm_ao.frag", "#define LDM_SKY 1\n", err) < 0) {
         ldm_env_destroy(e);
         return NULL;

@@ -104,6 +104,9 @@ static const gib_param_spec ldm_indirect_params[] = {
     {"topo_bias", GIB_PARAM_FLOAT, 1.0, 0, 100,
      "topological-bias parameter a of Eq. 7 (in units of the footprint size)"},
     {"normal_offset", GIB_PARAM_FLOAT, 1.0, 0, 16, "ray origin offset along the normal, LDM texels"},
+    {"memory_budget_mb", GIB_PARAM_FLOAT, 0, 0, 1e7,
+     "the most the LDMs may take, decimal MB (0: no limit); over it create ends out_of_memory with "
+     "the plan recorded"},
     {0},
 };
 
@@ -158,12 +161,15 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
     const char *splat[] = {"ldm_indirect/splat.vert", "ldm_indirect/splat.geom",
                            "ldm_indirect/splat.frag"};
     int directions = gib_param_int(t, p, "directions");
-    if (gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
+    /* The LDMs first: a plan over the budget fails before anything else is allocated. */
+    const uint64_t budget = (uint64_t)(gib_param_float(t, p, "memory_budget_mb") * 1e6);
+    if (ldm_create(&a->ldms, scene, directions, gib_param_int(t, p, "ldm_res"), 1.0, budget, ledger,
+                   err) < 0 ||
+        gib_gbuffer_create(&a->gbuffer, w, h, ledger, err) < 0 ||
         gib_light_views_create(&a->views, scene, a->photon_res,
                                GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX |
                                    GIB_LV_LOCAL_LIGHTS_ONLY,
                                "ldm_indirect.rsm", ledger, err) < 0 ||
-        ldm_create(&a->ldms, scene, directions, gib_param_int(t, p, "ldm_res"), 1.0, ledger, err) < 0 ||
         !(a->trace_program = gib_program(trace, 1, a->audit ? "#define AUDIT 1\n" : NULL, err)) ||
         !(a->splat_program = gib_program(splat, 3, NULL, err)))
         goto fail;

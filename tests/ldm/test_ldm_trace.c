@@ -41,7 +41,7 @@ int main(void)
     gib_timers_init(&timers);
     ldm_set l;
     const int N = 32, RES = 256, PER = 200;
-    if (ldm_create(&l, gpu_p, N, RES, 1.0, &ledger, &err) < 0) {
+    if (ldm_create(&l, gpu_p, N, RES, 1.0, 0, &ledger, &err) < 0) {
         fprintf(stderr, "FAIL: ldm_create: %s\n", err.msg);
         return 1;
     }
