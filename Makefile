@@ -56,12 +56,14 @@ build-asan: deps
 # own leaks suppressed by tests/lsan_mesa.supp, never ours), then in the release build; then
 # ThreadSanitizer over the reference's threads and the runner (make tsan). Tests labelled
 # release_only run in the release build alone: they check shader output, which the sanitizers do not
-# instrument, and their host code runs under the sanitizers in other tests (each says which).
+# instrument, and their host code runs under the sanitizers in other tests (each says which); tests
+# labelled sanitizer_only run in the sanitizer build alone (hostile inputs: what they look for is
+# what the sanitizers see).
 test: build build-asan
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan_mesa.supp UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j$(JOBS) -LE release_only
-	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
+	cd $(BUILD) && ctest --output-on-failure -j$(JOBS) -LE sanitizer_only
 	$(MAKE) --no-print-directory tsan
 
 TSAN_BUILD ?= build-tsan
