@@ -49,7 +49,7 @@ static const char help[] =
 
 /* A row of either table, its cells by column index (harness/app/schema.h). */
 typedef struct row {
-    char v[GIB_TABLE_MAX_COLS][256];
+    char v[GIB_TABLE_MAX_COLS][512]; /* a cell: params, the longest, is up to 511 characters */
     const char *ptr[GIB_TABLE_MAX_COLS];
 } row;
 

@@ -38,7 +38,7 @@ typedef struct gib_matrix_run {
     char scene[64];
     const gib_technique *technique;
     gib_params params;
-    char params_key[256];   /* "pcf=1;shadow_res=512" in spec order: identifies the run in CSV */
+    char params_key[512];   /* "pcf=1;shadow_res=512" in spec order: identifies the run in CSV */
     int width, height;
     double time;            /* the instant the image shows (seconds) */
 } gib_matrix_run;
