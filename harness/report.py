@@ -345,6 +345,46 @@ if (location.search.indexOf('check') >= 0) {
   }
   window.addEventListener('load', report);
 }
+/* ?check also checks the sequences' animations into <pre id="animation-check">: each loaded at its
+ * stated size, and playing: the browser's own decoder (ImageDecoder) reads it as animated, with the
+ * stated number of frames, not all alike. */
+function frameSum(bitmap) {
+  var c = new OffscreenCanvas(bitmap.displayWidth, bitmap.displayHeight), g = c.getContext('2d');
+  g.drawImage(bitmap, 0, 0);
+  var p = g.getImageData(0, 0, c.width, c.height).data, s = 0;
+  for (var i = 0; i < p.length; i++) s += p[i] * (i % 97);
+  return s;
+}
+function plays(img) {
+  return new Promise(function (done) {
+    var x = new XMLHttpRequest();
+    x.open('GET', img.src);
+    x.responseType = 'arraybuffer';
+    x.onerror = function () { done(false); };
+    x.onload = async function () {
+      try {
+        var d = new ImageDecoder({data: x.response, type: 'image/webp'});
+        await d.tracks.ready;
+        var t = d.tracks.selectedTrack, sums = {};
+        for (var k = 0; k < t.frameCount; k++)
+          sums[frameSum((await d.decode({frameIndex: k})).image)] = 1;
+        done(t.animated && t.frameCount === +img.dataset.frames && Object.keys(sums).length > 1);
+      } catch (e) { done(false); }
+    };
+    x.send();
+  });
+}
+if (location.search.indexOf('check') >= 0) {
+  window.addEventListener('load', async function () {
+    var anims = Array.prototype.slice.call(document.querySelectorAll('img.animation'));
+    var sized = anims.filter(function (i) {
+      return i.naturalWidth === +i.dataset.width && i.naturalHeight === +i.dataset.height; });
+    var playing = 0;
+    for (var k = 0; k < anims.length; k++) playing += (await plays(anims[k])) ? 1 : 0;
+    document.getElementById('animation-check').textContent = 'animations ' + anims.length +
+      ' sized ' + sized.length + ' playing ' + playing;
+  });
+}
 """
 
 
@@ -620,7 +660,7 @@ def write_html(results, claims, mats, plots, seq_rows=()):
              f'<p class="source">Generated from the CSVs in <code>{esc(os.path.basename(os.path.abspath(results)))}/</code>: '
              f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
              f'{esc(", ".join(revs) or "unknown")}.</p>',
-             '<pre id="image-check"></pre>',
+             '<pre id="image-check"></pre><pre id="animation-check"></pre>',
              '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · <a href="#gallery">Gallery</a> · '
              + ('<a href="#sequences">Sequences</a> · ' if seq_rows else '') +
              '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every group</a> · '
