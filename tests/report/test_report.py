@@ -179,10 +179,16 @@ def webp_frames(path):
     return n
 
 
-def animation_check(exe, page):
-    dom = browser(exe, "--dump-dom", "file://" + page + "?check")
-    m = re.search(r'<pre id="animation-check">animations (\d+) sized (\d+) playing (\d+)</pre>', dom)
-    return tuple(int(x) for x in m.groups()) if m else None
+def animation_check(exe, page, tries=3):
+    """(animations, sized, playing) as the page's ?check script reports them. The decoding is
+    asynchronous work that headless virtual time does not wait for, so on a loaded machine the DOM
+    may be dumped before the script wrote its line: an absent line is asked for again."""
+    for _ in range(tries):
+        dom = browser(exe, "--dump-dom", "file://" + page + "?check")
+        m = re.search(r'<pre id="animation-check">animations (\d+) sized (\d+) playing (\d+)</pre>', dom)
+        if m:
+            return tuple(int(x) for x in m.groups())
+    return None
 
 
 def check_sequences(exe, results, page, src):
