@@ -139,7 +139,9 @@ static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, u
     row_set(r, GIB_C_HEIGHT, "%d", mr->height);
     row_set(r, GIB_C_TIME, "%.9g", mr->time);
     row_set(r, GIB_C_DT, "%.9g", ctx->m->dt);
-    row_set(r, GIB_C_WARMUP, "%d", ctx->m->warmup);
+    /* The warm-up the runner renders: more where a sequence needs more frames (runner.h). */
+    const int seq_warmup = ctx->m->sequence - 1 - ctx->m->frames;
+    row_set(r, GIB_C_WARMUP, "%d", ctx->m->warmup > seq_warmup ? ctx->m->warmup : seq_warmup);
     row_set(r, GIB_C_FRAMES, "%d", ctx->m->frames);
     row_set(r, GIB_C_BACKEND, "%s", ctx->info.backend);
     row_set(r, GIB_C_RENDERER, "%s", ctx->info.renderer);
