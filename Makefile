@@ -10,14 +10,15 @@ CMAKE_ARGS ?=
 
 # Debian 12 packages gibench builds and runs with (ARCHITECTURE.md, "Toolchain facts"); parallel,
 # slurm-wlm and munge are for spreading matrices over machines (harness/cluster/, tests/cluster/);
-# chromium opens the report in its test (tests/report/).
+# chromium opens the report in its test (tests/report/); ffmpeg makes the sequences' animations
+# (harness/temporal_tables.py).
 PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
   libinih-dev zlib1g-dev gnuplot-nox python3-numpy python3-skimage git clang \
   parallel slurm-wlm munge \
   libsqlite3-dev \
-  chromium
+  chromium ffmpeg
 
 # The papers' figures and tables (make reproduce, ~20 min on 2 cores) and our own parameter studies
 # beyond them (make reproduce-studies, ~10 min): the report reads the committed CSVs of both.

@@ -27,6 +27,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import read_csv, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
+import temporal_tables  # noqa: E402  (the papers' temporal claims, from the sequence tables)
 
 COLUMNS = ["paper", "source", "claim", "kind", "paper_value", "our_value", "renderer", "cores",
            "verdict", "reason"]
@@ -214,7 +215,8 @@ ORDER = {REPRODUCED: 0, NOT_REPRODUCED: 1, NOT_MEASURABLE: 2}
 def claims(results):
     """Per paper, the claims with a verdict first, then the ones not measurable here (stable)."""
     out = []
-    for part in (thesis(results), lrsm(results), ldm(results)):
+    for part in (thesis(results) + temporal_tables.thesis_claim(results),
+                 lrsm(results) + temporal_tables.lrsm_claim(results), ldm(results)):
         out += sorted(part, key=lambda r: ORDER[r["verdict"]])
     return out
 

@@ -28,6 +28,7 @@ from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
 import answers  # noqa: E402
+import temporal_tables  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 VERDICT_CLASS = {"reproduced": "yes", "not reproduced": "no", "not measurable here": "na"}
@@ -344,6 +345,46 @@ if (location.search.indexOf('check') >= 0) {
   }
   window.addEventListener('load', report);
 }
+/* ?check also checks the sequences' animations into <pre id="animation-check">: each loaded at its
+ * stated size, and playing: the browser's own decoder (ImageDecoder) reads it as animated, with the
+ * stated number of frames, not all alike. */
+function frameSum(bitmap) {
+  var c = new OffscreenCanvas(bitmap.displayWidth, bitmap.displayHeight), g = c.getContext('2d');
+  g.drawImage(bitmap, 0, 0);
+  var p = g.getImageData(0, 0, c.width, c.height).data, s = 0;
+  for (var i = 0; i < p.length; i++) s += p[i] * (i % 97);
+  return s;
+}
+function plays(img) {
+  return new Promise(function (done) {
+    var x = new XMLHttpRequest();
+    x.open('GET', img.src);
+    x.responseType = 'arraybuffer';
+    x.onerror = function () { done(false); };
+    x.onload = async function () {
+      try {
+        var d = new ImageDecoder({data: x.response, type: 'image/webp'});
+        await d.tracks.ready;
+        var t = d.tracks.selectedTrack, sums = {};
+        for (var k = 0; k < t.frameCount; k++)
+          sums[frameSum((await d.decode({frameIndex: k})).image)] = 1;
+        done(t.animated && t.frameCount === +img.dataset.frames && Object.keys(sums).length > 1);
+      } catch (e) { done(false); }
+    };
+    x.send();
+  });
+}
+if (location.search.indexOf('check') >= 0) {
+  window.addEventListener('load', async function () {
+    var anims = Array.prototype.slice.call(document.querySelectorAll('img.animation'));
+    var sized = anims.filter(function (i) {
+      return i.naturalWidth === +i.dataset.width && i.naturalHeight === +i.dataset.height; });
+    var playing = 0;
+    for (var k = 0; k < anims.length; k++) playing += (await plays(anims[k])) ? 1 : 0;
+    document.getElementById('animation-check').textContent = 'animations ' + anims.length +
+      ' sized ' + sized.length + ' playing ' + playing;
+  });
+}
 """
 
 
@@ -505,6 +546,63 @@ def gallery_html(results, page_dir, mats, heads):
     return "\n".join(out)
 
 
+SEQ_HEAD = ("scene", "technique", "component", "settings", "frames", "frame RMSE mean (worst, frame)",
+            "temporal RMSE without noise", "frozen scale", "flicker", "/ frozen", "temporal FLIP",
+            "steady")
+
+
+def sequence_cells(r):
+    """The numbers of a sequence row, in SEQ_HEAD's order after the settings."""
+    return (f"{r['sequence']} x {fmt(r['dt'])} s to t={fmt(r['time'])}",
+            f"{fmt(r['seq_rmse_mean'], 3)} ({fmt(r['seq_rmse_worst'], 3)}, {r['seq_worst_frame']})",
+            fmt(r["temporal_rmse_denoised"], 3), fmt(r["temporal_frozen"], 3), fmt(r["flicker"], 3),
+            fmt(r["over_frozen"], 3), fmt(r["temporal_flip"], 3), r["steady"])
+
+
+def sequences_intro():
+    return ("A sequence is N consecutive frames of one running technique (its state carried from frame "
+            "to frame), each scored against the reference at its instant; the temporal error is the "
+            "RMSE of its frame-to-frame changes against the reference's, the reference's noise taken "
+            "out. Beside it the frozen scale (what a sequence that never changes scores) and two ratios "
+            "(harness/temporal_tables.py): flicker = temporal error / (sqrt 2 x frame error), 0 for an "
+            f"error steady over time, 1 for one drawn anew every frame; steady means flicker <= "
+            f"{temporal_tables.FLICKER_MAX} and under the frozen scale. Each animation shows reference | "
+            "technique | error map (one scale for the sequence), 4 frames a second.")
+
+
+def sequences_html(results, page_dir, seq_rows):
+    if not seq_rows:
+        return ""
+    out = ['<h2 id="sequences">Sequences: error over time</h2>', f"<p>{esc(sequences_intro())}</p>",
+           '<table id="sequences-table"><tr>' + "".join(f"<th>{esc(h)}</th>" for h in SEQ_HEAD)
+           + "<th>animation</th></tr>"]
+    for r in seq_rows:
+        anim = os.path.join(results, "animations", r["animation"]) if r["animation"] else ""
+        cap = f"{r['scene']} {r['technique']} {r['component']}: reference | technique | error"
+        media = media_html(anim, page_dir, cap, results).replace(
+            "<img ", f'<img class="animation" data-frames="{esc(r["sequence"])}" '
+            f'data-width="{3 * 2 * int(r["width"])}" data-height="{2 * int(r["height"])}" ', 1)
+        out.append("<tr>" + "".join(f"<td>{esc(x)}</td>" for x in (r["scene"], r["technique"],
+                                                                      r["component"]))
+                   + f'<td class="params">{long_text(r["params"], 60)}</td>'
+                   + "".join(f"<td>{esc(x)}</td>" for x in sequence_cells(r)) + f"<td>{media}</td></tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def sequences_md(seq_rows):
+    if not seq_rows:
+        return []
+    lines = ["## Sequences: error over time", "", sequences_intro(), "",
+             "| " + " | ".join(SEQ_HEAD) + " | animation |", "|" + "---|" * (len(SEQ_HEAD) + 1)]
+    for r in seq_rows:
+        anim = f"[webp](animations/{r['animation']})" if r["animation"] else ""
+        lines.append("| " + " | ".join(md(x) for x in (
+            r["scene"], r["technique"], r["component"], r["params"]) + sequence_cells(r))
+            + f" | {anim} |")
+    return lines + [""]
+
+
 def matrix_html(results, page_dir, name, rows, plots, resolution):
     img_dir = os.path.join(results, "images", name)
     rank = group_ranks(rows, resolution)
@@ -549,7 +647,7 @@ def summary_counts(claims):
     return ", ".join(f"{n} {v}" for v, n in sorted(counts.items()))
 
 
-def write_html(results, claims, mats, plots):
+def write_html(results, claims, mats, plots, seq_rows=()):
     page_dir = os.path.join(results, "report")
     os.makedirs(page_dir, exist_ok=True)
     shutil.copyfile(os.path.join(HERE, "report_style.css"), os.path.join(page_dir, "style.css"))
@@ -562,8 +660,9 @@ def write_html(results, claims, mats, plots):
              f'<p class="source">Generated from the CSVs in <code>{esc(os.path.basename(os.path.abspath(results)))}/</code>: '
              f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
              f'{esc(", ".join(revs) or "unknown")}.</p>',
-             '<pre id="image-check"></pre>',
+             '<pre id="image-check"></pre><pre id="animation-check"></pre>',
              '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · <a href="#gallery">Gallery</a> · '
+             + ('<a href="#sequences">Sequences</a> · ' if seq_rows else '') +
              '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every group</a> · '
              + " · ".join(f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
              f'<h2 id="claims-h">Claims ({len(claims)}: {esc(summary_counts(claims))})</h2>',
@@ -572,6 +671,7 @@ def write_html(results, claims, mats, plots):
              'where our settings differ from the paper\'s (quick profile).</p>',
              claims_html(claims),
              gallery_html(results, page_dir, mats, heads),
+             sequences_html(results, page_dir, seq_rows),
              '<h2 id="reading">How to read the numbers</h2><ul>'
              + "".join(f"<li>{esc(x)}</li>" for x in reading_guide(results, mats)) + '</ul>',
              '<h2 id="all-answers">The answer for every group: each size, camera, instant and reference setting</h2>',
@@ -663,7 +763,7 @@ def first_screen_md(results, mats, claims, heads):
     return lines
 
 
-def write_md(results, claims, mats, plots):
+def write_md(results, claims, mats, plots, seq_rows=()):
     every, heads = answer_rows(results, mats)
     mi, absolute = split_claims(claims)
     lines = first_screen_md(results, mats, claims, heads)
@@ -677,6 +777,7 @@ def write_md(results, claims, mats, plots):
     lines += ["", f"The papers' {sum(len(v) for v in absolute.values())} absolute GPU times are at the end "
               "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
     lines += gallery_md(results, mats, heads)
+    lines += sequences_md(seq_rows)
     lines += ["## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
     lines += ["", "## The answer for every group: each size, camera, instant and reference setting", ""] + answer_table_md(every, "answers-all")
     lines += ["", "## Matrices", ""]
@@ -762,8 +863,14 @@ def main():
         sys.exit(f"report.py: {claims_path}: columns {', '.join(missing)} missing")
     mats = matrices(results)
     plots = plots_of(results, list(mats))
-    print(write_md(results, claims, mats, plots))
-    print(write_html(results, claims, mats, plots))
+    seq_path, seq_rows = temporal_tables.write(results)
+    if seq_rows:
+        print(seq_path)
+        for name, why in sorted(temporal_tables.animations(results).items()):
+            if why:
+                print(f"report.py: no animation {name}: {why}", file=sys.stderr)
+    print(write_md(results, claims, mats, plots, seq_rows))
+    print(write_html(results, claims, mats, plots, seq_rows))
 
 
 if __name__ == "__main__":

@@ -14,6 +14,7 @@
 #include "csv.h"
 #include "history.h"
 #include "harness/base/hash.h"
+#include "harness/imaging/temporal.h"
 #include "matrix.h"
 #include "progress.h"
 #include "refrank.h"
@@ -48,7 +49,7 @@ static const char help[] =
 
 /* A row of either table, its cells by column index (harness/app/schema.h). */
 typedef struct row {
-    char v[GIB_TABLE_MAX_COLS][256];
+    char v[GIB_TABLE_MAX_COLS][512]; /* a cell: params, the longest, is up to 511 characters */
     const char *ptr[GIB_TABLE_MAX_COLS];
 } row;
 
@@ -138,7 +139,9 @@ static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, u
     row_set(r, GIB_C_HEIGHT, "%d", mr->height);
     row_set(r, GIB_C_TIME, "%.9g", mr->time);
     row_set(r, GIB_C_DT, "%.9g", ctx->m->dt);
-    row_set(r, GIB_C_WARMUP, "%d", ctx->m->warmup);
+    /* The warm-up the runner renders: more where a sequence needs more frames (runner.h). */
+    const int seq_warmup = ctx->m->sequence - 1 - ctx->m->frames;
+    row_set(r, GIB_C_WARMUP, "%d", ctx->m->warmup > seq_warmup ? ctx->m->warmup : seq_warmup);
     row_set(r, GIB_C_FRAMES, "%d", ctx->m->frames);
     row_set(r, GIB_C_BACKEND, "%s", ctx->info.backend);
     row_set(r, GIB_C_RENDERER, "%s", ctx->info.renderer);
@@ -362,13 +365,136 @@ static void row_metrics(row *r, const gib_metrics *m, const gib_ref_result *ref,
         row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image", m->nonfinite);
 }
 
+/* ---- sequences: each frame against the reference at its instant, and what changes ---- */
+
+/* A sequence column's cell (its index follows the base columns). */
+#define SEQ_COL(id) (GIB_C_COUNT + GIB_S_##id)
+
+/* What a sequence scores: the references of its frames and each frame's metrics. */
+typedef struct seq_scores {
+    gib_image refs[GIB_MATRIX_MAX_SEQUENCE];
+    double rmse[GIB_MATRIX_MAX_SEQUENCE], denoised[GIB_MATRIX_MAX_SEQUENCE];
+    double noise2; /* sum over frames of the reference's noise variance */
+    int n, have;   /* frames; references obtained */
+} seq_scores;
+
+/* The references of the frames, at the spp the row's last frame was ranked at (rq), and each
+ * frame's error. Returns 0, -1 (err set), or GIB_REF_WRITE_FAILED. */
+static int seq_references(const run_ctx *ctx, const gib_matrix_run *mr, const gib_image *frames,
+                          float exposure, gib_ref_request rq, seq_scores *sc, gib_error *err)
+{
+    for (int k = 0; k < sc->n; k++) {
+        rq.time = (float)(mr->time - (double)(sc->n - 1 - k) * ctx->m->dt);
+        gib_ref_result ref;
+        int grc = gib_reference_get(&rq, &ref, err);
+        if (grc < 0)
+            return grc;
+        sc->refs[sc->have++] = ref.image;
+        sc->noise2 += ref.noise_rmse * ref.noise_rmse;
+        gib_metrics m;
+        if (gib_metrics_compute(&ref.image, &frames[k], exposure, &m, err) < 0)
+            return -1;
+        gib_rmse_bounds b;
+        gib_rmse_interval(m.rmse, ref.noise_rmse, (long)mr->width * mr->height, &b);
+        sc->rmse[k] = m.rmse;
+        sc->denoised[k] = b.denoised;
+    }
+    return 0;
+}
+
+/* Per frame: the technique's preview, the reference's, and an error map on one scale for the whole
+ * sequence (twice the worst frame's RMSE), as <name>_f<k>{,_ref,_error}.png in img_dir/seq/. */
+static int seq_images(const char *img_dir, const char *name, const gib_image *frames,
+                      const seq_scores *sc, double worst, float exposure, gib_error *err)
+{
+    char dir[2100], path[4200];
+    snprintf(dir, sizeof dir, "%s/seq", img_dir);
+    if (gib_mkdirs(dir, err) < 0)
+        return -1;
+    for (int k = 0; k < sc->n; k++) {
+        snprintf(path, sizeof path, "%s/%s_f%02d.png", dir, name, k);
+        if (gib_png_write_preview(path, &frames[k], exposure, err) < 0)
+            return -1;
+        snprintf(path, sizeof path, "%s/%s_f%02d_ref.png", dir, name, k);
+        if (gib_png_write_preview(path, &sc->refs[k], exposure, err) < 0)
+            return -1;
+        snprintf(path, sizeof path, "%s/%s_f%02d_error.png", dir, name, k);
+        if (gib_png_write_error_map(path, &sc->refs[k], &frames[k], (float)(2.0 * worst), err) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* The sequence columns from the frames' scores and the temporal error. */
+static int seq_columns(row *r, const seq_scores *sc, const gib_image *frames, float exposure,
+                       double *worst, gib_error *err)
+{
+    double sum = 0, sum_dn = 0;
+    int wk = 0;
+    for (int k = 0; k < sc->n; k++) {
+        sum += sc->rmse[k];
+        sum_dn += sc->denoised[k];
+        if (sc->rmse[k] > sc->rmse[wk])
+            wk = k;
+    }
+    *worst = sc->rmse[wk];
+    gib_temporal t;
+    const double noise = sqrt(sc->noise2 / sc->n);
+    if (gib_temporal_compute(sc->refs, frames, sc->n, noise, exposure, 1, &t, err) < 0)
+        return -1;
+    row_set(r, SEQ_COL(SEQUENCE), "%d", sc->n);
+    fmt_num(r, SEQ_COL(SEQ_RMSE_MEAN), sum / sc->n);
+    fmt_num(r, SEQ_COL(SEQ_RMSE_WORST), sc->rmse[wk]);
+    row_set(r, SEQ_COL(SEQ_WORST_FRAME), "%d", wk);
+    fmt_num(r, SEQ_COL(SEQ_DENOISED_MEAN), sum_dn / sc->n);
+    fmt_num(r, SEQ_COL(T_RMSE), t.rmse);
+    fmt_num(r, SEQ_COL(T_DENOISED), t.rmse_denoised);
+    fmt_num(r, SEQ_COL(T_PEAK), t.peak);
+    fmt_num(r, SEQ_COL(T_FROZEN), t.frozen);
+    fmt_num(r, SEQ_COL(T_FLIP), t.flip);
+    fmt_num(r, SEQ_COL(T_REF_NOISE), noise);
+    return 0;
+}
+
+/* A sequence run's row (its image i) gets the sequence columns; a failure to score them makes the
+ * row's status sequence_failed. Returns -1 only when a table or image cannot be written. */
+static int score_sequence(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
+                          const gib_run_result *res, int i, const gib_ref_request *rq,
+                          const char *img_dir, const char *name, row *r)
+{
+    if (res->sequence < 2)
+        return 0;
+    static seq_scores sc; /* the references of up to 64 frames: not on the stack */
+    memset(&sc, 0, sizeof sc);
+    sc.n = res->sequence;
+    const gib_image *frames = res->seq_images[i];
+    gib_error err;
+    double worst = 0;
+    int rc = seq_references(ctx, mr, frames, scene->exposure, *rq, &sc, &err);
+    if (rc == 0)
+        rc = seq_columns(r, &sc, frames, scene->exposure, &worst, &err);
+    if (rc == 0 && ctx->images &&
+        seq_images(img_dir, name, frames, &sc, worst, scene->exposure, &err) < 0)
+        rc = GIB_REF_WRITE_FAILED;
+    if (rc == GIB_REF_WRITE_FAILED)
+        write_failed(ctx, &err);
+    else if (rc < 0) {
+        row_set(r, GIB_C_STATUS, "sequence_failed");
+        row_set(r, GIB_C_MESSAGE, "%s", err.msg);
+    }
+    for (int k = 0; k < sc.have; k++)
+        gib_image_free(&sc.refs[k]);
+    return rc == GIB_REF_WRITE_FAILED ? -1 : 0;
+}
+
 /* Scores image img (component bit of run mr) against its reference into row r and appends it. */
 static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
-                            const gib_run_result *res, unsigned bit, const gib_image *img,
+                            const gib_run_result *res, unsigned bit, int index,
                             const char *img_dir, row *r)
 {
     gib_error err;
     gib_ref_request rq;
+    const gib_image *img = &res->images[index];
     int component = row_request(ctx, scene, mr, bit, &rq);
     gib_ref_result ref;
     int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
@@ -404,6 +530,10 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
     }
     row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
     fmt_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
+    if (src == 0 && score_sequence(ctx, scene, mr, res, index, &rq, img_dir, name, r) < 0) {
+        gib_image_free(&ref.image);
+        return;
+    }
     append_row(ctx, r);
     char tag[32];
     gib_progress_tag(&ctx->progress, tag, sizeof tag);
@@ -437,7 +567,7 @@ static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene 
         if (!res->ok)
             append_row(ctx, &r);
         else
-            score_component(ctx, scene, mr, res, bit, &res->images[i++], img_dir, &r);
+            score_component(ctx, scene, mr, res, bit, (int)i++, img_dir, &r);
     }
 }
 
@@ -494,7 +624,7 @@ static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const
                                    .params = &mr->params, .camera = m->camera,
                                    .width = mr->width, .height = mr->height,
                                    .warmup = m->warmup, .frames = m->frames, .time = mr->time,
-                                   .dt = m->dt},
+                                   .dt = m->dt, .sequence = m->sequence},
                 &res);
         if (!res.ok)
             fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,

@@ -108,7 +108,7 @@ static const raw_value *lookup(const parse_state *s, const char *profile_section
 
 static const char *const matrix_keys[] = {"description", "scenes", "techniques", "sizes", "camera",
                                           "frames", "warmup", "times", "dt", "ref_spp_growth",
-                                          NULL};
+                                          "sequence", NULL};
 
 /* ref_spp_<component>: samples per pixel of that component's reference. */
 static int ref_spp_component(const char *k)
@@ -168,7 +168,7 @@ static int check_sections(const parse_state *s, const char *profile, const char 
     return 0;
 }
 
-/* The integer keys (camera, frames, warmup, ref_spp_growth, ref_spp_<component>) and the
+/* The integer keys (camera, frames, warmup, ref_spp_growth, sequence, ref_spp_<component>) and the
  * description, with their defaults. */
 static int load_settings(const parse_state *s, const char *psec, gib_matrix *m)
 {
@@ -176,10 +176,12 @@ static int load_settings(const parse_state *s, const char *psec, gib_matrix *m)
     m->frames = 5;
     m->warmup = 2;
     m->ref_spp_growth = 16;
-    struct { char key[48]; int *dst; long min, max; } ints[4 + GIB_MATRIX_MAX_COMPONENTS] = {
+    m->sequence = 1;
+    struct { char key[48]; int *dst; long min, max; } ints[5 + GIB_MATRIX_MAX_COMPONENTS] = {
         {"camera", &m->camera, 0, 64}, {"frames", &m->frames, 1, 256}, {"warmup", &m->warmup, 0, 100},
-        {"ref_spp_growth", &m->ref_spp_growth, 1, 1024}};
-    size_t nints = 4;
+        {"ref_spp_growth", &m->ref_spp_growth, 1, 1024},
+        {"sequence", &m->sequence, 1, GIB_MATRIX_MAX_SEQUENCE}};
+    size_t nints = 5;
     for (int c = 0; c < GIB_COMP_COUNT && c < GIB_MATRIX_MAX_COMPONENTS; c++, nints++) {
         snprintf(ints[nints].key, sizeof ints[nints].key, "ref_spp_%s", gib_component_name(c));
         ints[nints].dst = &m->ref_spp[c];

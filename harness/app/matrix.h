@@ -10,6 +10,8 @@
  *   warmup = 3
  *   times = 0, 0.5         ; instants (s) the images show, for scenes that move (default 0)
  *   dt = 0.0167            ; frames before the last are dt apart (default 0: all at the instant)
+ *   sequence = 8           ; score the last 8 frames of one run, each against the reference at its
+ *                          ; instant, and what changes between them (default 1: the last frame)
  *   ref_spp_direct = 4     ; reference samples per pixel, per component (ref_spp_<component>)
  *   ref_spp_ao = 256
  *   ref_spp_growth = 16    ; a reference too noisy to rank its rows gets up to 16x those samples
@@ -30,12 +32,13 @@
 
 #define GIB_MATRIX_MAX_LIST 32
 #define GIB_MATRIX_MAX_COMPONENTS 16
+#define GIB_MATRIX_MAX_SEQUENCE 64
 
 typedef struct gib_matrix_run {
     char scene[64];
     const gib_technique *technique;
     gib_params params;
-    char params_key[256];   /* "pcf=1;shadow_res=512" in spec order: identifies the run in CSV */
+    char params_key[512];   /* "pcf=1;shadow_res=512" in spec order: identifies the run in CSV */
     int width, height;
     double time;            /* the instant the image shows (seconds) */
 } gib_matrix_run;
@@ -47,6 +50,8 @@ typedef struct gib_matrix {
     char description[512];
     int camera, frames, warmup;
     double dt;              /* seconds between frames (the last at the run's time) */
+    int sequence;           /* frames read back and scored, the last at the run's time (1: only
+                               the last; above 1 the runs table has the sequence columns) */
     int ref_spp[GIB_MATRIX_MAX_COMPONENTS]; /* by enum gib_component; 0 = not set */
     int ref_spp_growth;     /* the most a reference's spp is multiplied by so that its noise is at
                                most a fifth of the smallest error it scores (1: never) */

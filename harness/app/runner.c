@@ -125,19 +125,43 @@ static int make_targets(const gib_run_request *rq, run_state *st, gib_run_result
     return 0;
 }
 
+/* The warm-up frames: the request's, or more where a sequence needs more frames than it renders. */
+static int warmup_frames(const gib_run_request *rq)
+{
+    const int need = rq->sequence - 1 - rq->frames;
+    return rq->warmup > need ? rq->warmup : need;
+}
+
+/* With a sequence, frame f's images read back into their place in it (after its timing ends). */
+static int read_sequence_frame(const gib_run_request *rq, run_state *st, gib_run_result *r, int f,
+                               int nf)
+{
+    const int k = f - (nf - r->sequence);
+    if (r->sequence < 2 || k < 0)
+        return 0;
+    for (int i = 0; i < st->target_count; i++)
+        if (read_target(st->targets[i].texture, rq->width, rq->height, &r->seq_images[i][k],
+                        &r->err) < 0) {
+            set_status(r, "readback_failed");
+            return -1;
+        }
+    return 0;
+}
+
 /* The cold frame, the warm-up and the timed frames (f = 0 is the cold one). A moving scene's
  * vertices are uploaded for each frame in a pass of their own. Returns -1 with the status set. */
 static int render_frames(const gib_run_request *rq, run_state *st, gib_run_result *r,
                          double create_start)
 {
     const gib_gpu_scene *scene = rq->scene;
-    const int moves = scene->scene->motion_count > 0, nf = 1 + rq->warmup + rq->frames;
+    const int warmup = warmup_frames(rq);
+    const int moves = scene->scene->motion_count > 0, nf = 1 + warmup + rq->frames;
     gib_view view;
     for (int f = 0; f < nf; f++) {
         const double tf = frame_time(rq, f, nf);
         gib_view_make(scene->scene, &scene->scene->cameras[rq->camera], rq->width, rq->height,
                       (float)tf, &view);
-        gib_timers_frame_begin(&st->timers, f > rq->warmup);
+        gib_timers_frame_begin(&st->timers, f > warmup);
         if (moves) {
             gib_timer_begin(&st->timers, "scene_update");
             int urc = gib_gpu_scene_set_time(scene, tf, &r->err);
@@ -157,7 +181,22 @@ static int render_frames(const gib_run_request *rq, run_state *st, gib_run_resul
             set_failure_status(r, "render_failed");
             return -1;
         }
+        if (read_sequence_frame(rq, st, r, f, nf) < 0)
+            return -1;
     }
+    return 0;
+}
+
+/* The sequence's images, allocated before the frames (their pixels as each is read back). */
+static int alloc_sequence(const gib_run_request *rq, run_state *st, gib_run_result *r)
+{
+    if (rq->sequence < 2)
+        return 0;
+    r->sequence = rq->sequence;
+    for (int i = 0; i < st->target_count; i++)
+        if (!(r->seq_images[i] = calloc((size_t)rq->sequence, sizeof(gib_image))))
+            return gib_fail_code(&r->err, GIB_ERR_OUT_OF_MEMORY,
+                                 "out of memory for a sequence of %d frames", rq->sequence);
     return 0;
 }
 
@@ -218,7 +257,7 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
         st.ledger.budget_bytes = strtoull(budget, NULL, 10);
     gib_timers_init(&st.timers);
     glGetError();
-    if (make_targets(rq, &st, r) < 0) {
+    if (make_targets(rq, &st, r) < 0 || alloc_sequence(rq, &st, r) < 0) {
         set_status(r, "alloc_failed");
         release(rq, &st, r);
         return;
@@ -226,7 +265,7 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
     const long long avail_before = nvx_available_bytes();
     /* create() sees the scene as the first frame will (a technique may measure it there). */
     const int moves = rq->scene->scene->motion_count > 0;
-    const int nf = 1 + rq->warmup + rq->frames;
+    const int nf = 1 + warmup_frames(rq) + rq->frames;
     if (moves && gib_gpu_scene_set_time(rq->scene, frame_time(rq, 0, nf), &r->err) < 0) {
         set_status(r, "scene_update_failed");
         release(rq, &st, r);
@@ -247,6 +286,11 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
 
 void gib_run_result_free(gib_run_result *r)
 {
-    for (int i = 0; i < r->output_count; i++)
+    for (int i = 0; i < r->output_count; i++) {
         gib_image_free(&r->images[i]);
+        for (int k = 0; r->seq_images[i] && k < r->sequence; k++)
+            gib_image_free(&r->seq_images[i][k]);
+        free(r->seq_images[i]);
+        r->seq_images[i] = NULL;
+    }
 }

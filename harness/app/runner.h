@@ -18,6 +18,8 @@ typedef struct gib_run_result {
     int output_count;
     unsigned output_components[GIB_MAX_OUTPUTS]; /* GIB_OUT_* bit of each image */
     gib_image images[GIB_MAX_OUTPUTS];
+    int sequence;                   /* frames in seq_images (0: a single-frame run) */
+    gib_image *seq_images[GIB_MAX_OUTPUTS]; /* per image, `sequence` frames, the last frame last */
     int pass_count;
     gib_pass_stats passes[GIB_TIMER_MAX_PASSES];
     gib_pass_stats gpu_total, cpu_total;
@@ -40,7 +42,10 @@ typedef struct gib_run_result {
  * width x height: the cold first frame, then `warmup` warm-up frames, then `frames` timed frames
  * (warmup 0 still times no cold frame). The last frame (the image read back) shows instant `time`
  * (seconds), each frame before it, the cold one included, dt earlier (dt 0: all at `time`); for a
- * moving scene every frame first uploads its vertices in a timed pass "scene_update". */
+ * moving scene every frame first uploads its vertices in a timed pass "scene_update".
+ * sequence above 1: the last `sequence` frames of the same technique instance are each read back
+ * after their frame's timing ends (its state carries from frame to frame, as in an application);
+ * when the run renders fewer frames, warm-up frames are added in front. */
 typedef struct gib_run_request {
     const gib_gpu_scene *scene;
     const gib_technique *technique;
@@ -48,6 +53,7 @@ typedef struct gib_run_request {
     int camera, width, height;
     int warmup, frames;
     double time, dt;
+    int sequence; /* 0 or 1: only the last frame is read back */
 } gib_run_request;
 
 /* Never fails outright: problems are reported in result->status and result->err. */

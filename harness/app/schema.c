@@ -9,6 +9,7 @@
 #define GIB_COL_DESC(id, name, kind, key, doc) {name, kind, key, doc},
 const gib_column gib_run_columns[GIB_C_COUNT] = {GIB_RUN_COLUMNS(GIB_COL_DESC)};
 const gib_column gib_pass_columns[GIB_P_COUNT] = {GIB_PASS_COLUMNS(GIB_COL_DESC)};
+const gib_column gib_seq_columns[GIB_S_COUNT] = {GIB_SEQ_COLUMNS(GIB_COL_DESC)};
 #undef GIB_COL_DESC
 
 int gib_schema_key(const gib_column *cols, int ncols, unsigned flag, int *out, int max)
@@ -80,6 +81,8 @@ int gib_table_layout_of(const gib_matrix *m, gib_table_layout *l, gib_error *err
     l->count = 0;
     for (int i = 0; i < GIB_C_COUNT; i++)
         l->names[l->count++] = gib_run_columns[i].name;
+    for (int i = 0; m->sequence > 1 && i < GIB_S_COUNT; i++)
+        l->names[l->count++] = gib_seq_columns[i].name;
     named_params np = {0};
     if (ini_parse(m->path, collect_named, &np) != 0)
         return gib_fail(err, "%s: cannot be read again for its parameter names", m->path);
@@ -191,6 +194,8 @@ void gib_schema_write_json(FILE *f)
     fprintf(f, "{\n  \"version\": 1,\n");
     json_columns(f, "runs", "{matrix}.csv", gib_run_columns, GIB_C_COUNT);
     json_columns(f, "passes", "{matrix}_passes.csv", gib_pass_columns, GIB_P_COUNT);
+    json_columns(f, "sequence", "{matrix}.csv, after the base columns, where the matrix's "
+                 "sequence is above 1", gib_seq_columns, GIB_S_COUNT);
     fprintf(f, "  \"param_columns\": \"after the base columns: the parameters the matrix file names, "
                "in registry order; every parameter is in params\",\n");
     fprintf(f, "  \"params\": {\"column\": \"params\", \"separator\": \";\", \"assign\": \"=\"},\n");

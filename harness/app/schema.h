@@ -78,6 +78,26 @@
     X(GIT, "git_revision", "text", 0, "the source revision built")                                 \
     X(TIMESTAMP, "timestamp", "text", 0, "when the row was written (UTC)")
 
+/* The sequence columns: after the base columns, only in the table of a matrix with `sequence` above
+ * 1 (so no other table's header changes). The row's base metrics are its last frame's; these
+ * score the whole sequence (ARCHITECTURE.md, "Metrics": "Temporal error"). */
+#define GIB_SEQ_COLUMNS(X)                                                                         \
+    X(SEQUENCE, "sequence", "int", 0, "frames scored, the last at time, dt apart")                 \
+    X(SEQ_RMSE_MEAN, "seq_rmse_mean", "real", 0, "RMSE of each frame against its instant's "       \
+      "reference, mean over the frames")                                                           \
+    X(SEQ_RMSE_WORST, "seq_rmse_worst", "real", 0, "that RMSE at the worst frame")                 \
+    X(SEQ_WORST_FRAME, "seq_worst_frame", "int", 0, "the worst frame's index (0: the first)")      \
+    X(SEQ_DENOISED_MEAN, "seq_rmse_denoised_mean", "real", 0, "rmse_denoised, mean over frames")   \
+    X(T_RMSE, "temporal_rmse", "real", 0, "RMSE of the frame-to-frame differences against the "    \
+      "reference's")                                                                               \
+    X(T_DENOISED, "temporal_rmse_denoised", "real", 0, "temporal_rmse with the references' noise " \
+      "taken out (twice a frame's noise variance)")                                                \
+    X(T_PEAK, "temporal_peak", "real", 0, "the worst pixel's temporal RMSE")                       \
+    X(T_FROZEN, "temporal_frozen", "real", 0, "what a sequence that never changes scores")         \
+    X(T_FLIP, "temporal_flip", "real", 0, "mean over frame pairs of |FLIP(T_k,T_k+1) - "           \
+      "FLIP(R_k,R_k+1)|")                                                                          \
+    X(T_REF_NOISE, "seq_ref_noise_rmse", "real", 0, "the references' noise, RMS over the frames")
+
 #define GIB_PASS_COLUMNS(X)                                                                        \
     X(MATRIX, "matrix", "text", 0, "the matrix file's name")                                       \
     X(PROFILE, "profile", "text", GIB_KEY_RR, "the matrix profile run")                            \
@@ -102,6 +122,10 @@ enum gib_run_column { GIB_RUN_COLUMNS(GIB_COL_ENUM) GIB_C_COUNT };
 #define GIB_COL_ENUM(id, name, kind, key, doc) GIB_P_##id,
 enum gib_pass_column { GIB_PASS_COLUMNS(GIB_COL_ENUM) GIB_P_COUNT };
 #undef GIB_COL_ENUM
+/* A sequence column's index in its table is GIB_C_COUNT + GIB_S_*. */
+#define GIB_COL_ENUM(id, name, kind, key, doc) GIB_S_##id,
+enum gib_seq_column { GIB_SEQ_COLUMNS(GIB_COL_ENUM) GIB_S_COUNT };
+#undef GIB_COL_ENUM
 
 typedef struct gib_column {
     const char *name, *kind;
@@ -111,11 +135,13 @@ typedef struct gib_column {
 
 extern const gib_column gib_run_columns[GIB_C_COUNT];
 extern const gib_column gib_pass_columns[GIB_P_COUNT];
+extern const gib_column gib_seq_columns[GIB_S_COUNT];
 
 /* The indices of the columns whose key has `flag`, in table order; returns their count. */
 int gib_schema_key(const gib_column *cols, int ncols, unsigned flag, int *out, int max);
 
-/* A matrix's runs table: the base columns, then the parameters the matrix file names. */
+/* A matrix's runs table: the base columns, the sequence columns where the matrix scores sequences,
+ * then the parameters the matrix file names. */
 #define GIB_TABLE_MAX_COLS 128
 typedef struct gib_table_layout {
     const char *names[GIB_TABLE_MAX_COLS];

@@ -134,6 +134,8 @@ uint64_t gib_matrix_fingerprint(const gib_matrix *m)
     h = gib_hash_u64(h, (uint64_t)m->frames);
     h = gib_hash_u64(h, (uint64_t)m->warmup);
     h = gib_hash_u64(h, (uint64_t)m->ref_spp_growth);
+    if (m->sequence > 1) /* a sequence matrix's rows differ: its shards must agree on it */
+        h = gib_hash_u64(h, (uint64_t)m->sequence);
     h = gib_hash_bytes(h, &m->dt, sizeof m->dt);
     for (int c = 0; c < GIB_MATRIX_MAX_COMPONENTS; c++)
         h = gib_hash_u64(h, (uint64_t)m->ref_spp[c]);

@@ -57,6 +57,9 @@ typedef struct caustics {
     unsigned layer_tex[ISPM_LAYERS], layer_depth, layer_fbo, peel_prog, layers_prog;
     gib_fullscreen shade;
     uint32_t node_capacity, photon_capacity;
+    int redraw, frames_rendered;   /* random numbers drawn anew each frame after the first */
+    uint64_t rng;                  /* the PCG32 state the numbers continue from */
+    float *rnd;                    /* with redraw: the CPU copy refilled each frame */
     char status[32];
 } caustics;
 
@@ -79,6 +82,9 @@ static const gib_param_spec caustics_params[] = {
     {"hit_slack", GIB_PARAM_FLOAT, 0.5, 0, 4,
      "pixels around a line fragment where a crossing of a list node's plane counts as a hit"},
     {"seed", GIB_PARAM_INT, 1, 0, 1e9, "seed of the pre-generated random numbers"},
+    {"redraw", GIB_PARAM_INT, 0, 0, 1,
+     "0: the pre-generated random numbers reused every frame (thesis, Ch. 4: temporal coherence); "
+     "1: drawn anew every frame (the same stream, continued)"},
     {0},
 };
 
@@ -119,6 +125,7 @@ static void caustics_destroy(void *self)
         glDeleteProgram(c->layers_prog);
     if (c->splat_fbo)
         glDeleteFramebuffers(1, &c->splat_fbo);
+    free(c->rnd);
     if (c->list_fbo)
         glDeleteFramebuffers(1, &c->list_fbo);
     if (c->vao)
@@ -212,7 +219,15 @@ static int size_pool(caustics *c, const gib_params *p, gib_error *err)
     return 0;
 }
 
-/* 8 random numbers a photon, generated once from the seed. */
+/* The next n random numbers of the stream, uniform in [0, 1). */
+static void fill_random(uint64_t *state, float *rnd, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        rnd[i] = (float)(pcg32(state) >> 8) * (1.0f / 16777216.0f);
+}
+
+/* 8 random numbers a photon, generated once from the seed (with redraw the buffer is refilled from
+ * the same stream every frame after the first, and its CPU copy kept). */
 static int create_random(caustics *c, const gib_params *p, gib_error *err)
 {
     size_t nrand = (size_t)c->photon_capacity * 8;
@@ -220,12 +235,29 @@ static int create_random(caustics *c, const gib_params *p, gib_error *err)
     if (!rnd)
         return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
     uint64_t seed = (uint64_t)gib_param_int(&gib_technique_ispm_caustics, p, "seed");
-    uint64_t state = 0x853c49e6748fea9bull ^ (seed << 1);
-    for (size_t i = 0; i < nrand; i++)
-        rnd[i] = (float)(pcg32(&state) >> 8) * (1.0f / 16777216.0f);
-    c->random = gib_gpu_buffer(c->ledger, "photons.random", nrand * sizeof *rnd, rnd, 0, err);
-    free(rnd);
+    c->rng = 0x853c49e6748fea9bull ^ (seed << 1);
+    c->redraw = gib_param_int(&gib_technique_ispm_caustics, p, "redraw");
+    fill_random(&c->rng, rnd, nrand);
+    c->random = gib_gpu_buffer(c->ledger, "photons.random", nrand * sizeof *rnd, rnd,
+                               c->redraw ? GL_DYNAMIC_STORAGE_BIT : 0, err);
+    if (c->redraw)
+        c->rnd = rnd;
+    else
+        free(rnd);
     return c->random ? 0 : -1;
+}
+
+/* With redraw, every frame after the first draws its photons' random numbers anew (timed as
+ * "random_redraw": generating and uploading them is the cost of not reusing them). */
+static void redraw_random(caustics *c, gib_timers *timers)
+{
+    if (!c->redraw || c->frames_rendered++ == 0)
+        return;
+    gib_timer_begin(timers, "random_redraw");
+    size_t nrand = (size_t)c->photon_capacity * 8;
+    fill_random(&c->rng, c->rnd, nrand);
+    glNamedBufferSubData(c->random, 0, (GLsizeiptr)(nrand * sizeof *c->rnd), c->rnd);
+    gib_timer_end(timers);
 }
 
 /* The mask, the lists, the photons and the splats' target, as the ledger names them. */
@@ -516,6 +548,7 @@ static int caustics_render(void *self, const gib_view *view, gib_timers *timers,
         gib_gbuffer_render(&c->low, c->scene, &lv, timers, "gbuffer");
     }
     gib_light_views_render(&c->views, c->scene, timers, "rsm");
+    redraw_random(c, timers);
 
     gib_timer_begin(timers, "list_build");
     if (c->layers)

@@ -45,6 +45,7 @@ typedef struct lrsm {
                                        faces a sample reads (lrsm_sample.glsl) */
     int coverage;                   /* a sample's L over its lit coverage (lrsm_cone.frag) */
     int visibility;                 /* Eq. 12's window: +-r_c or widened by 1/<n.l> */
+    int rebuild, built;             /* structures every frame, or only the first frame's */
     int width, height;
     unsigned targets[PASSES];    /* the last frame's output textures (NaN check) */
     int target_count;
@@ -80,6 +81,9 @@ static const gib_param_spec lrsm_params[] = {
     {"jacobian", GIB_PARAM_INT, 1, 0, 1,
      "LRSM radiance filtered over: 1 the surface area each RSM texel sees (Eq. 3's Jacobian "
      "r^2/<n.l>), 0 the light's solid angle (paper, Sec. 4.2: the Jacobian taken as constant)"},
+    {"rebuild", GIB_PARAM_INT, 1, 0, 1,
+     "1: voxels, light views and layers rebuilt every frame (paper, Sec. 6); 0: the first frame's "
+     "kept (a negative control: what a technique that misses the motion scores over time)"},
     {0},
 };
 
@@ -117,6 +121,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     s->seams = gib_param_int(t, p, "seams");
     s->coverage = gib_param_int(t, p, "coverage");
     s->visibility = gib_param_int(t, p, "visibility");
+    s->rebuild = gib_param_int(t, p, "rebuild");
     strcpy(s->status, "");
     static const char *const define[PASSES] = {"#define SHADOW 1\n", "#define DIFFUSE 1\n",
                                                "#define SPECULAR 1\n"};
@@ -178,12 +183,15 @@ static int lrsm_render(void *self, const gib_view *view, gib_timers *timers,
 {
     lrsm *s = self;
     gib_gbuffer_render(&s->gbuffer, s->scene, view, timers, "gbuffer");
-    gib_voxels_build(&s->voxels, s->scene, timers, "voxelization");
-    /* Light views, then layers and mips: two brackets of the same pass (timers accumulate). */
-    gib_light_views_render(&s->views, s->scene, timers, "lrsm_construction");
-    gib_timer_begin(timers, "lrsm_construction");
-    lrsm_layers_build(&s->layers, &s->views);
-    gib_timer_end(timers);
+    if (s->rebuild || !s->built) {
+        gib_voxels_build(&s->voxels, s->scene, timers, "voxelization");
+        /* Light views, then layers and mips: two brackets of the same pass (timers accumulate). */
+        gib_light_views_render(&s->views, s->scene, timers, "lrsm_construction");
+        gib_timer_begin(timers, "lrsm_construction");
+        lrsm_layers_build(&s->layers, &s->views);
+        gib_timer_end(timers);
+        s->built = 1;
+    }
     s->target_count = 0;
     for (int i = 0; i < target_count; i++) {
         unsigned c = targets[i].component;

@@ -13,6 +13,12 @@ Chromium and checks
 - the claims are grouped: machine-independent ones first, then the papers' absolute GPU times in
   collapsed sections (the HTML) and a section at the end (REPORT.md), every claims.csv row once;
 - the check itself catches a broken image (a copy of the page with one missing file must say so);
+- the Sequences section: a sequence (report_tiny_sequence.matrix) has its row and its animation, an
+  animated WebP with one frame per frame of the sequence (its ANMF chunks counted), which Chromium
+  loads at its stated size and plays (the page's ?check script decodes it with the browser's own
+  ImageDecoder: animated, 4 frames, not all alike; headless Chromium's virtual time does not advance
+  an <img>'s animation, so looking at it twice would not tell); a still image in its place must fail
+  that check;
 and saves screenshots of the first screen and of an opened matrix (printed paths). Exit 77 (ctest
 SKIP) only where no Chromium is installed.
 
@@ -159,6 +165,58 @@ def check_placeholder(exe, results, page, cells):
           f"the placeholder is no broken image (broken {got and got[2]}, placeholders {got and got[4]})")
 
 
+def webp_frames(path):
+    """The frames of an animated WebP: its ANMF chunks (RIFF, little-endian sizes, even-padded)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:4] != b"RIFF" or data[8:12] != b"WEBP":
+        return 0
+    n, pos = 0, 12
+    while pos + 8 <= len(data):
+        size = int.from_bytes(data[pos + 4:pos + 8], "little")
+        n += data[pos:pos + 4] == b"ANMF"
+        pos += 8 + size + (size & 1)
+    return n
+
+
+def animation_check(exe, page, tries=3):
+    """(animations, sized, playing) as the page's ?check script reports them. The decoding is
+    asynchronous work that headless virtual time does not wait for, so on a loaded machine the DOM
+    may be dumped before the script wrote its line: an absent line is asked for again."""
+    for _ in range(tries):
+        dom = browser(exe, "--dump-dom", "file://" + page + "?check")
+        m = re.search(r'<pre id="animation-check">animations (\d+) sized (\d+) playing (\d+)</pre>', dom)
+        if m:
+            return tuple(int(x) for x in m.groups())
+    return None
+
+
+def check_sequences(exe, results, page, src):
+    with open(os.path.join(results, "report_tiny_sequence.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    check(len(rows) == 1 and rows[0]["status"] == "ok" and rows[0]["sequence"] == "4",
+          "the tiny sequence ran: 1 row ok with 4 frames")
+    table = re.search(r'<table id="sequences-table">(.*?)</table>', src, re.S)
+    check(table is not None and table.group(1).count("<tr>") == 2,
+          "the Sequences section has a row for the sequence")
+    anims = re.findall(r'<img class="animation"[^>]* src="([^"]+)"', src)
+    check(len(anims) == 1, f"the sequence's animation is on the page ({anims})")
+    if not anims:
+        return
+    path = os.path.normpath(os.path.join(os.path.dirname(page), anims[0]))
+    check(os.path.exists(path) and webp_frames(path) == 4,
+          f"the animation is an animated WebP of 4 frames ({webp_frames(path) if os.path.exists(path) else 'absent'})")
+    got = animation_check(exe, page)
+    check(got == (1, 1, 1), f"Chromium loads the animation at its size and it plays ({got})")
+    still = os.path.join(os.path.dirname(page), "still_check.html")
+    ref = rows[0]["image"] + "_f00.png"
+    with open(still, "w") as f:
+        f.write(src.replace(anims[0], "../images/report_tiny_sequence/seq/" + ref))
+    got = animation_check(exe, still)
+    check(got is not None and got[2] == 0, f"a still image in its place does not play ({got})")
+    os.remove(still)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gibench", required=True)
@@ -177,8 +235,9 @@ def main():
         src = os.path.join(ROOT, "results", name)
         if os.path.exists(src):
             shutil.copy(src, results)
-    subprocess.run([a.gibench, "run", os.path.join(HERE, "report_tiny.matrix"), "--out", results,
-                    "--cache", os.path.join(work, "cache")], check=True)
+    for matrix in ("report_tiny.matrix", "report_tiny_sequence.matrix"):
+        subprocess.run([a.gibench, "run", os.path.join(HERE, matrix), "--out", results,
+                        "--cache", os.path.join(work, "cache")], check=True)
     py = sys.executable
     subprocess.run([py, os.path.join(ROOT, "harness", "plot.py"), results, "--out",
                     os.path.join(results, "plots")], check=True)
@@ -194,7 +253,8 @@ def main():
     with open(os.path.join(results, "report_tiny.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
     check(len(rows) == 4 and all(r["status"] == "ok" for r in rows), "the tiny matrix ran: 4 rows ok")
-    figures = re.findall(r'<div class="row[^"]*">(.*?)</div></div>', src, re.S)
+    tiny = re.search(r'<details class="matrix" id="m-report_tiny">(.*?)</details>\n', src, re.S)
+    figures = re.findall(r'<div class="row[^"]*">(.*?)</div></div>', tiny.group(1) if tiny else "", re.S)
     check(len(figures) == len(rows), f"one row block per CSV row ({len(figures)} for {len(rows)})")
     for r, block in zip(rows, figures):
         caps = re.findall(r"<figcaption>([^<]*)</figcaption>", block)
@@ -241,6 +301,7 @@ def main():
     os.remove(bad)
 
     check_placeholder(exe, results, page, cells)
+    check_sequences(exe, results, page, src)
 
     first = os.path.join(work, "report_first_screen.png")
     browser(exe, "--window-size=1280,900", "--screenshot=" + first, "file://" + page)
