@@ -1,30 +1,9 @@
-"""What the fault tests share: their command line (the gibench under test, a work folder made
-empty), the matrix they run (faults.matrix), and the check that prints and counts a failure."""
-import argparse
+"""What the fault tests share: the matrix they run (faults.matrix), and from tests/common/
+script_checks.py their command line, the check that prints and counts a failure, and the verdict."""
 import os
-import shutil
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from script_checks import args, check, failures, verdict  # noqa: E402,F401
 
 MATRIX = os.path.join(os.path.dirname(os.path.abspath(__file__)), "faults.matrix")
-failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
-
-
-def args():
-    """--gibench and --work; the work folder is emptied."""
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
-    return a
-
-
-def verdict(passed_text="PASS"):
-    """Prints the verdict line; the exit status."""
-    print(passed_text if not failures else f"FAIL: {len(failures)} checks")
-    return 1 if failures else 0

@@ -13,12 +13,13 @@ those: frozen >= 1.25x live in temporal_rmse and >= 2x in temporal_flip, and the
 the frozen scale. A metric that did not see motion (or a runner that read one frame N times) would
 score the two alike and fail.
 """
-import argparse
 import csv
 import os
-import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from script_checks import args, check, verdict  # noqa: E402
 
 MATRIX = """[matrix]
 description = negative control: lrsm with its structures rebuilt or kept from the first frame
@@ -40,21 +41,10 @@ rebuild = 1, 0
 [profile.quick]
 """
 
-FAILS = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        FAILS.append(what)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = args()
     os.makedirs(a.work)
     path = os.path.join(a.work, "control.matrix")
     with open(path, "w") as f:
@@ -76,8 +66,7 @@ def main():
     check(fr >= 1.25 * lr, "frozen structures' temporal_rmse >= 1.25x the live one's")
     check(ff >= 2.0 * lf, "frozen structures' temporal_flip >= 2x the live one's")
     check(lr < scale, "the live run changes more like the reference than standing still")
-    print("FAILED: %d checks" % len(FAILS) if FAILS else "all checks passed")
-    return 1 if FAILS else 0
+    return verdict("all checks passed")
 
 
 if __name__ == "__main__":

@@ -14,13 +14,14 @@ apart ending at t = 0.5, checked:
   and the same image metrics (rmse, ssim, flip, ...) as the sequence's row, whose last frame is the
   same image (its preview is byte for byte the row's).
 """
-import argparse
 import csv
 import math
 import os
-import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from script_checks import args, check, verdict  # noqa: E402
 
 MATRIX = """[matrix]
 description = sequence test: direct on the moving Cornell box
@@ -36,13 +37,6 @@ ref_spp_direct = 16
 [profile.quick]
 """
 
-FAILS = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        FAILS.append(what)
 
 
 def run(gibench, work, name, sequence):
@@ -69,11 +63,7 @@ def base_columns(gibench):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = args()
     os.makedirs(a.work)
     base, seq_cols = base_columns(a.gibench)
     r, head, images = run(a.gibench, a.work, "seq", "sequence = 6")
@@ -104,8 +94,7 @@ def main():
     check(shead == base, "a single-frame table has the base columns alone")
     for k in ("rmse", "rel_rmse", "mean_ratio", "psnr", "ssim", "flip", "hdrflip", "black_rmse"):
         check(s[k] == r[k], "single-frame %s %s equals the sequence row's" % (k, s[k]))
-    print("FAILED: %d checks" % len(FAILS) if FAILS else "all checks passed")
-    return 1 if FAILS else 0
+    return verdict("all checks passed")
 
 
 if __name__ == "__main__":
