@@ -14,11 +14,10 @@
 #include "csv.h"
 #include "history.h"
 #include "harness/base/hash.h"
-#include "harness/imaging/temporal.h"
 #include "matrix.h"
 #include "progress.h"
-#include "refrank.h"
 #include "schema.h"
+#include "run_rows.h"
 #include "shard.h"
 
 static const char help[] =
@@ -47,63 +46,6 @@ static const char help[] =
     "frames: median, interquartile range, min and max. --warmup W and --frames F replace the\n"
     "profile's counts (the timing benchmark's longer warm-up, harness/bench_timing.py).\n";
 
-/* A row of either table, its cells by column index (harness/app/schema.h). */
-typedef struct row {
-    char v[GIB_TABLE_MAX_COLS][512]; /* a cell: params, the longest, is up to 511 characters */
-    const char *ptr[GIB_TABLE_MAX_COLS];
-} row;
-
-static void row_set(row *r, int col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static void row_set(row *r, int col, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(r->v[col], sizeof r->v[col], fmt, ap);
-    va_end(ap);
-    r->ptr[col] = r->v[col];
-}
-
-/* A runs row's identity key: its GIB_KEY_ROW columns joined by '|' (as gib_csv keys rows). */
-static void row_key(const row *r, char *key, size_t len)
-{
-    int cols[GIB_C_COUNT];
-    int n = gib_schema_key(gib_run_columns, GIB_C_COUNT, GIB_KEY_ROW, cols, GIB_C_COUNT);
-    key[0] = 0;
-    for (int k = 0; k < n; k++) {
-        strncat(key, k ? "|" : "", len - strlen(key) - 1);
-        strncat(key, r->v[cols[k]], len - strlen(key) - 1);
-    }
-}
-
-static void fmt_num(row *r, int col, double v)
-{
-    if (isnan(v))
-        row_set(r, col, "nan");
-    else if (isinf(v))
-        row_set(r, col, v > 0 ? "inf" : "-inf");
-    else
-        row_set(r, col, "%.9g", v);
-}
-
-typedef struct run_ctx {
-    const gib_matrix *m;
-    const gib_table_layout *cols;
-    gib_csv *csv, *passes;
-    const char *out, *cache;
-    int images;
-    gib_gl_info info;
-    gib_history *hist;     /* NULL: --no-history, or recording failed (reported once) */
-    const gib_history_machine *machine;
-    long long hist_run;    /* the history's run of this matrix; 0 until its first row */
-    int hist_failed;
-    int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
-    int write_failed; /* a table could not be written (a full disk): the run stops there */
-    gib_shard shard;
-    const int *owner; /* with --shard: each run's shard (shard.h) */
-    char *state;      /* with --shard: 'e' rows expected, 's' skipped, 'f' failed; 0 not ours */
-    gib_progress progress;
-} run_ctx;
-
 /* Whether run j is this process's to do: every run, or with --shard this shard's share. */
 static int run_mine(const run_ctx *ctx, int j)
 {
@@ -117,7 +59,7 @@ static void run_state(run_ctx *ctx, int j, char state)
 }
 
 /* A table could not be written (a full disk): the run stops there. */
-static void write_failed(run_ctx *ctx, const gib_error *err)
+void write_failed(run_ctx *ctx, const gib_error *err)
 {
     fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun resumes)\n",
             err->msg);
@@ -125,7 +67,7 @@ static void write_failed(run_ctx *ctx, const gib_error *err)
 }
 
 /* The identity part of a row: what makes it this run, and the run's settings and machine. */
-static void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned comp)
+void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned comp)
 {
     memset(r->ptr, 0, sizeof r->ptr);
     row_set(r, GIB_C_MATRIX, "%s", ctx->m->name);
@@ -199,7 +141,7 @@ static void record_history(run_ctx *ctx, const row *r)
         history_failed(ctx, &err);
 }
 
-static void append_row(run_ctx *ctx, row *r)
+void append_row(run_ctx *ctx, row *r)
 {
     gib_error err;
     int w = gib_csv_append(ctx->csv, r->ptr, &err);
@@ -217,358 +159,6 @@ static void append_row(run_ctx *ctx, row *r)
         ctx->rows_out_of_memory++;
     else if (strcmp(r->v[GIB_C_STATUS], "ok"))
         ctx->rows_failed++;
-}
-
-/* The reference request of a row (component GIB_OUT_* bit `bit` of run mr), at the matrix's spp.
- * Returns the reference component, -1 when there is no estimator for it. */
-static int row_request(const run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
-                       unsigned bit, gib_ref_request *rq)
-{
-    int component = gib_component_parse(gib_output_name(bit));
-    *rq = (gib_ref_request){.scene = scene, .camera = ctx->m->camera, .width = mr->width,
-                            .height = mr->height, .time = (float)mr->time, .component = component,
-                            .spp = component >= 0 && ctx->m->ref_spp[component]
-                                       ? ctx->m->ref_spp[component] : 64,
-                            .cache_dir = ctx->cache};
-    gib_ref_request_match(rq, mr->technique, &mr->params, bit);
-    return component;
-}
-
-/* The reference a row is scored against (refrank.h): the matrix's, or where its noise is over a
- * fifth of the row's error, one with more samples. Returns what gib_reference_get returns. */
-static int reference_to_rank(const run_ctx *ctx, gib_ref_request *rq, const gib_image *img,
-                             float exposure, gib_ref_result *ref, gib_error *err)
-{
-    int grc = gib_reference_get(rq, ref, err);
-    gib_metrics m;
-    if (grc < 0 || gib_metrics_compute(&ref->image, img, exposure, &m, err) < 0 || m.nonfinite)
-        return grc;
-    int spp = gib_ref_spp_to_rank(rq->spp, ref->noise_rmse, m.rmse, (long)rq->width * rq->height,
-                                  ctx->m->ref_spp_growth);
-    if (spp == rq->spp)
-        return grc;
-    printf("    reference %s %dx%d: noise %.3g at %d spp is over a fifth of the row's error %.3g: "
-           "scored at %d spp\n", gib_component_name(rq->component), rq->width, rq->height,
-           ref->noise_rmse, rq->spp, m.rmse, spp);
-    gib_image_free(&ref->image);
-    rq->spp = spp;
-    return gib_reference_get(rq, ref, err);
-}
-
-/* The row's error beside what a black image scores and with the reference's noise taken out
- * (metrics.h, gib_rmse_interval). */
-static void set_error_scale(row *r, const gib_metrics *m, double noise_rmse, long pixels)
-{
-    gib_rmse_bounds b;
-    gib_rmse_interval(m->rmse, noise_rmse, pixels, &b);
-    fmt_num(r, GIB_C_BLACK_RMSE, m->black_rmse);
-    fmt_num(r, GIB_C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
-                                                   : m->rmse > 0 ? INFINITY : 0.0);
-    fmt_num(r, GIB_C_RMSE_DENOISED, b.denoised);
-    fmt_num(r, GIB_C_RMSE_LO, b.lo);
-    fmt_num(r, GIB_C_RMSE_HI, b.hi);
-}
-
-/* The run's passes, before its rows: a run whose rows are all in the CSV (run_done) then has its
- * passes too, whenever the process is stopped. Returns -1 when the table cannot be written. */
-static int write_passes(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res)
-{
-    for (int p = 0; res->ok && p < res->pass_count; p++) {
-        row r;
-        const gib_pass_stats *ps = &res->passes[p];
-        memset(r.ptr, 0, sizeof r.ptr);
-        row_set(&r, GIB_P_MATRIX, "%s", ctx->m->name);
-        row_set(&r, GIB_P_PROFILE, "%s", ctx->m->profile);
-        row_set(&r, GIB_P_SCENE, "%s", mr->scene);
-        row_set(&r, GIB_P_TECHNIQUE, "%s", mr->technique->name);
-        row_set(&r, GIB_P_PARAMS, "%s", mr->params_key);
-        row_set(&r, GIB_P_WIDTH, "%d", mr->width);
-        row_set(&r, GIB_P_HEIGHT, "%d", mr->height);
-        row_set(&r, GIB_P_TIME, "%.9g", mr->time);
-        row_set(&r, GIB_P_PASS, "%s", ps->name);
-        row_set(&r, GIB_P_MEDIAN, "%.6g", ps->median_ms);
-        row_set(&r, GIB_P_MIN, "%.6g", ps->min_ms);
-        row_set(&r, GIB_P_MAX, "%.6g", ps->max_ms);
-        row_set(&r, GIB_P_IQR, "%.6g", ps->iqr_ms);
-        row_set(&r, GIB_P_FIRST, "%.6g", ps->first_ms);
-        row_set(&r, GIB_P_RENDERER, "%s", ctx->info.renderer);
-        row_set(&r, GIB_P_GIT, "%s", gib_git_revision());
-        gib_error err;
-        if (gib_csv_append(ctx->passes, r.ptr, &err) < 0) {
-            write_failed(ctx, &err);
-            return -1;
-        }
-    }
-    return 0;
-}
-
-/* What every row of a run holds, ok or not: memory and counters; its times when it rendered. */
-static void row_run_result(row *r, const gib_gpu_scene *gpu, const gib_run_result *res)
-{
-    row_set(r, GIB_C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
-    row_set(r, GIB_C_MEM, "%llu", (unsigned long long)res->technique_bytes);
-    row_set(r, GIB_C_MEM_STRUCT, "%s", res->memory_by_structure);
-    /* What the technique planned, filled when the runner reports it (empty until then). */
-    row_set(r, GIB_C_MEM_PLANNED, "%s", res->planned_structures);
-    row_set(r, GIB_C_COUNTERS, "%s", res->counters);
-    if (res->driver_bytes >= 0)
-        row_set(r, GIB_C_DRIVER_MEM, "%lld", res->driver_bytes);
-    if (!res->ok) {
-        row_set(r, GIB_C_STATUS, "%s", res->status);
-        row_set(r, GIB_C_MESSAGE, "%s", res->err.msg);
-        return;
-    }
-    fmt_num(r, GIB_C_GPU_MED, res->gpu_total.median_ms);
-    fmt_num(r, GIB_C_GPU_MIN, res->gpu_total.min_ms);
-    fmt_num(r, GIB_C_GPU_MAX, res->gpu_total.max_ms);
-    fmt_num(r, GIB_C_GPU_IQR, res->gpu_total.iqr_ms);
-    fmt_num(r, GIB_C_CPU, res->cpu_total.median_ms);
-    fmt_num(r, GIB_C_CPU_IQR, res->cpu_total.iqr_ms);
-    fmt_num(r, GIB_C_FIRST_FRAME, res->first_frame_ms);
-    fmt_num(r, GIB_C_FIRST_GPU, res->gpu_total.first_ms);
-}
-
-/* The reference's preview beside the technique images, once per (scene, component, size, dmax),
- * and the row's image names, relative to DIR/images/<matrix>/ (the report reads them). */
-static void row_images(row *r, const char *img_dir, const char *name, const gib_ref_result *ref,
-                       float exposure)
-{
-    char ref_png[4096];
-    const char *slash = strrchr(ref->path, '/');
-    snprintf(ref_png, sizeof ref_png, "%s/reference_%s", img_dir, slash ? slash + 1 : ref->path);
-    char *dot = strrchr(ref_png, '.');
-    if (dot)
-        strcpy(dot, ".png");
-    gib_error err;
-    if (access(ref_png, F_OK) != 0 &&
-        gib_png_write_preview(ref_png, &ref->image, exposure, &err) < 0)
-        fprintf(stderr, "gibench run: %s\n", err.msg);
-    row_set(r, GIB_C_IMAGE, "%s", name);
-    row_set(r, GIB_C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
-}
-
-static void row_metrics(row *r, const gib_metrics *m, const gib_ref_result *ref, long pixels)
-{
-    fmt_num(r, GIB_C_RMSE, m->rmse);
-    fmt_num(r, GIB_C_REL_RMSE, m->rel_rmse);
-    fmt_num(r, GIB_C_MEAN_RATIO, m->mean_ratio);
-    set_error_scale(r, m, ref->noise_rmse, pixels);
-    fmt_num(r, GIB_C_PSNR, m->psnr);
-    fmt_num(r, GIB_C_SSIM, m->ssim);
-    fmt_num(r, GIB_C_FLIP, m->flip);
-    fmt_num(r, GIB_C_HDRFLIP, m->hdrflip);
-    row_set(r, GIB_C_NONFINITE, "%ld", m->nonfinite);
-    /* A reference noisier than a fifth of the error cannot rank techniques. */
-    row_set(r, GIB_C_REF_NOISY, "%d", ref->noise_rmse > 0.2 * m->rmse);
-    row_set(r, GIB_C_STATUS, "%s", m->nonfinite ? "nonfinite" : "ok");
-    if (m->nonfinite)
-        row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image", m->nonfinite);
-}
-
-/* ---- sequences: each frame against the reference at its instant, and what changes ---- */
-
-/* A sequence column's cell (its index follows the base columns). */
-#define SEQ_COL(id) (GIB_C_COUNT + GIB_S_##id)
-
-/* What a sequence scores: the references of its frames and each frame's metrics. */
-typedef struct seq_scores {
-    gib_image refs[GIB_MATRIX_MAX_SEQUENCE];
-    double rmse[GIB_MATRIX_MAX_SEQUENCE], denoised[GIB_MATRIX_MAX_SEQUENCE];
-    double noise2; /* sum over frames of the reference's noise variance */
-    int n, have;   /* frames; references obtained */
-} seq_scores;
-
-/* The references of the frames, at the spp the row's last frame was ranked at (rq), and each
- * frame's error. Returns 0, -1 (err set), or GIB_REF_WRITE_FAILED. */
-static int seq_references(const run_ctx *ctx, const gib_matrix_run *mr, const gib_image *frames,
-                          float exposure, gib_ref_request rq, seq_scores *sc, gib_error *err)
-{
-    for (int k = 0; k < sc->n; k++) {
-        rq.time = (float)(mr->time - (double)(sc->n - 1 - k) * ctx->m->dt);
-        gib_ref_result ref;
-        int grc = gib_reference_get(&rq, &ref, err);
-        if (grc < 0)
-            return grc;
-        sc->refs[sc->have++] = ref.image;
-        sc->noise2 += ref.noise_rmse * ref.noise_rmse;
-        gib_metrics m;
-        if (gib_metrics_compute(&ref.image, &frames[k], exposure, &m, err) < 0)
-            return -1;
-        gib_rmse_bounds b;
-        gib_rmse_interval(m.rmse, ref.noise_rmse, (long)mr->width * mr->height, &b);
-        sc->rmse[k] = m.rmse;
-        sc->denoised[k] = b.denoised;
-    }
-    return 0;
-}
-
-/* Per frame: the technique's preview, the reference's, and an error map on one scale for the whole
- * sequence (twice the worst frame's RMSE), as <name>_f<k>{,_ref,_error}.png in img_dir/seq/. */
-static int seq_images(const char *img_dir, const char *name, const gib_image *frames,
-                      const seq_scores *sc, double worst, float exposure, gib_error *err)
-{
-    char dir[2100], path[4200];
-    snprintf(dir, sizeof dir, "%s/seq", img_dir);
-    if (gib_mkdirs(dir, err) < 0)
-        return -1;
-    for (int k = 0; k < sc->n; k++) {
-        snprintf(path, sizeof path, "%s/%s_f%02d.png", dir, name, k);
-        if (gib_png_write_preview(path, &frames[k], exposure, err) < 0)
-            return -1;
-        snprintf(path, sizeof path, "%s/%s_f%02d_ref.png", dir, name, k);
-        if (gib_png_write_preview(path, &sc->refs[k], exposure, err) < 0)
-            return -1;
-        snprintf(path, sizeof path, "%s/%s_f%02d_error.png", dir, name, k);
-        if (gib_png_write_error_map(path, &sc->refs[k], &frames[k], (float)(2.0 * worst), err) < 0)
-            return -1;
-    }
-    return 0;
-}
-
-/* The sequence columns from the frames' scores and the temporal error. */
-static int seq_columns(row *r, const seq_scores *sc, const gib_image *frames, float exposure,
-                       double *worst, gib_error *err)
-{
-    double sum = 0, sum_dn = 0;
-    int wk = 0;
-    for (int k = 0; k < sc->n; k++) {
-        sum += sc->rmse[k];
-        sum_dn += sc->denoised[k];
-        if (sc->rmse[k] > sc->rmse[wk])
-            wk = k;
-    }
-    *worst = sc->rmse[wk];
-    gib_temporal t;
-    const double noise = sqrt(sc->noise2 / sc->n);
-    if (gib_temporal_compute(sc->refs, frames, sc->n, noise, exposure, 1, &t, err) < 0)
-        return -1;
-    row_set(r, SEQ_COL(SEQUENCE), "%d", sc->n);
-    fmt_num(r, SEQ_COL(SEQ_RMSE_MEAN), sum / sc->n);
-    fmt_num(r, SEQ_COL(SEQ_RMSE_WORST), sc->rmse[wk]);
-    row_set(r, SEQ_COL(SEQ_WORST_FRAME), "%d", wk);
-    fmt_num(r, SEQ_COL(SEQ_DENOISED_MEAN), sum_dn / sc->n);
-    fmt_num(r, SEQ_COL(T_RMSE), t.rmse);
-    fmt_num(r, SEQ_COL(T_DENOISED), t.rmse_denoised);
-    fmt_num(r, SEQ_COL(T_PEAK), t.peak);
-    fmt_num(r, SEQ_COL(T_FROZEN), t.frozen);
-    fmt_num(r, SEQ_COL(T_FLIP), t.flip);
-    fmt_num(r, SEQ_COL(T_REF_NOISE), noise);
-    return 0;
-}
-
-/* A sequence run's row (its image i) gets the sequence columns; a failure to score them makes the
- * row's status sequence_failed. Returns -1 only when a table or image cannot be written. */
-static int score_sequence(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
-                          const gib_run_result *res, int i, const gib_ref_request *rq,
-                          const char *img_dir, const char *name, row *r)
-{
-    if (res->sequence < 2)
-        return 0;
-    static seq_scores sc; /* the references of up to 64 frames: not on the stack */
-    memset(&sc, 0, sizeof sc);
-    sc.n = res->sequence;
-    const gib_image *frames = res->seq_images[i];
-    gib_error err;
-    double worst = 0;
-    int rc = seq_references(ctx, mr, frames, scene->exposure, *rq, &sc, &err);
-    if (rc == 0)
-        rc = seq_columns(r, &sc, frames, scene->exposure, &worst, &err);
-    if (rc == 0 && ctx->images &&
-        seq_images(img_dir, name, frames, &sc, worst, scene->exposure, &err) < 0)
-        rc = GIB_REF_WRITE_FAILED;
-    if (rc == GIB_REF_WRITE_FAILED)
-        write_failed(ctx, &err);
-    else if (rc < 0) {
-        row_set(r, GIB_C_STATUS, "sequence_failed");
-        row_set(r, GIB_C_MESSAGE, "%s", err.msg);
-    }
-    for (int k = 0; k < sc.have; k++)
-        gib_image_free(&sc.refs[k]);
-    return rc == GIB_REF_WRITE_FAILED ? -1 : 0;
-}
-
-/* Scores image img (component bit of run mr) against its reference into row r and appends it. */
-static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
-                            const gib_run_result *res, unsigned bit, int index,
-                            const char *img_dir, row *r)
-{
-    gib_error err;
-    gib_ref_request rq;
-    const gib_image *img = &res->images[index];
-    int component = row_request(ctx, scene, mr, bit, &rq);
-    gib_ref_result ref;
-    int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
-    if (grc == GIB_REF_WRITE_FAILED) { /* no row (a rerun redoes this run) */
-        write_failed(ctx, &err);
-        return;
-    }
-    if (grc < 0) {
-        row_set(r, GIB_C_STATUS, "reference_failed");
-        row_set(r, GIB_C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
-                                                      : err.msg);
-        append_row(ctx, r);
-        return;
-    }
-    char name[512];
-    gib_image_name(mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
-                   gib_output_name(bit), name, sizeof name);
-    if (ctx->images)
-        row_images(r, img_dir, name, &ref, scene->exposure);
-    gib_metrics m;
-    int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
-                                 name, &m, &err);
-    if (src == GIB_IMAGE_WRITE_FAILED) {
-        write_failed(ctx, &err);
-        gib_image_free(&ref.image);
-        return;
-    }
-    if (src < 0) {
-        row_set(r, GIB_C_STATUS, "scoring_failed");
-        row_set(r, GIB_C_MESSAGE, "%s", err.msg);
-    } else {
-        row_metrics(r, &m, &ref, (long)mr->width * mr->height);
-    }
-    row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
-    fmt_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
-    if (src == 0 && score_sequence(ctx, scene, mr, res, index, &rq, img_dir, name, r) < 0) {
-        gib_image_free(&ref.image);
-        return;
-    }
-    append_row(ctx, r);
-    char tag[32];
-    gib_progress_tag(&ctx->progress, tag, sizeof tag);
-    gib_progress_clear(&ctx->progress);
-    printf("%s %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f  %s\n",
-           tag, mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
-           res->gpu_total.median_ms, m.rmse, m.ssim, m.flip, r->v[GIB_C_STATUS]);
-    gib_image_free(&ref.image);
-}
-
-/* A run's passes, then a row per output component. */
-static void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
-                      const gib_matrix_run *mr, gib_run_result *res)
-{
-    gib_progress_clear(&ctx->progress); /* references may report their own progress */
-    char img_dir[2048];
-    snprintf(img_dir, sizeof img_dir, "%s/images/%s", ctx->out, ctx->m->name);
-    gib_error err;
-    if (ctx->images && gib_mkdirs(img_dir, &err) < 0) {
-        fprintf(stderr, "gibench run: %s\n", err.msg);
-        ctx->images = 0;
-    }
-    if (write_passes(ctx, mr, res) < 0)
-        return;
-    for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC && !ctx->write_failed; bit <<= 1) {
-        if (!(mr->technique->components & bit))
-            continue;
-        row r;
-        row_identity(&r, ctx, mr, bit);
-        row_run_result(&r, gpu, res);
-        if (!res->ok)
-            append_row(ctx, &r);
-        else
-            score_component(ctx, scene, mr, res, bit, (int)i++, img_dir, &r);
-    }
 }
 
 static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, size_t len)
