@@ -23,6 +23,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from script_checks import check, failures  # noqa: E402
+
 TECHNIQUES = ["direct", "hbao", "ldm_ao", "ldm_indirect", "ldm_env", "lrsm", "vct", "rsm_gather",
               "multires_ir", "ispm_caustics"]
 # Small settings so that a million triangles stay seconds on llvmpipe; the edges are the scenes.
@@ -152,15 +155,6 @@ fov = 39.3077
 
 SCENES["huge"] = cornell_scaled(1e6)
 SCENES["tiny"] = cornell_scaled(1e-4)
-
-failures = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        failures.append(what)
-
 
 def main():
     ap = argparse.ArgumentParser()
