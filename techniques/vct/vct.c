@@ -40,6 +40,10 @@ static const gib_param_spec vct_params[] = {
      "levels finer than the paper's log2(d) a sample of diameter d reads (0: the paper's "
      "mipLevel, whose trilinear footprint reaches the receiver's own cells; vct_trace.glsl)"},
     {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
+    {"fill", GIB_PARAM_INT, 1, 0, 1,
+     "1: an occupied voxel no light-view texel landed in takes the light of the surface the light "
+     "views see in it (0: point injection alone, whose misses are black occluders; "
+     "vct_resolve.comp)"},
     {"memory_budget_mb", GIB_PARAM_FLOAT, 0, 0, 1e7,
      "memory budget for the voxels (decimal MB); 0 = the device's (NVX_gpu_memory_info, else "
      "half the physical memory)"},
@@ -55,6 +59,7 @@ typedef struct vct {
     vct_volume vol;
     gib_fullscreen direct, indirect, glossy;
     int inject_res;
+    bool fill;
     vct_cone_settings cones;
     float max_distance;
     float tan_diffuse, tan_specular, tan_shadow;
@@ -92,6 +97,7 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->scene = scene;
     a->ledger = ledger;
     a->inject_res = gib_param_int(t, p, "inject_res");
+    a->fill = gib_param_int(t, p, "fill") != 0;
     a->cones.step_factor = (float)gib_param_float(t, p, "step_factor");
     a->cones.start_offset = (float)gib_param_float(t, p, "start_offset");
     a->cones.sample_level = gib_param_int(t, p, "sample_level");
@@ -157,7 +163,7 @@ static int vct_render(void *self, const gib_view *view, gib_timers *timers,
     gib_timer_begin(timers, "voxelization");
     gib_light_views_bind(&a->views);
     vct_volume_inject(&a->vol, a->occ.texture, a->inject_res, a->views.first_face,
-                      a->views.faces_of, (int)a->scene->scene->light_count);
+                      a->views.faces_of, (int)a->scene->scene->light_count, a->fill);
     vct_volume_mips(&a->vol);
     gib_timer_end(timers);
     /* targets follow the component bits: direct, indirect, glossy. */

@@ -13,6 +13,7 @@
 #ifndef GIB_VCT_H
 #define GIB_VCT_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "harness/base/error.h"
@@ -63,9 +64,10 @@ int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *
 /* Clears the base voxels, injects the light views' texels (bound: gib_light_views_bind; `lv_res`
  * texels a side, light l's faces first_face[l] .. + faces_of[l]), resolves the sums into
  * averages and takes the occupancy (alpha) from `occupancy`, the occlusion voxels' R8 texture
- * (common/voxels.h) of the same grid, built this frame. */
+ * (common/voxels.h) of the same grid, built this frame. With `fill`, an occupied voxel no texel
+ * landed in takes the light of the surface the light views see in it (vct_resolve.comp). */
 void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
-                       const int *faces_of, int lights);
+                       const int *faces_of, int lights, bool fill);
 /* The anisotropic mips (Crassin et al. 2011, Sec. 4): level 0 of each direction from the base
  * voxels, level k+1 from level k, by compositing the 2 voxels along the direction front to back
  * and averaging the 4 pairs. */

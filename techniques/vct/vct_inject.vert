@@ -1,15 +1,11 @@
 #extension GL_ARB_shader_viewport_layer_array : require
-#include "common/light_view.glsl"
+#include "vct/vct_texel.glsl"
 #include "vct/vct_slots.h"
 // Injection (vct.h): one point per light-view texel, drawn into the voxel that holds the texel's
-// position (layer = z). The texel is a patch of a Lambertian surface that reflects `flux` (W,
-// rho_d x the flux reaching it, common/light_view.h); its outgoing radiance is
-//     L = flux / (pi A),   A = the patch's area on the surface = A_perp / cos(phi),
-// A_perp the texel's cross-section perpendicular to the light's rays (perspective: its solid
-// angle s^2 cos^3(theta) times d^2; ortho: s^2) and phi the angle between the surface normal and
-// the direction to the light. Voxels average L weighted by area (w = A in voxel faces), so a
-// voxel's radiance is its patches' total reflected flux over pi times their total area: the flux
-// the surface reflects is what the voxels emit (sum w L = sum flux / (pi voxel^2)).
+// position (layer = z), with the texel's radiance L = flux / (pi A) (vct_texel.glsl). Voxels
+// average L weighted by area (w = A in voxel faces), so a voxel's radiance is its patches' total
+// reflected flux over pi times their total area: the flux the surface reflects is what the voxels
+// emit (sum w L = sum flux / (pi voxel^2)).
 layout(location = GIB_LOC_VOXEL_ORIGIN) uniform vec3 u_origin;
 layout(location = GIB_LOC_VOXEL_SIZE) uniform float u_size;
 layout(location = GIB_LOC_VOXEL_RES) uniform int u_res;
@@ -21,7 +17,6 @@ layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
 out vec4 v_radiance;
 out vec4 v_normal;
-const float PI = 3.14159265358979;
 void main()
 {
     ivec3 tc = ivec3(gl_VertexID % u_lv_res, gl_VertexID / u_lv_res, u_face);
@@ -38,23 +33,10 @@ void main()
     }
     vec3 n = texelFetch(lv_normal, tc, 0).xyz;
     vec3 flux = texelFetch(lv_flux, tc, 0).rgb;
-    float s = lv_texel(u_light);
-    vec3 rel = p.xyz - lv_origin(u_light);
-    float a_perp, cos_phi;
-    if (lv_kind(u_light) == 2) {
-        a_perp = s * s;
-        cos_phi = dot(n, -lv_axis(u_face));
-    } else {
-        float d = length(rel);
-        float ct = dot(rel, lv_axis(u_face)) / d;
-        a_perp = s * s * ct * ct * ct * d * d;
-        cos_phi = dot(n, -rel / d);
-    }
-    // Grazing texels: the cosine is floored at 0.01 (their area is large but finite).
-    float area = a_perp / max(cos_phi, 0.01);
+    float area = lv_texel_area(u_light, u_face, p.xyz, n);
     float voxel = u_size / float(u_res);
     float w = area / (voxel * voxel);
-    v_radiance = vec4(flux / (PI * voxel * voxel), w); // w L = flux / (pi voxel^2)
+    v_radiance = vec4(flux / (3.14159265358979 * voxel * voxel), w); // w L = flux / (pi voxel^2)
     v_normal = vec4(w * n, 0.0);
     gl_Position = vec4((vec2(vox.xy) + 0.5) / float(u_res) * 2.0 - 1.0, 0.0, 1.0);
     gl_Layer = vox.z;

@@ -12,10 +12,13 @@
 #define VCT_INJECT_LOC_LV_RES 3       // int: the light views' side
 #define VCT_INJECT_LOC_FACE 4         // int: the light-view face
 
-// Resolve (vct_resolve.comp): sums to averages, in place.
+// Resolve (vct_resolve.comp): sums to averages, in place, and the fill from the light views
+// (GIB_UNIT_LV_*, bound for the injection).
 #define VCT_RESOLVE_UNIT_OCCUPANCY (GIB_UNIT_OWN_FIRST + 0) // the occlusion voxels
 #define VCT_RESOLVE_IMAGE_RADIANCE (GIB_IMAGE_OWN_FIRST + 0)
 #define VCT_RESOLVE_IMAGE_NORMAL (GIB_IMAGE_OWN_FIRST + 1)
+#define VCT_RESOLVE_LOC_LIGHTS 2      // int: lights whose views fill occupied, unlit voxels
+#define VCT_RESOLVE_LOC_LV_RES 3      // int: the light views' side
 
 // The anisotropic mips (vct_aniso.comp): level 0 from the base volume (FROM_BASE), then each
 // level from the one below; the six directions' textures (+x -x +y -y +z -z, vct.h) are read

@@ -143,7 +143,7 @@ static void grid_uniforms(const vct_volume *v)
 }
 
 void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
-                       const int *faces_of, int lights)
+                       const int *faces_of, int lights, bool fill)
 {
     const float zero[4] = {0, 0, 0, 0};
     glClearTexImage(v->radiance, 0, GL_RGBA, GL_FLOAT, zero);
@@ -171,9 +171,12 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
     /* Resolve: sums to area-weighted averages; alpha = occupancy (the occlusion voxels', or
-     * where light landed). */
+     * where light landed); with `fill`, occupied voxels no texel reached from the light views. */
     int g = (v->res + 3) / 4;
     glUseProgram(v->resolve_program);
+    grid_uniforms(v);
+    glUniform1i(VCT_RESOLVE_LOC_LIGHTS, fill ? lights : 0);
+    glUniform1i(VCT_RESOLVE_LOC_LV_RES, lv_res);
     glBindTextureUnit(VCT_RESOLVE_UNIT_OCCUPANCY, occupancy);
     glBindImageTexture(VCT_RESOLVE_IMAGE_RADIANCE, v->radiance, 0, GL_TRUE, 0, GL_READ_WRITE,
                        GL_RGBA16F);
