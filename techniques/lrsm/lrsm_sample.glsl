@@ -100,6 +100,11 @@ float lrsm_inside(float c, float r)
     return clamp((min(c + r, 1.0) - max(c - r, 0.0)) / (2.0 * r), 0.0, 1.0);
 }
 
+// The sample xc (radius rc, seen from vc) over every light: rgb the lights' sum f A R V N, a the
+// lit coverage, the largest light's: lights that light the same surfaces see the same coverage, and
+// a sum would count it once per light (two coincident lights of half the power gave half the
+// light). Where different lights light different surfaces inside one sample, the union is larger
+// than the largest and the radiance over it is overestimated.
 vec4 lrsm_sample(vec3 xc, float rc, vec3 vc)
 {
     vec4 L = vec4(0.0);
@@ -136,7 +141,8 @@ vec4 lrsm_sample(vec3 xc, float rc, vec3 vc)
             Li += w * lrsm_sample_face(i, face, clamp(uv, 0.0, 1.0), zc, rc, vc, l, mip);
             wsum += w;
         }
-        L += kind == 0 && u_seams != 0 && wsum > 0.0 ? Li / wsum : Li;
+        Li = kind == 0 && u_seams != 0 && wsum > 0.0 ? Li / wsum : Li;
+        L = vec4(L.rgb + Li.rgb, max(L.a, Li.a));
     }
     return L;
 }

@@ -48,7 +48,8 @@ typedef struct vct_volume {
                                       alpha = occlusion, pre-integrated along the direction */
     int aniso_levels;
     unsigned fbo, vao;             /* the injection's layered framebuffer (radiance, normal) */
-    unsigned inject_program, resolve_program, mip_base_program, mip_program;
+    unsigned scratch_fbo;          /* several lights: one light's sums into the normal volume */
+    unsigned inject_program, resolve_program, accumulate_program, mip_base_program, mip_program;
 } vct_volume;
 
 /* Allocates (labels "radiance.base", "normal.base", "aniso.<dir>") for a grid of side `size` at
@@ -64,8 +65,9 @@ int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *
 /* Clears the base voxels, injects the light views' texels (bound: gib_light_views_bind; `lv_res`
  * texels a side, light l's faces first_face[l] .. + faces_of[l]), resolves the sums into
  * averages and takes the occupancy (alpha) from `occupancy`, the occlusion voxels' R8 texture
- * (common/voxels.h) of the same grid, built this frame. With `fill`, an occupied voxel no texel
- * landed in takes the light of the surface the light views see in it (vct_resolve.comp). */
+ * (common/voxels.h) of the same grid, built this frame. Several lights are averaged one by one and
+ * their radiances added (vct_accumulate.comp). With `fill`, an occupied voxel no texel landed in
+ * takes the light of the surface the light views see in it (vct_resolve.comp). */
 void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
                        const int *faces_of, int lights, bool fill);
 /* The anisotropic mips (Crassin et al. 2011, Sec. 4): level 0 of each direction from the base

@@ -20,6 +20,11 @@
 #define VCT_RESOLVE_LOC_LIGHTS 2      // int: lights whose views fill occupied, unlit voxels
 #define VCT_RESOLVE_LOC_LV_RES 3      // int: the light views' side
 
+// Several lights (vct_accumulate.comp): one light's sums, injected into the normal volume, added to
+// the radiance volume as its average.
+#define VCT_ACCUMULATE_IMAGE_SCRATCH (GIB_IMAGE_OWN_FIRST + 0)
+#define VCT_ACCUMULATE_IMAGE_RADIANCE (GIB_IMAGE_OWN_FIRST + 1)
+
 // The anisotropic mips (vct_aniso.comp): level 0 from the base volume (FROM_BASE), then each
 // level from the one below; the six directions' textures (+x -x +y -y +z -z, vct.h) are read
 // and written as arrays.

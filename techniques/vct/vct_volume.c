@@ -92,9 +92,11 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     vct_plan_bytes(res, -1, &plan);
     const char *inject[] = {"vct/vct_inject.vert", "vct/vct_inject.frag"};
     const char *resolve[] = {"vct/vct_resolve.comp"};
+    const char *accumulate[] = {"vct/vct_accumulate.comp"};
     const char *mip[] = {"vct/vct_aniso.comp"};
     if (!(v->inject_program = gib_program(inject, 2, NULL, err)) ||
         !(v->resolve_program = gib_program(resolve, 1, NULL, err)) ||
+        !(v->accumulate_program = gib_program(accumulate, 1, NULL, err)) ||
         !(v->mip_base_program = gib_program(mip, 1, "#define FROM_BASE 1\n", err)) ||
         !(v->mip_program = gib_program(mip, 1, NULL, err)))
         return -1;
@@ -127,7 +129,11 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     glNamedFramebufferTexture(v->fbo, GL_COLOR_ATTACHMENT1, v->normal, 0);
     const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(v->fbo, 2, bufs);
-    if (glCheckNamedFramebufferStatus(v->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    glCreateFramebuffers(1, &v->scratch_fbo);
+    glNamedFramebufferTexture(v->scratch_fbo, GL_COLOR_ATTACHMENT0, v->normal, 0);
+    glNamedFramebufferDrawBuffer(v->scratch_fbo, GL_COLOR_ATTACHMENT0);
+    if (glCheckNamedFramebufferStatus(v->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+        glCheckNamedFramebufferStatus(v->scratch_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return gib_fail(err, "vct: the layered injection framebuffer is incomplete");
     glCreateVertexArrays(1, &v->vao);
     if (gib_gl_check("vct volume", err) < 0)
@@ -142,33 +148,71 @@ static void grid_uniforms(const vct_volume *v)
     glUniform1i(GIB_LOC_VOXEL_RES, v->res);
 }
 
-void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
-                       const int *faces_of, int lights, bool fill)
+/* Draws the texels of lights [first, last) as points into `fbo` (vct_inject.vert): radiance
+ * (rgb: w L, a: w) to its first attachment unless `normals_only`, normal (rgb: w n) to its second
+ * if it has one. */
+static void inject_points(vct_volume *v, unsigned fbo, int lv_res, const int *first_face,
+                          const int *faces_of, int first, int last, bool normals_only)
 {
-    const float zero[4] = {0, 0, 0, 0};
-    glClearTexImage(v->radiance, 0, GL_RGBA, GL_FLOAT, zero);
-    glClearTexImage(v->normal, 0, GL_RGBA, GL_FLOAT, zero);
-
-    /* Injection: every light-view texel drawn as a point into the voxel holding its position
-     * (vct_inject.vert), summed by additive blending into radiance (rgb: w L, a: w) and normal
-     * (rgb: w n), w the texel's area in voxel faces. */
-    gib_pass_apply(&(gib_pass_state){.fbo = v->fbo, .width = v->res, .height = v->res,
+    gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = v->res, .height = v->res,
                                      .blend = GIB_BLEND_ADD});
+    if (normals_only)
+        glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glUseProgram(v->inject_program);
     grid_uniforms(v);
     glUniform1i(VCT_INJECT_LOC_LV_RES, lv_res);
     glBindVertexArray(v->vao);
-    for (int l = 0; l < lights; l++)
+    for (int l = first; l < last; l++)
         for (int f = first_face[l]; f < first_face[l] + faces_of[l]; f++) {
             glUniform1i(VCT_INJECT_LOC_LIGHT, l);
             glUniform1i(VCT_INJECT_LOC_FACE, f);
             glDrawArrays(GL_POINTS, 0, lv_res * lv_res);
         }
     glBindVertexArray(0);
+    if (normals_only)
+        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gib_pass_end();
-    /* The injection framebuffer stays bound: llvmpipe loses the begin of a GL_TIME_ELAPSED query
-     * started while framebuffer 0 (none, surfaceless) is bound, and the next pass's time. */
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+/* Several lights: each light's texels averaged apart (in the normal volume) and added to the
+ * radiance volume (vct_accumulate.comp), then every light's normals injected with the radiance
+ * volume write-masked; the radiance's alpha is 1 where light landed, so the resolve's division
+ * leaves the sum. */
+static void inject_lights_apart(vct_volume *v, int lv_res, const int *first_face,
+                                const int *faces_of, int lights)
+{
+    const float zero[4] = {0, 0, 0, 0};
+    int g = (v->res + 3) / 4;
+    for (int l = 0; l < lights; l++) {
+        glClearTexImage(v->normal, 0, GL_RGBA, GL_FLOAT, zero);
+        inject_points(v, v->scratch_fbo, lv_res, first_face, faces_of, l, l + 1, false);
+        glUseProgram(v->accumulate_program);
+        glBindImageTexture(VCT_ACCUMULATE_IMAGE_SCRATCH, v->normal, 0, GL_TRUE, 0, GL_READ_ONLY,
+                           GL_RGBA16F);
+        glBindImageTexture(VCT_ACCUMULATE_IMAGE_RADIANCE, v->radiance, 0, GL_TRUE, 0,
+                           GL_READ_WRITE, GL_RGBA16F);
+        glDispatchCompute(g, g, g);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    glClearTexImage(v->normal, 0, GL_RGBA, GL_FLOAT, zero);
+    inject_points(v, v->fbo, lv_res, first_face, faces_of, 0, lights, true);
+}
+
+void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int *first_face,
+                       const int *faces_of, int lights, bool fill)
+{
+    const float zero[4] = {0, 0, 0, 0};
+    glClearTexImage(v->radiance, 0, GL_RGBA, GL_FLOAT, zero);
+    glClearTexImage(v->normal, 0, GL_RGBA, GL_FLOAT, zero);
+    /* Injection: every light-view texel drawn as a point into the voxel holding its position,
+     * summed by additive blending, w the texel's area in voxel faces. The injection framebuffer
+     * stays bound after: llvmpipe loses the begin of a GL_TIME_ELAPSED query started while
+     * framebuffer 0 (none, surfaceless) is bound, and the next pass's time. */
+    if (lights > 1)
+        inject_lights_apart(v, lv_res, first_face, faces_of, lights);
+    else
+        inject_points(v, v->fbo, lv_res, first_face, faces_of, 0, lights, false);
 
     /* Resolve: sums to area-weighted averages; alpha = occupancy (the occlusion voxels', or
      * where light landed); with `fill`, occupied voxels no texel reached from the light views. */
@@ -224,12 +268,14 @@ void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
 {
     const unsigned progs[] = {v->mip_base_program, v->inject_program, v->resolve_program,
-                              v->mip_program};
-    for (int i = 0; i < 4; i++)
+                              v->accumulate_program, v->mip_program};
+    for (int i = 0; i < 5; i++)
         if (progs[i])
             glDeleteProgram(progs[i]);
     if (v->fbo)
         glDeleteFramebuffers(1, &v->fbo);
+    if (v->scratch_fbo)
+        glDeleteFramebuffers(1, &v->scratch_fbo);
     if (v->vao)
         glDeleteVertexArrays(1, &v->vao);
     if (v->radiance)
