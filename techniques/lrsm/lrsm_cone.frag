@@ -3,6 +3,7 @@
 #include "common/voxel_cone.glsl"
 #include "lrsm/lrsm_common.glsl"
 #include "lrsm/lrsm_sample.glsl"
+#include "lrsm/lrsm_march.glsl"
 // The three cone passes of `lrsm` on the G-buffer (Sec. 3.1, 5, 6), one program each by define:
 //  DIFFUSE:  6 cones over the hemisphere (voxel_cone.glsl's set), Eq. 1 front to back with alpha
 //            from the occlusion voxels and L from the LRSM. L_o = rho/pi int L_in cos dw, and a
@@ -14,11 +15,9 @@
 //            the aperture (the paper's 10-degree cone for every specular pixel, Sec. 6).
 //  SHADOW:   direct light of every light (the BRDF and falloff of scene.glsl), each times its
 //            shadow cone's visibility (voxel_cone.glsl's shadow_cone) instead of a shadow map.
-// Cone marching (Eq. 1), as voxel_cone.glsl's shadow_cone: from x + n start_offset voxels, sphere
-// samples of diameter d = max(voxel, 2 t tan(a/2)) at distance t from one voxel on, t advancing by
-// step_factor d (1: spheres that touch, Fig. 4), alpha corrected for the step as 1 - (1 - alpha)^
-// step_factor, until the cone is opaque (A > 255/256), leaves the grid or passes max_distance grid
-// sides. A sample's radiance is the LRSM's (lrsm_sample) at its centre and radius d/2, toward -dir.
+// Cone marching (Eq. 1), as voxel_cone.glsl's shadow_cone: the samples of lrsm_march.glsl, alpha
+// corrected for the step as 1 - (1 - alpha)^step_factor, until the cone is opaque (A > 255/256).
+// A sample's radiance is the LRSM's (lrsm_sample) at its centre and radius d/2, toward -dir.
 // alpha: voxel_cone.glsl's voxel_step_alpha. Parameter `opacity` 0 is the paper's reading (the
 // mips' mean occupancy as the sample's alpha: a wall one voxel thick inside a sample d voxels wide
 // reads alpha ~ 1/d, so wide cones pass thin walls nearly unweighted and the indirect level falls
@@ -45,9 +44,6 @@ layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;
 layout(binding = GIB_UNIT_GBUF_SPECULAR) uniform sampler2D g_specular;
 layout(location = LRSM_CONE_LOC_EYE) uniform vec3 u_eye;
 layout(location = LRSM_CONE_LOC_APERTURE) uniform float u_aperture;     // radians, full angle
-layout(location = LRSM_CONE_LOC_START_OFFSET) uniform float u_start_offset; // voxels
-layout(location = LRSM_CONE_LOC_STEP_FACTOR) uniform float u_step_factor;
-layout(location = LRSM_CONE_LOC_MAX_DISTANCE) uniform float u_max_distance; // grid sides
 // 1: L normalised by the lit coverage
 layout(location = LRSM_CONE_LOC_COVERAGE) uniform int u_coverage;
 in vec2 v_texcoord;
@@ -55,20 +51,10 @@ layout(location = 0) out vec4 o_color;
 
 vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
 {
-    float vs = voxel_size_world();
-    float tan_half = tan(0.5 * aperture);
-    vec3 q = x + n * (u_start_offset * vs);
-    float tmax = u_max_distance * u_voxel_size;
-    vec3 I = vec3(0.0);
-    float A = 0.0;
-    float t = vs;
-    for (int i = 0; i < 512 && t < tmax && A < 255.0 / 256.0; i++) {
-        float d = max(vs, 2.0 * t * tan_half);
-        d = min(d, max(u_start_offset * vs + t * dot(dir, n), vs));
-        vec3 c = q + dir * t;
-        if (any(lessThan(c, u_voxel_origin - d)) ||
-            any(greaterThan(c, u_voxel_origin + u_voxel_size + d)))
-            break;
+    LrsmCone k = lrsm_cone_start(x, n, dir, aperture);
+    vec3 I = vec3(0.0), c;
+    float A = 0.0, d;
+    for (int i = 0; i < 512 && A < 255.0 / 256.0 && lrsm_cone_sample(k, c, d); i++) {
         float a = voxel_step_alpha(c, d, u_step_factor);
         if (a > 0.0) {
             vec4 s = lrsm_sample(c, 0.5 * d, -dir);
@@ -76,7 +62,7 @@ vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
             I += (1.0 - A) * a * L;
             A += (1.0 - A) * a;
         }
-        t += u_step_factor * d;
+        lrsm_cone_advance(k, d);
     }
     return I;
 }

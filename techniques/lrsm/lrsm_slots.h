@@ -45,4 +45,10 @@
 #define LRSM_PROBE_SSBO_OUT (GIB_SSBO_OWN_FIRST + 2)   //   and what they sample
 #define LRSM_PROBE_LOC_COUNT 9        // int: points
 
+// The cone probe (lrsm_cone_probe.comp, tests): the occlusion of given cones, with the cones'
+// start offset, step and length (LRSM_CONE_LOC_*) and the occlusion voxels (GIB_UNIT_VOXELS).
+#define LRSM_CONE_PROBE_SSBO_IN (GIB_SSBO_OWN_FIRST + 1)   // per cone: (x, aperture), (n), (dir)
+#define LRSM_CONE_PROBE_SSBO_OUT (GIB_SSBO_OWN_FIRST + 2)  //   and its occlusion
+#define LRSM_CONE_PROBE_LOC_COUNT 9   // int: cones
+
 #endif
