@@ -39,6 +39,10 @@ static const gib_param_spec vct_params[] = {
     {"sample_level", GIB_PARAM_INT, 1, 0, 2,
      "levels finer than the paper's log2(d) a sample of diameter d reads (0: the paper's "
      "mipLevel, whose trilinear footprint reaches the receiver's own cells; vct_trace.glsl)"},
+    {"clearance", GIB_PARAM_INT, 0, 0, 1,
+     "how a diffuse cone's sample is kept in front of the receiver's plane: 0 its diameter at most "
+     "its height (a tilted cone narrowed to half its width), 1 its width kept and the sample lifted "
+     "along the normal (vct_trace.glsl)"},
     {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
     {"fill", GIB_PARAM_INT, 1, 0, 1,
      "1: an occupied voxel no light-view texel landed in takes the light of the surface the light "
@@ -101,6 +105,7 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->cones.step_factor = (float)gib_param_float(t, p, "step_factor");
     a->cones.start_offset = (float)gib_param_float(t, p, "start_offset");
     a->cones.sample_level = gib_param_int(t, p, "sample_level");
+    a->cones.clearance = gib_param_int(t, p, "clearance");
     a->max_distance = (float)gib_param_float(t, p, "max_distance");
     a->tan_diffuse = tan_half_deg(gib_param_float(t, p, "diffuse_aperture"));
     a->tan_specular = tan_half_deg(gib_param_float(t, p, "specular_aperture"));

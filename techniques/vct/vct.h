@@ -75,10 +75,11 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
  * and averaging the 4 pairs. */
 void vct_volume_mips(vct_volume *v);
 /* How cones march (vct_trace.glsl): the step as a multiple of the sample's diameter, the start
- * along the normal in voxels, and the levels finer than the paper's log2(d) a sample reads. */
+ * along the normal in voxels, the levels finer than the paper's log2(d) a sample reads, and how a
+ * sample clears the receiver's plane (0 shrunk to its height, 1 lifted along the normal). */
 typedef struct vct_cone_settings {
     float step_factor, start_offset;
-    int sample_level;
+    int sample_level, clearance;
 } vct_cone_settings;
 /* Binds the volume and the cone settings for vct_trace.glsl on the current program. */
 void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c);

@@ -39,6 +39,7 @@
 #define VCT_LOC_STEP_FACTOR 7         // float
 #define VCT_LOC_START_OFFSET 8        // float: voxels, along the surface normal
 #define VCT_LOC_LEVEL_BIAS 9          // float: levels finer than log2(d)
+#define VCT_LOC_CLEARANCE 11          // int: 0 a sample shrunk to its height, 1 lifted
 
 // Shading (vct_shade.frag), full screen over the G-buffer (GIB_UNIT_GBUF_*).
 #define VCT_SHADE_LOC_EYE 2           // vec3

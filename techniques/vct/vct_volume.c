@@ -263,6 +263,7 @@ void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
     glUniform1f(VCT_LOC_STEP_FACTOR, c->step_factor);
     glUniform1f(VCT_LOC_START_OFFSET, c->start_offset);
     glUniform1f(VCT_LOC_LEVEL_BIAS, (float)c->sample_level);
+    glUniform1i(VCT_LOC_CLEARANCE, c->clearance);
 }
 
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)

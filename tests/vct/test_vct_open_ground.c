@@ -80,7 +80,7 @@ static int trace(unsigned prog, const vct_volume *v, int sample_level, float occ
     glNamedBufferStorage(buf[0], sizeof in, in, 0);
     glNamedBufferStorage(buf[1], sizeof out, NULL, 0);
     glUseProgram(prog);
-    const vct_cone_settings cones = {1.0f, 1.5f, sample_level};
+    const vct_cone_settings cones = {1.0f, 1.5f, sample_level, 0};
     vct_volume_bind_cones(v, &cones);
     glUniform1i(10, CONES);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, buf[0]);
