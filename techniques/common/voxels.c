@@ -15,11 +15,17 @@ uint64_t gib_voxels_bytes(int res)
     return gib_texture_bytes(GL_TEXTURE_3D, res, res, res, GL_R8, 0);
 }
 
-/* A cube centred on the scene's bounds with 1.5 voxels of margin on each side (side = extent +
- * 3 side / res): geometry on the bounds never lies on the grid's outer faces, and faces on the
- * bounds along the longest axis (Sponza's floor, a room's walls) lie in the middle of a voxel
- * layer rather than on the boundary between two, which would set both. A scene with no extent
- * (no triangles, or one point) gets a unit cube. */
+/* A cube centred on the scene's bounds with 1.5 + floor(res / 64) voxels of margin on each side
+ * (2.5 at 64^3, 3.5 at 128^3, 5.5 at 256^3). The half voxel puts faces on the bounds along the
+ * longest axis (Sponza's floor, a room's walls) in the middle of a voxel layer rather than on the
+ * boundary between two, which would set both: an odd whole margin moved the Cornell box's mean by
+ * up to 17% against an even one. The whole voxels keep the walls on the bounds off the grid's
+ * outer cells, which the radiance textures repeat beyond the grid (clamped to their edge): cones
+ * leaving through an open side (the Cornell box's front) read those cells, and with 1.5 voxels
+ * the walls in them were lit half-planes outside the scene. A margin growing with res keeps the
+ * coarse levels' outer cells empty as well; res/64 was the most even in voxel_res of the margins
+ * measured (PERFORMANCE.md, "The voxel grid's margin"). A scene with no extent (no triangles, or
+ * one point) gets a unit cube. */
 static void fit_grid(gib_voxels *v, const gib_scene *s)
 {
     float ext = 0, c[3];
@@ -32,7 +38,8 @@ static void fit_grid(gib_voxels *v, const gib_scene *s)
     }
     if (!(ext > 0))
         ext = 1;
-    v->size = ext * (float)v->res / (float)(v->res - 3);
+    const int margin_voxels = 3 + 2 * (v->res / 64); /* both sides */
+    v->size = ext * (float)v->res / (float)(v->res - margin_voxels);
     for (int k = 0; k < 3; k++)
         v->origin[k] = c[k] - 0.5f * v->size;
 }

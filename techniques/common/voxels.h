@@ -37,8 +37,8 @@ typedef struct gib_voxels {
 
 /* The texture's bytes (R8, res^3 with its full mip chain), exactly as the ledger counts them. */
 uint64_t gib_voxels_bytes(int res);
-/* Sets up res^3 voxels (64..512) over the scene's bounds: a cube centred on them, 1.5 voxels of
- * margin on each side. Allocates "<label>.occupancy" (the texture, gib_voxels_bytes) and
+/* Sets up res^3 voxels (64..512) over the scene's bounds: a cube centred on them, 1.5 + floor(res /
+ * 64) voxels of margin on each side (voxels.c says why). Allocates "<label>.occupancy" (the texture, gib_voxels_bytes) and
  * "<label>_work.triangles" (the large-triangle list and each triangle's alpha mask, 8 bytes per
  * triangle + 16: scratch, a structure of its own so that "<label>" is the paper's) through the
  * ledger. */

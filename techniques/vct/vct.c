@@ -39,7 +39,7 @@ static const gib_param_spec vct_params[] = {
     {"sample_level", GIB_PARAM_INT, 1, 0, 2,
      "levels finer than the paper's log2(d) a sample of diameter d reads (0: the paper's "
      "mipLevel, whose trilinear footprint reaches the receiver's own cells; vct_trace.glsl)"},
-    {"clearance", GIB_PARAM_INT, 0, 0, 1,
+    {"clearance", GIB_PARAM_INT, 1, 0, 1,
      "how a diffuse cone's sample is kept in front of the receiver's plane: 0 its diameter at most "
      "its height (a tilted cone narrowed to half its width), 1 its width kept and the sample lifted "
      "along the normal (vct_trace.glsl)"},

@@ -28,8 +28,9 @@
 // alone kept clear, lets it reach h/2 behind: darker and leakier; PERFORMANCE.md, "Quality behind
 // the voxel techniques' defaults", has the numbers.) Shrinking narrows a tilted cone to half its
 // width, so it reads the light around its axis, not its whole cap, which its weight stands for:
-// vct's `clearance` 1 keeps the width and lifts the sample along n until its data clears the
-// plane (0.75 d above it), bending the sample toward n instead (measured in PERFORMANCE.md).
+// vct's `clearance` 1 (the default) keeps the width and lifts the sample along n until its data
+// clears the plane (0.75 d above it), bending the sample toward n instead: with the grid's margin
+// the Cornell boxes' error falls by a quarter against shrinking (PERFORMANCE.md).
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
@@ -54,14 +55,13 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset start_offset voxels
 // along n) in direction D, with sample centres up to max_dist (world units) away; the first
-// sample is one voxel out, as in shadow_cone. The cone stops once its sphere has left the grid
-// (its centre a radius beyond it). The textures clamp to their edge, so a read beyond the grid
-// repeats its boundary cells: through an open side (the Cornell box's front) the floor's and
-// walls' edges seen there are lit half-planes that are not in the scene. The test compared the
-// centre with a diameter, twice the sphere: cones looking out of the Cornell box read that light
-// (the short box's front face at 2.5-3.8x the reference). Stopping when the centre leaves (a
-// radius less) also cuts the trilinear reach of walls lying on the grid's faces (the furnace 0.85
-// -> 0.70 with clearance 1; PERFORMANCE.md). A shadow cone toward a point light (taper) narrows
+// sample is one voxel out, as in shadow_cone. The cone stops once its centre has left the grid:
+// beyond it the scene is empty, and the textures, clamped to their edge, would repeat the grid's
+// outer cells there. With the sphere's whole width allowed out, cones looking out of the Cornell
+// box's open front read the floor's and walls' edges as lit half-planes (the box at 1.14-1.19x
+// the reference's mean, where it is 0.97-1.0 stopping at the centre; PERFORMANCE.md, "The voxel
+// grid's margin"). The grid's margin (common/voxels.c) keeps walls on the scene's bounds out of
+// the outer cells. A shadow cone toward a point light (taper) narrows
 // again toward it, d = 2 tan(a/2) min(t, t_light - t): a point light casts its penumbra from the
 // receiver's side only, and a full-width sample at the light would take the surfaces next to it
 // (a light under a ceiling) for occluders; it also stops start_offset voxels before the light.
@@ -80,9 +80,8 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
         float up = lift ? max(0.75 * d - h, 0.0) : 0.0;
         d = lift ? d : min(d, max(h, 1.0));
         vec3 uvw = (o + D * (t * vs) + n * (up * vs) - u_voxel_origin) / u_voxel_size;
-        float r = 0.5 * d / float(u_voxel_res); // the sample's radius as a fraction of the grid
-        if (any(lessThan(uvw, vec3(-r))) || any(greaterThan(uvw, vec3(1.0 + r))))
-            break; // the sphere has left the grid
+        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0))))
+            break; // the centre has left the grid
         float level = max(log2(d) - u_level_bias, 0.0);
         vec4 s = vct_sample(uvw, D, level);
         float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor * d / exp2(level));
