@@ -20,9 +20,9 @@ uint64_t gib_voxels_bytes(int res)
  * longest axis (Sponza's floor, a room's walls) in the middle of a voxel layer rather than on the
  * boundary between two, which would set both: an odd whole margin moved the Cornell box's mean by
  * up to 17% against an even one. The whole voxels keep the walls on the bounds off the grid's
- * outer cells, which the radiance textures repeat beyond the grid (clamped to their edge): cones
- * leaving through an open side (the Cornell box's front) read those cells, and with 1.5 voxels
- * the walls in them were lit half-planes outside the scene. A margin growing with res keeps the
+ * outer cells, where the cones' trilinear fetches blend them with what lies beyond the grid
+ * (vct's transparent border, or its edge repeated): with 1.5 voxels, cones leaving through an open
+ * side (the Cornell box's front) read those walls there. A margin growing with res keeps the
  * coarse levels' outer cells empty as well; res/64 was the most even in voxel_res of the margins
  * measured (PERFORMANCE.md, "The voxel grid's margin"). A scene with no extent (no triangles, or
  * one point) gets a unit cube. */

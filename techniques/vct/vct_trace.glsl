@@ -29,8 +29,12 @@
 // the voxel techniques' defaults", has the numbers.) Shrinking narrows a tilted cone to half its
 // width, so it reads the light around its axis, not its whole cap, which its weight stands for:
 // vct's `clearance` 1 (the default) keeps the width and lifts the sample along n until its data
-// clears the plane (0.75 d above it), bending the sample toward n instead: with the grid's margin
-// the Cornell boxes' error falls by a quarter against shrinking (PERFORMANCE.md).
+// clears the plane, bending the sample toward n instead: with the grid's margin the Cornell boxes'
+// error falls by a quarter against shrinking (PERFORMANCE.md). The data cleared is that of the
+// coarser of the two levels the fetch blends (cells 2^ceil(level) wide: 1.5 of them above the
+// plane), not of the level's own width (0.75 d): lifted that little, the coarser level's blend
+// still read a lit floor's own cells along every grazing sample, and an open plane lit itself to
+// 3.4-4.9x the reference (plane_box; 1.00-1.09 cleared).
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
@@ -55,14 +59,15 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset start_offset voxels
 // along n) in direction D, with sample centres up to max_dist (world units) away; the first
-// sample is one voxel out, as in shadow_cone. The cone stops once its centre has left the grid:
-// beyond it the scene is empty, and the textures, clamped to their edge, would repeat the grid's
-// outer cells there. With the sphere's whole width allowed out, cones looking out of the Cornell
-// box's open front read the floor's and walls' edges as lit half-planes (the box at 1.14-1.19x
-// the reference's mean, where it is 0.97-1.0 stopping at the centre; PERFORMANCE.md, "The voxel
-// grid's margin"). The grid's margin (common/voxels.c) keeps walls on the scene's bounds out of
-// the outer cells. A shadow cone toward a point light (taper) narrows
-// again toward it, d = 2 tan(a/2) min(t, t_light - t): a point light casts its penumbra from the
+// sample is one voxel out, as in shadow_cone. The cone stops once its sphere has left the grid
+// (its centre a radius beyond it). Beyond the grid the scene is empty, and the textures say so:
+// they clamp to a transparent border, so a sample partly outside reads the part inside. Clamped
+// to their edge instead, they repeated the grid's outer cells beyond it: through the Cornell box's
+// open front the floor's and walls' edges read as lit half-planes, and stopping at the centre to
+// avoid them cut the floor in front of the short box out of its downward cones (its front face
+// black, a straight band across it; PERFORMANCE.md, "The voxel grid's margin"). The grid's margin
+// (common/voxels.c) keeps walls on the scene's bounds off the outer cells, which the border would
+// dilute. A shadow cone toward a point light (taper) narrows again toward it, d = 2 tan(a/2) min(t, t_light - t): a point light casts its penumbra from the
 // receiver's side only, and a full-width sample at the light would take the surfaces next to it
 // (a light under a ceiling) for occluders; it also stops start_offset voxels before the light.
 vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool taper)
@@ -77,11 +82,13 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
         float d = max(2.0 * (taper ? min(t, tmax - t) : t) * tan_half, 1.0);
         float h = u_start_offset + t * dot(D, n); // the centre's height above the plane
         bool lift = u_clearance == 1 && !taper;
-        float up = lift ? max(0.75 * d - h, 0.0) : 0.0;
+        float reach = 1.5 * exp2(ceil(max(log2(d) - u_level_bias, 0.0)));
+        float up = lift ? max(reach - h, 0.0) : 0.0;
         d = lift ? d : min(d, max(h, 1.0));
         vec3 uvw = (o + D * (t * vs) + n * (up * vs) - u_voxel_origin) / u_voxel_size;
-        if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0))))
-            break; // the centre has left the grid
+        float r = 0.5 * d / float(u_voxel_res);
+        if (any(lessThan(uvw, vec3(-r))) || any(greaterThan(uvw, vec3(1.0 + r))))
+            break; // the sphere has left the grid
         float level = max(log2(d) - u_level_bias, 0.0);
         vec4 s = vct_sample(uvw, D, level);
         float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor * d / exp2(level));

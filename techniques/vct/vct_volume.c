@@ -114,15 +114,16 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     const unsigned all[2 + VCT_DIRECTIONS] = {v->radiance, v->normal, v->aniso[0], v->aniso[1],
                                               v->aniso[2], v->aniso[3], v->aniso[4], v->aniso[5]};
     for (int i = 0; i < 2 + VCT_DIRECTIONS; i++) {
-        /* Trilinear within and between levels. Clamped to the edge: a transparent border
-         * diluted the coarse samples next to the grid's faces, where a room's walls lie; a cone
-         * stops once its sphere has left the grid (vct_trace.glsl). */
+        /* Trilinear within and between levels. Outside the grid is empty: a transparent border
+         * (the default border colour, 0). The grid's margin keeps walls off its outer cells, so
+         * the border dilutes none; clamped to the edge, the outer cells repeated beyond the grid
+         * (vct_trace.glsl). */
         glTextureParameteri(all[i], GL_TEXTURE_MIN_FILTER,
                             i < 2 ? GL_LINEAR : GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(all[i], GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         const GLenum wrap[3] = {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R};
         for (int k = 0; k < 3; k++)
-            glTextureParameteri(all[i], wrap[k], GL_CLAMP_TO_EDGE);
+            glTextureParameteri(all[i], wrap[k], GL_CLAMP_TO_BORDER);
     }
     glCreateFramebuffers(1, &v->fbo);
     glNamedFramebufferTexture(v->fbo, GL_COLOR_ATTACHMENT0, v->radiance, 0);

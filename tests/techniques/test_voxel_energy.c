@@ -4,12 +4,10 @@
  * not drift with it. For each technique, the mean over the reference's (all channels) at
  * voxel_res 64, 128 and 256:
  *  - within [LO, HI] of the reference's at every resolution (per technique: vct 0.8-1.15, measured
- *    0.95-1.09 at 64x64, above the reference at the coarse grid, where the short box's front face
- *    reads the lit floor through samples whose trilinear data reaches 0.75 d from their centre;
- *    lrsm 0.7-1.05, measured 0.76-0.85: below the reference for the reasons
+ *    0.97-1.07 at 64x64; lrsm 0.7-1.05, measured 0.81-0.89: below the reference for the reasons
  *    tests/lrsm/test_lrsm_cornell.c gives, but never above it; Eq. 12's own window, visibility
  *    0, measured 0.66-0.74 and fails);
- *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.87 for vct, 0.90 for lrsm
+ *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.91 for vct, 0.91 for lrsm
  *    at 64x64). The paper's literal readings fell with the grid: vct 0.67 / 0.56 / 0.50 (ratio
  *    0.75: sample_level 0 reads the receiver's own cells, more of them the finer the voxels), lrsm
  *    0.49 / 0.38 / 0.29 (ratio 0.59: its tilted cones' samples reached their own surface).
@@ -25,7 +23,8 @@
 #define H 64
 #define REF_SPP 1024
 #define MIN_RATIO 0.8
-#define FURNACE_MIN_RATIO 0.9
+#define FURNACE_MIN_RATIO 0.85
+#define FILL_GAIN 0.9
 
 static const struct {
     const char *technique;
@@ -78,41 +77,53 @@ static double indirect_mean(gib_gl_fixture *fx, const gib_technique *t, const ch
 }
 
 /* vct in the furnace (closed form: every wall's one-bounce indirect radiance is rho x its direct,
- * 0.5 x 0.159155) with `fill` = value: the smallest mean over the largest across voxel_res. */
-static double furnace_flatness(gib_gl_fixture *fx, const char *fill)
+ * 0.5 x 0.159155) with `fill` = value: the mean over the closed form's at each voxel_res into
+ * ratio[]; returns -1 when a render fails. */
+static int furnace_means(gib_gl_fixture *fx, const char *fill, double ratio[NRES])
 {
     const gib_technique *t = gib_technique_find("vct");
     const double want = 0.5 * 0.159155;
-    double lo = INFINITY, hi = 0;
     for (int i = 0; i < NRES; i++) {
         double m = indirect_mean_with(fx, t, resolutions[i], "fill", fill);
         if (m < 0)
-            return 0;
+            return -1;
+        ratio[i] = m / want;
         printf("     vct fill=%s furnace voxel_res %s: indirect mean %.3f of the closed form's\n",
-               fill, resolutions[i], m / want);
-        lo = fmin(lo, m / want);
-        hi = fmax(hi, m / want);
+               fill, resolutions[i], ratio[i]);
     }
-    return lo / hi;
+    return 0;
 }
 
-/* The furnace at FURNACE_MIN_RATIO: with the fill, the cones' radiance over their occlusion stays
- * the wall's at every resolution (measured 0.83 / 0.80 / 0.77, ratio 0.93); point injection alone
- * (fill=0) leaves the sphere's corner-clipped voxels black, more of them the finer the grid for
- * the same light views (0.79 / 0.74 / 0.65, ratio 0.82), and must fail the same bound. What is
- * left below 1 is the cones' occlusion (0.83-0.88: trilinear samples of a surface cell
- * composited as a medium), which the bound does not judge. */
+/* The furnace with and without the fill. With it, the smallest mean over the largest across
+ * voxel_res at least FURNACE_MIN_RATIO (measured 0.63 / 0.66 / 0.67, ratio 0.94). Point injection
+ * alone (fill=0) leaves the sphere's corner-clipped voxels black, more of them the finer the grid
+ * for the same light views: at 256^3 it must stay below FILL_GAIN of the fill's (measured 0.580
+ * against 0.671, 0.86). What is left below 1 is the cones' occlusion (trilinear samples of a
+ * one-voxel shell composited as a medium, tests/vct/test_vct_cornell.c), which neither bound
+ * judges: the ratio's bound is 0.85, not the 0.9 it was while cones read the sphere's wall
+ * repeated beyond the grid (0.83 / 0.80 / 0.77 then), because the honest loss varies with the
+ * grid by a few percent on its own. */
 static int furnace_case(void)
 {
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "furnace") < 0)
         return 1;
-    double ours = furnace_flatness(&fx, "1"), literal = furnace_flatness(&fx, "0");
+    double ours[NRES], literal[NRES];
+    int rc = furnace_means(&fx, "1", ours) < 0 || furnace_means(&fx, "0", literal) < 0;
     gib_fixture_close(&fx);
-    int ok = ours >= FURNACE_MIN_RATIO && literal < FURNACE_MIN_RATIO;
-    printf("%s vct furnace: smallest mean over largest across voxel_res %.3f with the fill, %.3f "
-           "without (the fill at least %.2f, point injection below it)\n", ok ? "PASS" : "FAIL",
-           ours, literal, FURNACE_MIN_RATIO);
+    if (rc)
+        return 1;
+    double lo = INFINITY, hi = 0;
+    for (int i = 0; i < NRES; i++) {
+        lo = fmin(lo, ours[i]);
+        hi = fmax(hi, ours[i]);
+    }
+    const double finest = literal[NRES - 1] / ours[NRES - 1];
+    int ok = lo / hi >= FURNACE_MIN_RATIO && finest < FILL_GAIN;
+    printf("%s vct furnace: smallest mean over largest across voxel_res %.3f with the fill (at "
+           "least %.2f); at voxel_res %s point injection %.3f of the fill's (below %.2f)\n",
+           ok ? "PASS" : "FAIL", lo / hi, FURNACE_MIN_RATIO, resolutions[NRES - 1], finest,
+           FILL_GAIN);
     return !ok;
 }
 
