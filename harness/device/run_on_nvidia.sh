@@ -9,6 +9,10 @@
 #
 #   bash harness/device/run_on_nvidia.sh MATRIX... [more gibench run options]
 #
+# from the repository's root (a copy of this script elsewhere, e.g. .bundle/run_on_nvidia.sh in a
+# checkout that does not have it yet, works the same: the root is the current folder when it holds
+# scenes/ and .bundle/, else the folder two above this script).
+#
 # Writes into $OUT (default /tmp/gib-device-out): gpu.txt (GPU, driver, clocks, CPUs, kernel, the GL
 # context gibench gets), gibench.log (the run's stdout and stderr), results.tar.xz (the results
 # folder without its images: the CSVs, manifests and history) and device.log (this script's own
@@ -25,7 +29,8 @@
 # system's GL libraries), GIB_DEVICE_TMP (default /tmp) where bundle, scenes, results and cache go.
 set -u
 start=$(date +%s)
-root=$(cd "$(dirname "$0")/../.." && pwd)
+root=$PWD
+[ -d "$root/scenes" ] && [ -d "$root/.bundle" ] || root=$(cd "$(dirname "$0")/../.." && pwd)
 out=${OUT:-/tmp/gib-device-out}
 budget=${GIB_DEVICE_BUDGET_S:-480}
 backend=${GIB_DEVICE_BACKEND:-egl-device}
