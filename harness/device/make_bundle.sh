@@ -13,6 +13,7 @@
 #                                   glibc, libstdc++ and libgcc_s (newer there), and glvnd's
 #                                   vendor-neutral GL/EGL libraries (the driver's own come with them)
 #   gibench-bundle/REVISION         the source revision built
+# Built on Debian 12, it needs glibc 2.34 and the libstdc++ of GCC 11 or newer on the target.
 # libOSMesa is not in it (gibench opens it at run time when there; a GPU machine uses EGL). Then it
 # checks, unpacked into a temporary folder, that nothing but the excluded libraries resolves from
 # the system, and prints the bundle's size.

@@ -78,6 +78,7 @@ gibench=$bundle/bin/gibench
     echo "== date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo "== kernel: $(uname -srvmo)"
     echo "== nproc: $(nproc)"
+    echo "== $(ldd --version 2>&1 | head -n 1) (the bundle needs glibc 2.34 or newer)"
     grep -m1 "model name" /proc/cpuinfo
     grep -m1 MemTotal /proc/meminfo
     echo "== bundle revision: $(cat "$bundle/REVISION" 2>/dev/null)"
