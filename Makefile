@@ -19,18 +19,21 @@ PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   parallel slurm-wlm munge \
   libsqlite3-dev \
   chromium ffmpeg
+# The self-contained bundle (make bundle) reads images with libstb instead of OpenImageIO.
+BUNDLE_PACKAGES = libstb-dev
+BUNDLE ?= build-bundle
 
 # The papers' figures and tables (make reproduce, ~20 min on 2 cores) and our own parameter studies
 # beyond them (make reproduce-studies, ~10 min): the report reads the committed CSVs of both.
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies plots report baselines fuzz bench bench-timing clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make reproduce-studies | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make clean"
+	@echo "make reproduce | make reproduce-studies | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -134,5 +137,12 @@ baselines: build
 	python3 tests/quality/check_quality.py --gibench $(BUILD)/gibench --work $(BUILD)/quality \
 	  --update tests/quality/baselines.csv
 
+# gibench for a machine without our Debian libraries (a bare one with an NVIDIA driver, reached by
+# harness/device/run_on_nvidia.sh): $(BUNDLE)/gibench-bundle.tar.xz, Release, without OpenImageIO
+# and -march=native, with the libraries the machine lacks (harness/device/make_bundle.sh).
+bundle:
+	@$(MAKE) --no-print-directory deps PACKAGES="$(PACKAGES) $(BUNDLE_PACKAGES)"
+	sh harness/device/make_bundle.sh $(BUNDLE)
+
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(TSAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) $(TSAN_BUILD) $(BUNDLE)

@@ -34,10 +34,11 @@ gib_layer_root(GIB_GL_ROOT gl harness/gl)
 file(GLOB GIB_GL_SOURCES CONFIGURE_DEPENDS harness/gl/*.c)
 add_library(gib_gl STATIC ${GIB_GL_SOURCES})
 target_include_directories(gib_gl PUBLIC ${GIB_GL_ROOT})
-# OSMesa must come before any libOpenGL: linking -lOpenGL first makes every call a silent no-op
-# (ARCHITECTURE.md, "Toolchain facts"). We link libEGL and libOSMesa only and load every GL
-# function through them.
-target_link_libraries(gib_gl PUBLIC gib_scene gib_glad PkgConfig::OSMESA PkgConfig::EGL ${CMAKE_DL_LIBS})
+# Linking -lOpenGL makes every OSMesa call a silent no-op (ARCHITECTURE.md, "Toolchain facts"). We
+# link libEGL only and load every GL function through it or through libOSMesa, which
+# harness/gl/context_osmesa.c opens with dlopen: only its header (GL/osmesa.h) is used at build time.
+target_include_directories(gib_gl SYSTEM PRIVATE ${OSMESA_INCLUDE_DIRS})
+target_link_libraries(gib_gl PUBLIC gib_scene gib_glad PkgConfig::EGL ${CMAKE_DL_LIBS})
 
 # Techniques, their shared passes and embedded shaders; the registry.
 gib_layer_root(GIB_TECH_ROOT techniques techniques)

@@ -45,7 +45,10 @@ const char *gib_scene_data_root(void)
 
 const char *gib_scene_dir(void)
 {
-    return GIB_PROJECT_ROOT "/scenes";
+    static char dir[GIB_PATH_MAX];
+    const char *env = getenv("GIBENCH_ROOT");
+    snprintf(dir, sizeof dir, "%s/scenes", env && env[0] ? env : GIB_PROJECT_ROOT);
+    return dir;
 }
 
 void gib_path_dirname(const char *path, char *out, size_t out_len)

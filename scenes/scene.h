@@ -149,7 +149,8 @@ typedef struct gib_scene {
  * exists, else NULL. */
 const char *gib_scene_data_root(void);
 
-/* The folder holding the project's *.scene files (<project root>/scenes). */
+/* The folder holding the project's *.scene files: $GIBENCH_ROOT/scenes when set (a bundle's
+ * binary run beside a copy of the repository, harness/device/), else <project root>/scenes. */
 const char *gib_scene_dir(void);
 
 /* Loads a scene by name (scenes/<name>.scene) or by path to a .scene file. Errors name the file

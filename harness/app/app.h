@@ -35,7 +35,8 @@ void gib_path_folder(const char *path, char *out, size_t size);
  * that is a directory, a folder that is missing or not writable, a read-only file, or (ext not
  * NULL) a name that does not end in ext. Errors name the option. */
 int gib_check_output(const char *opt, const char *path, const char *ext, gib_error *err);
-/* The git revision the binary was built from ("unknown" outside a checkout). */
+/* The git revision the binary was built from: GIB_REVISION when the build names it (a bundle, built
+ * to run away from its checkout), else asked of git ("unknown" outside a checkout). */
 const char *gib_git_revision(void);
 
 /* Reference images, from the cache or rendered and cached (harness/app/refcache.c). */

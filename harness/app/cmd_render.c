@@ -9,7 +9,7 @@
 
 static const char help[] =
     "usage: gibench render --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
-    "                      [--camera I] [--warmup W] [--frames F] [--backend egl|osmesa|auto]\n"
+    "                      [--camera I] [--warmup W] [--frames F] [--backend egl|egl-device|osmesa|auto]\n"
     "                      [--ref-spp N] [--cache DIR] [--time T] [--dt DT]\n"
     "\n"
     "Renders technique T on scene S and writes DIR/T_<component>.exr and .png. With --ref-spp N,\n"
@@ -55,7 +55,7 @@ static int parse_value_option(render_opts *o, const char *a, const char *v, gib_
     else if (!strcmp(a, "--dt")) rc = gib_parse_float(a, v, 0, 1e4, &o->dt, err);
     else if (!strcmp(a, "--backend")) {
         if ((o->backend = gib_backend_parse(v)) < 0)
-            rc = gib_fail(err, "--backend expects egl, osmesa or auto, got '%s'", v);
+            rc = gib_fail(err, "--backend expects egl, egl-device, osmesa or auto, got '%s'", v);
     } else {
         rc = 1;
     }
@@ -263,6 +263,8 @@ int gib_cmd_render(int argc, char **argv)
         return 1;
     }
     printf("renderer: %s | %s | %s\n", info.backend, info.renderer, info.version);
+    if (info.device[0])
+        printf("EGL %s\n", info.device);
     int status = render_and_report(&o, &scene, &gpu);
     gib_gpu_scene_free(&gpu);
     gib_gl_shutdown();

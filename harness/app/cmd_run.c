@@ -22,7 +22,7 @@
 
 static const char help[] =
     "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
-    "                   [--backend egl|osmesa|auto] [--no-images] [--shard I/N]\n"
+    "                   [--backend egl|egl-device|osmesa|auto] [--no-images] [--shard I/N]\n"
     "                   [--history PATH | --no-history] [--warmup W] [--frames F]\n"
     "\n"
     "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
@@ -379,7 +379,8 @@ static int parse_value_option(run_opts *o, const char *a, const char *v)
         }
     } else if (!strcmp(a, "--backend")) {
         if ((o->backend = gib_backend_parse(v)) < 0) {
-            fprintf(stderr, "gibench run: --backend expects egl, osmesa or auto, got '%s'\n", v);
+            fprintf(stderr, "gibench run: --backend expects egl, egl-device, osmesa or auto, got "
+                            "'%s'\n", v);
             return 2;
         }
     } else {
@@ -595,6 +596,8 @@ int gib_cmd_run(int argc, char **argv)
     }
     printf("gibench run: %d matrices, %d runs, profile %s, on %s (%s, %s)\n", o.nfiles, total,
            o.profile, ctx.info.renderer, ctx.info.backend, ctx.info.version);
+    if (ctx.info.device[0])
+        printf("gibench run: EGL %s\n", ctx.info.device);
     int status = 0;
     for (int i = 0; i < o.nfiles && !ctx.write_failed; i++)
         status |= run_one_matrix(&ctx, &ms[i], &layouts[i]);

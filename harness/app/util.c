@@ -131,6 +131,10 @@ const char *gib_git_revision(void)
     static char rev[64];
     if (rev[0])
         return rev;
+#ifdef GIB_REVISION
+    snprintf(rev, sizeof rev, "%s", GIB_REVISION);
+    return rev;
+#endif
     snprintf(rev, sizeof rev, "unknown");
     FILE *p = popen("git -C '" GIB_PROJECT_ROOT "' rev-parse --short=12 HEAD 2>/dev/null", "r");
     if (p) {

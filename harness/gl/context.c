@@ -24,6 +24,8 @@ int gib_backend_parse(const char *s)
         return GIB_BACKEND_AUTO;
     if (!strcmp(s, "egl"))
         return GIB_BACKEND_EGL;
+    if (!strcmp(s, "egl-device"))
+        return GIB_BACKEND_EGL_DEVICE;
     if (!strcmp(s, "osmesa"))
         return GIB_BACKEND_OSMESA;
     return -1;
@@ -115,12 +117,33 @@ static int try_egl_surfaceless(char *why, int why_len)
     return egl_context_on(dpy, why, why_len);
 }
 
-static int try_egl_device(char *why, int why_len)
+/* The device's extension string, or "" (EGL_EXT_device_query). */
+static const char *device_extensions(EGLDeviceEXT dev)
+{
+    PFNEGLQUERYDEVICESTRINGEXTPROC query_string =
+        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+    const char *ext = query_string ? query_string(dev, EGL_EXTENSIONS) : NULL;
+    return ext ? ext : "";
+}
+
+/* Mesa's software device (llvmpipe) says so in its extensions; an NVIDIA or Mesa GPU device does
+ * not. */
+static int device_is_software(EGLDeviceEXT dev)
+{
+    return strstr(device_extensions(dev), "EGL_MESA_device_software") != NULL;
+}
+
+/* Tries every device the driver lists, hardware devices first (Mesa lists its software device
+ * beside a GPU's, and the first to give a context wins). On success info->device names the device
+ * and its extensions. */
+static int try_egl_device(gib_gl_info *info, char *why, int why_len)
 {
     PFNEGLQUERYDEVICESEXTPROC query_devices =
         (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
     PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
         (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    PFNEGLQUERYDEVICESTRINGEXTPROC query_string =
+        (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
     if (!query_devices || !get_display) {
         snprintf(why, why_len, "EGL_EXT_device_enumeration not available");
         return -1;
@@ -131,16 +154,29 @@ static int try_egl_device(char *why, int why_len)
         snprintf(why, why_len, "eglQueryDevicesEXT found no device");
         return -1;
     }
+    int order[16], k = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (EGLint i = 0; i < n; i++)
+            if (device_is_software(devices[i]) == pass)
+                order[k++] = (int)i;
     int used = 0;
-    for (EGLint i = 0; i < n; i++) {
+    for (int j = 0; j < k; j++) {
+        const int i = order[j];
         EGLDisplay dpy = get_display(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
         if (dpy == EGL_NO_DISPLAY)
             continue;
-        used += snprintf(why + used, why_len > used ? why_len - used : 0, "device %d: ", (int)i);
+        used += snprintf(why + used, why_len > used ? why_len - used : 0, "device %d%s: ", i,
+                         device_is_software(devices[i]) ? " (software)" : "");
         if (used >= why_len)
             used = why_len - 1;
-        if (egl_context_on(dpy, why + used, why_len - used) == 0)
+        if (egl_context_on(dpy, why + used, why_len - used) == 0) {
+            const char *node = NULL;
+            if (query_string && strstr(device_extensions(devices[i]), "EGL_EXT_device_drm"))
+                node = query_string(devices[i], EGL_DRM_DEVICE_FILE_EXT);
+            snprintf(info->device, sizeof info->device, "device %d of %d, %s: %s", i, (int)n,
+                     node ? node : "no DRM node", device_extensions(devices[i]));
             return 0;
+        }
         used += (int)strlen(why + used);
         used += snprintf(why + used, why_len > used ? why_len - used : 0, "; ");
         if (used >= why_len)
@@ -157,16 +193,18 @@ int gib_gl_init(int backend, gib_gl_info *info, gib_error *err)
     char why[512];
     memset(info, 0, sizeof *info);
     gib_proc_loader loader = NULL;
-    if (backend == GIB_BACKEND_AUTO || backend == GIB_BACKEND_EGL) {
+    if (backend == GIB_BACKEND_AUTO || backend == GIB_BACKEND_EGL ||
+        backend == GIB_BACKEND_EGL_DEVICE) {
         why[0] = 0;
-        if (try_egl_surfaceless(why, sizeof why) == 0) {
+        if (backend != GIB_BACKEND_EGL_DEVICE && try_egl_surfaceless(why, sizeof why) == 0) {
             loader = egl_loader;
             snprintf(info->backend, sizeof info->backend, "egl-surfaceless");
         } else {
             size_t u = strlen(tried);
-            snprintf(tried + u, sizeof tried - u, "EGL surfaceless platform: %s; ", why);
+            if (backend != GIB_BACKEND_EGL_DEVICE)
+                snprintf(tried + u, sizeof tried - u, "EGL surfaceless platform: %s; ", why);
             why[0] = 0;
-            if (try_egl_device(why, sizeof why) == 0) {
+            if (try_egl_device(info, why, sizeof why) == 0) {
                 loader = egl_loader;
                 snprintf(info->backend, sizeof info->backend, "egl-device");
             } else {
