@@ -1,5 +1,5 @@
 #!/bin/bash
-# Runs matrices with the paper profile on a bare machine with an NVIDIA driver and none of our Debian
+# Runs matrices (the paper profile unless told) on a bare machine with an NVIDIA driver and none of our Debian
 # libraries, from a copy of this repository that carries, git-ignored, beside the tracked files:
 #   .gl/*.deb                    glvnd's vendor-neutral libraries (libegl1 libglvnd0 libopengl0
 #                                libgl1 libglx0 libgles2), unpacked into / (the machine's own recipe)
@@ -24,7 +24,8 @@
 # (GIB_DEVICE_FRESH=1 starts afresh).
 #
 # Environment: GIB_DEVICE_BACKEND (--backend, default egl-device: the device platform, how an NVIDIA
-# GPU is reached without a display; egl tries the surfaceless platform first), GIB_DEVICE_FORCE=1
+# GPU is reached without a display; egl tries the surfaceless platform first), GIB_DEVICE_PROFILE
+# (default paper; gpu: the paper's settings with 16-spp references, for matrices that have it), GIB_DEVICE_FORCE=1
 # unpacks .gl into / even without /usr/local/nvidia (never on a machine of ours: it overwrites the
 # system's GL libraries), GIB_DEVICE_TMP (default /tmp) where bundle, scenes, results and cache go.
 set -u
@@ -34,6 +35,7 @@ root=$PWD
 out=${OUT:-/tmp/gib-device-out}
 budget=${GIB_DEVICE_BUDGET_S:-480}
 backend=${GIB_DEVICE_BACKEND:-egl-device}
+profile=${GIB_DEVICE_PROFILE:-paper}
 tmp=${GIB_DEVICE_TMP:-/tmp}
 mkdir -p "$out"
 log=$out/device.log
@@ -112,11 +114,11 @@ fi
 
 left=$((budget - ($(date +%s) - start)))
 [ "$left" -gt 30 ] || left=30
-say "gibench run $* --profile paper --backend $backend, stopped after ${left} s"
+say "gibench run $* --profile $profile --backend $backend, stopped after ${left} s"
 # Line-buffered (stdbuf), so that what gibench printed before the budget stopped it is in the log.
 line=
 command -v stdbuf >/dev/null 2>&1 && line="stdbuf -oL -eL"
-timeout -k 15 "$left" $line "$gibench" run "$@" --profile paper --backend "$backend" \
+timeout -k 15 "$left" $line "$gibench" run "$@" --profile "$profile" --backend "$backend" \
     --out "$results" --cache "$cache" >"$out/gibench.log" 2>&1
 rc=$?
 [ $rc -eq 124 ] && say "stopped at the time budget: the rows written so far are kept"
