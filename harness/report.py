@@ -670,6 +670,7 @@ def write_html(results, claims, mats, plots, seq_rows=()):
              'GPU (ours ran on the renderer shown), where our run did not run or ran out of memory, or '
              'where our settings differ from the paper\'s (quick profile).</p>',
              claims_html(claims),
+             gpu_runs_html(results, page_dir),
              gallery_html(results, page_dir, mats, heads),
              sequences_html(results, page_dir, seq_rows),
              '<h2 id="reading">How to read the numbers</h2><ul>'
@@ -787,10 +788,37 @@ def write_md(results, claims, mats, plots, seq_rows=()):
     lines += ["## The papers' absolute GPU times", ""]
     for paper, cs in absolute.items():
         lines += [f"### {paper}", "", why_not_comparable(cs), ""] + claims_md(cs)[3:] + [""]
+    lines += gpu_runs_md(results)
     path = os.path.join(results, "REPORT.md")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     return path
+
+
+GPU_RUNS_TEXT = ("Matrices run on a GPU (harness/device/run_on_nvidia.sh), each summary beside the "
+                 "papers' tables, with the machine, driver and clocks it ran at")
+
+
+def gpu_runs(results):
+    """The runs on a GPU: results/gpu/<gpu>/SUMMARY.md (harness/device/gpu_summary.py), by name."""
+    paths = sorted(glob.glob(os.path.join(results, "gpu", "*", "SUMMARY.md")))
+    return [(os.path.basename(os.path.dirname(p)), p) for p in paths]
+
+
+def gpu_runs_md(results):
+    runs = gpu_runs(results)
+    if not runs:
+        return []
+    return (["## On a GPU", "", GPU_RUNS_TEXT + ":", ""]
+            + [f"- [{name}](gpu/{name}/SUMMARY.md)" for name, _ in runs] + [""])
+
+
+def gpu_runs_html(results, page_dir):
+    runs = gpu_runs(results)
+    if not runs:
+        return ""
+    links = ", ".join(f'<a href="{esc(rel(p, page_dir))}">{esc(name)}</a>' for name, p in runs)
+    return f'<h3 id="gpu-runs">On a GPU</h3><p>{esc(GPU_RUNS_TEXT)}: {links}.</p>'
 
 
 def matrix_md(results, m, rows, plots, resolution):
