@@ -1,6 +1,7 @@
 // gibench — the one C++ file: OpenImageIO 2.4 has no C API, so the C harness reads and writes
 // non-EXR images through these two extern "C" functions (oiio_shim.h).
 #include "oiio_shim.h"
+#include "rgba_expand.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -64,17 +65,7 @@ extern "C" int gib_oiio_read_rgba(const char *path, int *width, int *height, flo
             return shim_fail(errbuf, errbuf_len, "image '%s': out of memory (%dx%d)", path, w, h);
         const size_t n = (size_t)w * h;
         for (size_t i = 0; i < n; ++i) {
-            const float *s = &src[i * nc];
-            float *d = &out[i * 4];
-            if (nc == 1 || nc == 2) { // gray, or gray + alpha
-                d[0] = d[1] = d[2] = s[0];
-                d[3] = nc == 2 ? s[1] : 1.0f;
-            } else {
-                d[0] = s[0];
-                d[1] = s[1];
-                d[2] = s[2];
-                d[3] = nc >= 4 ? s[3] : 1.0f;
-            }
+            gib_rgba_expand(&src[i * nc], nc, &out[i * 4]);
         }
         *width = w;
         *height = h;

@@ -4,6 +4,7 @@
  * reads its own EXRs with harness/imaging/exr.c). libstb holds the implementations: this file
  * includes the headers only. */
 #include "oiio_shim.h"
+#include "rgba_expand.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -114,16 +115,7 @@ int gib_oiio_read_rgba(const char *path, int *width, int *height, float **rgba, 
     for (size_t i = 0; i < n; ++i) {
         float s[4] = {0.0f, 0.0f, 0.0f, 1.0f};
         get_px(src, kind, i, nc, s);
-        float *d = &out[i * 4];
-        if (nc == 1 || nc == 2) { /* gray, or gray + alpha */
-            d[0] = d[1] = d[2] = s[0];
-            d[3] = nc == 2 ? s[1] : 1.0f;
-        } else {
-            d[0] = s[0];
-            d[1] = s[1];
-            d[2] = s[2];
-            d[3] = nc >= 4 ? s[3] : 1.0f;
-        }
+        gib_rgba_expand(s, nc, &out[i * 4]);
     }
     stbi_image_free(src);
     *width = w;
