@@ -17,8 +17,8 @@
 // ground reads most of its opacity from the ground it leaves (0.8-0.99 at 64^3-256^3), which
 // darkens every diffuse bounce by half and more as the voxels get finer. One level finer
 // (bias 1, the default) the footprint is the sample's own width, and the step crosses 2 cells.
-// A sample's data is also kept in front of the receiver's plane: its diameter at most its centre's
-// height h above it. A 60-degree cone tilted 60 degrees from n grazes that plane, and samples of
+// A sample's data is also kept in front of the receiver's plane; with `clearance` 0, by its
+// diameter at most its centre's height h above it. A 60-degree cone tilted 60 degrees from n grazes that plane, and samples of
 // diameter 2 t tan(30) would otherwise reach, from ~20 voxels on, the receiver's own surface, the
 // lit ground around it (a floor lighting itself, seen edge-on in the sideways textures) and,
 // through a wall, the other side's light. The bound is on what the fetch reads, not on the sphere:
@@ -34,7 +34,8 @@
 // coarser of the two levels the fetch blends (cells 2^ceil(level) wide: 1.5 of them above the
 // plane), not of the level's own width (0.75 d): lifted that little, the coarser level's blend
 // still read a lit floor's own cells along every grazing sample, and an open plane lit itself to
-// 3.4-4.9x the reference (plane_box; 1.00-1.09 cleared).
+// 3.4-4.9x the reference (plane_box; 1.00-1.09 cleared). The shrink of `clearance` 0 has the
+// same blind spot (plane_box 1.5-1.9x).
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
