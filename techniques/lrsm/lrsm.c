@@ -172,7 +172,7 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     glUniform1i(LRSM_LOC_SEAMS, s->seams);
     glUniform1i(LRSM_CONE_LOC_COVERAGE, s->coverage);
     glUniform1i(LRSM_LOC_VISIBILITY, s->visibility);
-    glUniform1i(GIB_LOC_VOXEL_DENSITY, which == PASS_SHADOW ? 0 : s->opacity);
+    glUniform1i(GIB_LOC_VOXEL_DENSITY, s->opacity);
     gib_fullscreen_draw(&s->pass[which]);
     gib_fullscreen_end();
     gib_timer_end(timers);

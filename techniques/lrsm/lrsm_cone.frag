@@ -14,7 +14,11 @@
 //            rho_s <n.r> over a narrow lobe, so rho_s <n.r> I. The Phong exponent does not set
 //            the aperture (the paper's 10-degree cone for every specular pixel, Sec. 6).
 //  SHADOW:   direct light of every light (the BRDF and falloff of scene.glsl), each times its
-//            shadow cone's visibility (voxel_cone.glsl's shadow_cone) instead of a shadow map.
+//            shadow cone's visibility (voxel_cone.glsl's shadow_cone_ex, tapering toward a point
+//            or spot light) instead of a shadow map. Its alpha follows `opacity` as the other
+//            cones': with the paper's mean occupancy a box's one-voxel shell reads alpha ~ 1/d in a
+//            sample d voxels wide, and the Cornell box's tall box let 0.19 of the light through to
+//            its umbra (0.01 with the density).
 // Cone marching (Eq. 1), as voxel_cone.glsl's shadow_cone: the samples of lrsm_march.glsl, alpha
 // corrected for the step as 1 - (1 - alpha)^step_factor, until the cone is opaque (A > 255/256).
 // A sample's radiance is the LRSM's (lrsm_sample) at its centre and radius d/2, toward -dir.
@@ -107,8 +111,10 @@ void main()
         float cosi = dot(n, wi);
         if (cosi <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0)
             continue;
-        float v = shadow_cone_ex(x, n, wi, min(dist, u_max_distance * u_voxel_size), u_aperture,
-                                 u_step_factor, u_start_offset);
+        // a point or spot light within the cone's length: the cone tapers toward it
+        float length = u_max_distance * u_voxel_size;
+        float v = shadow_cone_ex(x, n, wi, min(dist, length), u_aperture, u_step_factor,
+                                 u_start_offset, dist <= length);
         sum += brdf(alb.rgb, spec, int(alb.w + 0.5), n, wo, wi) * E * (cosi * v);
     }
     o_color.rgb = sum;
