@@ -90,19 +90,37 @@ vec3 diffuse_cone_dir(int i, vec3 n)
 // cone toward a light at grazing runs along its receiver for many samples, and without the lift
 // read it: the Cornell box's tall box, turned 17 degrees (|n|_1 1.25), showed vertical stripes
 // where the grid's columns cross its face, lit at grazing.
+// How many voxels beyond start_offset a tapered shadow cone stops short of its light: its last
+// sample's trilinear data reaches 1.5 voxels.
+const float TAPER_STOP = 1.5;
+
+// A cone sample's diameter at t (before its floor of one voxel): 2 t tan(a/2), or, tapered toward a
+// light at tmax, 2 min(t, tmax - t) tan(a/2).
+float cone_diameter(float t, float tmax, float tan_half, bool taper)
+{
+    return 2.0 * (taper ? min(t, tmax - t) : t) * tan_half;
+}
+
+// How thick, along n, a surface's own voxel layer is in voxels: |n|_1 (a trilinear fetch reaches
+// that far per cell along n).
+float receiver_layer(vec3 n)
+{
+    vec3 an = abs(n);
+    return an.x + an.y + an.z;
+}
+
 float shadow_cone_ex(vec3 p, vec3 n, vec3 dir, float dist, float aperture_rad, float step_factor,
                      float start_offset, bool taper)
 {
     float voxel = voxel_size_world();
-    vec3 an = abs(n);
-    float layer = an.x + an.y + an.z;
+    float layer = receiver_layer(n);
     vec3 o = p + n * (start_offset * voxel);
     float tan_half = tan(0.5 * aperture_rad);
-    float tmax = taper ? dist - (start_offset + 1.5) * voxel : dist;
+    float tmax = taper ? dist - (start_offset + TAPER_STOP) * voxel : dist;
     float visibility = 1.0;
     float t = voxel;
     for (int i = 0; i < 512 && t < tmax && visibility > 1.0 / 256.0; i++) {
-        float d = max(voxel, 2.0 * (taper ? min(t, tmax - t) : t) * tan_half);
+        float d = max(voxel, cone_diameter(t, tmax, tan_half, taper));
         float cell = exp2(ceil(log2(max((u_voxel_density != 0 ? 0.5 : 1.0) * d / voxel, 1.0))));
         float h = start_offset * voxel + t * dot(dir, n);
         float up = max(1.5 * layer * cell * voxel - h, 0.0);

@@ -112,9 +112,9 @@ void main()
         if (cosi <= 0.0 || max(E.r, max(E.g, E.b)) <= 0.0)
             continue;
         // a point or spot light within the cone's length: the cone tapers toward it
-        float length = u_max_distance * u_voxel_size;
-        float v = shadow_cone_ex(x, n, wi, min(dist, length), u_aperture, u_step_factor,
-                                 u_start_offset, dist <= length);
+        float cone_length = u_max_distance * u_voxel_size;
+        float v = shadow_cone_ex(x, n, wi, min(dist, cone_length), u_aperture, u_step_factor,
+                                 u_start_offset, dist <= cone_length);
         sum += brdf(alb.rgb, spec, int(alb.w + 0.5), n, wo, wi) * E * (cosi * v);
     }
     o_color.rgb = sum;

@@ -71,28 +71,27 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 // dilute. A shadow cone toward a point light (taper) narrows again toward it,
 // d = 2 tan(a/2) min(t, t_light - t): a point light casts its penumbra from the receiver's side
 // only, and a full-width sample at the light would take the surfaces next to it (a light under a
-// ceiling) for occluders; it also stops start_offset + 1.5 voxels before the light (as
+// ceiling) for occluders; it also stops start_offset + TAPER_STOP voxels before the light (as
 // common/voxel_cone.glsl's shadow_cone_ex: Cornell box direct rel RMSE 0.32 -> 0.27 at voxel_res
-// 64, the rings of the ceiling above the light gone). Its lift clears the
-// receiver's voxel layer as well, |n|_1 times the reach (common/voxel_cone.glsl's shadow_cone_ex
-// says why): a cone toward a light at grazing runs along its receiver, and the Cornell box's
-// turned tall box showed vertical stripes where the grid's columns cross its face. The diffuse
-// cones lift by the reach alone (with |n|_1 their rel RMSE rose 0.02-0.03 on both Cornell boxes).
+// 64, the rings of the ceiling above the light gone). Its lift clears the receiver's voxel layer
+// as well, |n|_1 times the reach (common/voxel_cone.glsl's shadow_cone_ex says why): a cone toward
+// a light at grazing runs along its receiver, and the Cornell box's turned tall box showed
+// vertical stripes where the grid's columns cross its face. The diffuse cones lift by the reach
+// alone (with |n|_1 their rel RMSE rose 0.02-0.03 on both Cornell boxes).
 vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool taper)
 {
     float vs = voxel_size_world();
     vec3 o = p + n * (u_start_offset * vs);
-    float tmax = max_dist / vs - (taper ? u_start_offset + 1.5 : 0.0);
+    float tmax = max_dist / vs - (taper ? u_start_offset + TAPER_STOP : 0.0);
     vec3 I = vec3(0.0);
     float A = 0.0;
     float t = 1.0;
     for (int i = 0; i < 1024 && A < 0.995 && t <= tmax; i++) {
-        float d = max(2.0 * (taper ? min(t, tmax - t) : t) * tan_half, 1.0);
+        float d = max(cone_diameter(t, tmax, tan_half, taper), 1.0);
         float h = u_start_offset + t * dot(D, n); // the centre's height above the plane
         bool lift = u_clearance == 1;
-        vec3 an = abs(n);
         float reach = 1.5 * exp2(ceil(max(log2(d) - u_level_bias, 0.0))) *
-                      (taper ? an.x + an.y + an.z : 1.0);
+                      (taper ? receiver_layer(n) : 1.0);
         float up = lift ? max(reach - h, 0.0) : 0.0;
         d = lift ? d : min(d, max(h, 1.0));
         vec3 uvw = (o + D * (t * vs) + n * (up * vs) - u_voxel_origin) / u_voxel_size;
