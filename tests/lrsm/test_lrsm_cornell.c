@@ -5,10 +5,8 @@
  *   each channel's mean within DIRECT_MEAN_TOL = 5% of the reference's (lit surfaces are exact; the
  *   cones soften shadow edges and darken surfaces lit at grazing: measured -2%; a cone that does
  *   not taper toward the light takes the ceiling beside it for an occluder: -24%), relative RMSE
- *   below DIRECT_RMSE = 0.25 (measured 0.18; 0.59 untapered), and the light the technique puts
- *   where the reference has none (the boxes' umbrae and the faces turned from the light) at most
- *   UMBRA_MAX = 1% of its mean over the reference's lit pixels (measured 0.24%; the boxes'
- *   one-voxel shells read with the paper's mean occupancy let 3.4% through);
+ *   below DIRECT_RMSE = 0.25 (measured 0.18; 0.59 untapered); the light in the boxes' umbrae is
+ *   held for lrsm and vct at every voxel_res in tests/techniques/test_shadow_cones.c;
  * indirect: the level is below the reference: measured 0.80-0.83 of it at the defaults (the
  *   isotropic occlusion voxels let part of each wide cone through thin walls, Eq. 1,
  *   tests/lrsm/test_lrsm_furnace.c, and the lit coverage V of a sample that holds an unlit
@@ -36,7 +34,6 @@
 #define REF_SPP 1024
 #define DIRECT_MEAN_TOL 0.05
 #define DIRECT_RMSE 0.25
-#define UMBRA_MAX 0.01
 #define CORR_MIN 0.5
 #define INDIRECT_MIN 0.75
 
@@ -65,30 +62,6 @@ static double rel_rmse(const gib_image *ref, const gib_image *im)
                 m += px(ref, x, y, c);
             }
     return sqrt(se / (3.0 * W * H)) / (m / (3.0 * W * H));
-}
-
-/* The image's mean over the pixels the reference leaves black, over its mean where the reference
- * is lit (all channels). */
-static double light_where_reference_dark(const gib_image *ref, const gib_image *im)
-{
-    double dark = 0, lit = 0;
-    long ndark = 0, nlit = 0;
-    for (int y = 0; y < H; y++)
-        for (int x = 0; x < W; x++) {
-            double r = 0, v = 0;
-            for (int c = 0; c < 3; c++) {
-                r += px(ref, x, y, c);
-                v += px(im, x, y, c);
-            }
-            if (r > 1e-6) {
-                lit += v;
-                nlit++;
-            } else {
-                dark += v;
-                ndark++;
-            }
-        }
-    return ndark && nlit && lit > 0 ? (dark / ndark) / (lit / nlit) : 0;
 }
 
 /* Pearson correlation of the BLOCK x BLOCK block means (all channels). */
@@ -160,11 +133,6 @@ int main(void)
             }
             int ok = e <= DIRECT_RMSE;
             printf("%s direct: relative RMSE %.4f (bound %.2f)\n", ok ? "PASS" : "FAIL", e, DIRECT_RMSE);
-            failures += !ok;
-            double umbra = light_where_reference_dark(&ref, im);
-            ok = umbra <= UMBRA_MAX;
-            printf("%s direct: mean where the reference is dark %.4f of the mean where it is lit "
-                   "(bound %.2f)\n", ok ? "PASS" : "FAIL", umbra, UMBRA_MAX);
             failures += !ok;
         } else {
             for (int c = 0; c < 3; c++) {
