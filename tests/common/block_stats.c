@@ -28,3 +28,13 @@ void gib_block_error(const float *ref, const float *img, int w, int h, int block
     *block_rel = sqrt(se / nb) / mref;
     *mean_ratio = mimg / mref;
 }
+
+double gib_rgb_mean(const gib_image *im)
+{
+    double s = 0;
+    long n = (long)im->width * im->height;
+    for (long i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            s += im->px[i * im->channels + c];
+    return n ? s / (3.0 * (double)n) : 0;
+}

@@ -18,23 +18,13 @@
 
 #include "harness/app/runner.h"
 #include "reference/reference.h"
+#include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
 #define W 64
 #define H 64
 #define MEAN_TOL 0.08
 #define DARK_MAX 0.01
-
-/* Mean over the pixels and channels. */
-static double image_mean(const gib_image *im)
-{
-    double s = 0;
-    long n = (long)im->width * im->height;
-    for (long i = 0; i < n; i++)
-        for (int c = 0; c < 3; c++)
-            s += im->px[i * im->channels + c];
-    return s / (3.0 * (double)n);
-}
 
 /* The image's mean over the pixels the reference leaves black, over its mean where the reference
  * is lit (all channels). */
@@ -88,7 +78,7 @@ static int check(gib_gl_fixture *fx, const char *scene, const char *name, const 
             failures++;
             continue;
         }
-        double ratio = image_mean(im) / image_mean(ref);
+        double ratio = gib_rgb_mean(im) / gib_rgb_mean(ref);
         int ok = fabs(ratio - 1) <= MEAN_TOL;
         printf("%s %s %s voxel_res=%s: direct mean %.4f of the reference's (tolerance %.2f)\n",
                ok ? "PASS" : "FAIL", scene, name, res, ratio, MEAN_TOL);

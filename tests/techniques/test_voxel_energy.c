@@ -18,6 +18,7 @@
 
 #include "harness/app/runner.h"
 #include "reference/reference.h"
+#include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
 #define W 64
@@ -35,15 +36,6 @@ static const struct {
 } cases[] = {{"vct", 0.8, 1.15}, {"lrsm", 0.7, 1.05}};
 static const char *const resolutions[] = {"64", "128", "256"};
 #define NRES ((int)(sizeof resolutions / sizeof resolutions[0]))
-
-static double image_mean(const gib_image *im)
-{
-    double s = 0;
-    for (long i = 0; i < (long)im->width * im->height; i++)
-        for (int c = 0; c < 3; c++)
-            s += im->px[i * im->channels + c];
-    return s / (3.0 * im->width * im->height);
-}
 
 /* The technique's indirect mean at voxel_res `res` (and `name` = `value` where name is not NULL),
  * or -1 on failure. */
@@ -67,7 +59,7 @@ static double indirect_mean_with(gib_gl_fixture *fx, const gib_technique *t, con
     double m = -1;
     for (int o = 0; o < r.output_count; o++)
         if (r.output_components[o] == GIB_OUT_INDIRECT && !gib_image_count_nonfinite(&r.images[o]))
-            m = image_mean(&r.images[o]);
+            m = gib_rgb_mean(&r.images[o]);
     gib_run_result_free(&r);
     if (m < 0)
         printf("FAIL: %s gave no finite indirect image\n", t->name);
@@ -145,7 +137,7 @@ static int open_plane_case(void)
         gib_fixture_close(&fx);
         return 1;
     }
-    const double want = image_mean(&ref);
+    const double want = gib_rgb_mean(&ref);
     const gib_technique *t = gib_technique_find("vct");
     int failures = 0;
     for (int i = 0; i < NRES; i++) {
@@ -168,7 +160,7 @@ int main(void)
     gib_image ref;
     if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, NULL) < 0)
         return 1;
-    double want = image_mean(&ref);
+    double want = gib_rgb_mean(&ref);
     int failures = 0;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         const gib_technique *t = gib_technique_find(cases[k].technique);
