@@ -28,12 +28,12 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make reproduce-studies | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
+	@echo "make reproduce | make reproduce-studies | make cone-study | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -93,6 +93,13 @@ reproduce: build
 
 reproduce-studies:
 	$(MAKE) --no-print-directory reproduce MATRICES="$(STUDIES)"
+
+# The voxel techniques' diffuse gather split into its six cones, each against the reference's cone
+# (gibench reference --cone), and the best any six-cone gather scores (harness/cone_study.py,
+# ~4 min): results/cone_study.csv.
+cone-study: build
+	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	  --out results/cone_study.csv --cache results/cache
 
 # The project's own benchmarks, apart from the papers' results (their CSVs are committed and the
 # report reads them): the reference's ray throughput against Embree alone (~10 min on 2 cores with

@@ -14,6 +14,7 @@
  * the same strategy everywhere. */
 #include <math.h>
 
+#include "harness/base/cone_set.h"
 #include "ref_internal.h"
 
 /* Direct light, L D E and L S E with shadows: for every light, f(wo, wi) E max(0, n.wi), with
@@ -98,8 +99,8 @@ static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float 
 /* Indirect, L D D E: a cosine-weighted bounce from the visible point's diffuse lobe
  * (f cos / pdf = rho_d), then the diffuse lobe of the bounce point lit by next-event estimation.
  * Specular lobes at either vertex belong to glossy (x1) and caustic (x2). */
-void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_rng *rng, float out[3],
-                      long long *rays)
+void ref_est_indirect(const ref_world *w, const ref_hit *h, int cone, float cone_half,
+                      ref_rng *rng, float out[3], long long *rays)
 {
     out[0] = out[1] = out[2] = 0.0f;
     float u1, u2;
@@ -111,7 +112,13 @@ void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_rng *rng, float 
     if (kd[0] <= 0.0f && kd[1] <= 0.0f && kd[2] <= 0.0f)
         return;
     float d[3], L[3];
-    ref_sample_cosine(h->n, u1, u2, d);
+    if (cone > 0) { /* f cos / pdf becomes rho_d x L's cap mean: each direction weighs 1 / n */
+        float axis[3];
+        gib_diffuse_cone_dir(cone - 1, h->n, axis);
+        gib_cone_cap_sample(axis, cone_half, u1, u2, d);
+    } else {
+        ref_sample_cosine(h->n, u1, u2, d);
+    }
     if (ref_bounce_diffuse(w, h, d, rng, L, rays))
         for (int k = 0; k < 3; k++)
             out[k] = kd[k] * L[k];
@@ -180,7 +187,8 @@ static void ref_sample_one(const ref_ctx *c, const ref_hit *h, const float wo[3]
         ref_est_direct(c->w, h, wo, rng, out, rays);
         break;
     case GIB_COMP_INDIRECT:
-        ref_est_indirect(c->w, h, rng, out, rays);
+        ref_est_indirect(c->w, h, c->p.cone, 0.5f * c->p.cone_aperture * 0.017453293f, rng, out,
+                         rays);
         break;
     case GIB_COMP_GLOSSY:
         ref_est_glossy(c->w, h, wo, rng, out, rays);

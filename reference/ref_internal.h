@@ -278,8 +278,10 @@ void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref
  * with obscurance, min(d / dmax, 1). */
 float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_rng *rng,
                  long long *rays);
-void ref_est_indirect(const ref_world *w, const ref_hit *h, ref_rng *rng, float out[3],
-                      long long *rays);
+/* cone >= 1: only diffuse cone cone - 1 of the cone set, the cap of half-angle cone_half (radians),
+ * sampled uniformly: rho_d times the cap's mean radiance. */
+void ref_est_indirect(const ref_world *w, const ref_hit *h, int cone, float cone_half,
+                      ref_rng *rng, float out[3], long long *rays);
 void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
                     float out[3], long long *rays);
 /* caustic, camera part: L S+ D E whose light-side vertex is Phong. */

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "harness/base/cone_set.h"
 #include "harness/base/hash.h"
 #include "ref_internal.h"
 
@@ -122,6 +123,10 @@ void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gi
     o->max_specular = (c == GIB_COMP_CAUSTIC || c == GIB_COMP_HIGHER)
                           ? (p->max_specular > 0 ? p->max_specular : GIB_REF_DEFAULT_MAX_SPECULAR)
                           : 0;
+    o->cone = c == GIB_COMP_INDIRECT && p->cone > 0 ? p->cone : 0;
+    o->cone_aperture = o->cone ? (p->cone_aperture > 0.0f ? p->cone_aperture
+                                                          : GIB_DIFFUSE_CONE_APERTURE_DEG)
+                               : 0.0f;
     if (paths && o->min_depth > o->max_depth)
         o->min_depth = o->max_depth; /* no roulette: the same image */
     o->sampler = p->sampler == GIB_REF_SAMPLER_RANDOM ? GIB_REF_SAMPLER_RANDOM
@@ -175,6 +180,8 @@ uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params 
         h = gib_hash_bytes(h, scene->sky, sizeof scene->sky);
     if (scene && scene->motion_count)
         h = gib_hash_f32(gib_hash_str(h, "time"), n.time);
+    if (n.cone) /* the whole hemisphere's images hash as they did before cones could be asked */
+        h = gib_hash_f32(gib_hash_u64(gib_hash_str(h, "cone"), (uint64_t)n.cone), n.cone_aperture);
     return h;
 }
 
@@ -241,6 +248,9 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
     ref_attr(attrs, max_attrs, &n, "max_depth", "%d", q.max_depth);
     ref_attr(attrs, max_attrs, &n, "min_depth", "%d", q.min_depth);
     ref_attr(attrs, max_attrs, &n, "max_specular", "%d", q.max_specular);
+    if (q.cone)
+        ref_attr(attrs, max_attrs, &n, "cone", "%d of %d, aperture %.9g degrees", q.cone - 1,
+                 GIB_DIFFUSE_CONES, (double)q.cone_aperture);
     ref_attr(attrs, max_attrs, &n, "target_noise", "%.9g", q.target_noise);
     ref_attr(attrs, max_attrs, &n, "max_spp", "%d", q.max_spp);
     ref_attr(attrs, max_attrs, &n, "rounds", "%d", s ? s->rounds : 0);

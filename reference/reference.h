@@ -84,6 +84,12 @@ typedef struct gib_ref_params {
     int max_depth;        /* full, higher: most surface vertices on a path; 0 = default 8 */
     int min_depth;        /* full, higher: Russian roulette from this depth on; 0 = default 3 */
     int max_specular;     /* caustic (and what higher leaves out): most S vertices; 0 = default 1 */
+    int cone;             /* indirect: 0 = the whole hemisphere; k >= 1 = only diffuse cone k - 1
+                           * of the cone techniques' set (harness/base/cone_set.h): rho_d times
+                           * the mean radiance over its cap, what that cone alone should gather */
+    float cone_aperture;  /* with cone: the cap's full aperture, degrees; 0 = default 60. Cap
+                           * directions below the surface count as black (a tilted cone wider
+                           * than 60 degrees reaches under the horizon) */
     double target_noise;  /* > 0: add rounds until noise_rmse / mean <= this, up to max_spp */
     int max_spp;          /* cap with target_noise; 0 = default 65536 */
     uint64_t seed;        /* default 1 */
@@ -145,7 +151,7 @@ uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p
  * the fixed count, "target" the target noise, "max_spp" the cap before the target, "interrupted").
  * A moving scene's also get `time` (seconds). Parameters are written normalised. Returns the
  * count written, at most max_attrs; GIB_REF_ATTR_COUNT is the most there are. */
-#define GIB_REF_ATTR_COUNT 27
+#define GIB_REF_ATTR_COUNT 28
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);
 

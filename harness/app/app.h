@@ -54,6 +54,8 @@ typedef struct gib_ref_request {
     int max_depth;       /* full, higher */
     int min_depth;       /* full, higher: Russian roulette from this depth */
     int max_specular;    /* caustic, higher */
+    int cone;            /* indirect: k >= 1 only diffuse cone k - 1 (reference.h) */
+    float cone_aperture; /* with cone: degrees */
     double target_noise; /* > 0: sample until noise_rmse / mean <= this ... */
     int max_spp;         /* ... or this many samples per pixel */
     const char *cache_dir;

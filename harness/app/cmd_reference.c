@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "harness/base/cone_set.h"
 #include "app.h"
 
 static const char help[] =
@@ -19,7 +20,7 @@ static const char help[] =
     "                         [--dmax D] [--obscurance 0|1] [--max-depth N] [--min-depth N]\n"
     "                         [--max-specular N] [--target-noise X] [--max-spp N]\n"
     "                         [--camera I] [--seed N] [--threads N] [--stderr F.exr] [--quiet]\n"
-    "                         [--time T] [--sampler sobol|random]\n"
+    "                         [--time T] [--sampler sobol|random] [--cone I [--cone-aperture D]]\n"
     "\n"
     "Components (paths in Heckbert notation, reference/reference.h):\n"
     "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
@@ -31,6 +32,10 @@ static const char help[] =
     "            --min-depth (default 3; none when it is not below --max-depth)\n"
     "  higher    what full has beyond direct + indirect + glossy + caustic\n"
     "  albedo, normal, depth   auxiliary images of the visible point\n"
+    "  indirect --cone I (0-5): only the cap of diffuse cone I of the cone techniques' set (one\n"
+    "            along the normal, five 60 degrees from it; harness/base/cone_set.h) with\n"
+    "            --cone-aperture DEG (default 60): rho_d times the cap's mean radiance, what\n"
+    "            `lrsm` and `vct` render with --param cone=I\n"
     "\n"
     "--spp N (default 16) is the sample count, or with --target-noise X the first round's:\n"
     "rounds are added until the noise RMSE is at most X times the image mean, or --max-spp\n"
@@ -131,9 +136,9 @@ static int write_png_beside(const char *exr, const gib_image *img, float exposur
 /* What the command line asks for. */
 typedef struct ref_opts {
     const char *scene_name, *comp, *out, *cache, *se_out, *size;
-    long spp, camera, seed, threads, obsc, max_depth, min_depth, max_spec, max_spp;
+    long spp, camera, seed, threads, obsc, max_depth, min_depth, max_spec, max_spp, cone;
     int sampler, force, quiet;
-    double dmax, target, time;
+    double dmax, target, time, cone_aperture;
     int component, w, h; /* from comp and size (check_args) */
 } ref_opts;
 
@@ -160,6 +165,12 @@ static int parse_value_option(ref_opts *o, const char *a, const char *v, gib_err
     else if (!strcmp(a, "--max-spp")) rc = gib_parse_int(a, v, 2, 1 << 24, &o->max_spp, err);
     else if (!strcmp(a, "--target-noise")) rc = gib_parse_float(a, v, 1e-9, 10, &o->target, err);
     else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &o->time, err);
+    else if (!strcmp(a, "--cone")) {
+        rc = gib_parse_int(a, v, 0, GIB_DIFFUSE_CONES - 1, &o->cone, err);
+        o->cone += 1; /* gib_ref_params.cone: 0 = the whole hemisphere */
+    }
+    else if (!strcmp(a, "--cone-aperture"))
+        rc = gib_parse_float(a, v, 1, 179, &o->cone_aperture, err);
     else if (!strcmp(a, "--sampler")) {
         if ((o->sampler = gib_ref_sampler_parse(v)) < 0)
             rc = gib_fail(err, "--sampler '%s': sobol or random", v);
@@ -235,6 +246,15 @@ static int check_cache_args(ref_opts *o)
                         "caustic, full, higher, albedo, normal, depth)\n", o->comp);
         return 2;
     }
+    if ((o->cone || o->cone_aperture > 0) && o->component != GIB_COMP_INDIRECT) {
+        fprintf(stderr, "gibench reference: --cone and --cone-aperture go with --component "
+                        "indirect (one diffuse cone's share of it), not %s\n", o->comp);
+        return 2;
+    }
+    if (o->cone_aperture > 0 && !o->cone) {
+        fprintf(stderr, "gibench reference: --cone-aperture needs --cone I\n");
+        return 2;
+    }
     if (gib_parse_size("--size", o->size, &o->w, &o->h, &err) < 0) {
         fprintf(stderr, "gibench reference: %s\n", err.msg);
         return 2;
@@ -295,7 +315,8 @@ static int render_through_cache(ref_job *j)
                           .height = o->h, .component = o->component, .spp = (int)o->spp,
                           .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
                           .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
-                          .max_specular = (int)o->max_spec, .target_noise = o->target,
+                          .max_specular = (int)o->max_spec, .cone = (int)o->cone,
+                          .cone_aperture = (float)o->cone_aperture, .target_noise = o->target,
                           .max_spp = (int)o->max_spp, .cache_dir = o->cache, .force = o->force,
                           .quiet = o->quiet, .threads = (int)o->threads,
                           .interrupt = j->p.interrupt, .time = (float)o->time};
@@ -399,7 +420,8 @@ static int run_reference(ref_job *j)
     j->p = (gib_ref_params){.component = o->component, .width = o->w, .height = o->h,
                             .spp = (int)o->spp, .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
                             .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
-                            .max_specular = (int)o->max_spec, .target_noise = o->target,
+                            .max_specular = (int)o->max_spec, .cone = (int)o->cone,
+                            .cone_aperture = (float)o->cone_aperture, .target_noise = o->target,
                             .max_spp = (int)o->max_spp, .seed = (uint64_t)o->seed,
                             .threads = (int)o->threads, .camera = (int)o->camera,
                             .time = (float)o->time, .sampler = o->sampler, .quiet = o->quiet};

@@ -25,7 +25,8 @@ gib_ref_params gib_ref_request_params(const gib_ref_request *rq)
     gib_ref_params p = {.component = rq->component, .width = rq->width, .height = rq->height,
                         .spp = rq->spp, .dmax = rq->dmax, .obscurance = rq->obscurance,
                         .max_depth = rq->max_depth, .min_depth = rq->min_depth,
-                        .max_specular = rq->max_specular, .target_noise = rq->target_noise,
+                        .max_specular = rq->max_specular, .cone = rq->cone,
+                        .cone_aperture = rq->cone_aperture, .target_noise = rq->target_noise,
                         .max_spp = rq->max_spp, .seed = 1, .threads = rq->threads,
                         .camera = rq->camera, .time = rq->time, .quiet = rq->quiet,
                         .interrupt = rq->interrupt};

@@ -42,11 +42,12 @@
 #define GIB_LOC_LV_FIRST 20       // 20..23: the shadow lookup (common/shadow_lookup.glsl)
 #define GIB_LOC_LV_PCF_RADIUS (GIB_LOC_LV_FIRST + 1)    //   int: (2r+1)^2 taps
 #define GIB_LOC_LV_NORMAL_OFFSET (GIB_LOC_LV_FIRST + 2) //   float: along the normal, texels
-#define GIB_LOC_VOXEL_FIRST 24    // 24..27: the occlusion voxels' grid (common/voxel_cone.glsl)
+#define GIB_LOC_VOXEL_FIRST 24    // 24..28: the occlusion voxels' grid (common/voxel_cone.glsl)
 #define GIB_LOC_VOXEL_ORIGIN (GIB_LOC_VOXEL_FIRST + 0)  //   vec3: the grid's lowest corner
 #define GIB_LOC_VOXEL_SIZE (GIB_LOC_VOXEL_FIRST + 1)    //   float: its side
 #define GIB_LOC_VOXEL_RES (GIB_LOC_VOXEL_FIRST + 2)     //   int: voxels a side
 #define GIB_LOC_VOXEL_DENSITY (GIB_LOC_VOXEL_FIRST + 3) //   int: occupancy to a step's opacity
+#define GIB_LOC_VOXEL_CONE_ONLY (GIB_LOC_VOXEL_FIRST + 4) // int: the diffuse gather's one cone, < 0 all
 
 // Image units (glBindImageTexture, layout(binding = N, format) image*): no shared ones.
 #define GIB_IMAGE_OWN_FIRST 0     // 0..7: a pass's own images

@@ -54,6 +54,13 @@ const int DIFFUSE_CONES = 6;
 const float DIFFUSE_TILT = 1.0471976;   // 60 degrees
 int diffuse_cone_count() { return DIFFUSE_CONES; }
 float diffuse_cone_weight(int i) { return i == 0 ? 2.0 / 7.0 : 1.0 / 7.0; }
+// A technique's `cone` parameter: < 0 the gather of every cone; i alone with weight 1 (the
+// per-cone images `gibench reference --cone i` renders the truth of). Set in diffuse passes only.
+layout(location = GIB_LOC_VOXEL_CONE_ONLY) uniform int u_cone_only;
+float diffuse_cone_share(int i)
+{
+    return u_cone_only < 0 ? diffuse_cone_weight(i) : (i == u_cone_only ? 1.0 : 0.0);
+}
 vec3 diffuse_cone_dir(int i, vec3 n)
 {
     if (i == 0)

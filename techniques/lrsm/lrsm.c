@@ -45,6 +45,7 @@ typedef struct lrsm {
                                        faces a sample reads (lrsm_sample.glsl) */
     int coverage;                   /* a sample's L over its lit coverage (lrsm_cone.frag) */
     int visibility;                 /* Eq. 12's window: +-r_c or widened by 1/<n.l> */
+    int cone;                       /* the diffuse cone rendered alone, < 0 all */
     int rebuild, built;             /* structures every frame, or only the first frame's */
     int width, height;
     unsigned targets[PASSES];    /* the last frame's output textures (NaN check) */
@@ -81,6 +82,9 @@ static const gib_param_spec lrsm_params[] = {
     {"jacobian", GIB_PARAM_INT, 1, 0, 1,
      "LRSM radiance filtered over: 1 the surface area each RSM texel sees (Eq. 3's Jacobian "
      "r^2/<n.l>), 0 the light's solid angle (paper, Sec. 4.2: the Jacobian taken as constant)"},
+    {"cone", GIB_PARAM_INT, -1, -1, 5,
+     "-1: indirect gathers all 6 diffuse cones; i: cone i alone, weight 1 (against `gibench "
+     "reference --component indirect --cone i`: each cone's own error)"},
     {"rebuild", GIB_PARAM_INT, 1, 0, 1,
      "1: voxels, light views and layers rebuilt every frame (paper, Sec. 6); 0: the first frame's "
      "kept (a negative control: what a technique that misses the motion scores over time)"},
@@ -122,6 +126,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     s->coverage = gib_param_int(t, p, "coverage");
     s->visibility = gib_param_int(t, p, "visibility");
     s->rebuild = gib_param_int(t, p, "rebuild");
+    s->cone = gib_param_int(t, p, "cone");
     strcpy(s->status, "");
     static const char *const define[PASSES] = {"#define SHADOW 1\n", "#define DIFFUSE 1\n",
                                                "#define SPECULAR 1\n"};
@@ -173,6 +178,8 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     glUniform1i(LRSM_CONE_LOC_COVERAGE, s->coverage);
     glUniform1i(LRSM_LOC_VISIBILITY, s->visibility);
     glUniform1i(GIB_LOC_VOXEL_DENSITY, s->opacity);
+    if (which == PASS_DIFFUSE)
+        glUniform1i(GIB_LOC_VOXEL_CONE_ONLY, s->cone);
     gib_fullscreen_draw(&s->pass[which]);
     gib_fullscreen_end();
     gib_timer_end(timers);

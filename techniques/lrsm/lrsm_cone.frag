@@ -86,7 +86,8 @@ void main()
         return;
     vec3 sum = vec3(0.0);
     for (int i = 0; i < diffuse_cone_count(); i++)
-        sum += diffuse_cone_weight(i) * trace_cone(x, n, diffuse_cone_dir(i, n), u_aperture);
+        if (diffuse_cone_share(i) > 0.0)
+            sum += diffuse_cone_share(i) * trace_cone(x, n, diffuse_cone_dir(i, n), u_aperture);
     o_color.rgb = alb.rgb * sum;
 #elif defined(SPECULAR)
     int type = int(alb.w + 0.5);

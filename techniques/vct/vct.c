@@ -43,6 +43,9 @@ static const gib_param_spec vct_params[] = {
      "how a diffuse cone's sample is kept in front of the receiver's plane: 0 its diameter at most "
      "its height (a tilted cone narrowed to half its width), 1 its width kept and the sample lifted "
      "along the normal (vct_trace.glsl)"},
+    {"cone", GIB_PARAM_INT, -1, -1, 5,
+     "-1: indirect gathers all 6 diffuse cones; i: cone i alone, weight 1 (against `gibench "
+     "reference --component indirect --cone i`: each cone's own error)"},
     {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
     {"fill", GIB_PARAM_INT, 1, 0, 1,
      "1: an occupied voxel no light-view texel landed in takes the light of the surface the light "
@@ -64,6 +67,7 @@ typedef struct vct {
     gib_fullscreen direct, indirect, glossy;
     int inject_res;
     bool fill;
+    int cone;                /* the diffuse cone rendered alone, < 0 all */
     vct_cone_settings cones;
     float max_distance;
     float tan_diffuse, tan_specular, tan_shadow;
@@ -102,6 +106,7 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->ledger = ledger;
     a->inject_res = gib_param_int(t, p, "inject_res");
     a->fill = gib_param_int(t, p, "fill") != 0;
+    a->cone = gib_param_int(t, p, "cone");
     a->cones.step_factor = (float)gib_param_float(t, p, "step_factor");
     a->cones.start_offset = (float)gib_param_float(t, p, "start_offset");
     a->cones.sample_level = gib_param_int(t, p, "sample_level");
@@ -150,6 +155,8 @@ static void cone_pass(vct *a, const gib_fullscreen *fs, const char *pass, unsign
     glUniform1i(VCT_SHADE_LOC_LIGHT_COUNT, (int)a->scene->scene->light_count);
     glUniform1f(VCT_SHADE_LOC_TAN_HALF, tan_half);
     glUniform1f(VCT_SHADE_LOC_MAX_DIST, a->max_distance * a->vol.size);
+    if (fs == &a->indirect)
+        glUniform1i(GIB_LOC_VOXEL_CONE_ONLY, a->cone);
     gib_fullscreen_draw(fs);
     gib_fullscreen_end();
     gib_timer_end(timers);

@@ -45,8 +45,9 @@ void main()
     }
 #elif defined(INDIRECT)
     for (int i = 0; i < diffuse_cone_count(); i++)
-        sum += diffuse_cone_weight(i) * vct_cone(pos.xyz, n, diffuse_cone_dir(i, n), u_tan_half,
-                                                 u_max_dist).rgb;
+        if (diffuse_cone_share(i) > 0.0)
+            sum += diffuse_cone_share(i) * vct_cone(pos.xyz, n, diffuse_cone_dir(i, n), u_tan_half,
+                                                    u_max_dist).rgb;
     sum *= alb.rgb;
 #else
     int type = int(alb.w + 0.5);

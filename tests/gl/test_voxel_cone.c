@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "harness/base/cone_set.h"
 #include "harness/gl/bindings.h"
 #include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
@@ -108,7 +109,8 @@ static void run_probe(unsigned prog, const gib_voxels *v, float (*q)[4], int cou
  *    keeps a surface's own voxel out;
  *  - the 6 diffuse cones: one along n, five at 60 degrees from n, 72 degrees apart in azimuth,
  *    weights summing to 1 and proportional to cos(tilt) (the cosine-weighted share of equal caps),
- *    for several normals. */
+ *    for several normals, and the same as the reference's copy (harness/base/cone_set.h, what
+ *    `gibench reference --cone` renders) to 1e-5. */
 static void check_cones(const char *dir)
 {
     const char *text = "[scene]\ndescription = voxels: roof over a floor\n"
@@ -212,6 +214,12 @@ static void check_cones(const char *dir)
             double want_cos = i == 0 ? 1.0 : 0.5, want_w = want_cos / 3.5; /* cos / sum of cos */
             bad += fabs(len - 1) > 1e-5 || fabs(cosn - want_cos) > 1e-5 ||
                    fabs(r[3] - want_w) > 1e-6;
+            /* The reference's copy of the set (harness/base/cone_set.h) is the same cone. */
+            float c_dir[3];
+            gib_diffuse_cone_dir(i, n, c_dir);
+            for (int k = 0; k < 3; k++)
+                bad += fabsf(c_dir[k] - r[k]) > 1e-5f;
+            bad += fabsf(gib_diffuse_cone_weight(i) - r[3]) > 1e-6f;
             wsum += r[3];
             for (int k = 0; k < 3 && i; k++)
                 tsum[k] += r[k] - cosn * n[k];

@@ -6,7 +6,8 @@
 # Also: --out beside --cache writes the same pixels (gibench compare: RMSE exactly 0), and two
 # plain --out renders of the same request have identical pixels; output paths that could not be
 # written are refused before rendering; the --stderr map is marked as one; Ctrl-C during a
-# --target-noise render keeps the rounds done (exit 130), equal to a plain render of that spp.
+# --target-noise render keeps the rounds done (exit 130), equal to a plain render of that spp;
+# --cone (one diffuse cone of indirect) has entries and a header of its own.
 # Usage: ref_cache_cli.sh GIBENCH WORKDIR. Expected values are exact strings and an RMSE of 0.
 set -u
 G="$1"
@@ -113,6 +114,22 @@ check "... saying why" "--sampler random goes with --out only" "$out"
 out=$(ref --out "$D/h.exr" --sampler halton); rc=$?
 check_eq "an unknown sampler: exit 2" "2" "$rc"
 check "... naming it" "--sampler 'halton': sobol or random" "$out"
+
+# --cone: one diffuse cone's share of indirect, its own cache entry, named in the header; refused
+# for other components
+ci() { "$G" reference --scene cornell --component indirect --spp 4 --size 8x8 --quiet "$@" 2>&1; }
+out=$(ci --cache "$D/cache" --cone 2)
+check "--cone renders into the cache" "rendered into cache" "$out"
+out=$(ci --cache "$D/cache")
+check "... an entry apart from the whole hemisphere's" "rendered into cache" "$out"
+ci --out "$D/cone.exr" --cone 2 > /dev/null
+check "the header names the cone" '"2 of 6, aperture 60 degrees"' "$(attr "$D/cone.exr" cone)"
+check_eq "... the whole hemisphere's header has no cone" "" "$(attr "$D/a.exr" cone)"
+out=$(ref --out "$D/x.exr" --cone 1); rc=$?
+check_eq "--cone with ao: exit 2" "2" "$rc"
+check "... saying why" "--cone and --cone-aperture go with --component indirect" "$out"
+out=$(ci --out "$D/x.exr" --cone 6)
+check "a cone beyond the set is refused" "--cone" "$out"
 
 # a target noise asked of a deterministic estimator is met at once (its noise is exactly 0)
 out=$("$G" reference --scene cornell --component direct --size 8x8 --target-noise 0.01 \

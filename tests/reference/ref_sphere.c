@@ -22,7 +22,8 @@
  * Checks:
  *  - direct (deterministic): every pixel within [lo, hi] of the closed form, exactly (1e-5 slack
  *    for float rounding);
- *  - indirect and full: the image mean within 3 standard errors of the mean (from the renderer's
+ *  - indirect (also each diffuse cone's share, gib_ref_params.cone) and full: the image mean within
+ *    3 standard errors of the mean (from the renderer's
  *    own per-pixel errors) of the interval [lo, hi] x closed form, and no 4x4 block's mean
  *    further than 4 of its standard errors from the interval (36 blocks: a 4-sigma excursion of
  *    a correct renderer has odds of about 1 in 400). */
@@ -292,6 +293,29 @@ int main(void)
                gib_component_name(cases[c].comp), e, e * lo, e * hi, r.mean, r.se_mean,
                dev / r.se_mean, r.worst_z, cases[c].spp,
                cases[c].depth ? ", max_depth 48 (a^48 = 4e-8)" : "");
+        gib_image_free(&img);
+        gib_image_free(&sd);
+    }
+    /* One diffuse cone's share (gib_ref_params.cone): the wall sees radiance `direct` in every
+     * direction, so each cone's cap mean times a is the whole indirect, for every cone of the set
+     * and every aperture whose cap stays above the surface (a cap sampled wrongly, or weighted by
+     * the cosine, would not be flat): the central cone at 120 degrees too. */
+    const float apertures[7] = {60, 60, 60, 60, 60, 60, 120};
+    for (int k = 0; k < 7; k++) {
+        p = rt_params(GIB_COMP_INDIRECT, W, H, 16);
+        p.cone = k < 6 ? k + 1 : 1;
+        p.cone_aperture = apertures[k];
+        rt_render(&s, &p, &img, &sd, &st);
+        const double e = a * direct;
+        r = rt_compare(&img, &sd, e, lo, hi);
+        double dev = r.mean < e * lo ? e * lo - r.mean : r.mean > e * hi ? r.mean - e * hi : 0.0;
+        RT_CHECK(dev <= 3.0 * r.se_mean && r.worst_z <= 4.0, "indirect, cone %d of aperture %.0f: "
+                 "mean %.6f is %.2f standard errors outside [%.6f, %.6f], worst 4x4 block %.2f",
+                 p.cone - 1, (double)apertures[k], r.mean, dev / r.se_mean, e * lo, e * hi,
+                 r.worst_z);
+        printf("indirect, cone %d (aperture %.0f): measured mean %.6f (%.2f sigma outside the "
+               "interval), worst block %.2f sigma\n", p.cone - 1, (double)apertures[k], r.mean,
+               dev / r.se_mean, r.worst_z);
         gib_image_free(&img);
         gib_image_free(&sd);
     }
