@@ -19,7 +19,8 @@ row's RMSE exceeds that.
 
 Usage: harness/cone_study.py [--gibench build/gibench] [--out results/cone_study.csv]
        [--cache results/cache] [--size 128x128] [--spp 256] [--full-spp 1024]
-       [--scenes cornell,cornell_spot45] [--voxel-res 64,128,256]
+       [--scenes cornell,cornell_spot45] [--voxel-res 64,128,256] [--techniques lrsm,vct]
+       [--param K=V]...
 """
 import argparse
 import csv
@@ -104,6 +105,9 @@ def main():
     ap.add_argument("--full-spp", type=int, default=1024, help="samples of the whole reference")
     ap.add_argument("--scenes", default="cornell,cornell_spot45")
     ap.add_argument("--voxel-res", default="64,128,256")
+    ap.add_argument("--param", action="append", default=[], metavar="K=V",
+                    help="a technique parameter for every render (repeatable)")
+    ap.add_argument("--techniques", default=",".join(TECHNIQUES))
     a = ap.parse_args()
     rows = []
     work = tempfile.mkdtemp(prefix="gib_cone_study_")
@@ -113,13 +117,14 @@ def main():
         ideal = os.path.join(work, scene + "_ideal.exr")
         weighted_sum(cones, ideal)
         rows.append(row(scene, "ideal", "", "gather", None, compare(a, full, ideal)))
-        for tech in TECHNIQUES:
+        for tech in a.techniques.split(","):
             for res in a.voxel_res.split(","):
                 for cone in list(range(6)) + [-1]:
                     d = os.path.join(work, "%s_%s_%s_%d" % (scene, tech, res, cone))
                     out = run([a.gibench, "render", "--scene", scene, "--technique", tech,
                                "--size", a.size, "--out", d, "--param", "voxel_res=" + res,
-                               "--param", "cone=%d" % cone, "--warmup", "0", "--frames", "1"])
+                               "--param", "cone=%d" % cone, "--warmup", "0", "--frames", "1"]
+                              + [x for kv in a.param for x in ("--param", kv)])
                     if out.startswith("renderer: "):  # backend | GL_RENDERER | GL_VERSION
                         PROVENANCE["renderer"] = out.splitlines()[0].split(" | ")[1]
                     img = os.path.join(d, tech + "_indirect.exr")
