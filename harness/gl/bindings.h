@@ -31,7 +31,7 @@
 #define GIB_UNIT_LV_PACKED0 4     // packed views (GIB_LV_PACKED16): rgb reflected radiance, a depth
 #define GIB_UNIT_LV_PACKED1 5     //   xyz normal facing the light, w <n.l>
 #define GIB_UNIT_VOXELS 9         // occlusion voxels, R8 3D with mips (common/voxels.h)
-#define GIB_UNIT_OWN_FIRST 10     // 10..15: a pass's own textures
+#define GIB_UNIT_OWN_FIRST 10     // 10..18: a pass's own textures
 
 // Uniform locations (per program). 0, 1 and 6 are taken in programs that draw the scene
 // (gib_gpu_scene_draw, common/gbuffer.vert); full-screen and compute passes may use 0..19.

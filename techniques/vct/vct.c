@@ -46,6 +46,10 @@ static const gib_param_spec vct_params[] = {
     {"cone", GIB_PARAM_INT, -1, -1, 5,
      "-1: indirect gathers all 6 diffuse cones; i: cone i alone, weight 1 (against `gibench "
      "reference --component indirect --cone i`: each cone's own error)"},
+    {"front_faces", GIB_PARAM_INT, 1, 0, 1,
+     "1: a cone sample's light is limited to the lit surfaces whose front faces the cone's apex "
+     "(emission lobes, vct_lobes.comp); 0: the anisotropic mips' light alone (the paper), where "
+     "a wall's lit face is seen edge-on from its dark side (vct_trace.glsl)"},
     {"inject_res", GIB_PARAM_INT, 512, 16, 4096, "light-view resolution for the injection"},
     {"fill", GIB_PARAM_INT, 1, 0, 1,
      "1: an occupied voxel no light-view texel landed in takes the light of the surface the light "
@@ -111,6 +115,7 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     a->cones.start_offset = (float)gib_param_float(t, p, "start_offset");
     a->cones.sample_level = gib_param_int(t, p, "sample_level");
     a->cones.clearance = gib_param_int(t, p, "clearance");
+    a->cones.front_faces = gib_param_int(t, p, "front_faces");
     a->max_distance = (float)gib_param_float(t, p, "max_distance");
     a->tan_diffuse = tan_half_deg(gib_param_float(t, p, "diffuse_aperture"));
     a->tan_specular = tan_half_deg(gib_param_float(t, p, "specular_aperture"));
@@ -118,7 +123,8 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
     /* The plan is checked against the budget before anything is allocated. */
     int res = gib_param_int(t, p, "voxel_res");
     vct_plan plan;
-    vct_plan_bytes(res, (long long)scene->scene->triangle_count, &plan);
+    vct_plan_bytes(res, (long long)scene->scene->triangle_count, a->cones.front_faces != 0,
+                   &plan);
     if (vct_plan_check(&plan, res, gib_param_float(t, p, "memory_budget_mb"), ledger, err) < 0) {
         free(a);
         return NULL;
@@ -127,7 +133,8 @@ static void *vct_create(const gib_gpu_scene *scene, const gib_params *p, int w, 
      * placed as theirs: one exact voxeliser for LRSM and VCT, alpha masks honoured; its R8
      * texture is the "voxels" structure, beside the paper's VCT formats. */
     if (gib_voxels_create(&a->occ, scene, res, "voxels", ledger, err) < 0 ||
-        vct_volume_create(&a->vol, a->occ.origin, a->occ.size, res, ledger, err) < 0 ||
+        vct_volume_create(&a->vol, a->occ.origin, a->occ.size, res, a->cones.front_faces != 0,
+                          ledger, err) < 0 ||
         gib_light_views_create(&a->views, scene, a->inject_res,
                                GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX, "rsm", ledger,
                                err) < 0 ||

@@ -26,14 +26,15 @@ enum { VCT_PX = 0, VCT_NX, VCT_PY, VCT_NY, VCT_PZ, VCT_NZ, VCT_DIRECTIONS };
 
 /* The memory plan: exact bytes of each voxel structure at `res` voxels a side, as the ledger
  * counts them once allocated. radiance and normal: RGBA16F res^3 (base level only, the paper's
- * "base voxels"); aniso: 6 RGBA16F textures of (res/2)^3 with full mip chains. */
+ * "base voxels"); aniso: 6 RGBA16F textures of (res/2)^3 with full mip chains (the paper's
+ * formats); lobes: 3 more alike, only with `front_faces` (0 without). */
 typedef struct vct_plan {
-    uint64_t radiance, normal, aniso, voxels, total;
+    uint64_t radiance, normal, aniso, lobes, voxels, total;
 } vct_plan;
 /* voxels: the shared occlusion voxels the occupancy comes from (common/voxels.h: R8 res^3 with
  * its chain, and 8 bytes a triangle + 16 of work list); 0 for triangles < 0 (no scene: the
  * volume alone, as the tests build it). */
-void vct_plan_bytes(int res, long long triangles, vct_plan *plan);
+void vct_plan_bytes(int res, long long triangles, bool lobes, vct_plan *plan);
 /* The budget: `budget_mb` (decimal MB) if > 0, else the device's: GL_NVX_gpu_memory_info's
  * currently available memory where the extension exists, otherwise half the physical memory
  * (sysconf). `what` names the source, for the message. Needs a current context for the GL query. */
@@ -46,16 +47,21 @@ typedef struct vct_volume {
                                    a = occupancy; normal: xyz, w = 1 where light was injected */
     unsigned aniso[VCT_DIRECTIONS];/* RGBA16F 3D (res/2)^3, full chain: premultiplied radiance,
                                       alpha = occlusion, pre-integrated along the direction */
+    unsigned lobe[3];              /* RGBA16F 3D as aniso, per axis: the emission lobes
+                                      (vct_lobes.comp), the luminance of the lit surfaces facing
+                                      + and - along it and where it comes from */
     int aniso_levels;
     unsigned fbo, vao;             /* the injection's layered framebuffer (radiance, normal) */
     unsigned scratch_fbo;          /* several lights: one light's sums into the normal volume */
     unsigned inject_program, resolve_program, accumulate_program, mip_base_program, mip_program;
+    unsigned lobe_base_program, lobe_program;
 } vct_volume;
 
-/* Allocates (labels "radiance.base", "normal.base", "aniso.<dir>") for a grid of side `size` at
+/* Allocates (labels "radiance.base", "normal.base", "aniso.<dir>", with `lobes` "lobes" for
+ * front_faces) for a grid of side `size` at
  * `origin`. A GL_OUT_OF_MEMORY fails with GIB_ERR_OUT_OF_MEMORY. The caller checks the plan against
  * the budget first (vct_plan_check). */
-int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
+int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, bool lobes,
                       gib_ledger *ledger, gib_error *err);
 /* The plan against the budget (budget_mb as vct_budget_bytes), recorded in the ledger first
  * (gib_ledger_plan: the row's mem_planned_by_structure, by the allocations' structure names):
@@ -80,6 +86,7 @@ void vct_volume_mips(vct_volume *v);
 typedef struct vct_cone_settings {
     float step_factor, start_offset;
     int sample_level, clearance;
+    int front_faces;   /* 1: a sample's light limited to surfaces whose front faces the apex */
 } vct_cone_settings;
 /* Binds the volume and the cone settings for vct_trace.glsl on the current program. */
 void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c);

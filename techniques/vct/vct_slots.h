@@ -34,8 +34,13 @@
 #define VCT_ANISO_UNIT_SRC_FIRST (GIB_UNIT_OWN_FIRST + 0)   // the six directions, level - 1
 #define VCT_ANISO_IMAGE_DST_FIRST (GIB_IMAGE_OWN_FIRST + 0) // the six directions, level
 
+#define VCT_LOBES_UNIT_SRC_FIRST (GIB_UNIT_OWN_FIRST + 0)   // the lobes (x, y, z), level - 1
+#define VCT_LOBES_IMAGE_DST_FIRST (GIB_IMAGE_OWN_FIRST + 0) // the lobes (x, y, z), level
+
 // The cones (vct_trace.glsl): the shading pass and the probe.
 #define VCT_UNIT_ANISO_FIRST (GIB_UNIT_OWN_FIRST + 0)       // the six directions' mips
+#define VCT_UNIT_LOBE_FIRST (GIB_UNIT_OWN_FIRST + 6)        // the emission lobes' mips (x, y, z)
+#define VCT_LOC_FRONT_FACES 12        // int: 1 a sample's light limited to faces toward the apex
 #define VCT_LOC_STEP_FACTOR 7         // float
 #define VCT_LOC_START_OFFSET 8        // float: voxels, along the surface normal
 #define VCT_LOC_LEVEL_BIAS 9          // float: levels finer than log2(d)

@@ -45,6 +45,8 @@ layout(location = VCT_LOC_LEVEL_BIAS) uniform float u_level_bias;   // levels fi
 // How a sample is kept in front of the receiver's plane: 0 its diameter at most its height, 1 lifted
 layout(location = VCT_LOC_CLEARANCE) uniform int u_clearance;
 layout(binding = VCT_UNIT_ANISO_FIRST) uniform sampler3D u_aniso[6];   // +x -x +y -y +z -z
+layout(binding = VCT_UNIT_LOBE_FIRST) uniform sampler3D u_lobe[3];     // per axis (Y+, P+, Y-, P-)
+layout(location = VCT_LOC_FRONT_FACES) uniform int u_front_faces;
 
 vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 {
@@ -56,6 +58,39 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
     if (mip < 1.0)
         s = mix(textureLod(u_voxels, uvw, 0.0), s, max(mip, 0.0));
     return s;
+}
+
+// The share of a sample's light that leaves its surfaces on the side of the cone's apex (vct's
+// `front_faces` 1, the default), from the emission lobes (vct_lobes.comp). The anisotropic mips
+// cannot tell the sides of a surface apart: in their textures along a wall, its lit face is seen
+// edge-on from either side, so a cone on the dark side of a wall thinner than a cell read the lit
+// side's light (thick_wall_leak: the dark room 0.11 of the lit room's); a lit box top, seen
+// edge-on, lit the ground around the box from below its plane. Per lobe, its luminance counts in
+// full while the apex is in front of the lobe's back-most plane b, and fades to nothing within
+// 1/FRONT_GAIN of the direction to the sample behind it (an angle of about 1/8 radian: no seam
+// where the apex crosses a face's plane), s (apex - b) / |sample - apex| >= -1/FRONT_GAIN. Each
+// lobe is weighted by the share of the sample's D^2 blend that shows it: not the texture of its
+// own axis when the cone travels the way it faces (vct_aniso.comp hides it there), lest a lobe
+// the blend hardly shows decide the share. A sample's light is the mips' times this share; 1
+// where no lit surface is there.
+const float FRONT_GAIN = 8.0;
+float vct_front_share(vec3 uvw, float lod, vec3 apex_uvw, vec3 D)
+{
+    float lit = 0.0, front = 0.0;
+    float dist = max(length(uvw - apex_uvw), 0.5 / float(u_voxel_res));
+    for (int k = 0; k < 3; k++) {
+        vec4 l = textureLod(u_lobe[k], uvw, lod);
+        for (int h = 0; h < 2; h++) {
+            float y = h == 0 ? l.x : l.z, s = h == 0 ? 1.0 : -1.0;
+            if (y <= 1e-9)
+                continue;
+            float back = (h == 0 ? l.y : l.w) / y;  // the lobe's back-most plane
+            float shown = y * (1.0 - (s * D[k] > 0.0 ? D[k] * D[k] : 0.0));
+            lit += shown;
+            front += shown * clamp(1.0 + FRONT_GAIN * s * (apex_uvw[k] - back) / dist, 0.0, 1.0);
+        }
+    }
+    return lit > 1e-9 ? front / lit : 1.0;
 }
 
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset start_offset voxels
@@ -82,6 +117,7 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
 {
     float vs = voxel_size_world();
     vec3 o = p + n * (u_start_offset * vs);
+    vec3 apex_uvw = (o - u_voxel_origin) / u_voxel_size;
     float tmax = max_dist / vs - (taper ? u_start_offset + TAPER_STOP : 0.0);
     vec3 I = vec3(0.0);
     float A = 0.0;
@@ -102,6 +138,8 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
         vec4 s = vct_sample(uvw, D, level);
         float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor * d / exp2(level));
         vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
+        if (u_front_faces != 0)
+            c *= vct_front_share(uvw, max(level - 1.0, 0.0), apex_uvw, D);
         I += (1.0 - A) * c;
         A += (1.0 - A) * a;
         t += u_step_factor * d;

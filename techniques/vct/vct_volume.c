@@ -16,7 +16,7 @@
 static const char *const dir_label[VCT_DIRECTIONS] = {"aniso.px", "aniso.nx", "aniso.py",
                                                       "aniso.ny", "aniso.pz", "aniso.nz"};
 
-void vct_plan_bytes(int res, long long triangles, vct_plan *p)
+void vct_plan_bytes(int res, long long triangles, bool lobes, vct_plan *p)
 {
     /* What gib_gpu_texture will count (the ledger's plan): RGBA16F base levels, and 6 RGBA16F
      * textures of (res/2)^3 with full chains. */
@@ -25,7 +25,9 @@ void vct_plan_bytes(int res, long long triangles, vct_plan *p)
     p->aniso = VCT_DIRECTIONS * gib_texture_bytes(GL_TEXTURE_3D, res / 2, res / 2, res / 2,
                                                   GL_RGBA16F, 0);
     p->voxels = triangles < 0 ? 0 : gib_voxels_bytes(res) + 16 + 8 * (uint64_t)triangles;
-    p->total = p->radiance + p->normal + p->aniso + p->voxels;
+    p->lobes = lobes ? 3 * gib_texture_bytes(GL_TEXTURE_3D, res / 2, res / 2, res / 2, GL_RGBA16F, 0)
+                     : 0;
+    p->total = p->radiance + p->normal + p->aniso + p->lobes + p->voxels;
 }
 
 int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *ledger,
@@ -34,6 +36,8 @@ int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *
     gib_ledger_plan(ledger, "radiance", plan->radiance);
     gib_ledger_plan(ledger, "normal", plan->normal);
     gib_ledger_plan(ledger, "aniso", plan->aniso);
+    if (plan->lobes)
+        gib_ledger_plan(ledger, "lobes", plan->lobes);
     gib_ledger_plan(ledger, "voxels", plan->voxels);
     const char *what = "";
     uint64_t budget = vct_budget_bytes(budget_mb, &what);
@@ -41,11 +45,11 @@ int vct_plan_check(const vct_plan *plan, int res, double budget_mb, gib_ledger *
         return 0;
     return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
                     "vct: out of memory: voxel_res %d plans %llu bytes (radiance %llu, normal %llu, "
-                    "aniso %llu, voxels %llu), over the %llu bytes available (%s); nothing "
-                    "allocated",
+                    "aniso %llu, lobes %llu, voxels %llu), over the %llu bytes available (%s); "
+                    "nothing allocated",
                     res, (unsigned long long)plan->total, (unsigned long long)plan->radiance,
                     (unsigned long long)plan->normal, (unsigned long long)plan->aniso,
-                    (unsigned long long)plan->voxels, (unsigned long long)budget, what);
+                    (unsigned long long)plan->lobes, (unsigned long long)plan->voxels, (unsigned long long)budget, what);
 }
 
 #define GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX 0x9049
@@ -81,7 +85,7 @@ static int alloc_failed(gib_error *err, const vct_plan *plan)
     return -1;
 }
 
-int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
+int vct_volume_create(vct_volume *v, const float origin[3], float size, int res, bool lobes,
                       gib_ledger *ledger, gib_error *err)
 {
     memset(v, 0, sizeof *v);
@@ -89,16 +93,19 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
     memcpy(v->origin, origin, sizeof v->origin);
     v->size = size;
     vct_plan plan;
-    vct_plan_bytes(res, -1, &plan);
+    vct_plan_bytes(res, -1, lobes, &plan);
     const char *inject[] = {"vct/vct_inject.vert", "vct/vct_inject.frag"};
     const char *resolve[] = {"vct/vct_resolve.comp"};
     const char *accumulate[] = {"vct/vct_accumulate.comp"};
     const char *mip[] = {"vct/vct_aniso.comp"};
+    const char *lobe_mip[] = {"vct/vct_lobes.comp"};
     if (!(v->inject_program = gib_program(inject, 2, NULL, err)) ||
         !(v->resolve_program = gib_program(resolve, 1, NULL, err)) ||
         !(v->accumulate_program = gib_program(accumulate, 1, NULL, err)) ||
         !(v->mip_base_program = gib_program(mip, 1, "#define FROM_BASE 1\n", err)) ||
-        !(v->mip_program = gib_program(mip, 1, NULL, err)))
+        !(v->mip_program = gib_program(mip, 1, NULL, err)) ||
+        !(v->lobe_base_program = gib_program(lobe_mip, 1, "#define FROM_BASE 1\n", err)) ||
+        !(v->lobe_program = gib_program(lobe_mip, 1, NULL, err)))
         return -1;
     int half = res / 2;
     v->aniso_levels = gib_mip_levels(half, half, half);
@@ -111,9 +118,15 @@ int vct_volume_create(vct_volume *v, const float origin[3], float size, int res,
         if (!(v->aniso[d] = gib_gpu_texture(ledger, dir_label[d], GL_TEXTURE_3D, half, half, half,
                                             GL_RGBA16F, 0, err)))
             return alloc_failed(err, &plan);
-    const unsigned all[2 + VCT_DIRECTIONS] = {v->radiance, v->normal, v->aniso[0], v->aniso[1],
-                                              v->aniso[2], v->aniso[3], v->aniso[4], v->aniso[5]};
-    for (int i = 0; i < 2 + VCT_DIRECTIONS; i++) {
+    for (int k = 0; lobes && k < 3; k++)
+        if (!(v->lobe[k] = gib_gpu_texture(ledger, "lobes", GL_TEXTURE_3D, half, half, half,
+                                           GL_RGBA16F, 0, err)))
+            return alloc_failed(err, &plan);
+    enum { ALL = 2 + VCT_DIRECTIONS + 3 };
+    const unsigned all[ALL] = {v->radiance, v->normal,   v->aniso[0], v->aniso[1],
+                               v->aniso[2], v->aniso[3], v->aniso[4], v->aniso[5],
+                               v->lobe[0],  v->lobe[1],  v->lobe[2]};
+    for (int i = 0; i < ALL && all[i]; i++) {
         /* Trilinear within and between levels. Outside the grid is empty: a transparent border
          * (the default border colour, 0). The grid's margin keeps walls off its outer cells, so
          * the border dilutes none; clamped to the edge, the outer cells repeated beyond the grid
@@ -231,6 +244,32 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+/* The emission lobes' levels (vct_lobes.comp): level 0 from the base voxels, then each from the
+ * one below. */
+static void lobe_mips(vct_volume *v)
+{
+    for (int level = 0; level < v->aniso_levels; level++) {
+        int side = (v->res / 2) >> level;
+        glUseProgram(level == 0 ? v->lobe_base_program : v->lobe_program);
+        glUniform1i(VCT_ANISO_LOC_LEVEL, level);
+        if (level == 0) {
+            glBindTextureUnit(VCT_ANISO_UNIT_RADIANCE, v->radiance);
+            glBindTextureUnit(VCT_ANISO_UNIT_NORMAL, v->normal);
+        } else {
+            for (int k = 0; k < 3; k++)
+                glBindTextureUnit(VCT_LOBES_UNIT_SRC_FIRST + k, v->lobe[k]);
+        }
+        for (int k = 0; k < 3; k++)
+            glBindImageTexture(VCT_LOBES_IMAGE_DST_FIRST + (GLuint)k, v->lobe[k], level, GL_TRUE,
+                               0, GL_WRITE_ONLY, GL_RGBA16F);
+        int g = (side + 3) / 4;
+        glDispatchCompute(g, g, g);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+    for (int k = 0; k < 3; k++)
+        glBindTextureUnit(VCT_LOBES_UNIT_SRC_FIRST + k, 0);
+}
+
 void vct_volume_mips(vct_volume *v)
 {
     for (int level = 0; level < v->aniso_levels; level++) {
@@ -253,6 +292,8 @@ void vct_volume_mips(vct_volume *v)
     }
     for (int d = 0; d < VCT_DIRECTIONS; d++)
         glBindTextureUnit(VCT_ANISO_UNIT_SRC_FIRST + d, 0);
+    if (v->lobe[0])
+        lobe_mips(v);
 }
 
 void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
@@ -260,18 +301,22 @@ void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
     glBindTextureUnit(GIB_UNIT_VOXELS, v->radiance);
     for (int d = 0; d < VCT_DIRECTIONS; d++)
         glBindTextureUnit(VCT_UNIT_ANISO_FIRST + d, v->aniso[d]);
+    for (int k = 0; k < 3; k++)
+        glBindTextureUnit(VCT_UNIT_LOBE_FIRST + k, v->lobe[k]);
     grid_uniforms(v);
     glUniform1f(VCT_LOC_STEP_FACTOR, c->step_factor);
     glUniform1f(VCT_LOC_START_OFFSET, c->start_offset);
     glUniform1f(VCT_LOC_LEVEL_BIAS, (float)c->sample_level);
     glUniform1i(VCT_LOC_CLEARANCE, c->clearance);
+    glUniform1i(VCT_LOC_FRONT_FACES, c->front_faces);
 }
 
 void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
 {
     const unsigned progs[] = {v->mip_base_program, v->inject_program, v->resolve_program,
-                              v->accumulate_program, v->mip_program};
-    for (int i = 0; i < 5; i++)
+                              v->accumulate_program, v->mip_program, v->lobe_base_program,
+                              v->lobe_program};
+    for (int i = 0; i < 7; i++)
         if (progs[i])
             glDeleteProgram(progs[i]);
     if (v->fbo)
@@ -287,5 +332,8 @@ void vct_volume_destroy(vct_volume *v, gib_ledger *ledger)
     for (int d = 0; d < VCT_DIRECTIONS; d++)
         if (v->aniso[d])
             gib_gpu_free(ledger, v->aniso[d], 1);
+    for (int k = 0; k < 3; k++)
+        if (v->lobe[k])
+            gib_gpu_free(ledger, v->lobe[k], 1);
     memset(v, 0, sizeof *v);
 }

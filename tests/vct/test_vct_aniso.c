@@ -57,7 +57,7 @@ int main(void)
     gib_error err;
     vct_volume v;
     const float origin[3] = {0, 0, 0};
-    if (vct_volume_create(&v, origin, 1.0f, RES, &ledger, &err) < 0) {
+    if (vct_volume_create(&v, origin, 1.0f, RES, false, &ledger, &err) < 0) {
         printf("FAIL: %s\n", err.msg);
         return 1;
     }

@@ -80,7 +80,7 @@ static int trace(unsigned prog, const vct_volume *v, int sample_level, float occ
     glNamedBufferStorage(buf[0], sizeof in, in, 0);
     glNamedBufferStorage(buf[1], sizeof out, NULL, 0);
     glUseProgram(prog);
-    const vct_cone_settings cones = {1.0f, 1.5f, sample_level, 0};
+    const vct_cone_settings cones = {1.0f, 1.5f, sample_level, 0, 0};
     vct_volume_bind_cones(v, &cones);
     glUniform1i(10, CONES);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, buf[0]);
@@ -100,7 +100,7 @@ static void open_ground(unsigned prog, int res, gib_ledger *ledger)
     const float origin[3] = {0, 0, 0};
     vct_volume v;
     gib_error err;
-    if (vct_volume_create(&v, origin, 1.0f, res, ledger, &err) < 0) {
+    if (vct_volume_create(&v, origin, 1.0f, res, false, ledger, &err) < 0) {
         printf("FAIL: %s\n", err.msg);
         failures++;
         return;
