@@ -244,56 +244,41 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-/* The emission lobes' levels (vct_lobes.comp): level 0 from the base voxels, then each from the
- * one below. */
-static void lobe_mips(vct_volume *v)
+/* A chain of `count` RGBA16F 3D textures, level by level: level 0 by `base_program` from the base
+ * voxels (radiance, normal), level k+1 by `program` from level k (bound from unit `src_first`),
+ * each level written through images from `dst_first`. */
+static void build_levels(const vct_volume *v, unsigned base_program, unsigned program,
+                         const unsigned *tex, int count, GLuint src_first, GLuint dst_first)
 {
     for (int level = 0; level < v->aniso_levels; level++) {
         int side = (v->res / 2) >> level;
-        glUseProgram(level == 0 ? v->lobe_base_program : v->lobe_program);
+        glUseProgram(level == 0 ? base_program : program);
         glUniform1i(VCT_ANISO_LOC_LEVEL, level);
         if (level == 0) {
             glBindTextureUnit(VCT_ANISO_UNIT_RADIANCE, v->radiance);
             glBindTextureUnit(VCT_ANISO_UNIT_NORMAL, v->normal);
         } else {
-            for (int k = 0; k < 3; k++)
-                glBindTextureUnit(VCT_LOBES_UNIT_SRC_FIRST + k, v->lobe[k]);
+            for (int i = 0; i < count; i++)
+                glBindTextureUnit(src_first + (GLuint)i, tex[i]);
         }
-        for (int k = 0; k < 3; k++)
-            glBindImageTexture(VCT_LOBES_IMAGE_DST_FIRST + (GLuint)k, v->lobe[k], level, GL_TRUE,
-                               0, GL_WRITE_ONLY, GL_RGBA16F);
+        for (int i = 0; i < count; i++)
+            glBindImageTexture(dst_first + (GLuint)i, tex[i], level, GL_TRUE, 0, GL_WRITE_ONLY,
+                               GL_RGBA16F);
         int g = (side + 3) / 4;
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    for (int k = 0; k < 3; k++)
-        glBindTextureUnit(VCT_LOBES_UNIT_SRC_FIRST + k, 0);
+    for (int i = 0; i < count; i++)
+        glBindTextureUnit(src_first + (GLuint)i, 0);
 }
 
 void vct_volume_mips(vct_volume *v)
 {
-    for (int level = 0; level < v->aniso_levels; level++) {
-        int side = (v->res / 2) >> level;
-        glUseProgram(level == 0 ? v->mip_base_program : v->mip_program);
-        glUniform1i(VCT_ANISO_LOC_LEVEL, level);
-        if (level == 0) {
-            glBindTextureUnit(VCT_ANISO_UNIT_RADIANCE, v->radiance);
-            glBindTextureUnit(VCT_ANISO_UNIT_NORMAL, v->normal);
-        } else {
-            for (int d = 0; d < VCT_DIRECTIONS; d++)
-                glBindTextureUnit(VCT_ANISO_UNIT_SRC_FIRST + d, v->aniso[d]);
-        }
-        for (int d = 0; d < VCT_DIRECTIONS; d++)
-            glBindImageTexture(VCT_ANISO_IMAGE_DST_FIRST + (GLuint)d, v->aniso[d], level,
-                               GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        int g = (side + 3) / 4;
-        glDispatchCompute(g, g, g);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    }
-    for (int d = 0; d < VCT_DIRECTIONS; d++)
-        glBindTextureUnit(VCT_ANISO_UNIT_SRC_FIRST + d, 0);
-    if (v->lobe[0])
-        lobe_mips(v);
+    build_levels(v, v->mip_base_program, v->mip_program, v->aniso, VCT_DIRECTIONS,
+                 VCT_ANISO_UNIT_SRC_FIRST, VCT_ANISO_IMAGE_DST_FIRST);
+    if (v->lobe[0]) /* the emission lobes (vct_lobes.comp), for front_faces */
+        build_levels(v, v->lobe_base_program, v->lobe_program, v->lobe, 3,
+                     VCT_LOBES_UNIT_SRC_FIRST, VCT_LOBES_IMAGE_DST_FIRST);
 }
 
 void vct_volume_bind_cones(const vct_volume *v, const vct_cone_settings *c)
