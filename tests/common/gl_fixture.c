@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "harness/app/runner.h"
 #include "reference/reference.h"
 
 int gib_fixture_open(gib_gl_fixture *f, const char *scene_name)
@@ -50,6 +51,43 @@ int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, 
         return -1;
     }
     return 0;
+}
+
+int gib_fixture_render(gib_gl_fixture *f, const char *name, const char *const *params, int camera,
+                       int w, int h, unsigned component, gib_image *out)
+{
+    const gib_technique *t = gib_technique_find(name);
+    gib_params p;
+    gib_error err;
+    if (!t) {
+        printf("FAIL %s: no such technique\n", name);
+        return -1;
+    }
+    gib_params_default(t, &p);
+    for (int i = 0; params && params[i]; i++) {
+        char key[64];
+        const char *eq = strchr(params[i], '=');
+        snprintf(key, sizeof key, "%.*s", eq ? (int)(eq - params[i]) : 0, params[i]);
+        if (!eq || gib_param_set(t, &p, key, eq + 1, &err) < 0) {
+            printf("FAIL %s: parameter '%s': %s\n", name, params[i], eq ? err.msg : "no '='");
+            return -1;
+        }
+    }
+    gib_run_result r;
+    gib_run_technique(&f->gpu, t, &p, camera, w, h, 0, 1, &r);
+    int rc = -1;
+    if (!r.ok)
+        printf("FAIL %s: %s: %s\n", name, r.status, r.err.msg);
+    for (int o = 0; r.ok && o < r.output_count; o++)
+        if (r.output_components[o] == component) { /* taken out of the result */
+            *out = r.images[o];
+            r.images[o] = (gib_image){0};
+            rc = 0;
+        }
+    if (r.ok && rc < 0)
+        printf("FAIL %s: no image of component %u\n", name, component);
+    gib_run_result_free(&r);
+    return rc;
 }
 
 void gib_fixture_close(gib_gl_fixture *f)

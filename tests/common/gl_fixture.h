@@ -1,4 +1,5 @@
-/* gibench tests — what every GL test sets up: a scene loaded and uploaded under a GL context, and
+/* gibench tests — what every GL test sets up: a scene loaded and uploaded under a GL context, one
+ * technique rendered on it, and
  * (for tests that compare with the path tracer's geometry) an Embree scene of the same triangles. */
 #ifndef GIB_GL_FIXTURE_H
 #define GIB_GL_FIXTURE_H
@@ -30,6 +31,12 @@ void gib_fixture_close(gib_gl_fixture *f);
 struct gib_ref_stats;
 int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, int spp,
                           gib_image *out, struct gib_ref_stats *st);
+
+/* Technique `name` at its defaults but `params` (NULL-terminated "key=value" strings) rendered once
+ * from `camera` at w x h, its image of `component` (GIB_OUT_*) moved into out. On failure prints
+ * "FAIL name: ..." and returns -1. */
+int gib_fixture_render(gib_gl_fixture *f, const char *name, const char *const *params, int camera,
+                       int w, int h, unsigned component, gib_image *out);
 
 /* A committed Embree scene of the scene's triangles (release with rtcReleaseScene and
  * rtcReleaseDevice). */

@@ -27,27 +27,10 @@
 static int render_indirect(gib_gl_fixture *fx, const gib_technique *t, const char *cone,
                            gib_image *out)
 {
-    gib_params p;
-    gib_error err;
-    gib_params_default(t, &p);
-    if (gib_param_set(t, &p, "voxel_res", "64", &err) < 0 ||
-        gib_param_set(t, &p, "cone", cone, &err) < 0) {
-        printf("FAIL %s: %s\n", t->name, err.msg);
-        return -1;
-    }
-    gib_run_result r;
-    gib_run_technique(&fx->gpu, t, &p, 0, W, H, 0, 1, &r);
-    int rc = -1;
-    if (!r.ok)
-        printf("FAIL %s cone=%s: %s: %s\n", t->name, cone, r.status, r.err.msg);
-    for (int o = 0; r.ok && o < r.output_count; o++)
-        if (r.output_components[o] == GIB_OUT_INDIRECT) { /* taken out of the result */
-            *out = r.images[o];
-            r.images[o] = (gib_image){0};
-            rc = 0;
-        }
-    gib_run_result_free(&r);
-    return rc;
+    char cone_kv[16];
+    snprintf(cone_kv, sizeof cone_kv, "cone=%s", cone);
+    const char *const params[] = {"voxel_res=64", cone_kv, NULL};
+    return gib_fixture_render(fx, t->name, params, 0, W, H, GIB_OUT_INDIRECT, out);
 }
 
 static int check(gib_gl_fixture *fx, const char *name)

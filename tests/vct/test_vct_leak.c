@@ -11,7 +11,7 @@
  * the scene a test that can fail. */
 #include <stdio.h>
 
-#include "harness/app/runner.h"
+#include "techniques/technique.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
@@ -24,24 +24,15 @@
 static double indirect_mean(gib_gl_fixture *fx, const char *res, const char *front_faces,
                             int camera)
 {
-    const gib_technique *t = gib_technique_find("vct");
-    gib_params p;
-    gib_error err;
-    gib_params_default(t, &p);
-    if (gib_param_set(t, &p, "voxel_res", res, &err) < 0 ||
-        gib_param_set(t, &p, "front_faces", front_faces, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+    char res_kv[32], ff_kv[32];
+    snprintf(res_kv, sizeof res_kv, "voxel_res=%s", res);
+    snprintf(ff_kv, sizeof ff_kv, "front_faces=%s", front_faces);
+    const char *const params[] = {res_kv, ff_kv, NULL};
+    gib_image im;
+    if (gib_fixture_render(fx, "vct", params, camera, W, H, GIB_OUT_INDIRECT, &im) < 0)
         return -1;
-    }
-    gib_run_result r;
-    gib_run_technique(&fx->gpu, t, &p, camera, W, H, 0, 1, &r);
-    double m = -1;
-    for (int o = 0; r.ok && o < r.output_count; o++)
-        if (r.output_components[o] == GIB_OUT_INDIRECT)
-            m = gib_rgb_mean(&r.images[o]);
-    if (!r.ok)
-        printf("FAIL vct voxel_res=%s: %s: %s\n", res, r.status, r.err.msg);
-    gib_run_result_free(&r);
+    double m = gib_rgb_mean(&im);
+    gib_image_free(&im);
     return m;
 }
 
