@@ -30,12 +30,15 @@
 // width, so it reads the light around its axis, not its whole cap, which its weight stands for:
 // vct's `clearance` 1 (the default) keeps the width and lifts the sample along n until its data
 // clears the plane, bending the sample toward n instead: with the grid's margin the Cornell boxes'
-// error falls by a quarter against shrinking (PERFORMANCE.md). The data cleared is that of the
-// coarser of the two levels the fetch blends (cells 2^ceil(level) wide: 1.5 of them above the
-// plane), not of the level's own width (0.75 d): lifted that little, the coarser level's blend
-// still read a lit floor's own cells along every grazing sample, and an open plane lit itself to
-// 3.4-4.9x the reference (plane_box; 1.00-1.09 cleared). The shrink of `clearance` 0 has the
-// same blind spot (plane_box 1.5-1.9x).
+// error falls by a quarter against shrinking (PERFORMANCE.md). The two levels a fractional level
+// blends are fetched apart, each lifted until its own cells (2^level wide, 1.5 of them above the
+// plane) clear it, and mixed by the level's fraction. Lifted by the level's own width (0.75 d)
+// only, the coarser level's share still read a lit floor's own cells along every grazing sample,
+// and an open plane lit itself to 3.4-4.9x the reference (plane_box). Lifted both by the coarser
+// level's cells, the lift doubled as the level crossed an integer, for every pixel at once: the
+// gather jumped by up to 30% between apertures half a degree apart, and its error with them
+// (PERFORMANCE.md, "The lift of each level"). The shrink of `clearance` 0 has the same blind spot
+// (plane_box 1.5-1.9x).
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
@@ -121,27 +124,48 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
     float tmax = max_dist / vs - (taper ? u_start_offset + TAPER_STOP : 0.0);
     vec3 I = vec3(0.0);
     float A = 0.0;
-    float t = 1.0;
-    for (int i = 0; i < 1024 && A < 0.995 && t <= tmax; i++) {
+    float t = 1.0, t_prev = 0.0;
+    for (int i = 0; i < 1024 && A < 0.995; i++) {
+        // The share of this sample's step inside the cone's length: 1 before its end; past it,
+        // a diffuse or specular cone takes the sample with the part of the step still inside,
+        // so that the last sample fades out as the steps move rather than drops whole.
+        float part = t <= tmax ? 1.0 : taper ? 0.0 : (tmax - t_prev) / (t - t_prev);
+        if (part <= 0.0)
+            break;
         float d = max(cone_diameter(t, tmax, tan_half, taper), 1.0);
         float h = u_start_offset + t * dot(D, n); // the centre's height above the plane
         bool lift = u_clearance == 1;
-        float reach = 1.5 * exp2(ceil(max(log2(d) - u_level_bias, 0.0))) *
-                      (taper ? receiver_layer(n) : 1.0);
-        float up = lift ? max(reach - h, 0.0) : 0.0;
         d = lift ? d : min(d, max(h, 1.0));
-        vec3 uvw = (o + D * (t * vs) + n * (up * vs) - u_voxel_origin) / u_voxel_size;
+        vec3 at = o + D * (t * vs);
         float r = 0.5 * d / float(u_voxel_res);
-        if (any(lessThan(uvw, vec3(-r))) || any(greaterThan(uvw, vec3(1.0 + r))))
+        if (any(lessThan((at - u_voxel_origin) / u_voxel_size, vec3(-r))) ||
+            any(greaterThan((at - u_voxel_origin) / u_voxel_size, vec3(1.0 + r))))
             break; // the sphere has left the grid
-        float level = max(log2(d) - u_level_bias, 0.0);
-        vec4 s = vct_sample(uvw, D, level);
-        float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), u_step_factor * d / exp2(level));
-        vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
-        if (u_front_faces != 0)
-            c *= vct_front_share(uvw, max(level - 1.0, 0.0), apex_uvw, D);
+        // The two levels the fetch blends, each lifted until its own cells clear the plane.
+        float level = max(log2(d) - u_level_bias, 0.0), fine = floor(level);
+        vec4 s = vec4(0.0);
+        vec3 lit = vec3(0.0);
+        for (int k = 0; k < 2; k++) {
+            float w = k == 0 ? 1.0 - (level - fine) : level - fine;
+            if (w <= 0.0)
+                continue;
+            float reach = 1.5 * exp2(fine + float(k)) * (taper ? receiver_layer(n) : 1.0);
+            float up = lift ? max(reach - h, 0.0) : 0.0;
+            vec3 uvw = (at + n * (up * vs) - u_voxel_origin) / u_voxel_size;
+            vec4 sk = vct_sample(uvw, D, fine + float(k));
+            float share = u_front_faces != 0
+                              ? vct_front_share(uvw, max(fine + float(k) - 1.0, 0.0), apex_uvw, D)
+                              : 1.0;
+            s += w * sk;
+            lit += w * share * sk.rgb;
+        }
+        float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), part * u_step_factor * d / exp2(level));
+        vec3 c = s.a > 1e-6 ? lit * (a / s.a) : vec3(0.0);
         I += (1.0 - A) * c;
         A += (1.0 - A) * a;
+        if (part < 1.0)
+            break;
+        t_prev = t;
         t += u_step_factor * d;
     }
     return vec4(I, A);
