@@ -68,7 +68,9 @@ static const gib_param_spec lrsm_params[] = {
     {"mip_clamp", GIB_PARAM_FLOAT, 0, 0, 12, "lowest LRSM mip level a cone sample reads"},
     {"opacity", GIB_PARAM_INT, 1, 0, 1,
      "voxel alpha: 0 mean occupancy per sample (paper), 1 occupancy as a density over the step"},
-    {"backface", GIB_PARAM_INT, 1, 0, 1, "Eq. 8: 0 the cosine <n.v> (paper), 1 a backface test only"},
+    {"backface", GIB_PARAM_INT, 2, 0, 2,
+     "Eq. 8: 0 the cosine <n.v> (paper); 1 a backface test only; 2 the cosine weighting each "
+     "layer's radiance in the sample's mean, which keeps the lit coverage (lrsm_sample.glsl)"},
     {"coverage", GIB_PARAM_INT, 1, 0, 3,
      "1: a cone sample's radiance is the LRSM's over the coverage of the lit surfaces inside it "
      "(at least the voxels' alpha); 0: Eq. 5's R V N as it is, its coverage V counted again by "

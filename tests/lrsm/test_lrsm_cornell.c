@@ -7,7 +7,7 @@
  *   not taper toward the light takes the ceiling beside it for an occluder: -24%), relative RMSE
  *   below DIRECT_RMSE = 0.25 (measured 0.18; 0.59 untapered); the light in the boxes' umbrae is
  *   held for lrsm and vct at every voxel_res in tests/techniques/test_shadow_cones.c;
- * indirect: the level is below the reference: measured 0.80-0.83 of it at the defaults (the
+ * indirect: the level is below the reference: measured 0.89-0.97 of it at the defaults (the
  *   isotropic occlusion voxels let part of each wide cone through thin walls, Eq. 1,
  *   tests/lrsm/test_lrsm_furnace.c, and the lit coverage V of a sample that holds an unlit
  *   surface beside a lit one is floored by the voxels' alpha, lrsm_cone.frag). The paper's

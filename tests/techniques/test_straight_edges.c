@@ -10,12 +10,12 @@
  * that the path tracer's noise and the geometry's own edges are not counted), the share that
  * jump by over JUMP = 20% in the image AND lie on an axis-aligned run of at least RUN = 6 such
  * jumps: a straight edge across the image, not the ragged border of a blotch. Measured on the
- * Cornell box at the defaults: lrsm 0.013, vct 0.006 (0.013 while both levels a fetch blends were
+ * Cornell box at the defaults: lrsm 0.014, vct 0.006 (0.013 while both levels a fetch blends were
  * lifted by the coarser one's cells), rsm_gather 0.008; the cube's facets of
  * lrsm's literal reading (seams = 0: a sample reads only the face holding its centre) 0.021. The
  * bound STRAIGHT_MAX = 0.018 holds every technique at its defaults and fails the facets, which
  * is asserted too, so that the measure keeps its power to see them. On cornell_spot45 (printed,
- * not bounded): lrsm 0.030 (straight borders of the dark blotches Eq. 12 leaves under the ceiling
+ * not bounded): lrsm 0.032 (straight borders of the dark blotches Eq. 12 leaves under the ceiling
  * and the voxel staircase of the turned boxes), vct 0.012 (0.020 with the one lift), rsm_gather
  * 0.004.
  *

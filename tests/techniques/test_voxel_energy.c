@@ -4,10 +4,10 @@
  * not drift with it. For each technique, the mean over the reference's (all channels) at
  * voxel_res 64, 128 and 256:
  *  - within [LO, HI] of the reference's at every resolution (per technique: vct 0.8-1.15, measured
- *    0.97-1.07 at 64x64; lrsm 0.7-1.05, measured 0.81-0.89: below the reference for the reasons
+ *    0.92-0.96 at 64x64; lrsm 0.7-1.05, measured 0.88-0.96: below the reference for the reasons
  *    tests/lrsm/test_lrsm_cornell.c gives, but never above it; Eq. 12's own window, visibility
  *    0, measured 0.66-0.74 and fails);
- *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.91 for vct, 0.91 for lrsm
+ *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.95 for vct, 0.92 for lrsm
  *    at 64x64). The paper's literal readings fell with the grid: vct 0.67 / 0.56 / 0.50 (ratio
  *    0.75: sample_level 0 reads the receiver's own cells, more of them the finer the voxels), lrsm
  *    0.49 / 0.38 / 0.29 (ratio 0.59: its tilted cones' samples reached their own surface).
