@@ -71,7 +71,7 @@ static const gib_param_spec lrsm_params[] = {
     {"backface", GIB_PARAM_INT, 2, 0, 2,
      "Eq. 8: 0 the cosine <n.v> (paper); 1 a backface test only; 2 the cosine weighting each "
      "layer's radiance in the sample's mean, which keeps the lit coverage (lrsm_sample.glsl)"},
-    {"coverage", GIB_PARAM_INT, 1, 0, 3,
+    {"coverage", GIB_PARAM_INT, 1, 0, 1,
      "1: a cone sample's radiance is the LRSM's over the coverage of the lit surfaces inside it "
      "(at least the voxels' alpha); 0: Eq. 5's R V N as it is, its coverage V counted again by "
      "the voxels' alpha in Eq. 1"},
