@@ -28,6 +28,7 @@ from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
 import answers  # noqa: E402
+import cone_report  # noqa: E402
 import temporal_tables  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -673,6 +674,7 @@ def write_html(results, claims, mats, plots, seq_rows=()):
              gpu_runs_html(results, page_dir),
              gallery_html(results, page_dir, mats, heads),
              sequences_html(results, page_dir, seq_rows),
+             cone_report.section_html(results),
              '<h2 id="reading">How to read the numbers</h2><ul>'
              + "".join(f"<li>{esc(x)}</li>" for x in reading_guide(results, mats)) + '</ul>',
              '<h2 id="all-answers">The answer for every group: each size, camera, instant and reference setting</h2>',
@@ -779,6 +781,7 @@ def write_md(results, claims, mats, plots, seq_rows=()):
               "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
     lines += gallery_md(results, mats, heads)
     lines += sequences_md(seq_rows)
+    lines += cone_report.section_md(results)
     lines += ["## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
     lines += ["", "## The answer for every group: each size, camera, instant and reference setting", ""] + answer_table_md(every, "answers-all")
     lines += ["", "## Matrices", ""]

@@ -217,6 +217,27 @@ def check_sequences(exe, results, page, src):
     os.remove(still)
 
 
+def check_cones(results, src, md):
+    """The cone study's section: one row per gathered scene, technique and voxel_res, each beside
+    its scene's ideal gather."""
+    path = os.path.join(results, "cone_study.csv")
+    if not os.path.exists(path):
+        check("Each cone against" not in md, "no cone study, no cone section")
+        return
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    gathers = [r for r in rows if r["cone"] == "gather" and r["technique"] != "ideal"]
+    table = re.search(r'<table class="cones">(.*?)</table>', src, re.S)
+    check(table is not None and table.group(1).count("<tr>") == len(gathers) + 1,
+          f"the cone section has a row per gather of cone_study.csv ({len(gathers)})")
+    ideal = {r["scene"]: r for r in rows if r["technique"] == "ideal"}
+    for g in gathers[:1]:
+        i = ideal.get(g["scene"])
+        line = f'| {g["scene"]} | {g["technique"]} | {g["voxel_res"]} | {g["mean_ratio"]} |'
+        check(line in md and (i is None or f'{i["mean_ratio"]}, {i["rel_rmse"]}' in md),
+              f"REPORT.md sets {g['technique']}'s gather on {g['scene']} beside the ideal gather")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--gibench", required=True)
@@ -235,6 +256,9 @@ def main():
         src = os.path.join(ROOT, "results", name)
         if os.path.exists(src):
             shutil.copy(src, results)
+    cones = os.path.join(ROOT, "results", "cone_study.csv")
+    if os.path.exists(cones):
+        shutil.copy(cones, results)
     for matrix in ("report_tiny.matrix", "report_tiny_sequence.matrix"):
         subprocess.run([a.gibench, "run", os.path.join(HERE, matrix), "--out", results,
                         "--cache", os.path.join(work, "cache")], check=True)
@@ -300,6 +324,7 @@ def main():
           f"the image check reports a missing image as broken ({got and got[:3]})")
     os.remove(bad)
 
+    check_cones(results, src, md)
     check_placeholder(exe, results, page, cells)
     check_sequences(exe, results, page, src)
 
