@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "block_stats.h"
 #include "harness/app/runner.h"
 #include "reference/reference.h"
 
@@ -88,6 +89,17 @@ int gib_fixture_render(gib_gl_fixture *f, const char *name, const char *const *p
         printf("FAIL %s: no image of component %u\n", name, component);
     gib_run_result_free(&r);
     return rc;
+}
+
+double gib_fixture_render_mean(gib_gl_fixture *f, const char *name, const char *const *params,
+                               int camera, int w, int h, unsigned component)
+{
+    gib_image im;
+    if (gib_fixture_render(f, name, params, camera, w, h, component, &im) < 0)
+        return -1;
+    double m = gib_rgb_mean(&im);
+    gib_image_free(&im);
+    return m;
 }
 
 void gib_fixture_close(gib_gl_fixture *f)

@@ -37,6 +37,9 @@ int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, 
  * "FAIL name: ..." and returns -1. */
 int gib_fixture_render(gib_gl_fixture *f, const char *name, const char *const *params, int camera,
                        int w, int h, unsigned component, gib_image *out);
+/* The mean over the RGB channels of that image, as gib_rgb_mean; -1 on failure (printed). */
+double gib_fixture_render_mean(gib_gl_fixture *f, const char *name, const char *const *params,
+                               int camera, int w, int h, unsigned component);
 
 /* A committed Embree scene of the scene's triangles (release with rtcReleaseScene and
  * rtcReleaseDevice). */

@@ -13,7 +13,6 @@
 #include <stdio.h>
 
 #include "techniques/technique.h"
-#include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
 #define W 64
@@ -28,12 +27,7 @@ static double indirect_mean(gib_gl_fixture *fx, double aperture)
     char ap_kv[48];
     snprintf(ap_kv, sizeof ap_kv, "diffuse_aperture=%g", aperture);
     const char *const params[] = {"voxel_res=256", ap_kv, NULL};
-    gib_image im;
-    if (gib_fixture_render(fx, "vct", params, 0, W, H, GIB_OUT_INDIRECT, &im) < 0)
-        return -1;
-    double m = gib_rgb_mean(&im);
-    gib_image_free(&im);
-    return m;
+    return gib_fixture_render_mean(fx, "vct", params, 0, W, H, GIB_OUT_INDIRECT);
 }
 
 int main(void)

@@ -12,7 +12,6 @@
 #include <stdio.h>
 
 #include "techniques/technique.h"
-#include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
 
 #define W 64
@@ -28,12 +27,7 @@ static double indirect_mean(gib_gl_fixture *fx, const char *res, const char *fro
     snprintf(res_kv, sizeof res_kv, "voxel_res=%s", res);
     snprintf(ff_kv, sizeof ff_kv, "front_faces=%s", front_faces);
     const char *const params[] = {res_kv, ff_kv, NULL};
-    gib_image im;
-    if (gib_fixture_render(fx, "vct", params, camera, W, H, GIB_OUT_INDIRECT, &im) < 0)
-        return -1;
-    double m = gib_rgb_mean(&im);
-    gib_image_free(&im);
-    return m;
+    return gib_fixture_render_mean(fx, "vct", params, camera, W, H, GIB_OUT_INDIRECT);
 }
 
 int main(void)
