@@ -36,7 +36,7 @@
 // only, the coarser level's share still read a lit floor's own cells along every grazing sample,
 // and an open plane lit itself to 3.4-4.9x the reference (plane_box). Lifted both by the coarser
 // level's cells, the lift doubled as the level crossed an integer, for every pixel at once: the
-// gather jumped by up to 30% between apertures half a degree apart, and its error with them
+// gather jumped by up to 40% between apertures half a degree apart, and its error with them
 // (PERFORMANCE.md, "The lift of each level"). The shrink of `clearance` 0 has the same blind spot
 // (plane_box 1.5-1.9x).
 #include "common/voxel_cone.glsl"
@@ -96,6 +96,30 @@ float vct_front_share(vec3 uvw, float lod, vec3 apex_uvw, vec3 D)
     return lit > 1e-9 ? front / lit : 1.0;
 }
 
+// The sample centred at `at` (world) read at a fractional `level`: the two levels it blends,
+// each lifted along n (with `lift`) until 1.5 of its own cells (times the receiver's layer for a
+// tapered cone) clear the receiver's plane, h voxels below the centre, and mixed by the fraction.
+// rgb: the premultiplied light, scaled by the front share where front_faces is on; a: the opacity.
+vec4 vct_lifted_sample(vec3 at, vec3 n, float h, float level, vec3 D, vec3 apex_uvw, bool lift,
+                       bool taper)
+{
+    float fine = floor(level), vs = voxel_size_world();
+    vec4 s = vec4(0.0);
+    for (int k = 0; k < 2; k++) {
+        float w = k == 0 ? 1.0 - (level - fine) : level - fine, lv = fine + float(k);
+        if (w <= 0.0)
+            continue;
+        float reach = 1.5 * exp2(lv) * (taper ? receiver_layer(n) : 1.0);
+        float up = lift ? max(reach - h, 0.0) : 0.0;
+        vec3 uvw = (at + n * (up * vs) - u_voxel_origin) / u_voxel_size;
+        vec4 sk = vct_sample(uvw, D, lv);
+        float share = u_front_faces != 0 ? vct_front_share(uvw, max(lv - 1.0, 0.0), apex_uvw, D)
+                                         : 1.0;
+        s += w * vec4(sk.rgb * share, sk.a);
+    }
+    return s;
+}
+
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset start_offset voxels
 // along n) in direction D, with sample centres up to max_dist (world units) away; the first
 // sample is one voxel out, as in shadow_cone. The cone stops once its sphere has left the grid
@@ -136,31 +160,14 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
         float h = u_start_offset + t * dot(D, n); // the centre's height above the plane
         bool lift = u_clearance == 1;
         d = lift ? d : min(d, max(h, 1.0));
-        vec3 at = o + D * (t * vs);
+        vec3 at = o + D * (t * vs), centre = (at - u_voxel_origin) / u_voxel_size;
         float r = 0.5 * d / float(u_voxel_res);
-        if (any(lessThan((at - u_voxel_origin) / u_voxel_size, vec3(-r))) ||
-            any(greaterThan((at - u_voxel_origin) / u_voxel_size, vec3(1.0 + r))))
+        if (any(lessThan(centre, vec3(-r))) || any(greaterThan(centre, vec3(1.0 + r))))
             break; // the sphere has left the grid
-        // The two levels the fetch blends, each lifted until its own cells clear the plane.
-        float level = max(log2(d) - u_level_bias, 0.0), fine = floor(level);
-        vec4 s = vec4(0.0);
-        vec3 lit = vec3(0.0);
-        for (int k = 0; k < 2; k++) {
-            float w = k == 0 ? 1.0 - (level - fine) : level - fine;
-            if (w <= 0.0)
-                continue;
-            float reach = 1.5 * exp2(fine + float(k)) * (taper ? receiver_layer(n) : 1.0);
-            float up = lift ? max(reach - h, 0.0) : 0.0;
-            vec3 uvw = (at + n * (up * vs) - u_voxel_origin) / u_voxel_size;
-            vec4 sk = vct_sample(uvw, D, fine + float(k));
-            float share = u_front_faces != 0
-                              ? vct_front_share(uvw, max(fine + float(k) - 1.0, 0.0), apex_uvw, D)
-                              : 1.0;
-            s += w * sk;
-            lit += w * share * sk.rgb;
-        }
+        float level = max(log2(d) - u_level_bias, 0.0);
+        vec4 s = vct_lifted_sample(at, n, h, level, D, apex_uvw, lift, taper);
         float a = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), part * u_step_factor * d / exp2(level));
-        vec3 c = s.a > 1e-6 ? lit * (a / s.a) : vec3(0.0);
+        vec3 c = s.a > 1e-6 ? s.rgb * (a / s.a) : vec3(0.0);
         I += (1.0 - A) * c;
         A += (1.0 - A) * a;
         if (part < 1.0)
