@@ -11,7 +11,10 @@
  * overwritten, never used. A new entry is read back and held to the same tests right after it is
  * written: one that fails them (an EXR writer that corrupted a chunk) is an error naming the file,
  * not an entry that every later request would silently render again. */
+#include <dirent.h>
+#include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -144,6 +147,51 @@ static int entry_valid(const char *path, const gib_ref_request *rq, const char *
     return !why;
 }
 
+/* The pid of a writer's temporary for the entry named `base` (EXR cache names), or 0 if `name` is
+ * none: our own "<base>.tmp<pid>" and the one OpenEXR writes it through, "tmp.<pid><base>.tmp<pid>"
+ * (EXR_INTERMEDIATE_TEMP_FILE). */
+static long temp_writer_pid(const char *name, const char *base)
+{
+    size_t nb = strlen(base);
+    if (strncmp(name, "tmp.", 4) == 0) { /* OpenEXR's: skip "tmp.<pid>" to our own name */
+        const char *p = name + 4;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (p == name + 4)
+            return 0;
+        name = p;
+    }
+    if (strncmp(name, base, nb) != 0 || strncmp(name + nb, ".tmp", 4) != 0)
+        return 0;
+    char *end;
+    long pid = strtol(name + nb + 4, &end, 10);
+    return *end == '\0' && pid > 0 ? pid : 0;
+}
+
+/* Removes what writers of the entry at `path` that died mid-write (SIGKILL, power loss) left: the
+ * temporaries of processes no longer running on this machine. A live writer's are kept. */
+static void remove_dead_writers_temps(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    char dir[1100];
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    const char *base = slash ? slash + 1 : path;
+    DIR *dp = opendir(dir);
+    if (!dp)
+        return;
+    struct dirent *e;
+    while ((e = readdir(dp))) {
+        long pid = temp_writer_pid(e->d_name, base);
+        if (pid <= 0 || pid == (long)getpid() || !(kill((pid_t)pid, 0) < 0 && errno == ESRCH))
+            continue;
+        char stale[2200];
+        snprintf(stale, sizeof stale, "%s/%s", dir, e->d_name);
+        unlink(stale);
+    }
+    closedir(dp);
+}
+
+
 /* Reads back the entry just written to path and holds it to what a later request will: an entry
  * that would be refused (a writer that corrupts pixels, say) is an error naming the file, not an
  * entry every later request renders again. The file is left for inspection. */
@@ -216,6 +264,7 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
         gib_error_prefix(err, "writing reference cache entry %s", out->path);
         return GIB_REF_WRITE_FAILED;
     }
+    remove_dead_writers_temps(out->path);
     if (entry_check_written(out->path, rq, key_hex, err) < 0) {
         gib_image_free(&out->image);
         return -1;

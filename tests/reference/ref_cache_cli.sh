@@ -7,7 +7,8 @@
 # plain --out renders of the same request have identical pixels; output paths that could not be
 # written are refused before rendering; the --stderr map is marked as one; Ctrl-C during a
 # --target-noise render keeps the rounds done (exit 130), equal to a plain render of that spp;
-# --cone (one diffuse cone of indirect) has entries and a header of its own.
+# --cone (one diffuse cone of indirect) has entries and a header of its own; the temporaries of
+# writers killed mid-write are removed at the entry's next write.
 # Usage: ref_cache_cli.sh GIBENCH WORKDIR. Expected values are exact strings and an RMSE of 0.
 set -u
 G="$1"
@@ -42,6 +43,16 @@ out=$(ref --cache "$D/cache")
 check "second request reads the cache" "from cache" "$out"
 out=$(ref --cache "$D/cache" --force)
 check "--force renders again" "rendered into cache" "$out"
+
+# what writers killed mid-write (SIGKILL) left beside the entry: their temporaries, ours and the
+# one OpenEXR writes through, go at the entry's next write; a running writer's (this shell's) stay
+dead=$(sh -c 'echo $$')
+base=$(basename "$entry")
+touch "$entry.tmp$dead" "$D/cache/tmp.$dead$base.tmp$dead" "$entry.tmp$$"
+ref --cache "$D/cache" --force > /dev/null
+check_eq "a dead writer's temporaries are removed" "" "$(ls "$D/cache" | grep "tmp$dead")"
+check_eq "... a running writer's kept" "$base.tmp$$" "$(ls "$D/cache" | grep "tmp$$")"
+rm -f "$entry.tmp$$"
 
 # a truncated entry
 head -c 100 "$entry" > "$D/trunc" && mv "$D/trunc" "$entry"
