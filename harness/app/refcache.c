@@ -191,7 +191,6 @@ static void remove_dead_writers_temps(const char *path)
     closedir(dp);
 }
 
-
 /* Reads back the entry just written to path and holds it to what a later request will: an entry
  * that would be refused (a writer that corrupts pixels, say) is an error naming the file, not an
  * entry every later request renders again. The file is left for inspection. */
