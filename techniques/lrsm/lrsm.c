@@ -44,6 +44,7 @@ typedef struct lrsm {
     int opacity, backface, seams;   /* voxel_step_alpha's model; Eq. 8 as cosine or test; the
                                        faces a sample reads (lrsm_sample.glsl) */
     int coverage;                   /* a sample's L over its lit coverage (lrsm_cone.frag) */
+    int hits;                       /* a sample as the share of rays meeting the lit planes */
     int visibility;                 /* Eq. 12's window: +-r_c or widened by 1/<n.l> */
     int cone;                       /* the diffuse cone rendered alone, < 0 all */
     int rebuild, built;             /* structures every frame, or only the first frame's */
@@ -75,6 +76,11 @@ static const gib_param_spec lrsm_params[] = {
      "1: a cone sample's radiance is the LRSM's over the coverage of the lit surfaces inside it "
      "(at least the voxels' alpha); 0: Eq. 5's R V N as it is, its coverage V counted again by "
      "the voxels' alpha in Eq. 1"},
+    {"hits", GIB_PARAM_INT, 1, 0, 1,
+     "1: a cone sample's light and opacity are the share of its rays that meet each lit layer's "
+     "plane within its step, Eq. 8 averaged over the cone's cap, and the voxels' alpha beyond the "
+     "lit coverage blocks as the plane of its occupancy would (lrsm_hits.glsl); 0: Algorithm 1's "
+     "R V N with Eq. 1's alpha, as `backface` and `coverage` read them"},
     {"seams", GIB_PARAM_INT, 1, 0, 1,
      "1: a sample reads every light-view face its footprint overlaps, weighted by the overlap; 0: "
      "the face of its centre only (the paper's one view per light; facets at a cube's seams)"},
@@ -105,6 +111,14 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
                  "half its side, one texel per 2x2 block)", rsm_res);
         return NULL;
     }
+    if (gib_param_int(t, p, "hits") && (gib_param_int(t, p, "backface") != 2 ||
+                                         gib_param_int(t, p, "coverage") != 1)) {
+        gib_fail(err, "technique 'lrsm': parameters 'backface' and 'coverage' (%d, %d) act only with "
+                 "'hits' = 0: with hits = 1 a sample's light is the share of its rays meeting the lit "
+                 "planes, Eq. 8 averaged over the cone's cap", gib_param_int(t, p, "backface"),
+                 gib_param_int(t, p, "coverage"));
+        return NULL;
+    }
     lrsm *s = calloc(1, sizeof *s);
     if (!s) {
         gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
@@ -127,6 +141,7 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     s->seams = gib_param_int(t, p, "seams");
     s->coverage = gib_param_int(t, p, "coverage");
     s->visibility = gib_param_int(t, p, "visibility");
+    s->hits = gib_param_int(t, p, "hits");
     s->rebuild = gib_param_int(t, p, "rebuild");
     s->cone = gib_param_int(t, p, "cone");
     strcpy(s->status, "");
@@ -178,6 +193,7 @@ static void cone_pass(lrsm *s, int which, const char *name, const gib_view *view
     glUniform1i(LRSM_LOC_BACKFACE, s->backface);
     glUniform1i(LRSM_LOC_SEAMS, s->seams);
     glUniform1i(LRSM_CONE_LOC_COVERAGE, s->coverage);
+    glUniform1i(LRSM_CONE_LOC_HITS, s->hits);
     glUniform1i(LRSM_LOC_VISIBILITY, s->visibility);
     glUniform1i(GIB_LOC_VOXEL_DENSITY, s->opacity);
     if (which == PASS_DIFFUSE)

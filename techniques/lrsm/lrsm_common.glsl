@@ -33,6 +33,34 @@ float lrsm_visibility(float zc, float rc, float mu, float sigma2)
     return lrsm_phi((zc + rc - mu) / sigma) - lrsm_phi((zc - rc - mu) / sigma);
 }
 
+// The cap cosine, a plane's share of a sample's rays and a layer's plane spread (parameter hits;
+// lrsm_math.h says what each is).
+float lrsm_cap_cosine(float cos_axis, float sin_axis, float sin_half)
+{
+    float a = cos_axis, b = sin_half * sin_axis;
+    if (b < 1e-6)
+        return max(a, 0.0);
+    float u = -a / b;
+    if (u <= -1.0)
+        return a;
+    if (u >= 1.0)
+        return 0.0;
+    float w = sqrt(1.0 - u * u);
+    return 0.63661977 * (a * (0.78539816 - 0.5 * (u * w + asin(u))) + b * w * w * w / 3.0);
+}
+
+float lrsm_plane_hits(float delta, float E, float rc, float step, float sigma2_delta)
+{
+    float h = step * rc * E;
+    float S = sqrt(0.25 * rc * rc * max(1.0 - E * E, 0.0) + sigma2_delta + 1e-8 * rc * rc);
+    return lrsm_phi((h - delta) / S) - lrsm_phi((-h - delta) / S);
+}
+
+float lrsm_plane_spread(float var, float cos_nl, float rc)
+{
+    return max(var * cos_nl * cos_nl - rc * rc * (1.0 - cos_nl * cos_nl) / 3.0, 0.0);
+}
+
 float lrsm_smooth(float t)
 {
     t = clamp(t, 0.0, 1.0);

@@ -127,3 +127,30 @@ double lrsm_mip(double diameter_texels, double clamp)
     double m = log2(diameter_texels > 1e-30 ? diameter_texels : 1e-30);
     return m > clamp ? m : clamp;
 }
+
+double lrsm_cap_cosine(double cos_axis, double sin_axis, double sin_half)
+{
+    double a = cos_axis, b = sin_half * sin_axis;
+    if (b < 1e-9)
+        return a > 0 ? a : 0.0;
+    double u = -a / b;
+    if (u <= -1)
+        return a;
+    if (u >= 1)
+        return 0.0;
+    double w = sqrt(1 - u * u);
+    return (2 / M_PI) * (a * (M_PI / 4 - 0.5 * (u * w + asin(u))) + b * w * w * w / 3);
+}
+
+double lrsm_plane_hits(double delta, double E, double rc, double step, double sigma2_delta)
+{
+    double h = step * rc * E;
+    double S = sqrt(0.25 * rc * rc * fmax(1 - E * E, 0) + sigma2_delta + 1e-8 * rc * rc);
+    return lrsm_phi((h - delta) / S) - lrsm_phi((-h - delta) / S);
+}
+
+double lrsm_plane_spread(double var, double cos_nl, double rc)
+{
+    double s2 = var * cos_nl * cos_nl - rc * rc * (1 - cos_nl * cos_nl) / 3;
+    return s2 > 0 ? s2 : 0.0;
+}

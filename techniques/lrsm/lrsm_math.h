@@ -72,6 +72,35 @@ typedef struct lrsm_layer_texel {
 void lrsm_build_block(const lrsm_partition *p, int normal_parts, const lrsm_texel block[4],
                       lrsm_layer_texel *out);
 
+/* A cone sample as the share of the cone's rays that meet a plane (parameter hits 1; lrsm_cone.frag
+ * says why). The cone's directions are the cap around its axis v flattened onto its tangent plane,
+ * w = v + sin_half u with u uniform in the unit disk, and a ray meets a plane through the sample
+ * when the plane's crossing lies within the sample's step along the axis. */
+
+/* The mean of max(<n.w>, 0) over that cap, for a unit normal n at cos_axis to v (its component
+ * across v sin_axis = sqrt(1 - cos_axis^2)): <n.w> = cos_axis + b x with b = sin_half sin_axis and
+ * x distributed as a disk's projection on a line, density (2 / pi) sqrt(1 - x^2), so in closed form
+ * (2 / pi) int_u^1 (a + b x) sqrt(1 - x^2) dx from the zero crossing u = -a / b. Eq. 8's <n.v> for
+ * a cone of one direction (sin_half 0); a plane along the axis still faces part of a wide cone. */
+double lrsm_cap_cosine(double cos_axis, double sin_axis, double sin_half);
+
+/* The share of the rays of a sample (radius rc, step `step` x its diameter) that meet a plane at
+ * distance delta from its centre, the plane's cap cosine E (lrsm_cap_cosine) standing for the
+ * cosine between the rays and its normal: a ray at offset y across the axis crosses the plane at
+ * (delta + y sqrt(1 - E^2)) / E along it, inside the step when |delta + y sqrt(1 - E^2)| <= step
+ * rc E. y spreads as a disk's projection (variance rc^2 / 4) and delta is uncertain by
+ * sigma2_delta; both are taken as one Gaussian: Phi((h - delta) / S) - Phi((-h - delta) / S),
+ * h = step rc E, S^2 = rc^2 (1 - E^2) / 4 + sigma2_delta. A plane facing the axis is met whole by
+ * the sample whose step holds it (touching spheres tile the axis, so the shares of successive
+ * samples add to 1); a plane along the axis by few rays, the fewer the farther from the centre. */
+double lrsm_plane_hits(double delta, double E, double rc, double step, double sigma2_delta);
+
+/* The variance of a layer's plane along its normal: the footprint's depth variance var (world units)
+ * times <n.l>^2, less what the plane's own tilt to the light spreads over a footprint 2 rc wide (a
+ * ramp of slope tan(theta) across a square: (rc tan theta)^2 / 3 in depth, (rc sin theta)^2 / 3
+ * along the normal), at least 0: only the spread of several surfaces about one plane. */
+double lrsm_plane_spread(double var, double cos_nl, double rc);
+
 /* Sec. 5: mip level = log2 of the sample's projected diameter in layer texels, at least clamp. */
 double lrsm_mip(double diameter_texels, double clamp);
 

@@ -1,8 +1,10 @@
 // gibench technique `lrsm` — sampling the layered reflective shadow maps (Algorithm 1, Eq. 5-15):
 // the outgoing radiance toward v_c of the surfaces inside the cone sample (x_c, r_c), from every
 // light's LRSM (rgb: Eq. 5 summed over the layers, Eq. 14), and the coverage those lit surfaces
-// have in the footprint (a: sum A V; lrsm_cone.frag's `coverage`). Needs common/light_view.glsl
-// and lrsm/lrsm_common.glsl.
+// have in the footprint (a: sum A V; lrsm_cone.frag's `coverage`): the cone pass's sample with
+// hits 0, and the probe's. lrsm_hits.glsl reads the same layers through the same footprints
+// (lrsm_light_sample, lrsm_face_footprint) for hits 1. Needs common/light_view.glsl and
+// lrsm/lrsm_common.glsl.
 // Choices the paper leaves open (or where it was changed), each with its reason:
 //  - Layer selection: the paper samples the layers whose depth range holds z_c (as LVSM). A cone's
 //    samples grow to a fraction of the scene (a 60-degree cone's diameter is 1.15 t), and a sphere
@@ -112,6 +114,50 @@ float lrsm_inside(float c, float r)
     return clamp((min(c + r, 1.0) - max(c - r, 0.0)) / (2.0 * r), 0.0, 1.0);
 }
 
+// Light i as a cone sample centred at xc sees it: the sample's depth as the light view measures it
+// (along the axis for an orthographic view, from the light for a cube or perspective one), the
+// direction toward the light, and the faces to read (every face of a cube with u_seams 1).
+struct LrsmLightSample {
+    vec3 rel;
+    float zc;
+    vec3 l;
+    int kind, first, last;
+};
+
+LrsmLightSample lrsm_light_sample(int i, vec3 xc)
+{
+    LrsmLightSample ls;
+    ls.kind = lv_kind(i);
+    ls.rel = xc - lv_origin(i);
+    ls.zc = ls.kind == 2 ? dot(ls.rel, lv_axis(lv_first_face(i))) : length(ls.rel);
+    ls.l = ls.kind == 2 ? -lv_axis(lv_first_face(i)) : -ls.rel / max(ls.zc, 1e-30);
+    int centre = ls.kind < 0 ? 0 : lv_face(i, ls.rel);
+    ls.first = u_seams != 0 ? lv_first_face(i) : centre;
+    ls.last = u_seams != 0 ? ls.first + (ls.kind == 0 ? 5 : 0) : centre;
+    return ls;
+}
+
+// A sample's footprint (radius rc) on face `face` of light i: its centre uv (on the face's plane),
+// its half-width r_uv as a fraction of the face, its mip level, and as the result its weight, the
+// fraction of the footprint inside the face (u_seams 1) or whether the centre is (u_seams 0).
+float lrsm_face_footprint(int i, int face, LrsmLightSample ls, float rc, out vec2 uv,
+                          out float r_uv, out float mip)
+{
+    float za = dot(ls.rel, lv_axis(face));
+    if (ls.kind != 2 && za <= 0.0)
+        return 0.0;
+    // The projected diameter in layer texels (a layer texel is 2 light-view texels): 2 r_c over
+    // 2 s z_a (s: a texel's side on the unit-distance plane), or over 2 s (orthographic, s in
+    // world units); as a fraction of the face, half-width r_uv.
+    float diameter = ls.kind == 2 ? rc / lv_texel(i) : rc / (za * lv_texel(i));
+    r_uv = max(diameter, 1e-6) / float(lv_res());
+    uv = lv_project(face, ls.rel).xy;
+    bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+    float w = u_seams != 0 ? lrsm_inside(uv.x, r_uv) * lrsm_inside(uv.y, r_uv) : (inside ? 1.0 : 0.0);
+    mip = max(log2(max(diameter, 1e-30)), u_mip_clamp);
+    return w;
+}
+
 // The sample xc (radius rc, seen from vc) over every light: rgb the lights' sum f A R V N, a the
 // lit coverage, the largest light's: lights that light the same surfaces see the same coverage, and
 // a sum would count it once per light (two coincident lights of half the power gave half the
@@ -121,39 +167,21 @@ vec4 lrsm_sample(vec3 xc, float rc, vec3 vc)
 {
     vec4 L = vec4(0.0);
     for (int i = 0; i < u_lrsm_lights; i++) {
-        int kind = lv_kind(i);
-        if (kind < 0)
+        LrsmLightSample ls = lrsm_light_sample(i, xc);
+        if (ls.kind < 0)
             continue;
-        vec3 rel = xc - lv_origin(i);
-        // The sample's depth as the light view measures it: along the axis (ortho) or from the
-        // light (cube, perspective).
-        float zc = kind == 2 ? dot(rel, lv_axis(lv_first_face(i))) : length(rel);
-        vec3 l = kind == 2 ? -lv_axis(lv_first_face(i)) : -rel / max(zc, 1e-30); // toward the light
-        int centre = lv_face(i, rel);
-        int first = u_seams != 0 ? lv_first_face(i) : centre;
-        int last = u_seams != 0 ? first + (kind == 0 ? 5 : 0) : centre;
         vec4 Li = vec4(0.0);
         float wsum = 0.0;
-        for (int face = first; face <= last; face++) {
-            float za = dot(rel, lv_axis(face));
-            if (kind != 2 && za <= 0.0)
-                continue;
-            // The projected diameter in layer texels (a layer texel is 2 light-view texels):
-            // 2 r_c over 2 s z_a (s: a texel's side on the unit-distance plane), or over 2 s
-            // (orthographic, s in world units); as a fraction of the face, half-width r_uv.
-            float diameter = kind == 2 ? rc / lv_texel(i) : rc / (za * lv_texel(i));
-            float r_uv = max(diameter, 1e-6) / float(lv_res());
-            vec2 uv = lv_project(face, rel).xy;
-            bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
-            float w = u_seams != 0 ? lrsm_inside(uv.x, r_uv) * lrsm_inside(uv.y, r_uv)
-                                   : (inside ? 1.0 : 0.0);
+        for (int face = ls.first; face <= ls.last; face++) {
+            vec2 uv;
+            float r_uv, mip;
+            float w = lrsm_face_footprint(i, face, ls, rc, uv, r_uv, mip);
             if (w <= 0.0)
                 continue;
-            float mip = max(log2(max(diameter, 1e-30)), u_mip_clamp);
-            Li += w * lrsm_sample_face(i, face, clamp(uv, 0.0, 1.0), zc, rc, vc, l, mip);
+            Li += w * lrsm_sample_face(i, face, clamp(uv, 0.0, 1.0), ls.zc, rc, vc, ls.l, mip);
             wsum += w;
         }
-        Li = kind == 0 && u_seams != 0 && wsum > 0.0 ? Li / wsum : Li;
+        Li = ls.kind == 0 && u_seams != 0 && wsum > 0.0 ? Li / wsum : Li;
         L = vec4(L.rgb + Li.rgb, max(L.a, Li.a));
     }
     return L;

@@ -39,6 +39,7 @@
 #define LRSM_CONE_LOC_STEP_FACTOR 12  // float
 #define LRSM_CONE_LOC_MAX_DISTANCE 13 // float: grid sides
 #define LRSM_CONE_LOC_COVERAGE 16     // int: 1 L normalised by the lit coverage
+#define LRSM_CONE_LOC_HITS 18         // int: 1 the share of rays meeting the lit planes
 
 // The probe (lrsm_probe.comp): points sampled as the cone pass samples.
 #define LRSM_PROBE_SSBO_IN (GIB_SSBO_OWN_FIRST + 1)    // the points and their footprints

@@ -7,14 +7,14 @@
  *   not taper toward the light takes the ceiling beside it for an occluder: -24%), relative RMSE
  *   below DIRECT_RMSE = 0.25 (measured 0.18; 0.59 untapered); the light in the boxes' umbrae is
  *   held for lrsm and vct at every voxel_res in tests/techniques/test_shadow_cones.c;
- * indirect: the level is below the reference: measured 0.89-0.97 of it at the defaults (the
- *   isotropic occlusion voxels let part of each wide cone through thin walls, Eq. 1,
- *   tests/lrsm/test_lrsm_furnace.c, and the lit coverage V of a sample that holds an unlit
- *   surface beside a lit one is floored by the voxels' alpha, lrsm_cone.frag). The paper's
- *   literal readings measured 0.37-0.39 (coverage = 0: V counted again by the voxels' alpha;
- *   samples free to reach their own surface), 0.69-0.73 (visibility = 0: Eq. 12's window the
- *   sphere's own, so obliquely lit walls count half their footprint as shadowed) and 0.03
- *   (opacity = 0). What is held: every pixel finite; each channel's mean in [INDIRECT_MIN = 0.75,
+ * indirect: the level is below the reference: measured 0.93-0.94 of it at the defaults (part of
+ *   each wide cone passes between the samples' planes and out of the box's open front, and the
+ *   isotropic occlusion voxels let part of it through thin walls, Eq. 1,
+ *   tests/lrsm/test_lrsm_furnace.c); 0.89-0.97 with Algorithm 1's sample (hits = 0). The paper's
+ *   literal readings measured 0.37-0.39 (hits = 0, coverage = 0: V counted again by the voxels'
+ *   alpha; samples free to reach their own surface), 0.69-0.73 (hits = 0, visibility = 0: Eq.
+ *   12's window the sphere's own, so obliquely lit walls count half their footprint as shadowed)
+ *   and 0.03 (opacity = 0). What is held: every pixel finite; each channel's mean in [INDIRECT_MIN = 0.75,
  *   1] of the reference's (no light created; the lower bound fails with any literal reading);
  *   the colour bleeding on the right side:
  *   red over green in the image's left quarter (the red wall's side) exceeds that in its right

@@ -15,12 +15,13 @@
  *    INDIRECT_MIN = 0.70 of it. It stays below the answer because the occlusion voxels are
  *    isotropic mean occupancies: a one-voxel-thick wall seen through a sample d voxels wide is only
  *    partly opaque, so part of each cone passes the wall (Eq. 1). Read as a density over the step
- *    (parameter opacity = 1, the default; voxel_cone.glsl) the wall stops ~86% per sample, and a
- *    sample's LRSM radiance taken over the lit coverage inside it (coverage = 1, the default;
- *    lrsm_cone.frag) puts the level at 0.81 of the answer; with Eq. 5's coverage counted again by
- *    the voxels' alpha, before samples were kept off their own surface, it was 0.42; the
- *    paper's reading of the occupancy
- *    (opacity = 0: alpha = mean occupancy ~ 1/d) gives 0.012: both fail the lower bound. */
+ *    (parameter opacity = 1, the default; voxel_cone.glsl) the wall stops ~86% per sample. A
+ *    sample's light as the share of its rays meeting the lit wall's plane (hits = 1, the default;
+ *    lrsm_hits.glsl) puts the level at 0.80 of the answer, its LRSM radiance taken over the lit
+ *    coverage inside it (hits = 0, coverage = 1; lrsm_cone.frag) at 0.81; with Eq. 5's coverage
+ *    counted again by the voxels' alpha, before samples were kept off their own surface, it was
+ *    0.42; the paper's reading of the occupancy (opacity = 0: alpha = mean occupancy ~ 1/d) gives
+ *    0.012: both fail the lower bound. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,16 +1,19 @@
 /* The voxel techniques' indirect energy against their voxel resolution, instantiated over `lrsm`
- * and `vct` (their default parameters but voxel_res) on the Cornell box at 64x64 against a
- * 1024-spp `indirect` reference: a finer grid describes the same scene, so the image's mean must
- * not drift with it. For each technique, the mean over the reference's (all channels) at
- * voxel_res 64, 128 and 256:
+ * and `vct` (their default parameters but voxel_res) on the Cornell box (a cube light view) and
+ * cornell_spot45 (one perspective view) at 64x64 against 1024-spp `indirect` references: a finer
+ * grid describes the same scene, so the image's mean must not drift with it. For each technique and
+ * scene, the mean over the reference's (all channels) at voxel_res 64, 128 and 256:
  *  - within [LO, HI] of the reference's at every resolution (per technique: vct 0.8-1.15, measured
- *    0.92-0.96 at 64x64; lrsm 0.7-1.05, measured 0.88-0.96: below the reference for the reasons
- *    tests/lrsm/test_lrsm_cornell.c gives, but never above it; Eq. 12's own window, visibility
- *    0, measured 0.66-0.74 and fails);
- *  - the smallest over the largest at least MIN_RATIO = 0.8 (measured 0.95 for vct, 0.92 for lrsm
- *    at 64x64). The paper's literal readings fell with the grid: vct 0.67 / 0.56 / 0.50 (ratio
- *    0.75: sample_level 0 reads the receiver's own cells, more of them the finer the voxels), lrsm
- *    0.49 / 0.38 / 0.29 (ratio 0.59: its tilted cones' samples reached their own surface).
+ *    0.92-1.00; lrsm 0.8-1.05, measured 0.88-0.94 on the Cornell box and 0.855-0.91 under the
+ *    spot: below the reference for the reasons tests/lrsm/test_lrsm_cornell.c gives, but never
+ *    above it). The issue's figure is 15% at 128x128, which the closing notes report; the test
+ *    holds 20% so that another renderer's rounding does not decide it. Eq. 12's own window,
+ *    visibility 0, measured 0.66-0.74 and fails;
+ *  - the smallest over the largest at least MIN_RATIO = 0.9, within 10% of itself (measured 0.95
+ *    for vct, 0.93-0.94 for lrsm). The paper's literal readings fell with the grid: vct 0.67 /
+ *    0.56 / 0.50 (ratio 0.75: sample_level 0 reads the receiver's own cells, more of them the finer
+ *    the voxels), lrsm 0.49 / 0.38 / 0.29 (ratio 0.59: its tilted cones' samples reached their own
+ *    surface).
  * And vct in the furnace against its closed form, with and without the fill (furnace_case), and
  * over open ground (open_plane_case). */
 #include <math.h>
@@ -24,7 +27,7 @@
 #define W 64
 #define H 64
 #define REF_SPP 1024
-#define MIN_RATIO 0.8
+#define MIN_RATIO 0.9
 #define FURNACE_MIN_RATIO 0.85
 #define FILL_GAIN 0.9
 #define OPEN_LO 0.8
@@ -33,7 +36,7 @@
 static const struct {
     const char *technique;
     double lo, hi;
-} cases[] = {{"vct", 0.8, 1.15}, {"lrsm", 0.7, 1.05}};
+} cases[] = {{"vct", 0.8, 1.15}, {"lrsm", 0.8, 1.05}};
 static const char *const resolutions[] = {"64", "128", "256"};
 #define NRES ((int)(sizeof resolutions / sizeof resolutions[0]))
 
@@ -152,14 +155,17 @@ static int open_plane_case(void)
     return failures;
 }
 
-int main(void)
+/* Each case's means on `scene` against its reference: the band at every voxel_res and the ratio. */
+static int scene_case(const char *scene)
 {
     gib_gl_fixture fx;
-    if (gib_fixture_open(&fx, "cornell") < 0)
+    if (gib_fixture_open(&fx, scene) < 0)
         return 1;
     gib_image ref;
-    if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, NULL) < 0)
+    if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, NULL) < 0) {
+        gib_fixture_close(&fx);
         return 1;
+    }
     double want = gib_rgb_mean(&ref);
     int failures = 0;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
@@ -174,18 +180,25 @@ int main(void)
             double ratio = m / want;
             int ok = ratio >= cases[k].lo && ratio <= cases[k].hi;
             failures += !ok;
-            printf("%s %s voxel_res %s: indirect mean %.3f of the reference's (band %.2f-%.2f)\n",
-                   ok ? "PASS" : "FAIL", t->name, resolutions[i], ratio, cases[k].lo, cases[k].hi);
+            printf("%s %s %s voxel_res %s: indirect mean %.3f of the reference's (band %.2f-%.2f)\n",
+                   ok ? "PASS" : "FAIL", scene, t->name, resolutions[i], ratio, cases[k].lo,
+                   cases[k].hi);
             lo = fmin(lo, ratio);
             hi = fmax(hi, ratio);
         }
         int ok = hi > 0 && lo / hi >= MIN_RATIO;
         failures += !ok;
-        printf("%s %s: the smallest mean over the largest across voxel_res %.3f (at least %.2f)\n",
-               ok ? "PASS" : "FAIL", t->name, hi > 0 ? lo / hi : 0.0, MIN_RATIO);
+        printf("%s %s %s: the smallest mean over the largest across voxel_res %.3f (at least %.2f)\n",
+               ok ? "PASS" : "FAIL", scene, t->name, hi > 0 ? lo / hi : 0.0, MIN_RATIO);
     }
     gib_image_free(&ref);
     gib_fixture_close(&fx);
+    return failures;
+}
+
+int main(void)
+{
+    int failures = scene_case("cornell") + scene_case("cornell_spot45");
     failures += furnace_case();
     failures += open_plane_case();
     printf("%s: voxel techniques' energy against voxel_res\n", failures ? "FAIL" : "PASS");
