@@ -45,9 +45,9 @@
 //    Eq. 8 on the axis culled the surfaces a cone runs along: in a box lit from above a wall's
 //    central cone runs parallel to the lit floor, read exactly 0 where the path tracer's cone
 //    reads 3-8% of the light, and was blocked whole by the unlit ceiling it grazes; the light came
-//    in dark blotches with straight borders (cornell_spot45 at 128^3: rel RMSE 0.62 -> 0.42,
-//    straight edges 0.032 -> 0.011; the Cornell box 0.46 -> 0.29; Sibenik 0.47 -> 0.38, Sponza
-//    0.76 -> 0.67 at 128x72). hits 0 keeps Algorithm 1's sample with Eq. 1's alpha:
+//    in dark blotches with straight borders (PERFORMANCE.md, "lrsm: a cone sample as the share of
+//    its rays that meet the lit planes", has the measurements). hits 0 keeps Algorithm 1's sample
+//    with Eq. 1's alpha:
 //  - `coverage` 1 (default with hits 0): a sample's radiance is the LRSM's over the coverage of the lit
 //    surfaces inside it, L = sum A R V N / max(sum A V, alpha). Eq. 5's L = R V N already carries
 //    the lit surfaces' share V of the footprint, and Eq. 1 multiplies it by the voxels' alpha, the
