@@ -76,7 +76,7 @@ LrsmHits lrsm_hits(vec3 xc, float rc, vec3 dir, float sin_half, float step)
         LrsmLightSample ls = lrsm_light_sample(i, xc);
         if (ls.kind < 0)
             continue;
-        LrsmHits hi = LrsmHits(vec3(0.0), 0.0, 0.0);
+        LrsmHits li = LrsmHits(vec3(0.0), 0.0, 0.0);   // light i's, before the cube's weights
         float wsum = 0.0;
         for (int face = ls.first; face <= ls.last; face++) {
             vec2 uv;
@@ -89,16 +89,16 @@ LrsmHits lrsm_hits(vec3 xc, float rc, vec3 dir, float sin_half, float step)
                 vec2 o = 0.5 * r_uv * vec2((q & 1) != 0 ? 1.0 : -1.0, (q & 2) != 0 ? 1.0 : -1.0);
                 LrsmHits t = lrsm_hits_face(i, face, clamp(uv + o, 0.0, 1.0), ls, rc, -dir,
                                             sin_half, step, tap_mip);
-                hi.light += 0.25 * w * t.light;
-                hi.hit += 0.25 * w * t.hit;
-                hi.lit += 0.25 * w * t.lit;
+                li.light += 0.25 * w * t.light;
+                li.hit += 0.25 * w * t.hit;
+                li.lit += 0.25 * w * t.lit;
             }
             wsum += w;
         }
         float norm = ls.kind == 0 && u_seams != 0 && wsum > 0.0 ? 1.0 / wsum : 1.0;
-        h.light += norm * hi.light;
-        h.hit = max(h.hit, norm * hi.hit);
-        h.lit = max(h.lit, norm * hi.lit);
+        h.light += norm * li.light;
+        h.hit = max(h.hit, norm * li.hit);
+        h.lit = max(h.lit, norm * li.lit);
     }
     return h;
 }
