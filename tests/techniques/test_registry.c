@@ -3,7 +3,8 @@
  * gib_param_int/float stopping the process on an undeclared name in every build (this test is
  * compiled with NDEBUG in the release build, where the old assert did nothing). The test-only
  * techniques (the template) are held to the same rules, and stay out of what gibench runs: not
- * in gib_techniques(), not found by name. No GL needed. */
+ * in gib_techniques(), not found by name. lrsm refuses parameters its sample does not read. No GL
+ * needed. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -118,6 +119,28 @@ static void check_test_only(void)
     }
 }
 
+/* lrsm refuses, before it touches GL, a parameter that acts only with hits 0 set to a
+ * non-default value while hits is 1: the error names the parameter (it was not ignored). */
+static void check_lrsm_refuses_inert_parameters(void)
+{
+    const gib_technique *t = gib_technique_find("lrsm");
+    CHECK(t != NULL, "lrsm not registered");
+    if (!t)
+        return;
+    static const char *const inert[][2] = {{"backface", "0"}, {"coverage", "0"}};
+    for (int i = 0; i < 2; i++) {
+        gib_params p;
+        gib_error err = {0};
+        gib_params_default(t, &p);
+        CHECK(gib_param_set(t, &p, inert[i][0], inert[i][1], &err) == 0, "lrsm: %s settable",
+              inert[i][0]);
+        void *self = t->create(NULL, &p, 8, 8, NULL, &err);
+        CHECK(!self && strstr(err.msg, inert[i][0]) && strstr(err.msg, "hits"),
+              "lrsm with hits 1 and %s = %s: created, or an error not naming both (%s)",
+              inert[i][0], inert[i][1], err.msg);
+    }
+}
+
 int main(void)
 {
     const gib_technique *all[EVERY_TECHNIQUE_MAX];
@@ -141,6 +164,7 @@ int main(void)
         check_reference(t);
     }
     check_test_only();
+    check_lrsm_refuses_inert_parameters();
     /* An undeclared name stops the process (the release build has NDEBUG: no assert). */
     const gib_technique *t = all[0];
     CHECK(aborts_naming(t, 0, "no_such_parameter"), "gib_param_int on an unknown name went on");
