@@ -68,16 +68,14 @@ layout(location = LRSM_CONE_LOC_HITS) uniform int u_hits;
 in vec2 v_texcoord;
 layout(location = 0) out vec4 o_color;
 
-// The share of a sample's rays (centre p, diameter d, cone along dir) that the occupancy's own
-// plane stops within the step: the occupancy's variation across the sample (central differences of
-// the mip voxel_step_alpha reads, half a sample apart) along the axis and across it gives the cosine
-// between the axis and the plane's normal, and a plane through the centre at that tilt
-// (lrsm_plane_hits at distance 0) is met by all of the rays when it faces the axis and by few when
-// it lies along it. Uniform occupancy (no plane) stops all it covers.
-float occupancy_plane_hits(vec3 p, float d, vec3 dir, float sin_half)
+// The share of a sample's rays (centre p, diameter d, cone along dir, t and b across it) that the
+// occupancy's own plane stops within the step: the occupancy's variation across the sample
+// (central differences of the mip voxel_step_alpha reads, half a sample apart) along the axis and
+// across it gives the cosine between the axis and the plane's normal, and a plane through the
+// centre at that tilt (lrsm_plane_hits at distance 0) is met by all of the rays when it faces the
+// axis and by few when it lies along it. Uniform occupancy (no plane) stops all it covers.
+float occupancy_plane_hits(vec3 p, float d, vec3 dir, vec3 t, vec3 b, float sin_half)
 {
-    vec3 t, b;
-    ortho_basis(dir, t, b);
     float h = 0.5 * d, o = voxel_occlusion(p, h);
     vec3 v = vec3(0.0);
     for (int s = -1; s <= 1; s += 2) {
@@ -97,6 +95,8 @@ vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
 {
     LrsmCone k = lrsm_cone_start(x, n, dir, aperture);
     float sin_half = sin(0.5 * aperture);
+    vec3 across_t, across_b;   // the cone's basis, for occupancy_plane_hits
+    ortho_basis(dir, across_t, across_b);
     vec3 I = vec3(0.0), c;
     float A = 0.0, d;
     for (int i = 0; i < 512 && A < 255.0 / 256.0 && lrsm_cone_sample(k, c, d); i++) {
@@ -106,7 +106,8 @@ vec3 trace_cone(vec3 x, vec3 n, vec3 dir, float aperture)
             // coverage blocks as unlit surface, by the share its own plane stops
             LrsmHits h = lrsm_hits(c, 0.5 * d, dir, sin_half, u_step_factor);
             float norm = max(h.hit, 1.0), hit = h.hit / norm;
-            float unlit = max(a - min(h.lit, a), 0.0) * occupancy_plane_hits(c, d, dir, sin_half);
+            float stop = occupancy_plane_hits(c, d, dir, across_t, across_b, sin_half);
+            float unlit = max(a - min(h.lit, a), 0.0) * stop;
             I += (1.0 - A) * h.light / norm;
             A += (1.0 - A) * (hit + (1.0 - hit) * unlit);
         } else if (a > 0.0) {
