@@ -4,6 +4,6 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from script_checks import args, check, failures, verdict  # noqa: E402,F401
+from script_checks import args, check, failures, verdict, run as run_gibench  # noqa: E402,F401
 
 MATRIX = os.path.join(os.path.dirname(os.path.abspath(__file__)), "faults.matrix")

@@ -22,15 +22,15 @@ import subprocess
 import sys
 import time
 
-from fault_checks import MATRIX, args, check, verdict
+from fault_checks import MATRIX, args, check, run_gibench, verdict
 
 KEY = ("scene", "technique", "component", "params", "width", "height")
 
 
 def run(gibench, matrix, out, cache, env_extra, images=False):
     env = dict(os.environ, **env_extra)
-    p = subprocess.run([gibench, "run", matrix, "--out", out, "--cache", cache, "--no-images"],
-                       env=env, capture_output=True, text=True)
+    p = run_gibench([gibench, "run", matrix, "--out", out, "--cache", cache, "--no-images"],
+                     env=env)
     with open(os.path.join(out, "faults.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
     return p.returncode, {tuple(r[k] for k in KEY): r for r in rows}, len(rows), p.stderr

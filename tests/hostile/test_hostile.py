@@ -24,6 +24,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import script_checks  # noqa: E402
 from script_checks import check, failures  # noqa: E402
 
 TECHNIQUES = ["direct", "hbao", "ldm_ao", "ldm_indirect", "ldm_env", "lrsm", "vct", "rsm_gather",
@@ -187,7 +188,7 @@ def main():
             cmd += ["--param", p]
         what = f"{os.path.basename(scene)[:-6]} {tech} {size}"
         try:
-            p = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+            p = script_checks.run(cmd, env=env, timeout=300)
         except subprocess.TimeoutExpired:
             check(False, f"{what}: hung (300 s)")
             continue

@@ -7,7 +7,11 @@
  *    the size really ties, and round trips them.
  * 2. Incompressible (random finite floats: the raw fallback) and compressible (smooth) pixels
  *    over heights 1..70 (full and partial 16-line chunks), widths 1, 3, 17, 64, and 1, 3 and 4
- *    channels.
+ *    channels, each read back by gib_exr_read; OpenImageIO, the second reader, reads the heights
+ *    that stand for every chunk layout (one partial chunk, one full, a full one and one line,
+ *    several full ones and a partial one). Under AddressSanitizer each OpenImageIO read maps and
+ *    poisons a fresh scanline buffer (millions of page faults over the whole sweep, most of the
+ *    test's time on a busy machine), and the other heights add no layout it has not read.
  * Usage: test_exr_roundtrip [output_dir]. Prints one line per failure and a summary; the exit
  * status is the number of failed checks (capped). */
 #include "harness/imaging/image.h"
@@ -121,7 +125,8 @@ static int same_bits(float a, float b)
 }
 
 /* Compares what gib_exr_read and OpenImageIO read from path with img, bit for bit. */
-static void check_read_back(const char *path, const gib_image *img, const char *what)
+static void check_read_back(const char *path, const gib_image *img, int with_oiio,
+                            const char *what)
 {
     gib_image back;
     gib_error err;
@@ -136,6 +141,8 @@ static void check_read_back(const char *path, const gib_image *img, const char *
         check(ok, "gib_exr_read's pixels differ from those written", what);
         gib_image_free(&back);
     }
+    if (!with_oiio)
+        return;
     int w = 0, h = 0;
     float *rgba = NULL;
     char msg[512];
@@ -155,13 +162,20 @@ static void check_read_back(const char *path, const gib_image *img, const char *
     free(rgba);
 }
 
-static void round_trip(const char *path, const gib_image *img, const char *what)
+static void round_trip(const char *path, const gib_image *img, int with_oiio, const char *what)
 {
     gib_error err;
     int ok = gib_exr_write(path, img, NULL, 0, &err) == 0;
     check(ok, ok ? "" : err.msg, what);
     if (ok)
-        check_read_back(path, img, what);
+        check_read_back(path, img, with_oiio, what);
+}
+
+/* The heights OpenImageIO also reads in the sweep: one line, a partial chunk, a full chunk, a full
+ * chunk and one line, two full chunks, several full chunks and a partial one. */
+static int oiio_height(int h)
+{
+    return h == 1 || h == 7 || h == LINES || h == LINES + 1 || h == 2 * LINES || h == 70;
 }
 
 /* Makes the first chunk of img (random finite floats) tie: its zlib stream exactly as long as
@@ -205,7 +219,7 @@ static void test_tie(const char *dir)
             snprintf(what, sizeof what, "tie %dx40 %d channels", widths[wi], chans[ci]);
             /* Tiny chunks (1 or 3 pixels wide) may have no count that ties exactly. */
             if (tied)
-                round_trip(path, &img, what);
+                round_trip(path, &img, 1, what);
             else if (widths[wi] >= 17)
                 check(0, "no chunk with a zlib stream as long as its raw bytes was found", what);
             printf("%s: %s\n", what, tied ? "built and round-tripped" : "no tie (skipped)");
@@ -234,10 +248,11 @@ static void test_sweep(const char *dir)
                         fill_random(&img);
                     snprintf(what, sizeof what, "%s %dx%d %d channels",
                              smooth ? "smooth" : "random", widths[wi], h, chans[ci]);
-                    round_trip(path, &img, what);
+                    round_trip(path, &img, oiio_height(h), what);
                     gib_image_free(&img);
                 }
-    printf("sweep (heights 1..70, widths 1 3 17 64, 1 3 4 channels, random and smooth): %s\n",
+    printf("sweep (heights 1..70, widths 1 3 17 64, 1 3 4 channels, random and smooth; "
+           "OpenImageIO at heights 1 7 16 17 32 70): %s\n",
            failures == before ? "all bit-exact" : "FAILED");
 }
 

@@ -15,11 +15,10 @@ score the two alike and fail.
 """
 import csv
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from script_checks import args, check, verdict  # noqa: E402
+from script_checks import args, check, verdict, run as run_gibench  # noqa: E402
 
 MATRIX = """[matrix]
 description = negative control: lrsm with its structures rebuilt or kept from the first frame
@@ -50,9 +49,8 @@ def main():
     with open(path, "w") as f:
         f.write(MATRIX)
     out = os.path.join(a.work, "out")
-    p = subprocess.run([a.gibench, "run", path, "--out", out, "--cache",
-                        os.path.join(a.work, "cache"), "--no-history", "--no-images"],
-                       capture_output=True, text=True)
+    p = run_gibench([a.gibench, "run", path, "--out", out, "--cache",
+                      os.path.join(a.work, "cache"), "--no-history", "--no-images"])
     if p.returncode:
         sys.exit("gibench run failed:\n" + p.stdout + p.stderr)
     with open(os.path.join(out, "control.csv")) as f:

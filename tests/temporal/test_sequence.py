@@ -21,7 +21,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from script_checks import args, check, verdict  # noqa: E402
+from script_checks import args, check, verdict, run as run_gibench  # noqa: E402
 
 MATRIX = """[matrix]
 description = sequence test: direct on the moving Cornell box
@@ -44,8 +44,8 @@ def run(gibench, work, name, sequence):
     with open(path, "w") as f:
         f.write(MATRIX.format(sequence=sequence))
     out = os.path.join(work, "out")
-    p = subprocess.run([gibench, "run", path, "--out", out, "--cache", os.path.join(work, "cache"),
-                        "--no-history"], capture_output=True, text=True)
+    p = run_gibench([gibench, "run", path, "--out", out, "--cache", os.path.join(work, "cache"),
+                      "--no-history"])
     if p.returncode:
         sys.exit("gibench run failed:\n" + p.stdout + p.stderr)
     with open(os.path.join(out, name + ".csv")) as f:
