@@ -62,6 +62,24 @@ void gib_mat4_perspective(float vfov, float aspect, float n, float f, float out[
     out[14] = 2 * f * n / (n - f);
 }
 
+void gib_mat4_perspective_reversed(float vfov, float aspect, float n, float f, float out[16])
+{
+    float t = 1.0f / tanf(vfov * 0.5f);
+    memset(out, 0, 16 * sizeof(float));
+    out[0] = t / aspect;
+    out[5] = t;
+    out[10] = n / (f - n);
+    out[11] = -1;
+    out[14] = f * n / (f - n);
+}
+
+void gib_mat4_ortho_reversed(float l, float r, float b, float t, float n, float f, float out[16])
+{
+    gib_mat4_ortho(l, r, b, t, n, f, out);
+    out[10] = 1 / (f - n);
+    out[14] = f / (f - n);
+}
+
 void gib_mat4_ortho(float l, float r, float b, float t, float n, float f, float out[16])
 {
     memset(out, 0, 16 * sizeof(float));

@@ -27,6 +27,12 @@ void gib_mat4_view(const float right[3], const float up[3], const float forward[
 void gib_ortho_basis(const float d[3], float t[3], float b[3]);
 void gib_mat4_perspective(float vfov_rad, float aspect, float znear, float zfar, float out[16]);
 void gib_mat4_ortho(float l, float r, float b, float t, float n, float f, float out[16]);
+/* The same with reversed depth for glClipControl's [0, 1] range: 1 at the near plane, 0 at the far
+ * one. With a float depth buffer the depth's precision is then about the same share of the
+ * distance everywhere (a 24-bit buffer with near = far / 1e5 resolved 4-7 cm at 15 m). */
+void gib_mat4_perspective_reversed(float vfov_rad, float aspect, float znear, float zfar,
+                                   float out[16]);
+void gib_mat4_ortho_reversed(float l, float r, float b, float t, float n, float f, float out[16]);
 
 /* The sphere that orthographic views of the scene are fitted to (light views, LDMs): centre of
  * the bounding box, radius half its diagonal with a 1% margin, so that geometry on the sphere still

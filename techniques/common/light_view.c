@@ -63,7 +63,7 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
             gib_ortho_basis(l->direction, t, b);
             const float zero[3] = {0, 0, 0};
             gib_mat4_view(t, b, l->direction, zero, view);
-            gib_mat4_ortho(-r, r, -r, r, 0, 2 * r, proj);
+            gib_mat4_ortho_reversed(-r, r, -r, r, 0, 2 * r, proj);
             gib_mat4_mul(proj, view, face->view_proj);
             for (int k = 0; k < 3; k++) {
                 face->origin[k] = c[k] - l->direction[k] * r;
@@ -79,7 +79,7 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
             far += (l->position[k] - c[k]) * (l->position[k] - c[k]);
         far = sqrtf(far) + r;
         float half = kind == GIB_LV_CUBE ? (float)M_PI / 4 : l->spot_outer_deg * (float)M_PI / 180;
-        gib_mat4_perspective(2 * half, 1.0f, far * 1e-5f, far, proj);
+        gib_mat4_perspective_reversed(2 * half, 1.0f, far * 1e-5f, far, proj);
         lv->texel[i] = 2 * tanf(half) / (float)lv->res;
         for (int k = 0; k < (kind == GIB_LV_CUBE ? 6 : 1); k++) {
             gib_lv_face *face = &lv->faces[f++];
@@ -189,7 +189,7 @@ int gib_light_views_create(gib_light_views *lv, const gib_gpu_scene *gpu, int re
     }
     glNamedFramebufferDrawBuffers(lv->fbo, GIB_LV_ATTRIBUTE_COUNT, draw);
     snprintf(name, sizeof name, lv->packed ? "%s_raster.zbuffer" : "%s.zbuffer", label);
-    if (!(lv->depth = gib_gpu_renderbuffer(ledger, name, GL_DEPTH_COMPONENT24, res, res, err)))
+    if (!(lv->depth = gib_gpu_renderbuffer(ledger, name, GL_DEPTH_COMPONENT32F, res, res, err)))
         return -1;
     glNamedFramebufferRenderbuffer(lv->fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, lv->depth);
     return gib_gl_check("light view creation", err);
@@ -205,7 +205,7 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
     glNamedBufferSubData(lv->table, 0, sizeof(float) * (GLsizeiptr)lv->table_floats,
                          lv->table_data);
     gib_pass_apply(&(gib_pass_state){.fbo = lv->fbo, .width = lv->res, .height = lv->res,
-                                     .depth = GIB_DEPTH_LESS});
+                                     .depth = GIB_DEPTH_REVERSED});
     glUseProgram(lv->program);
     gib_gpu_scene_bind(gpu);
     /* Empty texels: depth +inf (the first attribute, or the packed depth in w), the rest 0. */
@@ -220,7 +220,8 @@ void gib_light_views_render(gib_light_views *lv, const gib_gpu_scene *gpu, gib_t
         for (int a = 0; a < GIB_LV_ATTRIBUTE_COUNT; a++)
             if (lv->textures[a])
                 glClearBufferfv(GL_COLOR, a, a > 0 ? zero : lv->packed ? far_packed : far);
-        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        const float farthest = 0; /* reversed depth (pass_state.h): 0 is the far plane */
+        glClearBufferfv(GL_DEPTH, 0, &farthest);
         glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, face->view_proj);
         glUniform3fv(GIB_LOC_ORIGIN, 1, face->origin);
         glUniform3fv(GIB_LV_LOC_FORWARD, 1, face->forward);

@@ -37,6 +37,12 @@ void main()
     vec2 st = vec2(v_uv.x, 1.0 - v_uv.y); // texture rows top first, OBJ's v bottom up
     if (m.flags.z != 0 && texture(u_alpha_tex, st).r < 0.5)
         discard;
+    // Corners collinear in the scene can round to a sliver of nonzero area in the view, whose
+    // attributes, interpolated over almost no area, are not finite: such a fragment is left out, as
+    // a true zero-area triangle is (one NaN texel turns every VPL or mip that reads it NaN).
+    if (any(isnan(v_position)) || any(isinf(v_position)) || any(isnan(v_normal)) ||
+        any(isinf(v_normal)) || dot(v_normal, v_normal) == 0.0)
+        discard;
     vec3 rel = v_position - u_origin;
     vec3 flux_in;
     vec3 to_light;

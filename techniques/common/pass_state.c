@@ -18,9 +18,10 @@ static void apply_blend(gib_blend blend)
 static void apply_depth(gib_depth depth)
 {
     glDepthMask(GL_TRUE);
-    if (depth == GIB_DEPTH_LESS) {
+    glClipControl(GL_LOWER_LEFT, depth == GIB_DEPTH_REVERSED ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    if (depth == GIB_DEPTH_LESS || depth == GIB_DEPTH_REVERSED) {
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
+        glDepthFunc(depth == GIB_DEPTH_LESS ? GL_LESS : GL_GREATER);
     } else {
         glDisable(GL_DEPTH_TEST);
     }

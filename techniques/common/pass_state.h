@@ -19,6 +19,8 @@ typedef enum gib_blend {
 typedef enum gib_depth {
     GIB_DEPTH_OFF = 0,      /* no test; nothing written */
     GIB_DEPTH_LESS,         /* nearer fragments pass and are written */
+    GIB_DEPTH_REVERSED,     /* depth 1 near, 0 far (glClipControl's [0, 1] range for the pass):
+                               fragments of greater depth pass and are written; clear to 0 */
 } gib_depth;
 
 typedef enum gib_cull {

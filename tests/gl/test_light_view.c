@@ -7,7 +7,8 @@
  * Tolerance 1% (the issue's bound): what is left is the texels' point-sampled solid angles and
  * areas (O(1/res^2)) and the tessellated sphere (20 x 4^5 flat faces: its outline is within 2e-4
  * of the circle's area). Each case also checks where the flux is: a spot's texels carry flux only
- * inside its cone. */
+ * inside its cone. A last case checks the z-buffer resolves a sheet 1 cm above the ground 25 m from
+ * the light. */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -107,6 +108,62 @@ static void check_spot(const char *dir, const char *name, const char *placement,
     check_case(dir, name, light, 128, expected, cos(a));
 }
 
+/* Depth precision: a 4 x 4 m sheet 1 cm above a 40 x 40 m ground, lit from 25 m above by a spot:
+ * every texel of the light view inside the sheet's footprint must see the sheet (its position 1 cm
+ * up), none the ground under it. With a 24-bit z-buffer and the near plane at far / 1e5 the depth
+ * resolved ~7 cm there and the ground took every texel (Sponza's pools lost half their photons so);
+ * the float z-buffer with reversed depth resolves ~1e-6 of the distance. Bound: no texel but those
+ * on the sheet's border (its outline crosses at most 4 x res texels of the map). */
+static void check_depth_precision(const char *dir)
+{
+    const char *text =
+        "[scene]\ndescription = light-view depth precision\n"
+        "[mesh.sheet]\nprocedural = quad\nsize = 4 4\ntranslate = 0 0.01 0\n"
+        "[mesh.ground]\nprocedural = quad\nsize = 40 40\n"
+        "[light.l]\ntype = spot\nposition = 0 25 0\ndirection = 0 -1 0\nintensity = 1 1 1\n"
+        "outer_angle = 10\n"
+        "[camera.c]\neye = 0 5 10\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n";
+    const int res = 512;
+    gib_gl_fixture fx;
+    if (gib_fixture_open_text(&fx, dir, "depth_precision", text) < 0) {
+        failures++;
+        return;
+    }
+    gib_ledger ledger;
+    gib_ledger_init(&ledger);
+    gib_timers timers;
+    gib_timers_init(&timers);
+    gib_light_views lv;
+    gib_error err;
+    if (gib_light_views_create(&lv, &fx.gpu, res, GIB_LV_POSITION, "lv", &ledger, &err) < 0) {
+        printf("FAIL depth_precision: %s\n", err.msg);
+        failures++;
+        gib_fixture_close(&fx);
+        return;
+    }
+    gib_timers_frame_begin(&timers, 1);
+    gib_light_views_render(&lv, &fx.gpu, &timers, "light_view");
+    gib_timers_frame_end(&timers);
+    size_t n = (size_t)res * res * lv.face_count * 4;
+    float *pos = malloc(n * sizeof *pos);
+    glGetTextureImage(lv.textures[1], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *pos), pos);
+    long inside = 0, ground = 0;
+    for (size_t i = 0; i < n; i += 4)
+        if (fabsf(pos[i]) < 2 && fabsf(pos[i + 2]) < 2) {
+            inside++;
+            ground += pos[i + 1] < 0.01f;
+        }
+    int ok = inside > 1000 && ground <= 4 * res;
+    printf("%s depth_precision: %ld texels over the sheet, %ld of them see the ground 1 cm under it "
+           "(at most %d: its border)\n", ok ? "ok  " : "FAIL", inside, ground, 4 * res);
+    failures += !ok;
+    free(pos);
+    gib_light_views_destroy(&lv, &ledger);
+    gib_timers_destroy(&timers);
+    gib_ledger_release_all(&ledger);
+    gib_fixture_close(&fx);
+}
+
 int main(void)
 {
     char dir[] = "/tmp/gib_light_view_XXXXXX";
@@ -132,6 +189,7 @@ int main(void)
         e[c] = rho * I[c] * pi;
     check_case(dir, "directional",
                "type = directional\ndirection = 0.3 -1 0.2\nintensity = 1 2 3\n", 512, e, -3);
+    check_depth_precision(dir);
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
