@@ -150,14 +150,23 @@ def runs(rows):
 # ---- parameters ---------------------------------------------------------------------------------
 
 def parse_params(text):
-    """{name: float} of a `params` text ("name=value;...")."""
+    """{name: float} of a `params` text ("name=value;..."); a preset's value stays its name."""
     p = schema()["params"]
     out = {}
     for kv in (text or "").split(p["separator"]):
         if p["assign"] in kv:
             k, v = kv.split(p["assign"], 1)
-            out[k] = float(v)
+            try:
+                out[k] = float(v)
+            except ValueError:
+                out[k] = v
     return out
+
+
+def preset(r):
+    """The named reading a row ran (`default`: the technique's defaults; `paper`: its paper's
+    literal reading)."""
+    return str(params(r).get("preset", r.get("preset") or "default"))
 
 
 def params(r):

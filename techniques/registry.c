@@ -80,6 +80,69 @@ void gib_params_default(const gib_technique *t, gib_params *p)
     }
 }
 
+static int preset_count(const gib_technique *t)
+{
+    int n = 0;
+    while (t->presets && t->presets[n].name)
+        n++;
+    return n;
+}
+
+/* GIB_PRESET_PARAM's value: a preset's name (or its number). */
+static int set_preset(const gib_technique *t, gib_params *p, int i, const char *value,
+                      gib_error *err)
+{
+    int n = preset_count(t);
+    char names[256] = GIB_PRESET_DEFAULT;
+    for (int k = 0; k <= n; k++) {
+        const char *name = k ? t->presets[k - 1].name : GIB_PRESET_DEFAULT;
+        char num[16];
+        snprintf(num, sizeof num, "%d", k);
+        if (!strcmp(value, name) || !strcmp(value, num)) {
+            p->values[i] = k;
+            return 0;
+        }
+        if (k) {
+            strncat(names, ", ", sizeof names - strlen(names) - 1);
+            strncat(names, name, sizeof names - strlen(names) - 1);
+        }
+    }
+    return gib_fail(err, "technique '%s': parameter '%s' = %s names no preset (it has: %s)",
+                    t->name, GIB_PRESET_PARAM, value, names);
+}
+
+const char *gib_params_preset_name(const gib_technique *t, const gib_params *p)
+{
+    int i = gib_param_index(t, GIB_PRESET_PARAM);
+    int k = i < 0 ? 0 : (int)p->values[i];
+    return k > 0 && k <= preset_count(t) ? t->presets[k - 1].name : GIB_PRESET_DEFAULT;
+}
+
+int gib_params_apply_preset(const gib_technique *t, gib_params *p, const unsigned char *named,
+                            gib_error *err)
+{
+    int i = gib_param_index(t, GIB_PRESET_PARAM);
+    int k = i < 0 ? 0 : (int)p->values[i];
+    if (k <= 0 || k > preset_count(t))
+        return 0;
+    const gib_preset *ps = &t->presets[k - 1];
+    char text[1024];
+    snprintf(text, sizeof text, "%s", ps->values);
+    char *save = NULL;
+    for (char *kv = strtok_r(text, ";", &save); kv; kv = strtok_r(NULL, ";", &save)) {
+        char *eq = strchr(kv, '=');
+        int pi = eq ? (*eq = 0, gib_param_index(t, kv)) : -1;
+        if (pi < 0 || pi == i)
+            return gib_fail(err, "technique '%s': preset '%s' sets '%s', which is no parameter of "
+                            "it", t->name, ps->name, kv);
+        if (named && named[pi])
+            continue;
+        if (gib_param_set(t, p, kv, eq + 1, err) < 0)
+            return gib_error_prefix(err, "preset '%s'", ps->name);
+    }
+    return 0;
+}
+
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
                   gib_error *err)
 {
@@ -94,6 +157,8 @@ int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const
                         known[0] ? known : "none");
     }
     const gib_param_spec *s = &t->params[i];
+    if (!strcmp(name, GIB_PRESET_PARAM))
+        return set_preset(t, p, i, value, err);
     char *end = NULL;
     errno = 0;
     double v;

@@ -33,6 +33,20 @@ typedef struct gib_param_spec {
 
 #define GIB_MAX_PARAMS 24
 
+/* A named reading of a technique: the values of some of its parameters that together give it, e.g.
+ * `paper`, its paper's literal reading beside the defaults, which depart from it where the literal
+ * reading breaks. A technique with presets declares the parameter GIB_PRESET_PARAM (an integer, 0 =
+ * the defaults, i = presets[i - 1]), which it never reads itself: gib_params_apply_preset sets the
+ * values. In a matrix, on the command line and in the results the value is the preset's name. */
+typedef struct gib_preset {
+    const char *name;     /* "paper" */
+    const char *values;   /* "hits=0;backface=0": each a parameter of the technique */
+    const char *why;      /* what it is, and where it is undefined or broken, what it takes */
+} gib_preset;
+
+#define GIB_PRESET_PARAM "preset"
+#define GIB_PRESET_DEFAULT "default"
+
 /* Validated values, in the order of the technique's spec list. */
 typedef struct gib_params {
     int count;
@@ -86,6 +100,8 @@ typedef struct gib_technique {
     /* How its parameters set its references (terminated by {0}; NULL: none). A technique that
      * outputs `ao` must bind GIB_REF_AO_DMAX: AO has no meaning without its range. */
     const gib_ref_binding *reference;
+    /* Named readings (terminated by {0}; NULL: none); see gib_preset. */
+    const gib_preset *presets;
     unsigned scene_needs;        /* GIB_FEAT_* bits the scene must have (all of them) */
     unsigned scene_needs_any;    /* GIB_FEAT_* bits of which the scene needs at least one (0: none) */
     /* Allocates everything for images of width x height (through the ledger) and builds shaders. */
@@ -118,6 +134,13 @@ void gib_params_default(const gib_technique *t, gib_params *p);
  * parameter, the value and the valid range. */
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
                   gib_error *err);
+/* Sets the values of the preset p names (its GIB_PRESET_PARAM) on every parameter of that preset
+ * but those named[i] marks as set explicitly (a matrix's list, --param), which keep their value.
+ * named may be NULL. Returns 0, or -1 with err set when the preset's text is malformed. */
+int gib_params_apply_preset(const gib_technique *t, gib_params *p, const unsigned char *named,
+                            gib_error *err);
+/* The name of the preset a parameter set selects: GIB_PRESET_DEFAULT, or presets[i - 1].name. */
+const char *gib_params_preset_name(const gib_technique *t, const gib_params *p);
 /* Integer and float accessors by name. A name the technique does not declare is a bug in the
  * technique: the process stops with a message naming both (in every build, not only with asserts). */
 int gib_param_int(const gib_technique *t, const gib_params *p, const char *name);

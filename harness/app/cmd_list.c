@@ -40,6 +40,9 @@ int gib_cmd_list(int argc, char **argv)
                                                  : "float",
                    p->def, p->min, p->max, p->help);
         }
+        for (int k = 0; t->presets && t->presets[k].name; k++)
+            printf("      preset=%-9s %s\n          sets %s\n", t->presets[k].name,
+                   t->presets[k].why, t->presets[k].values);
     }
     gib_scene_info *infos = NULL;
     int count = 0;

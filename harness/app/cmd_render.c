@@ -104,6 +104,7 @@ static int resolve_args(render_opts *o)
         return 2;
     }
     gib_params_default(t, &o->p);
+    unsigned char named[GIB_MAX_PARAMS] = {0};
     for (int i = 0; i < o->nparams; i++) {
         char kv[256];
         snprintf(kv, sizeof kv, "%s", o->params[i]);
@@ -118,6 +119,11 @@ static int resolve_args(render_opts *o)
             fprintf(stderr, "gibench render: %s\n", err.msg);
             return 2;
         }
+        named[gib_param_index(t, kv)] = 1;
+    }
+    if (gib_params_apply_preset(t, &o->p, named, &err) < 0) {
+        fprintf(stderr, "gibench render: %s\n", err.msg);
+        return 2;
     }
     if (gib_parse_size("--size", o->size, &o->w, &o->h, &err) < 0) {
         fprintf(stderr, "gibench render: %s\n", err.msg);

@@ -97,7 +97,11 @@ void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned
     const gib_technique *t = mr->technique;
     for (int p = 0; t->params && t->params[p].name; p++)
         for (int k = GIB_C_COUNT; k < ctx->cols->count; k++)
-            if (!strcmp(ctx->cols->names[k], t->params[p].name))
+            if (strcmp(ctx->cols->names[k], t->params[p].name))
+                continue;
+            else if (!strcmp(t->params[p].name, GIB_PRESET_PARAM))
+                row_set(r, k, "%s", gib_params_preset_name(t, &mr->params));
+            else
                 fmt_num(r, k, mr->params.values[p]);
 }
 

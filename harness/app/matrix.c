@@ -88,9 +88,15 @@ void gib_params_key(const gib_technique *t, const gib_params *p, char *out, int 
 {
     int used = 0;
     out[0] = 0;
-    for (int i = 0; t->params && t->params[i].name && used < out_len; i++)
-        used += snprintf(out + used, out_len - used, "%s%s=%g", i ? ";" : "", t->params[i].name,
-                         p->values[i]);
+    for (int i = 0; t->params && t->params[i].name && used < out_len; i++) {
+        const char *sep = i ? ";" : "";
+        if (strcmp(t->params[i].name, GIB_PRESET_PARAM))
+            used += snprintf(out + used, out_len - used, "%s%s=%g", sep, t->params[i].name,
+                             p->values[i]);
+        else if (p->values[i] != 0) /* the defaults' rows keep the key they always had */
+            used += snprintf(out + used, out_len - used, "%s%s=%s", sep, t->params[i].name,
+                             gib_params_preset_name(t, p));
+    }
 }
 
 /* The effective value of [matrix] key: the profile's when it sets it. */
@@ -304,6 +310,7 @@ typedef struct param_lists {
     char sec[80]; /* "params.T" */
     int counts[GIB_MAX_PARAMS];
     double values[GIB_MAX_PARAMS][GIB_MATRIX_MAX_LIST];
+    unsigned char named[GIB_MAX_PARAMS]; /* the file sets this parameter (a preset leaves it) */
 } param_lists;
 
 /* Every key naming a parameter of the technique names one it has. */
@@ -345,6 +352,7 @@ static int load_param_list(const parse_state *s, const char *psec, param_lists *
         pl->values[pi][0] = t->params[pi].def;
         return 0;
     }
+    pl->named[pi] = 1;
     char list[512], *items[GIB_MATRIX_MAX_LIST];
     snprintf(list, sizeof list, "%s", pv->value);
     pl->counts[pi] = split_list(list, items, GIB_MATRIX_MAX_LIST);
@@ -376,7 +384,8 @@ static int load_param_lists(const parse_state *s, const char *psec, param_lists 
 }
 
 /* Combination c of the parameter lists (the first parameter varying fastest), with scene si's
- * [scene_scale] applied to its lengths. */
+ * [scene_scale] applied to its lengths, then its preset's values on the parameters the file does
+ * not set. */
 static int set_combo(const matrix_axes *ax, const param_lists *pl, int si, int c, gib_params *out,
                      const char *path, gib_error *err)
 {
@@ -395,6 +404,8 @@ static int set_combo(const matrix_axes *ax, const param_lists *pl, int si, int c
         }
         out->values[pi] = x;
     }
+    if (gib_params_apply_preset(t, out, pl->named, err) < 0)
+        return gib_error_prefix(err, "%s", path);
     return 0;
 }
 

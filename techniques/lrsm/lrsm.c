@@ -96,6 +96,20 @@ static const gib_param_spec lrsm_params[] = {
     {"rebuild", GIB_PARAM_INT, 1, 0, 1,
      "1: voxels, light views and layers rebuilt every frame (paper, Sec. 6); 0: the first frame's "
      "kept (a negative control: what a technique that misses the motion scores over time)"},
+    {GIB_PRESET_PARAM, GIB_PARAM_INT, 0, 0, 1,
+     "default: the departures above; paper: Algorithm 1 and Eq. 1, 5, 8, 12 as published"},
+    {0},
+};
+
+/* The paper's literal reading: Algorithm 1's sample (Eq. 5's R V N times Eq. 1's alpha), the mean
+ * occupancy as alpha, Eq. 8's cosine on the cone's axis, one light view per light, Eq. 12's window
+ * of +-r_c and the Jacobian taken as constant (Sec. 4.2). ARCHITECTURE.md, "LRSM and its VCT
+ * baseline", says what each breaks and on which scenes each default was chosen. */
+static const gib_preset lrsm_presets[] = {
+    {"paper", "opacity=0;hits=0;backface=0;coverage=0;seams=0;visibility=0;jacobian=0",
+     "Algorithm 1 and Eq. 1, 5, 8, 12 as published (Sugihara et al. 2014, Sec. 4-5): the lit "
+     "coverage counted twice (Eq. 5's V and Eq. 1's alpha) and Eq. 8 on the cone's axis leave "
+     "the indirect light a few percent of the answer"},
     {0},
 };
 
@@ -275,6 +289,7 @@ const gib_technique gib_technique_lrsm = {
               "2014, Sec. 3-6, Eq. 1, 5-15, Alg. 1)",
     .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
     .params = lrsm_params,
+    .presets = lrsm_presets,
     .reference = NULL,
     .scene_needs = 0,
     .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,

@@ -58,6 +58,21 @@ static const gib_param_spec vct_params[] = {
     {"memory_budget_mb", GIB_PARAM_FLOAT, 0, 0, 1e7,
      "memory budget for the voxels (decimal MB); 0 = the device's (NVX_gpu_memory_info, else "
      "half the physical memory)"},
+    {GIB_PRESET_PARAM, GIB_PARAM_INT, 0, 0, 1,
+     "default: the departures above; paper: Crassin et al.'s cone as the LRSM paper ran it"},
+    {0},
+};
+
+/* The literal reading: the sample's mip level log2(d), point injection alone, the anisotropic
+ * mips' light alone; the paper keeps no sample in front of the receiver's plane, and clearance 0
+ * (the sample shrunk to its height above it) is the nearest the cone can take without reading the
+ * receiver's own cells at every step. ARCHITECTURE.md, "LRSM and its VCT baseline", says what
+ * each default repairs and on which scenes it was chosen. */
+static const gib_preset vct_presets[] = {
+    {"paper", "sample_level=0;fill=0;clearance=0;front_faces=0",
+     "voxel cone tracing as published (Crassin et al. 2011; Sugihara et al. 2014, Sec. 6): a "
+     "sample's trilinear footprint reaches the receiver's own cells, which darken it; clearance 0 "
+     "stands for the plane the paper does not keep"},
     {0},
 };
 
@@ -197,6 +212,7 @@ const gib_technique gib_technique_vct = {
     .source = "Crassin et al. 2011 voxel cone tracing, dense, as Sugihara et al. 2014 Sec. 6 ran it",
     .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
     .params = vct_params,
+    .presets = vct_presets,
     .create = vct_create,
     .render = vct_render,
     .destroy = vct_destroy,

@@ -3,8 +3,8 @@
  * gib_param_int/float stopping the process on an undeclared name in every build (this test is
  * compiled with NDEBUG in the release build, where the old assert did nothing). The test-only
  * techniques (the template) are held to the same rules, and stay out of what gibench runs: not
- * in gib_techniques(), not found by name. lrsm refuses parameters its sample does not read. No GL
- * needed. */
+ * in gib_techniques(), not found by name. Presets set what they say and are named back. lrsm
+ * refuses parameters its sample does not read. No GL needed. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -119,6 +119,70 @@ static void check_test_only(void)
     }
 }
 
+/* A technique's presets: a technique with presets declares GIB_PRESET_PARAM over exactly their
+ * numbers; each preset's values are parameters of it within their ranges, not the preset itself;
+ * applied, a preset sets each of its values, leaves a parameter set explicitly as it was, and is
+ * named back; a name that is no preset is refused naming the ones there are. */
+static void check_presets(const gib_technique *t)
+{
+    int n = 0;
+    while (t->presets && t->presets[n].name)
+        n++;
+    int pi = gib_param_index(t, GIB_PRESET_PARAM);
+    CHECK(n == 0 ? pi < 0 : pi >= 0 && t->params[pi].type == GIB_PARAM_INT &&
+                                t->params[pi].def == 0 && t->params[pi].min == 0 &&
+                                t->params[pi].max == n,
+          "%s: %d presets but parameter '%s' %s", t->name, n, GIB_PRESET_PARAM,
+          pi < 0 ? "undeclared" : "not an integer over [0, presets] with default 0");
+    for (int k = 0; k < n && pi >= 0; k++) {
+        const gib_preset *ps = &t->presets[k];
+        CHECK(strcmp(ps->name, GIB_PRESET_DEFAULT) && ps->why && ps->why[0],
+              "%s: preset %d is named '%s' or says nothing of itself", t->name, k, ps->name);
+        gib_params p, kept;
+        gib_error err = {0};
+        gib_params_default(t, &p);
+        CHECK(gib_param_set(t, &p, GIB_PRESET_PARAM, ps->name, &err) == 0 &&
+                  gib_params_apply_preset(t, &p, NULL, &err) == 0,
+              "%s: preset '%s' does not apply: %s", t->name, ps->name, err.msg);
+        CHECK(!strcmp(gib_params_preset_name(t, &p), ps->name), "%s: preset '%s' named back as '%s'",
+              t->name, ps->name, gib_params_preset_name(t, &p));
+        char text[1024];
+        snprintf(text, sizeof text, "%s", ps->values);
+        char *save = NULL;
+        for (char *kv = strtok_r(text, ";", &save); kv; kv = strtok_r(NULL, ";", &save)) {
+            char *eq = strchr(kv, '=');
+            int vi = eq ? (*eq = 0, gib_param_index(t, kv)) : -1;
+            CHECK(vi >= 0 && vi != pi, "%s: preset '%s' sets '%s'", t->name, ps->name, kv);
+            if (vi < 0 || vi == pi)
+                continue;
+            gib_params one;
+            gib_params_default(t, &one);
+            CHECK(gib_param_set(t, &one, kv, eq + 1, &err) == 0 && one.values[vi] == p.values[vi],
+                  "%s: preset '%s' gives %s = %g, not %s", t->name, ps->name, kv, p.values[vi],
+                  eq + 1);
+            /* named explicitly, the parameter keeps the value it was set to */
+            unsigned char named[GIB_MAX_PARAMS] = {0};
+            gib_params_default(t, &kept);
+            gib_param_set(t, &kept, GIB_PRESET_PARAM, ps->name, &err);
+            named[vi] = 1;
+            CHECK(gib_params_apply_preset(t, &kept, named, &err) == 0 &&
+                      kept.values[vi] == t->params[vi].def,
+                  "%s: preset '%s' overrode %s, which was set explicitly", t->name, ps->name, kv);
+        }
+    }
+    if (pi >= 0) {
+        gib_params p;
+        gib_error err = {0};
+        gib_params_default(t, &p);
+        CHECK(gib_param_set(t, &p, GIB_PRESET_PARAM, "no_such_preset", &err) < 0 &&
+                  strstr(err.msg, "no_such_preset") && (n == 0 || strstr(err.msg, t->presets[0].name)),
+              "%s: an unknown preset accepted, or refused without naming the presets: %s", t->name,
+              err.msg);
+        CHECK(!strcmp(gib_params_preset_name(t, &p), GIB_PRESET_DEFAULT), "%s: defaults named '%s'",
+              t->name, gib_params_preset_name(t, &p));
+    }
+}
+
 /* lrsm refuses, before it touches GL, a parameter that acts only with hits 0 set to a
  * non-default value while hits is 1: the error names the parameter (it was not ignored). */
 static void check_lrsm_refuses_inert_parameters(void)
@@ -162,6 +226,7 @@ int main(void)
             CHECK(strcmp(all[k]->name, t->name), "technique '%s' registered twice", t->name);
         check_params(t);
         check_reference(t);
+        check_presets(t);
     }
     check_test_only();
     check_lrsm_refuses_inert_parameters();
