@@ -77,16 +77,17 @@ tsan: deps
 	sh tests/tsan/run_tsan.sh $(TSAN_BUILD) $(TSAN_BUILD)/tsan-work
 
 # The matrices (the three papers' results), then plots, the papers' tables beside ours and the report.
-# Afresh: `gibench run` skips the runs its CSV already holds, so the tables of the last run (the
-# committed ones, in a clone) move to $(RESULTS)/previous/ first; RESUME=1 continues an
-# interrupted run instead.
+# PROFILE=quick (the default) is a smoke reproduction at reduced settings (~20 min on 2 cores); the
+# committed verdicts come from PROFILE=paper, the papers' parameters at images at most 4x smaller
+# per side (hours on llvmpipe: shard it, docs/scale-out.md). Afresh: `gibench run` skips the runs
+# its CSV already holds, so the rows of $(PROFILE) from the last run (the committed ones, in a
+# clone) move to $(RESULTS)/previous/ first, and the other profiles' rows stay; RESUME=1 continues
+# an interrupted run instead.
 reproduce: build
-	@if [ -z "$(RESUME)" ]; then \
-	  mkdir -p $(RESULTS)/previous; \
-	  for m in $(MATRICES); do n=$$(basename $$m .matrix); \
-	    for f in $(RESULTS)/$$n.csv $(RESULTS)/$${n}_passes.csv; do \
-	      if [ -f $$f ]; then mv $$f $(RESULTS)/previous/; fi; done; done; \
-	fi
+	@if [ "$(PROFILE)" = quick ]; then echo "make reproduce: the quick profile, a smoke" \
+	  "reproduction at reduced settings; the committed verdicts are the paper profile's" \
+	  "(make reproduce PROFILE=paper)"; fi
+	@if [ -z "$(RESUME)" ]; then python3 harness/set_aside.py $(RESULTS) $(PROFILE) $(MATRICES); fi
 	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
 	  rc=$$?; \
 	  $(MAKE) --no-print-directory report || rc=1; exit $$rc

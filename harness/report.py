@@ -29,6 +29,7 @@ from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,
                          time_resolution, worse_than_black)
 import answers  # noqa: E402
 import cone_report  # noqa: E402
+import energy_audit  # noqa: E402
 import temporal_tables  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -648,7 +649,7 @@ def summary_counts(claims):
     return ", ".join(f"{n} {v}" for v, n in sorted(counts.items()))
 
 
-def write_html(results, claims, mats, plots, seq_rows=()):
+def write_html(results, claims, mats, plots, seq_rows=(), energy=()):
     page_dir = os.path.join(results, "report")
     os.makedirs(page_dir, exist_ok=True)
     shutil.copyfile(os.path.join(HERE, "report_style.css"), os.path.join(page_dir, "style.css"))
@@ -662,7 +663,8 @@ def write_html(results, claims, mats, plots, seq_rows=()):
              f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
              f'{esc(", ".join(revs) or "unknown")}.</p>',
              '<pre id="image-check"></pre><pre id="animation-check"></pre>',
-             '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · <a href="#gallery">Gallery</a> · '
+             '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · '
+             + ('<a href="#energy">Energy audit</a> · ' if energy else '') + '<a href="#gallery">Gallery</a> · '
              + ('<a href="#sequences">Sequences</a> · ' if seq_rows else '') +
              '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every group</a> · '
              + " · ".join(f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
@@ -671,6 +673,7 @@ def write_html(results, claims, mats, plots, seq_rows=()):
              'GPU (ours ran on the renderer shown), where our run did not run or ran out of memory, or '
              'where our settings differ from the paper\'s (quick profile).</p>',
              claims_html(claims),
+             energy_audit.section_html(energy),
              gpu_runs_html(results, page_dir),
              gallery_html(results, page_dir, mats, heads),
              sequences_html(results, page_dir, seq_rows),
@@ -766,7 +769,7 @@ def first_screen_md(results, mats, claims, heads):
     return lines
 
 
-def write_md(results, claims, mats, plots, seq_rows=()):
+def write_md(results, claims, mats, plots, seq_rows=(), energy=()):
     every, heads = answer_rows(results, mats)
     mi, absolute = split_claims(claims)
     lines = first_screen_md(results, mats, claims, heads)
@@ -779,6 +782,7 @@ def write_md(results, claims, mats, plots, seq_rows=()):
     lines += claims_md(mi)
     lines += ["", f"The papers' {sum(len(v) for v in absolute.values())} absolute GPU times are at the end "
               "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
+    lines += energy_audit.section_md(energy)
     lines += gallery_md(results, mats, heads)
     lines += sequences_md(seq_rows)
     lines += cone_report.section_md(results)
@@ -900,8 +904,10 @@ def main():
         for name, why in sorted(temporal_tables.animations(results).items()):
             if why:
                 print(f"report.py: no animation {name}: {why}", file=sys.stderr)
-    print(write_md(results, claims, mats, plots, seq_rows))
-    print(write_html(results, claims, mats, plots, seq_rows))
+    energy_path, energy = energy_audit.write(results)
+    print(energy_path)
+    print(write_md(results, claims, mats, plots, seq_rows, energy))
+    print(write_html(results, claims, mats, plots, seq_rows, energy))
 
 
 if __name__ == "__main__":
