@@ -188,9 +188,11 @@ def usable_rows(rows):
 
 
 def headline(ans_list):
-    """One answer per (component, scene, renderer), the group the most techniques estimate (then
-    the largest image, then the most settings, then the fewest worse than black): [(key, time answer, memory answer, [keys of the
-    other groups of that component and scene: other sizes and cameras])], in the order of ans_list."""
+    """One answer per (component, scene, renderer), a group of the papers'-settings rows (profile
+    paper) where there is one, then the group the most techniques estimate (then the largest image,
+    then the most settings, then the fewest worse than black): [(key, time answer, memory answer,
+    [keys of the other groups of that component and scene: other sizes and cameras])], in the order
+    of ans_list."""
     by = {}
     for a in ans_list:
         key = a[0]
@@ -198,7 +200,8 @@ def headline(ans_list):
 
     def weight(a):
         key, t, _ = a
-        return (len(t["techniques"]), int(key[3]) * int(key[4]), len(answers_rows(t)), -len(t["black"]))
+        return (profile_of(t["rows"]) == "paper", len(t["techniques"]), int(key[3]) * int(key[4]),
+                len(answers_rows(t)), -len(t["black"]))
 
     out = []
     for a in ans_list:
@@ -207,6 +210,12 @@ def headline(ans_list):
         if a is best:
             out.append((a[0], a[1], a[2], [p[0] for p in peers if p is not a]))
     return out
+
+
+def profile_of(rows):
+    """The profile a group's rows ran ('paper', 'quick', ...; profiles joined by '+' where they
+    mix): a reader is told which rows an answer stands on."""
+    return "+".join(sorted({r.get("profile", "") for r in rows})) or "?"
 
 
 def at_common_cost(rows):

@@ -473,7 +473,8 @@ def answer_table_html(entries, page_dir, results, cls):
     prev, many = None, len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
-        size = size_text(key) + (f" on {key[5]}" if many else "")
+        size = (size_text(key) + f", {answers.profile_of(t['rows'])} profile"
+                + (f" on {key[5]}" if many else ""))
         links = [f'<a href="{esc(rel(os.path.join(results, e["plot"]), page_dir))}">plot</a>'] if e["plot"] else []
         if cls == "answers":
             links.append(f'<a href="#{esc(e["anchor"])}">images</a>')
@@ -617,7 +618,7 @@ def matrix_html(results, page_dir, name, rows, plots, resolution):
         out += [figure(os.path.join(results, "plots", p), p[:-4], page_dir, "plot") for p in plots]
         out.append("</div>")
     for r in rows:
-        title = (f'{r["scene"]} · {r["technique"]} · {r["component"]} · {r["width"]}x{r["height"]}'
+        title = (f'{r["scene"]} · {r["technique"]} · {r["component"]} · {r["width"]}x{r["height"]} · {r.get("profile", "")} profile'
                  + (f' · t={r["time"]}' if r.get("time") not in ("", "0", None) else ""))
         out.append(f'<div class="row status-{esc(r["status"])}"><h4>{esc(title)} '
                    f'<span class="status">{esc(r["status"])}</span></h4>'
@@ -708,7 +709,7 @@ def answer_table_md(entries, cls="answers"):
     many = len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
-        size = (size_text(key) + (f" on {key[5]}" if many else "")
+        size = (size_text(key) + f", {answers.profile_of(t['rows'])} profile" + (f" on {key[5]}" if many else "")
                 + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else ""))
         links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
         beaten = beaten_list(t)
@@ -842,7 +843,7 @@ def matrix_md(results, m, rows, plots, resolution):
         if os.path.exists(os.path.join(results, "images", m, name + ".png")):
             imgs = f"[image](images/{m}/{name}.png) [error](images/{m}/{name}_error.png)"
         lines.append("| " + " | ".join(md(x) for x in (
-            r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']}", r["params"],
+            r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']} {r.get('profile', '')}", r["params"],
             time_text(r), fmt(r.get("first_frame_ms")),
             f"{fmt(r.get('rmse'))} ({fmt(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
             f"{rk[0]}, {rk[1]}" if rk[0] or rk[1] else "",
