@@ -118,6 +118,29 @@ const char *gib_params_preset_name(const gib_technique *t, const gib_params *p)
     return k > 0 && k <= preset_count(t) ? t->presets[k - 1].name : GIB_PRESET_DEFAULT;
 }
 
+int gib_preset_values(const gib_technique *t, const gib_preset *ps, int *index, double *value,
+                      int max, gib_error *err)
+{
+    int preset_i = gib_param_index(t, GIB_PRESET_PARAM), n = 0;
+    char text[1024];
+    snprintf(text, sizeof text, "%s", ps->values);
+    char *save = NULL;
+    for (char *kv = strtok_r(text, ";", &save); kv; kv = strtok_r(NULL, ";", &save)) {
+        char *eq = strchr(kv, '=');
+        int pi = eq ? (*eq = 0, gib_param_index(t, kv)) : -1;
+        if (pi < 0 || pi == preset_i || n >= max)
+            return gib_fail(err, "technique '%s': preset '%s' sets '%s', which is no parameter of "
+                            "it", t->name, ps->name, kv);
+        gib_params one;
+        gib_params_default(t, &one);
+        if (gib_param_set(t, &one, kv, eq + 1, err) < 0)
+            return gib_error_prefix(err, "preset '%s'", ps->name);
+        index[n] = pi;
+        value[n++] = one.values[pi];
+    }
+    return n;
+}
+
 int gib_params_apply_preset(const gib_technique *t, gib_params *p, const unsigned char *named,
                             gib_error *err)
 {
@@ -125,22 +148,13 @@ int gib_params_apply_preset(const gib_technique *t, gib_params *p, const unsigne
     int k = i < 0 ? 0 : (int)p->values[i];
     if (k <= 0 || k > preset_count(t))
         return 0;
-    const gib_preset *ps = &t->presets[k - 1];
-    char text[1024];
-    snprintf(text, sizeof text, "%s", ps->values);
-    char *save = NULL;
-    for (char *kv = strtok_r(text, ";", &save); kv; kv = strtok_r(NULL, ";", &save)) {
-        char *eq = strchr(kv, '=');
-        int pi = eq ? (*eq = 0, gib_param_index(t, kv)) : -1;
-        if (pi < 0 || pi == i)
-            return gib_fail(err, "technique '%s': preset '%s' sets '%s', which is no parameter of "
-                            "it", t->name, ps->name, kv);
-        if (named && named[pi])
-            continue;
-        if (gib_param_set(t, p, kv, eq + 1, err) < 0)
-            return gib_error_prefix(err, "preset '%s'", ps->name);
-    }
-    return 0;
+    int index[GIB_MAX_PARAMS];
+    double value[GIB_MAX_PARAMS];
+    int n = gib_preset_values(t, &t->presets[k - 1], index, value, GIB_MAX_PARAMS, err);
+    for (int j = 0; j < n; j++)
+        if (!named || !named[index[j]])
+            p->values[index[j]] = value[j];
+    return n < 0 ? -1 : 0;
 }
 
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,

@@ -134,6 +134,10 @@ void gib_params_default(const gib_technique *t, gib_params *p);
  * parameter, the value and the valid range. */
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
                   gib_error *err);
+/* The parameters preset ps sets and their values, parsed and range-checked: up to max pairs into
+ * index[] and value[]; returns their count, or -1 with err set naming the preset and the entry. */
+int gib_preset_values(const gib_technique *t, const gib_preset *ps, int *index, double *value,
+                      int max, gib_error *err);
 /* Sets the values of the preset p names (its GIB_PRESET_PARAM) on every parameter of that preset
  * but those named[i] marks as set explicitly (a matrix's list, --param), which keep their value.
  * named may be NULL. Returns 0, or -1 with err set when the preset's text is malformed. */

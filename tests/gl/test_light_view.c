@@ -28,39 +28,68 @@ static const char *sphere =
     "[material.sphere_wall]\nalbedo = 0.5 0.5 0.5\n"
     "[camera.c]\neye = 0 0 -0.6\ntarget = 1 0 -0.6\nup = 0 1 0\nfov = 60\n";
 
+/* A scene's light views rendered once: the fixture, the views and what they were made with. */
+typedef struct rendered_views {
+    gib_gl_fixture fx;
+    gib_ledger ledger;
+    gib_timers timers;
+    gib_light_views lv;
+} rendered_views;
+
+/* Opens the scene text, renders its light views at res with the attributes asked for; 0, or -1
+ * (a failure counted and printed). */
+static int render_views(rendered_views *v, const char *dir, const char *name, const char *text,
+                        int res, unsigned attributes)
+{
+    if (gib_fixture_open_text(&v->fx, dir, name, text) < 0) {
+        failures++;
+        return -1;
+    }
+    gib_ledger_init(&v->ledger);
+    gib_timers_init(&v->timers);
+    gib_error err;
+    if (gib_light_views_create(&v->lv, &v->fx.gpu, res, attributes, "lv", &v->ledger, &err) < 0) {
+        printf("FAIL %s: %s\n", name, err.msg);
+        failures++;
+        gib_fixture_close(&v->fx);
+        return -1;
+    }
+    gib_timers_frame_begin(&v->timers, 1);
+    gib_light_views_render(&v->lv, &v->fx.gpu, &v->timers, "light_view");
+    gib_timers_frame_end(&v->timers);
+    return 0;
+}
+
+/* Attribute a of every face, RGBA floats (malloc'd). */
+static float *read_attribute(const rendered_views *v, int a, int res)
+{
+    size_t n = (size_t)res * res * v->lv.face_count * 4;
+    float *px = malloc(n * sizeof *px);
+    glGetTextureImage(v->lv.textures[a], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *px), px);
+    return px;
+}
+
+static void close_views(rendered_views *v)
+{
+    gib_light_views_destroy(&v->lv, &v->ledger);
+    gib_timers_destroy(&v->timers);
+    gib_ledger_release_all(&v->ledger);
+    gib_fixture_close(&v->fx);
+}
+
 static void check_case(const char *dir, const char *name, const char *light, int res,
                        const double expected[3], double cone_cos)
 {
     char text[4096];
     snprintf(text, sizeof text, "%s[light.l]\n%s", sphere, light);
-    gib_gl_fixture fx;
-    if (gib_fixture_open_text(&fx, dir, name, text) < 0) {
-        failures++;
+    rendered_views v;
+    if (render_views(&v, dir, name, text, res, GIB_LV_FLUX | GIB_LV_POSITION) < 0)
         return;
-    }
-    gib_ledger ledger;
-    gib_ledger_init(&ledger);
-    gib_timers timers;
-    gib_timers_init(&timers);
-    gib_light_views lv;
-    gib_error err;
-    if (gib_light_views_create(&lv, &fx.gpu, res, GIB_LV_FLUX | GIB_LV_POSITION, "lv", &ledger,
-                               &err) < 0) {
-        printf("FAIL %s: %s\n", name, err.msg);
-        failures++;
-        gib_fixture_close(&fx);
-        return;
-    }
-    gib_timers_frame_begin(&timers, 1);
-    gib_light_views_render(&lv, &fx.gpu, &timers, "light_view");
-    gib_timers_frame_end(&timers);
-    size_t n = (size_t)res * res * lv.face_count * 4;
-    float *flux = malloc(n * sizeof *flux), *pos = malloc(n * sizeof *pos);
-    glGetTextureImage(lv.textures[3], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *flux), flux);
-    glGetTextureImage(lv.textures[1], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *pos), pos);
+    size_t n = (size_t)res * res * v.lv.face_count * 4;
+    float *flux = read_attribute(&v, 3, res), *pos = read_attribute(&v, 1, res);
     double sum[3] = {0, 0, 0};
     long outside = 0;
-    const gib_light *l = &fx.scene.lights[0];
+    const gib_light *l = &v.fx.scene.lights[0];
     for (size_t i = 0; i < n; i += 4) {
         for (int c = 0; c < 3; c++)
             sum[c] += flux[i + c];
@@ -79,7 +108,7 @@ static void check_case(const char *dir, const char *name, const char *light, int
         double rel = sum[c] / expected[c] - 1;
         int ok = fabs(rel) <= 0.01;
         printf("%s %s res %d faces %d channel %d: texels sum %.6f, expected %.6f, relative %+.2e\n",
-               ok ? "ok  " : "FAIL", name, res, lv.face_count, c, sum[c], expected[c], rel);
+               ok ? "ok  " : "FAIL", name, res, v.lv.face_count, c, sum[c], expected[c], rel);
         failures += !ok;
     }
     if (outside) {
@@ -88,10 +117,7 @@ static void check_case(const char *dir, const char *name, const char *light, int
     }
     free(flux);
     free(pos);
-    gib_light_views_destroy(&lv, &ledger);
-    gib_timers_destroy(&timers);
-    gib_ledger_release_all(&ledger);
-    gib_fixture_close(&fx);
+    close_views(&v);
 }
 
 /* A spot of intensity (1, 2, 3) with cos^e falloff inside `deg` degrees. */
@@ -124,29 +150,11 @@ static void check_depth_precision(const char *dir)
         "outer_angle = 10\n"
         "[camera.c]\neye = 0 5 10\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n";
     const int res = 512;
-    gib_gl_fixture fx;
-    if (gib_fixture_open_text(&fx, dir, "depth_precision", text) < 0) {
-        failures++;
+    rendered_views v;
+    if (render_views(&v, dir, "depth_precision", text, res, GIB_LV_POSITION) < 0)
         return;
-    }
-    gib_ledger ledger;
-    gib_ledger_init(&ledger);
-    gib_timers timers;
-    gib_timers_init(&timers);
-    gib_light_views lv;
-    gib_error err;
-    if (gib_light_views_create(&lv, &fx.gpu, res, GIB_LV_POSITION, "lv", &ledger, &err) < 0) {
-        printf("FAIL depth_precision: %s\n", err.msg);
-        failures++;
-        gib_fixture_close(&fx);
-        return;
-    }
-    gib_timers_frame_begin(&timers, 1);
-    gib_light_views_render(&lv, &fx.gpu, &timers, "light_view");
-    gib_timers_frame_end(&timers);
-    size_t n = (size_t)res * res * lv.face_count * 4;
-    float *pos = malloc(n * sizeof *pos);
-    glGetTextureImage(lv.textures[1], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *pos), pos);
+    size_t n = (size_t)res * res * v.lv.face_count * 4;
+    float *pos = read_attribute(&v, 1, res);
     long inside = 0, ground = 0;
     for (size_t i = 0; i < n; i += 4)
         if (fabsf(pos[i]) < 2 && fabsf(pos[i + 2]) < 2) {
@@ -158,10 +166,7 @@ static void check_depth_precision(const char *dir)
            "(at most %d: its border)\n", ok ? "ok  " : "FAIL", inside, ground, 4 * res);
     failures += !ok;
     free(pos);
-    gib_light_views_destroy(&lv, &ledger);
-    gib_timers_destroy(&timers);
-    gib_ledger_release_all(&ledger);
-    gib_fixture_close(&fx);
+    close_views(&v);
 }
 
 int main(void)

@@ -7,16 +7,11 @@ where not; presets are cells of their own; rows that are not ok are left out. No
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "harness"))
+sys.path.insert(0, os.path.join(HERE, "..", "common"))
 import energy_audit  # noqa: E402
-
-failures = []
-
-
-def check(ok, what):
-    print(("PASS " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+from script_checks import check, verdict  # noqa: E402
 
 
 def row(tech, scene, comp, ratio, over, profile="paper", params="", status="ok"):
@@ -59,5 +54,4 @@ md = "\n".join(energy_audit.section_md(list(cells.values())))
 check("unexplained" in md and "(outside)" in md and "## Energy audit" in md,
       "the Markdown section flags the cells outside the band and the unexplained ones")
 
-print("PASS" if not failures else f"FAIL: {len(failures)} checks")
-sys.exit(1 if failures else 0)
+sys.exit(verdict())

@@ -146,28 +146,25 @@ static void check_presets(const gib_technique *t)
               "%s: preset '%s' does not apply: %s", t->name, ps->name, err.msg);
         CHECK(!strcmp(gib_params_preset_name(t, &p), ps->name), "%s: preset '%s' named back as '%s'",
               t->name, ps->name, gib_params_preset_name(t, &p));
-        char text[1024];
-        snprintf(text, sizeof text, "%s", ps->values);
-        char *save = NULL;
-        for (char *kv = strtok_r(text, ";", &save); kv; kv = strtok_r(NULL, ";", &save)) {
-            char *eq = strchr(kv, '=');
-            int vi = eq ? (*eq = 0, gib_param_index(t, kv)) : -1;
-            CHECK(vi >= 0 && vi != pi, "%s: preset '%s' sets '%s'", t->name, ps->name, kv);
-            if (vi < 0 || vi == pi)
-                continue;
-            gib_params one;
-            gib_params_default(t, &one);
-            CHECK(gib_param_set(t, &one, kv, eq + 1, &err) == 0 && one.values[vi] == p.values[vi],
-                  "%s: preset '%s' gives %s = %g, not %s", t->name, ps->name, kv, p.values[vi],
-                  eq + 1);
+        int index[GIB_MAX_PARAMS];
+        double value[GIB_MAX_PARAMS];
+        int nv = gib_preset_values(t, ps, index, value, GIB_MAX_PARAMS, &err);
+        CHECK(nv > 0, "%s: preset '%s' sets nothing, or what it sets is refused: %s", t->name,
+              ps->name, err.msg);
+        for (int j = 0; j < nv; j++) {
+            const gib_param_spec *spec = &t->params[index[j]];
+            CHECK(value[j] >= spec->min && value[j] <= spec->max && p.values[index[j]] == value[j],
+                  "%s: preset '%s' gives %s = %g, not its %g", t->name, ps->name, spec->name,
+                  p.values[index[j]], value[j]);
             /* named explicitly, the parameter keeps the value it was set to */
             unsigned char named[GIB_MAX_PARAMS] = {0};
             gib_params_default(t, &kept);
             gib_param_set(t, &kept, GIB_PRESET_PARAM, ps->name, &err);
-            named[vi] = 1;
+            named[index[j]] = 1;
             CHECK(gib_params_apply_preset(t, &kept, named, &err) == 0 &&
-                      kept.values[vi] == t->params[vi].def,
-                  "%s: preset '%s' overrode %s, which was set explicitly", t->name, ps->name, kv);
+                      kept.values[index[j]] == spec->def,
+                  "%s: preset '%s' overrode %s, which was set explicitly", t->name, ps->name,
+                  spec->name);
         }
     }
     if (pi >= 0) {
