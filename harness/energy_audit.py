@@ -5,7 +5,10 @@ A cell is read from the papers'-settings rows (profile `paper`) where its matrix
 the quick profile, and says which. A cell whose mean ratio leaves 0.85-1.15 needs a cause: either a
 fix, or a measured control that shows where the gap comes from; the causes are written by hand in
 harness/energy_causes.csv (technique, preset, scene, component, cause, control), and a cell outside
-the band with none is listed as unexplained. Writes RESULTS/energy_audit.csv.
+the band with none is listed as unexplained. A cause's `verdict` is `explained` (the control
+accounts for the gap), `partly` (a part fixed or accounted for, the rest open) or `open`; its scene
+or component may be `*` (every scene or component of that technique and preset without a cause of
+its own). Writes RESULTS/energy_audit.csv.
 """
 import csv
 import html
@@ -18,7 +21,7 @@ BAND = (0.85, 1.15)
 COMPONENTS = ("direct", "indirect", "glossy", "caustic", "ao")
 COLUMNS = ["technique", "preset", "scene", "component", "profile", "rows", "mean_ratio_min",
            "mean_ratio_max", "rmse_over_black_min", "rmse_over_black_max", "worse_than_black",
-           "outside_band", "cause", "control", "matrices"]
+           "outside_band", "verdict", "cause", "control", "matrices"]
 INTRO = ("Each technique's image energy on each scene and component: its mean over the reference's "
          f"(in {BAND[0]}-{BAND[1]} it carries about the reference's light) and its RMSE over a black "
          "image's (above 1 the image is further from the reference than leaving the component out), "
@@ -35,12 +38,23 @@ def causes():
     return out
 
 
+def cause_of(known, technique, preset_name, scene, component):
+    """The cause written for a cell: its own, else its technique and preset's for every scene, for
+    every component, or for both ({} where there is none)."""
+    for key in ((scene, component), ("*", component), (scene, "*"), ("*", "*")):
+        if (technique, preset_name) + key in known:
+            return known[(technique, preset_name) + key]
+    return {}
+
+
 def chosen_rows(mats):
-    """The rows each cell is read from: per matrix the paper profile's where it has any ok row."""
+    """The rows each cell is read from: per matrix the paper profile's where it has any ok row. A
+    row whose reference is black (a leak test, a component the view lacks) has no energy to audit:
+    the leak claims judge it."""
     out = []
     for name, rows in mats.items():
         ok = [r for r in rows if r.get("status") == "ok" and r.get("component") in COMPONENTS
-              and fnum(r.get("mean_ratio")) is not None]
+              and fnum(r.get("mean_ratio")) is not None and fnum(r.get("black_rmse")) != 0]
         paper = [r for r in ok if r.get("profile") == "paper"]
         out += [(name, r) for r in (paper or ok)]
     return out
@@ -59,14 +73,14 @@ def cells(mats):
         ratio = [fnum(r["mean_ratio"]) for r in rs]
         over = [x for x in (fnum(r.get("rmse_over_black")) for r in rs) if x is not None]
         outside = min(ratio) < BAND[0] or max(ratio) > BAND[1]
-        why = known.get(key[:4], {})
+        why = cause_of(known, *key[:4]) if outside else {}
         out.append({"technique": key[0], "preset": key[1], "scene": key[2], "component": key[3],
                     "profile": key[4], "rows": len(rs),
                     "mean_ratio_min": f"{min(ratio):.3g}", "mean_ratio_max": f"{max(ratio):.3g}",
                     "rmse_over_black_min": f"{min(over):.3g}" if over else "",
                     "rmse_over_black_max": f"{max(over):.3g}" if over else "",
                     "worse_than_black": sum(1 for x in over if x > 1),
-                    "outside_band": int(outside),
+                    "outside_band": int(outside), "verdict": why.get("verdict", "open" if outside else ""),
                     "cause": why.get("cause", ""), "control": why.get("control", ""),
                     "matrices": " ".join(sorted({n for n, _ in groups[key]}))})
     return out
@@ -94,8 +108,8 @@ def row_cells(c):
     flag = " (outside)" if c["outside_band"] else ""
     worse = f", {c['worse_than_black']} worse than black" if c["worse_than_black"] else ""
     cause = c["cause"] + (f" ({c['control']})" if c["control"] else "")
-    if c["outside_band"] and not cause:
-        cause = "unexplained"
+    if c["outside_band"]:
+        cause = (f"{c['verdict']}: {cause}" if cause else "unexplained")
     return [c["technique"], c["preset"], c["scene"], c["component"], f"{c['profile']} ({c['rows']})",
             span(c["mean_ratio_min"], c["mean_ratio_max"]) + flag,
             span(c["rmse_over_black_min"], c["rmse_over_black_max"]) + worse, cause]
@@ -103,10 +117,12 @@ def row_cells(c):
 
 def counts_text(rows):
     outside = [c for c in rows if c["outside_band"]]
-    unexplained = [c for c in outside if not c["cause"]]
+    explained = sum(1 for c in outside if c["verdict"] == "explained")
+    partly = sum(1 for c in outside if c["verdict"] == "partly")
     quick = sum(1 for c in rows if c["profile"] != "paper")
-    return (f"{len(rows)} cells, {len(outside)} outside {BAND[0]}-{BAND[1]} "
-            f"({len(unexplained)} without a cause yet); {quick} read from quick-profile rows")
+    return (f"{len(rows)} cells, {len(outside)} outside {BAND[0]}-{BAND[1]}: {explained} explained by a "
+            f"measured control, {partly} partly, {len(outside) - explained - partly} open; {quick} read "
+            "from quick-profile rows")
 
 
 def section_md(rows):
