@@ -8,7 +8,8 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import fmt, fnum, params, passes_of, read_csv, run_key, runs, runs_table, write_csv  # noqa: E402
+from schema import (fmt, fnum, papers_rows, params, passes_of, preset, read_csv, run_key, runs,  # noqa: E402
+                    runs_table, write_csv)
 from uncertainty import compare_times, time_resolution  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -347,7 +348,7 @@ LEAK_VISIBLE = 0.01
 
 
 def fig7(results, paper_dir):
-    rows = runs_table(results, "lrsm_quality")
+    rows = papers_rows(runs_table(results, "lrsm_quality"))
     out = []
     for scene, paper_scene in FIG7_SCENES:
         paper_vres = paper_scene_settings(paper_dir, paper_scene).get("voxel_res") if paper_scene else None
@@ -362,7 +363,8 @@ def fig7(results, paper_dir):
                     out.append({"kind": "metric", "scene": scene, "paper_scene": paper_scene, "technique": tech,
                                 "component": comp, "params": r["params"], "size": f"{r['width']}x{r['height']}",
                                 "paper_setting": "" if paper_vres is None else
-                                ("yes" if vres == paper_vres and r["width"] == "1280" else "no"),
+                                ("yes" if vres == paper_vres and (r["width"] == "1280" or r["profile"] == "paper")
+                                 else "no"),
                                 "rmse": r["rmse"], "rel_rmse": r["rel_rmse"], "ssim": r["ssim"],
                                 "ref_spp": r["ref_spp"], "ref_noisy": r["ref_noisy"],
                                 "gpu_ms": r["gpu_ms_median"],
@@ -379,9 +381,9 @@ def fig7_leak_claims(results, rows):
     for scene in ("thin_wall_leak", "thick_wall_leak"):
         expo = scene_exposure(scene)
         tw = {}
-        for r in rows + runs_table(results, "lrsm_sweeps"):
+        for r in rows + papers_rows(runs_table(results, "lrsm_sweeps")):
             if r["scene"] == scene and r["component"] == "indirect" and r["status"] == "ok":
-                k = (params(r).get("voxel_res"), f"{r['width']}x{r['height']}", r["matrix"])
+                k = (params(r).get("voxel_res"), f"{r['width']}x{r['height']}", r["matrix"], preset(r))
                 tw.setdefault(k, {}).setdefault(r["technique"], []).append(r)
         text = f"LRSM leaks light through a thin wall, VCT does not ({scene}, indirect)"
         pairs = [v for v in sorted(k for k in tw if k[0] is not None) if "lrsm" in tw[v] and "vct" in tw[v]]
@@ -394,7 +396,7 @@ def fig7_leak_claims(results, rows):
             leaks_l, leaks_v = lr * expo >= LEAK_VISIBLE, vc * expo >= LEAK_VISIBLE
             out.append({"kind": "claim", "scene": scene, "technique": "lrsm vs vct",
                         "component": "indirect", "params": f"voxel_res={v[0]:g}", "size": v[1],
-                        "claim": text + f" [{v[2]}]",
+                        "claim": text + f" [{v[2]}" + (f", preset {v[3]}" if v[3] != "default" else "") + "]",
                         "reproduced": "yes" if leaks_l and not leaks_v else "no",
                         "evidence": f"leaked RMS x exposure {expo:g}: lrsm {lr * expo:.4g} "
                                     f"({'leaks' if leaks_l else 'no visible leak'}), vct {vc * expo:.4g} "

@@ -163,6 +163,13 @@ def parse_params(text):
     return out
 
 
+def papers_rows(rows):
+    """The rows a verdict is judged on: those at the papers' settings (profile `paper`) where the
+    table has any, else all of them (the quick profile's, which the verdict then names)."""
+    paper = [r for r in rows if r.get("profile") == "paper"]
+    return paper or list(rows)
+
+
 def preset(r):
     """The named reading a row ran (`default`: the technique's defaults; `paper`: its paper's
     literal reading)."""
