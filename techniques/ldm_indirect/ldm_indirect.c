@@ -11,8 +11,10 @@
  *  3. Splatting (splat.*): the photon buffer drawn as points (glDrawArraysIndirect on the photon
  *     counter), expanded to the footprint's screen rectangle, Eq. 5 with additive blending.
  * Directional lights are not traced (the paper's emission is from point lights, Sec. 3.4/6).
- * Photon storage is bounded (a photon is 64 bytes; the buffer is capped at one SSBO); more photons
- * than fit is reported as status `overflow`, never dropped silently.
+ * Photon storage is bounded (a photon is 64 bytes; the buffer is capped at one SSBO): the LDM
+ * directions are traced in batches whose photons fit it, each splatted before the next (a 90-degree
+ * spot's six faces at photon_res 128 and 512 directions would store 50M); a light view larger than
+ * the buffer alone still overflows, reported as status `overflow`, never dropped silently.
  * The flux audit (ldm_indirect.h) counts, per frame, where the light's flux goes: emitted, reflected,
  * carried by the secondary photons, discarded (by reason), stored and splatted. */
 #include "techniques/ldm_indirect/ldm_indirect.h"
@@ -204,56 +206,37 @@ fail:
     return NULL;
 }
 
-/* Traces the primary photons of light li's faces in the light views (rendered this frame). */
-static void trace_light(ldm_indirect *a, int li, const gib_view *view, gib_timers *timers)
+/* The trace program's state for face f of light li (its light views rendered this frame). */
+static void bind_trace(ldm_indirect *a, int li, int f, const gib_view *view)
 {
-    for (int f = a->views.first_face[li]; f < a->views.first_face[li] + a->views.faces_of[li];
-         f++) {
-        gib_timer_begin(timers, "photon_trace");
-        glUseProgram(a->trace_program);
-        gib_gpu_scene_bind(a->scene);
-        gib_light_views_bind(&a->views);
-        glBindTextureUnit(GIB_UNIT_GBUF_POSITION, a->gbuffer.position);
-        glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, a->gbuffer.normal);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_PHOTONS, a->photons);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_COMMAND, a->command);
-        glUniform1i(LDMI_TRACE_LOC_LIGHT, li);
-        glUniform1i(LDMI_TRACE_LOC_FACE, f);
-        glUniform1i(LDMI_TRACE_LOC_RES, a->photon_res);
-        glUniform1f(LDMI_TRACE_LOC_SPLIT_WEIGHT, 2.0f / (float)a->ldms.count);
-        glUniformMatrix4fv(LDMI_TRACE_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
-        glUniform3fv(LDMI_TRACE_LOC_ORIGIN, 1, view->origin);
-        glUniform2i(LDMI_TRACE_LOC_SIZE, view->width, view->height);
-        glUniform1f(LDMI_TRACE_LOC_OFFSET, a->offset);
-        glUniform1ui(LDMI_TRACE_LOC_CAPACITY, a->capacity);
-        if (a->audit)
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_AUDIT, a->audit_buffer);
-        int groups = (a->photon_res + 7) / 8;
-        for (int p = 0; p < a->ldms.page_count; p++) {
-            ldm_bind_page(&a->ldms, p);
-            glUniform1i(LDMI_TRACE_LOC_FIRST, a->ldms.pages[p].first);
-            glUniform1i(LDMI_TRACE_LOC_COUNT, a->ldms.pages[p].count);
-            if (a->audit) {
-                glUniform1i(LDMI_TRACE_LOC_FIRST_PAGE, p == 0);
-                /* Each work group adds to its audit slot: the previous dispatch's sums first. */
-                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-            }
-            glDispatchCompute(groups, groups, 1);
-        }
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        gib_timer_end(timers);
-    }
+    glUseProgram(a->trace_program);
+    gib_gpu_scene_bind(a->scene);
+    gib_light_views_bind(&a->views);
+    glBindTextureUnit(GIB_UNIT_GBUF_POSITION, a->gbuffer.position);
+    glBindTextureUnit(GIB_UNIT_GBUF_NORMAL, a->gbuffer.normal);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_PHOTONS, a->photons);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_COMMAND, a->command);
+    glUniform1i(LDMI_TRACE_LOC_LIGHT, li);
+    glUniform1i(LDMI_TRACE_LOC_FACE, f);
+    glUniform1i(LDMI_TRACE_LOC_RES, a->photon_res);
+    glUniform1f(LDMI_TRACE_LOC_SPLIT_WEIGHT, 2.0f / (float)a->ldms.count);
+    glUniformMatrix4fv(LDMI_TRACE_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
+    glUniform3fv(LDMI_TRACE_LOC_ORIGIN, 1, view->origin);
+    glUniform2i(LDMI_TRACE_LOC_SIZE, view->width, view->height);
+    glUniform1f(LDMI_TRACE_LOC_OFFSET, a->offset);
+    glUniform1ui(LDMI_TRACE_LOC_CAPACITY, a->capacity);
+    if (a->audit)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, LDMI_SSBO_AUDIT, a->audit_buffer);
 }
 
-/* The splat pass (splat.*): the photon buffer drawn as points into fbo, cleared first, added
- * with blending. The audit's program also gets what it needs to turn irradiance into flux. */
+/* The splat pass (splat.*): the photon buffer drawn as points into fbo, added with blending to
+ * what earlier batches left there. The audit's program also gets what it needs to turn
+ * irradiance into flux. */
 static void draw_splats(ldm_indirect *a, unsigned program, unsigned fbo, const gib_view *view,
                         int audit)
 {
     gib_pass_apply(&(gib_pass_state){.fbo = fbo, .width = view->width, .height = view->height,
                                      .blend = GIB_BLEND_ADD});
-    const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 0, zero);
     glUseProgram(program);
     glUniformMatrix4fv(GIB_LOC_VIEW_PROJ, 1, GL_FALSE, view->view_proj);
     glUniform3fv(GIB_LOC_ORIGIN, 1, view->origin);
@@ -276,14 +259,67 @@ static void draw_splats(ldm_indirect *a, unsigned program, unsigned fbo, const g
     gib_pass_end();
 }
 
-/* The audit's splat pass (the photons drawn again, each fragment writing the flux it deposits),
- * then both sums read back and added up in double. */
-static void audit_frame(ldm_indirect *a, const gib_view *view, gib_timers *timers)
+/* LDMs a dispatch traces, so that a batch's photons always fit the buffer: a primary photon makes
+ * at most one secondary photon per LDM (one of +-v). Only a light view larger than the buffer
+ * itself can still overflow, which the status then says. */
+static int ldms_per_batch(const ldm_indirect *a)
 {
-    gib_timer_begin(timers, "audit");
-    draw_splats(a, a->audit_splat_program, a->audit_fbo, view, 1);
-    gib_timer_end(timers);
+    uint64_t per_ldm = (uint64_t)a->photon_res * (uint64_t)a->photon_res;
+    uint64_t n = a->capacity / per_ldm;
+    return n > 0 ? (int)n : 1;
+}
 
+/* Traces LDMs [first, first + count) of the bound page from face f, splats what they stored onto
+ * the target (and the audit's), and empties the photon buffer for the next batch; the overflow
+ * count (the command's fifth word) is kept across batches. */
+static void trace_batch(ldm_indirect *a, int first, int count, int primaries, unsigned fbo,
+                        const gib_view *view, gib_timers *timers)
+{
+    const uint32_t empty[4] = {0, 1, 0, 0};
+    glNamedBufferSubData(a->command, 0, sizeof empty, empty);
+    gib_timer_begin(timers, "photon_trace");
+    glUniform1i(LDMI_TRACE_LOC_FIRST, first);
+    glUniform1i(LDMI_TRACE_LOC_COUNT, count);
+    if (a->audit)
+        glUniform1i(LDMI_TRACE_LOC_FIRST_PAGE, primaries);
+    int groups = (a->photon_res + 7) / 8;
+    glDispatchCompute(groups, groups, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    gib_timer_end(timers);
+    gib_timer_begin(timers, "splat");
+    draw_splats(a, a->splat_program, fbo, view, 0);
+    gib_timer_end(timers);
+    if (a->audit) {
+        gib_timer_begin(timers, "audit");
+        draw_splats(a, a->audit_splat_program, a->audit_fbo, view, 1);
+        gib_timer_end(timers);
+    }
+}
+
+/* Every light's faces, every LDM page, in batches that fit the photon buffer (Sec. 3.4: each
+ * primary photon split over the N directions), splatted as they go. */
+static void trace_and_splat(ldm_indirect *a, unsigned fbo, const gib_view *view, gib_timers *timers)
+{
+    const int per_batch = ldms_per_batch(a);
+    for (int li = 0; li < (int)a->scene->scene->light_count; li++)
+        for (int f = a->views.first_face[li]; f < a->views.first_face[li] + a->views.faces_of[li];
+             f++)
+            for (int p = 0; p < a->ldms.page_count; p++) {
+                const ldm_page *page = &a->ldms.pages[p];
+                for (int i = page->first; i < page->first + page->count; i += per_batch) {
+                    int n = page->first + page->count - i;
+                    /* bound for every batch: the splat pass before it changed the bindings */
+                    ldm_bind_page(&a->ldms, p);
+                    bind_trace(a, li, f, view);
+                    trace_batch(a, i, n < per_batch ? n : per_batch, p == 0 && i == page->first,
+                                fbo, view, timers);
+                }
+            }
+}
+
+/* The audit's sums, read back and added up in double (the splat passes drew its texture). */
+static void audit_frame(ldm_indirect *a)
+{
     ldm_indirect_audit au = {.valid = 1};
     size_t nslot = (size_t)AUDIT_SHADER_FATES * a->audit_groups;
     float *slots = malloc(16 * nslot);
@@ -319,19 +355,18 @@ static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *tim
                         target_count);
     const uint32_t init[6] = {0, 1, 0, 0, 0, 0};
     glNamedBufferSubData(a->command, 0, sizeof init, init);
-    if (a->audit)
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(targets[0].fbo, GL_COLOR, 0, zero);
+    if (a->audit) {
         glClearNamedBufferData(a->audit_buffer, GL_RGBA32F, GL_RGBA, GL_FLOAT, NULL);
+        glClearNamedFramebufferfv(a->audit_fbo, GL_COLOR, 0, zero);
+    }
     ldm_build(&a->ldms, a->scene, timers);
     gib_gbuffer_render(&a->gbuffer, a->scene, view, timers, "gbuffer");
     gib_light_views_render(&a->views, a->scene, timers, "rsm");
-    for (uint32_t li = 0; li < a->scene->scene->light_count; li++)
-        trace_light(a, (int)li, view, timers);
-
-    gib_timer_begin(timers, "splat");
-    draw_splats(a, a->splat_program, targets[0].fbo, view, 0);
-    gib_timer_end(timers);
+    trace_and_splat(a, targets[0].fbo, view, timers);
     if (a->audit)
-        audit_frame(a, view, timers);
+        audit_frame(a);
     return gib_gl_check("ldm_indirect", err);
 }
 
