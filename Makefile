@@ -28,7 +28,7 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
@@ -101,6 +101,17 @@ reproduce-studies:
 cone-study: build
 	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
 	  --out results/cone_study.csv --cache results/cache
+
+# The same on the LRSM paper's sun-lit Sponza at its 512^3 (160x90, 256-spp cone references; needs the
+# shared scenes, ~10 min): results/cone_study_sponza.csv, the energy audit's control for the voxel
+# techniques' indirect light there.
+cone-study-sponza: build
+	for t in lrsm vct; do extra=""; [ $$t = lrsm ] && extra="--param rsm_res=1024"; \
+	  GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	    --out $(BUILD)/cone_study_sponza_$$t.csv --cache results/cache --size 160x90 --spp 256 \
+	    --full-spp 1024 --scenes sponza_glossy --voxel-res 512 --techniques $$t $$extra || exit 1; done
+	(cat $(BUILD)/cone_study_sponza_lrsm.csv; tail -n +2 $(BUILD)/cone_study_sponza_vct.csv | \
+	  grep -v '^sponza_glossy,ideal') > results/cone_study_sponza.csv
 
 # The project's own benchmarks, apart from the papers' results (their CSVs are committed and the
 # report reads them): the reference's ray throughput against Embree alone (~10 min on 2 cores with

@@ -6,6 +6,7 @@ technique with this cone set can score) and the black image's rel RMSE, and each
 its cap's light, so that a gather near the reference by errors that cancel shows as such.
 """
 import csv
+import glob
 import html
 import os
 
@@ -17,11 +18,13 @@ INTRO = ("Each cone of the voxel techniques against the path tracer's cone (gibe
 
 
 def read(results):
-    path = os.path.join(results, "cone_study.csv")
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    """The rows of results/cone_study.csv (make cone-study: the Cornell boxes) and of any
+    cone_study_<scene>.csv beside it (a scene of the papers', run by hand: PERFORMANCE.md)."""
+    rows = []
+    for path in sorted(glob.glob(os.path.join(results, "cone_study*.csv"))):
+        with open(path, newline="") as f:
+            rows += list(csv.DictReader(f))
+    return rows
 
 
 def table(rows):
