@@ -23,7 +23,8 @@
 static const char help[] =
     "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
     "                   [--backend egl|egl-device|osmesa|auto] [--no-images] [--shard I/N]\n"
-    "                   [--history PATH | --no-history] [--warmup W] [--frames F]\n"
+    "                   [--history PATH | --no-history] [--warmup W|auto] [--frames F]\n"
+    "                   [--timing-only]\n"
     "\n"
     "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
     "it: DIR/<matrix>.csv gets one row per run and component, DIR/<matrix>_passes.csv the per-pass\n"
@@ -44,7 +45,16 @@ static const char help[] =
     "Timing: every run renders a cold first frame (its time to the first image, compiles\n"
     "included, is the column first_frame_ms), then the profile's warm-up frames, then its timed\n"
     "frames: median, interquartile range, min and max. --warmup W and --frames F replace the\n"
-    "profile's counts (the timing benchmark's longer warm-up, harness/bench_timing.py).\n";
+    "profile's counts (the timing benchmark's longer warm-up, harness/bench_timing.py).\n"
+    "--warmup auto renders warm-up frames until three frames' GPU times agree within 5%\n"
+    "(at most 60 frames or 2 s); the rows' warmup column says how many it took.\n"
+    "\n"
+    "--timing-only times and measures memory only: no references, no scores, no images (the\n"
+    "rows' metric columns stay empty; each image is still checked for NaN/Inf). For a lent GPU,\n"
+    "whose minutes go to frames (harness/device/run_on_nvidia.sh).\n"
+    "\n"
+    "Every pass row counts its work in the first warm frame (GL pipeline statistics: vertices,\n"
+    "primitives, fragment and compute invocations) and says whether it ran raster or compute.\n";
 
 /* Whether run j is this process's to do: every run, or with --shard this shard's share. */
 static int run_mine(const run_ctx *ctx, int j)
@@ -81,14 +91,17 @@ void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned
     row_set(r, GIB_C_HEIGHT, "%d", mr->height);
     row_set(r, GIB_C_TIME, "%.9g", mr->time);
     row_set(r, GIB_C_DT, "%.9g", ctx->m->dt);
-    /* The warm-up the runner renders: more where a sequence needs more frames (runner.h). */
+    /* The warm-up the runner renders: more where a sequence needs more frames (runner.h); a run
+     * that rendered sets the count it took (an auto warm-up's). */
     const int seq_warmup = ctx->m->sequence - 1 - ctx->m->frames;
-    row_set(r, GIB_C_WARMUP, "%d", ctx->m->warmup > seq_warmup ? ctx->m->warmup : seq_warmup);
+    const int warmup = ctx->m->warmup < 0 ? GIB_WARMUP_FALLBACK : ctx->m->warmup;
+    row_set(r, GIB_C_WARMUP, "%d", warmup > seq_warmup ? warmup : seq_warmup);
     row_set(r, GIB_C_FRAMES, "%d", ctx->m->frames);
     row_set(r, GIB_C_BACKEND, "%s", ctx->info.backend);
     row_set(r, GIB_C_RENDERER, "%s", ctx->info.renderer);
     row_set(r, GIB_C_GL_VERSION, "%s", ctx->info.version);
     row_set(r, GIB_C_GIT, "%s", gib_git_revision());
+    row_set(r, GIB_C_TECH_HASH, "%s", gib_technique_source_hash(mr->technique->name));
     time_t now = time(NULL);
     strftime(r->v[GIB_C_TIMESTAMP], sizeof r->v[GIB_C_TIMESTAMP], "%Y-%m-%dT%H:%M:%SZ",
              gmtime(&now));
@@ -356,7 +369,7 @@ static int write_manifest(const run_ctx *ctx, gib_error *err)
 typedef struct run_opts {
     const char *profile, *out, *cache, *history;
     const char *files[64];
-    int nfiles, backend, images, no_history;
+    int nfiles, backend, images, no_history, timing_only;
     gib_shard shard;
     long warmup, frames;
 } run_opts;
@@ -374,6 +387,8 @@ static int parse_value_option(run_opts *o, const char *a, const char *v)
             fprintf(stderr, "gibench run: %s\n", err.msg);
             return 2;
         }
+    } else if (!strcmp(a, "--warmup") && !strcmp(v, "auto")) {
+        o->warmup = GIB_WARMUP_AUTO;
     } else if (!strcmp(a, "--warmup") || !strcmp(a, "--frames")) {
         int warm = !strcmp(a, "--warmup");
         if (gib_parse_int(a, v, warm ? 0 : 1, warm ? 100 : GIB_TIMER_MAX_FRAMES,
@@ -411,6 +426,10 @@ static int parse_options(int argc, char **argv, run_opts *o)
         }
         if (!strcmp(a, "--no-history")) {
             o->no_history = 1;
+            continue;
+        }
+        if (!strcmp(a, "--timing-only")) {
+            o->timing_only = 1;
             continue;
         }
         if (a[0] != '-') {
@@ -457,7 +476,7 @@ static int load_matrices(const run_opts *o, gib_matrix **out, gib_table_layout *
             return -1;
         }
         *total += ms[i].run_count;
-        if (o->warmup >= 0)
+        if (o->warmup >= 0 || o->warmup == GIB_WARMUP_AUTO)
             ms[i].warmup = (int)o->warmup;
         if (o->frames >= 0)
             ms[i].frames = (int)o->frames;
@@ -591,7 +610,8 @@ int gib_cmd_run(int argc, char **argv)
     char cache_dir[2048], hist_path[2048];
     snprintf(cache_dir, sizeof cache_dir, "%s",
              o.cache ? o.cache : GIB_PROJECT_ROOT "/results/cache");
-    run_ctx ctx = {.out = o.out, .cache = cache_dir, .images = o.images, .shard = o.shard};
+    run_ctx ctx = {.out = o.out, .cache = cache_dir, .images = o.images && !o.timing_only,
+                   .timing_only = o.timing_only, .shard = o.shard};
     gib_history_machine machine;
     if (start_run(&ctx, &o, hist_path, sizeof hist_path, &machine)) {
         free_matrices(ms, o.nfiles);

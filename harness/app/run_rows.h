@@ -32,6 +32,7 @@ typedef struct run_ctx {
     gib_csv *csv, *passes;
     const char *out, *cache;
     int images;
+    int timing_only; /* --timing-only: no references, scores or images; NaN/Inf still checked */
     gib_gl_info info;
     gib_history *hist;     /* NULL: --no-history, or recording failed (reported once) */
     const gib_history_machine *machine;

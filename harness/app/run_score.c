@@ -93,6 +93,22 @@ static void set_error_scale(row *r, const gib_metrics *m, double noise_rmse, lon
     fmt_num(r, GIB_C_RMSE_HI, b.hi);
 }
 
+/* What a pass ran, from its counted work: raster (vertices and fragments), compute, both, or none
+ * (a copy or clear). Empty where the driver counts nothing. */
+static void pass_work(row *r, const gib_pass_stats *ps)
+{
+    if (!ps->counted)
+        return;
+    static const int cols[GIB_WORK_COUNT] = {GIB_P_VERTICES, GIB_P_PRIMITIVES, GIB_P_FRAGMENTS,
+                                             GIB_P_COMPUTE};
+    for (int k = 0; k < GIB_WORK_COUNT; k++)
+        row_set(r, cols[k], "%llu", ps->work[k]);
+    const int raster = ps->work[GIB_WORK_PRIMITIVES] > 0 || ps->work[GIB_WORK_FRAGMENTS] > 0;
+    const int compute = ps->work[GIB_WORK_COMPUTE] > 0;
+    row_set(r, GIB_P_KIND, "%s", raster && compute ? "both" : raster ? "raster"
+                                 : compute ? "compute" : "none");
+}
+
 /* The run's passes, before its rows: a run whose rows are all in the CSV (run_done) then has its
  * passes too, whenever the process is stopped. Returns -1 when the table cannot be written. */
 static int write_passes(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res)
@@ -115,6 +131,7 @@ static int write_passes(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_re
         row_set(&r, GIB_P_MAX, "%.6g", ps->max_ms);
         row_set(&r, GIB_P_IQR, "%.6g", ps->iqr_ms);
         row_set(&r, GIB_P_FIRST, "%.6g", ps->first_ms);
+        pass_work(&r, ps);
         row_set(&r, GIB_P_RENDERER, "%s", ctx->info.renderer);
         row_set(&r, GIB_P_GIT, "%s", gib_git_revision());
         gib_error err;
@@ -135,6 +152,8 @@ static void row_run_result(row *r, const gib_gpu_scene *gpu, const gib_run_resul
     /* What the technique planned, filled when the runner reports it (empty until then). */
     row_set(r, GIB_C_MEM_PLANNED, "%s", res->planned_structures);
     row_set(r, GIB_C_COUNTERS, "%s", res->counters);
+    if (res->ok)
+        row_set(r, GIB_C_WARMUP, "%d", res->warmup_frames);
     if (res->driver_bytes >= 0)
         row_set(r, GIB_C_DRIVER_MEM, "%lld", res->driver_bytes);
     if (!res->ok) {
@@ -368,6 +387,31 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
     gib_image_free(&ref.image);
 }
 
+/* A timed row without a reference (--timing-only): its image is only checked for NaN/Inf, which
+ * would make its times those of a broken frame. */
+static void time_component(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res,
+                           int index, row *r)
+{
+    const gib_image *img = &res->images[index];
+    long nonfinite = 0;
+    for (size_t k = 0; k < (size_t)img->width * img->height * img->channels; k++)
+        nonfinite += !isfinite(img->px[k]);
+    row_set(r, GIB_C_NONFINITE, "%ld", nonfinite);
+    row_set(r, GIB_C_STATUS, "%s", nonfinite ? "nonfinite" : "ok");
+    if (nonfinite)
+        row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image (timing only)", nonfinite);
+    else
+        row_set(r, GIB_C_MESSAGE, "timing only: not scored");
+    append_row(ctx, r);
+    char tag[32];
+    gib_progress_tag(&ctx->progress, tag, sizeof tag);
+    gib_progress_clear(&ctx->progress);
+    printf("%s %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms (IQR %.3f, warm-up %d)  %s\n", tag,
+           mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
+           res->gpu_total.median_ms, res->gpu_total.iqr_ms, res->warmup_frames,
+           r->v[GIB_C_STATUS]);
+}
+
 /* A run's passes, then a row per output component. */
 void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
                       const gib_matrix_run *mr, gib_run_result *res)
@@ -390,6 +434,8 @@ void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
         row_run_result(&r, gpu, res);
         if (!res->ok)
             append_row(ctx, &r);
+        else if (ctx->timing_only)
+            time_component(ctx, mr, res, (int)i++, &r);
         else
             score_component(ctx, scene, mr, res, bit, (int)i++, img_dir, &r);
     }

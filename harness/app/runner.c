@@ -125,11 +125,48 @@ static int make_targets(const gib_run_request *rq, run_state *st, gib_run_result
     return 0;
 }
 
-/* The warm-up frames: the request's, or more where a sequence needs more frames than it renders. */
+/* Whether the warm-up lasts until the time settles: asked for, and possible (the instants of the
+ * frames do not depend on how many there are, and no sequence counts them). */
+static int warmup_is_auto(const gib_run_request *rq)
+{
+    return rq->warmup == GIB_WARMUP_AUTO && rq->sequence < 2 &&
+           (rq->dt == 0 || rq->scene->scene->motion_count == 0);
+}
+
+/* The warm-up frames: the request's, or more where a sequence needs more frames than it renders;
+ * for an auto warm-up, the most it may take. */
 static int warmup_frames(const gib_run_request *rq)
 {
+    if (warmup_is_auto(rq))
+        return GIB_WARMUP_AUTO_MAX;
+    const int warmup = rq->warmup < 0 ? GIB_WARMUP_FALLBACK : rq->warmup;
     const int need = rq->sequence - 1 - rq->frames;
-    return rq->warmup > need ? rq->warmup : need;
+    return warmup > need ? warmup : need;
+}
+
+/* An auto warm-up's frames after the counting one: settled once the last three GPU frame times lie
+ * within 5% of their median, or after 2 s of warm-up. */
+typedef struct warm_watch {
+    double ms[3];
+    int n;
+    double start_ms;
+} warm_watch;
+
+static int warm_settled(warm_watch *w, double frame_ms)
+{
+    if (w->n == 0)
+        w->start_ms = gib_now_ms();
+    w->ms[w->n++ % 3] = frame_ms;
+    if (w->n < 3)
+        return 0;
+    double lo = w->ms[0], hi = w->ms[0], sum = 0;
+    for (int k = 0; k < 3; k++) {
+        lo = w->ms[k] < lo ? w->ms[k] : lo;
+        hi = w->ms[k] > hi ? w->ms[k] : hi;
+        sum += w->ms[k];
+    }
+    const double median = sum - lo - hi;
+    return hi - lo <= 0.05 * median || gib_now_ms() - w->start_ms > 2000.0;
 }
 
 /* With a sequence, frame f's images read back into their place in it (after its timing ends). */
@@ -154,13 +191,17 @@ static int render_frames(const gib_run_request *rq, run_state *st, gib_run_resul
                          double create_start)
 {
     const gib_gpu_scene *scene = rq->scene;
-    const int warmup = warmup_frames(rq);
-    const int moves = scene->scene->motion_count > 0, nf = 1 + warmup + rq->frames;
+    int warmup = warmup_frames(rq);
+    const int moves = scene->scene->motion_count > 0, auto_warm = warmup_is_auto(rq);
+    int nf = 1 + warmup + rq->frames;
+    warm_watch watch = {0};
     gib_view view;
     for (int f = 0; f < nf; f++) {
         const double tf = frame_time(rq, f, nf);
         gib_view_make(scene->scene, &scene->scene->cameras[rq->camera], rq->width, rq->height,
                       (float)tf, &view);
+        /* The work is counted in the first warm frame (the cold one where there is none). */
+        st->timers.count_next = f == (warmup > 0);
         gib_timers_frame_begin(&st->timers, f > warmup);
         if (moves) {
             gib_timer_begin(&st->timers, "scene_update");
@@ -183,7 +224,12 @@ static int render_frames(const gib_run_request *rq, run_state *st, gib_run_resul
         }
         if (read_sequence_frame(rq, st, r, f, nf) < 0)
             return -1;
+        if (auto_warm && f >= 2 && f <= warmup && warm_settled(&watch, st->timers.frame_ms)) {
+            warmup = f;
+            nf = 1 + warmup + rq->frames;
+        }
     }
+    r->warmup_frames = warmup;
     return 0;
 }
 

@@ -24,6 +24,7 @@ typedef struct gib_run_result {
     gib_pass_stats passes[GIB_TIMER_MAX_PASSES];
     gib_pass_stats gpu_total, cpu_total;
     int frames;
+    int warmup_frames;              /* the warm-up frames rendered (auto: until the time settled) */
     double first_frame_ms;          /* wall time from create to the cold first frame's image
                                        (glFinish): compiles and first uses included */
     uint64_t technique_bytes;       /* peak bytes the technique's ledger held */
@@ -37,6 +38,13 @@ typedef struct gib_run_result {
     char counters[256];             /* the technique's counters of the last frame, or "" */
     gib_error err;
 } gib_run_result;
+
+/* warmup GIB_WARMUP_AUTO: warm-up frames until three frames' GPU times agree within 5% of their
+ * median (at least 3 after the first warm frame, at most GIB_WARMUP_AUTO_MAX frames or 2 s), for
+ * a single-frame run of a scene standing still or at one instant; otherwise GIB_WARMUP_FALLBACK. */
+#define GIB_WARMUP_AUTO (-2)
+#define GIB_WARMUP_AUTO_MAX 60
+#define GIB_WARMUP_FALLBACK 5
 
 /* What to run: a technique with validated parameters on an uploaded scene, from `camera`, at
  * width x height: the cold first frame, then `warmup` warm-up frames, then `frames` timed frames

@@ -76,6 +76,7 @@
     X(RENDERER, "renderer", "text", 0, "the GL renderer string")                                   \
     X(GL_VERSION, "gl_version", "text", 0, "the GL version string")                                \
     X(GIT, "git_revision", "text", 0, "the source revision built")                                 \
+    X(TECH_HASH, "technique_hash", "text", 0, "hash of the technique's sources (source_hash.py)")  \
     X(TIMESTAMP, "timestamp", "text", 0, "when the row was written (UTC)")
 
 /* The sequence columns: after the base columns, only in the table of a matrix with `sequence` above
@@ -113,6 +114,11 @@
     X(MAX, "ms_max", "real", 0, "greatest")                                                        \
     X(IQR, "ms_iqr", "real", 0, "interquartile range")                                             \
     X(FIRST, "ms_first", "real", 0, "the cold first frame's")                                      \
+    X(KIND, "kind", "text", 0, "raster, compute, both or none: what its counted work ran")         \
+    X(VERTICES, "vertices", "int", 0, "vertices submitted in the counting frame")                  \
+    X(PRIMITIVES, "primitives", "int", 0, "primitives submitted in the counting frame")            \
+    X(FRAGMENTS, "fragment_invocations", "int", 0, "fragment shader invocations, counting frame")  \
+    X(COMPUTE, "compute_invocations", "int", 0, "compute shader invocations, counting frame")      \
     X(RENDERER, "renderer", "text", 0, "the GL renderer string")                                   \
     X(GIT, "git_revision", "text", 0, "the source revision built")
 

@@ -9,14 +9,18 @@
 #
 #   bash harness/device/run_on_nvidia.sh MATRIX... [more gibench run options]
 #
+# The device run of all three papers is `harness/device/time_all_papers.sh`: this script with the
+# matrices in the papers' order and --timing-only --warmup auto.
+#
 # from the repository's root (a copy of this script elsewhere, e.g. .bundle/run_on_nvidia.sh in a
 # checkout that does not have it yet, works the same: the root is the current folder when it holds
 # scenes/ and .bundle/, else the folder two above this script).
 #
 # Writes into $OUT (default /tmp/gib-device-out): gpu.txt (GPU, driver, clocks, CPUs, kernel, the GL
-# context gibench gets), gibench.log (the run's stdout and stderr), results.tar.xz (the results
-# folder without its images: the CSVs, manifests and history) and device.log (this script's own
-# steps). Those files are written whatever happens to the run: gibench stops at a time budget
+# context gibench gets), gibench.log (the runs' stdout and stderr), results.tar.xz (the results
+# folder without its images: the CSVs, manifests and history), clocks.csv (the GPU's clocks, power,
+# temperature and throttle reasons before and after each matrix), gpu_samples.csv (the same every
+# 200 ms) and device.log (this script's own steps). Those files are written whatever happens to the run: gibench stops at a time budget
 # (GIB_DEVICE_BUDGET_S seconds from this script's start, default 480: under a 600 s command
 # limit), and the rows it wrote by then stay valid (each row is appended and flushed as its run
 # finishes; an unfinished last line is cut off here, as `gibench run` does when it resumes).
@@ -25,7 +29,7 @@
 #
 # Environment: GIB_DEVICE_BACKEND (--backend, default egl-device: the device platform, how an NVIDIA
 # GPU is reached without a display; egl tries the surfaceless platform first), GIB_DEVICE_PROFILE
-# (default paper; gpu: the paper's settings with 16-spp references, for matrices that have it), GIB_DEVICE_FORCE=1
+# (default paper; gpu: the papers' settings at the papers' image sizes), GIB_DEVICE_FORCE=1
 # unpacks .gl into / even without /usr/local/nvidia (never on a machine of ours: it overwrites the
 # system's GL libraries), GIB_DEVICE_TMP (default /tmp) where bundle, scenes, results and cache go.
 set -u
@@ -112,17 +116,58 @@ if ! probe "$backend" && [ "$backend" != egl ]; then
     probe "$backend" || say "no context with --backend egl either (gpu.txt)"
 fi
 
-left=$((budget - ($(date +%s) - start)))
-[ "$left" -gt 30 ] || left=30
-say "gibench run $* --profile $profile --backend $backend, stopped after ${left} s"
-# Line-buffered (stdbuf), so that what gibench printed before the budget stopped it is in the log.
+# The GPU's state: SM and memory clocks, power, temperature, performance state and the reasons the
+# clocks are held down (nvidia-smi's clocks_event_reasons, named clocks_throttle_reasons by older
+# drivers), as one CSV line; a sampler writes it every 200 ms for the whole run (gpu_samples.csv)
+# and each matrix gets a line before and after (clocks.csv), so that rows timed while the clock
+# moved or the GPU was held down can be marked (harness/device/gpu_summary.py).
+fields=timestamp,clocks.sm,clocks.mem,clocks.max.sm,power.draw,temperature.gpu,pstate,utilization.gpu
+if command -v nvidia-smi >/dev/null 2>&1; then
+    if nvidia-smi --query-gpu=clocks_event_reasons.active --format=csv,noheader >/dev/null 2>&1; then
+        fields=$fields,clocks_event_reasons.active
+    else
+        fields=$fields,clocks_throttle_reasons.active
+    fi
+    echo "$fields" >"$out/gpu_samples.csv"
+    nvidia-smi --query-gpu="$fields" --format=csv,noheader,nounits -lms 200 >>"$out/gpu_samples.csv" 2>&1 &
+    sampler=$!
+    echo "matrix,when,$fields" >"$out/clocks.csv"
+fi
+snapshot() {
+    command -v nvidia-smi >/dev/null 2>&1 || return 0
+    echo "$1,$2,$(nvidia-smi --query-gpu="$fields" --format=csv,noheader,nounits 2>&1 | head -n 1)" >>"$out/clocks.csv"
+}
+
+# One gibench run per matrix, in the order given (the papers' tables first), each stopped at what
+# is left of the budget. Line-buffered (stdbuf), so that what gibench printed before the budget
+# stopped it is in the log.
 line=
 command -v stdbuf >/dev/null 2>&1 && line="stdbuf -oL -eL"
-timeout -k 15 "$left" $line "$gibench" run "$@" --profile "$profile" --backend "$backend" \
-    --out "$results" --cache "$cache" >"$out/gibench.log" 2>&1
-rc=$?
-[ $rc -eq 124 ] && say "stopped at the time budget: the rows written so far are kept"
-say "gibench exited with $rc after $(($(date +%s) - start)) s"
+matrices=() opts=()
+for a in "$@"; do
+    case $a in *.matrix) matrices+=("$a") ;; *) opts+=("$a") ;; esac
+done
+rc=0
+: >"$out/gibench.log"
+for m in "${matrices[@]}"; do
+    name=$(basename "$m" .matrix)
+    left=$((budget - ($(date +%s) - start)))
+    if [ "$left" -le 20 ]; then
+        say "$name: not run, the budget is spent"
+        continue
+    fi
+    snapshot "$name" before
+    t0=$(date +%s)
+    timeout -k 15 "$left" $line "$gibench" run "$m" "${opts[@]}" --profile "$profile" \
+        --backend "$backend" --out "$results" --cache "$cache" >>"$out/gibench.log" 2>&1
+    mrc=$?
+    snapshot "$name" after
+    [ $mrc -eq 124 ] && say "$name: stopped at the time budget: the rows written so far are kept"
+    say "$name: gibench exited with $mrc after $(($(date +%s) - t0)) s"
+    [ $mrc -ne 0 ] && rc=$mrc
+done
+[ -n "${sampler:-}" ] && kill "$sampler" 2>/dev/null
+say "all matrices: $(($(date +%s) - start)) s"
 
 # A row cut in the middle by the time budget is dropped: head keeps the newline-terminated lines.
 for f in "$results"/*.csv; do

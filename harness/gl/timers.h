@@ -7,20 +7,36 @@
 #ifndef GIB_TIMERS_H
 #define GIB_TIMERS_H
 
+/* Pipeline statistics: the harness sets count_next before one frame (a warm one: the last
+ * warm-up frame) and every pass of that frame also counts its work. The counting queries never
+ * bracket a timed frame, so they cannot change its times. */
+
 #define GIB_TIMER_MAX_PASSES 16
 #define GIB_TIMER_MAX_FRAMES 256
+
+/* The work a pass did in the counting frame (GL_ARB_pipeline_statistics_query): vertices and
+ * primitives submitted, fragment and compute shader invocations. */
+enum { GIB_WORK_VERTICES, GIB_WORK_PRIMITIVES, GIB_WORK_FRAGMENTS, GIB_WORK_COMPUTE, GIB_WORK_COUNT };
 
 typedef struct gib_pass_stats {
     char name[48];
     double median_ms, min_ms, max_ms; /* over the timed frames */
     double iqr_ms;                    /* their interquartile range (quartiles interpolated) */
     double first_ms;                  /* the cold first frame: never among the timed ones */
+    int counted;                      /* 1: work[] holds the counting frame's pipeline statistics */
+    unsigned long long work[GIB_WORK_COUNT];
 } gib_pass_stats;
 
 struct gib_timers {
     int pass_count;
     char names[GIB_TIMER_MAX_PASSES][48];
     unsigned queries[GIB_TIMER_MAX_PASSES];
+    unsigned work_queries[GIB_TIMER_MAX_PASSES][GIB_WORK_COUNT];
+    unsigned long long work[GIB_TIMER_MAX_PASSES][GIB_WORK_COUNT];
+    int counted[GIB_TIMER_MAX_PASSES];
+    int count_next;                /* set by the harness: count the work of the next frame begun */
+    int counting;                  /* 1 during that frame, when the driver has the statistics */
+    double frame_ms;               /* GPU ms of the frame being rendered or last ended, any frame */
     int used_in_frame[GIB_TIMER_MAX_PASSES];
     int active;                    /* pass index with an open query, -1 when none */
     int frames;                    /* recorded (timed) frames */
@@ -41,6 +57,9 @@ void gib_timers_destroy(gib_timers *t);
 /* Used by techniques. Passes are identified by name; the same name in one frame accumulates. */
 void gib_timer_begin(gib_timers *t, const char *pass);
 void gib_timer_end(gib_timers *t);
+
+/* Whether the driver counts pipeline statistics (GL_ARB_pipeline_statistics_query). */
+int gib_timers_can_count(void);
 
 /* Used by the harness around each render() call. `record` = 0 for warm-up frames; the first frame
  * begun is the cold one and is never recorded as timed. frame_end waits for the GPU (glFinish), so
