@@ -62,7 +62,7 @@ def ldm_rows(results, paper_csv):
             # The paper profile's images are at most 4x smaller per side than the paper's.
             exact = all(params(best).get(k) == v for k, v in want.items()) and \
                 (best["width"] == pr["image_res"] or
-                 (best["profile"] == "paper" and 4 * int(best["width"]) >= int(pr["image_res"])))
+                 (best["profile"] in ("paper", "gpu") and 4 * int(best["width"]) >= int(pr["image_res"])))
             rec.update({
                 "our_settings": f"{best['params']} {best['width']}x{best['height']} profile={best['profile']}"
                                 + ("" if exact else " (NOT the paper's settings: see profile)"),

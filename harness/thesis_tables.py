@@ -204,7 +204,7 @@ def rows_for(results, paper):
             prof = (cr or mr or {}).get("profile", "")
             # The paper profile's images are a quarter of the thesis' per side (its parameters are
             # the thesis'): the ranks of its two sizes stand for 512^2 and 1024^2.
-            exact = prof == "paper" and (cr or mr) and 4 * int((cr or mr)["width"]) >= int(pr["resolution"])
+            exact = prof in ("paper", "gpu") and (cr or mr) and 4 * int((cr or mr)["width"]) >= int(pr["resolution"])
             rec.update({
                 "our_settings": "; ".join(settings) + f" profile={prof}"
                                 + ("" if exact else " (NOT the thesis' settings: see profile)"),

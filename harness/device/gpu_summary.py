@@ -1,27 +1,39 @@
 #!/usr/bin/env python3
-"""Summarises a GPU run of harness/device/run_on_nvidia.sh beside the papers' own numbers.
+"""Summarises a device run (harness/device/time_all_papers.sh) beside the papers' own numbers.
 
     python3 harness/device/gpu_summary.py results/gpu/NAME [--paper-values DIR] > results/gpu/NAME/SUMMARY.md
 
-Reads the folder's gpu.txt (the machine, as the script recorded it) and its CSVs (lrsm_stages,
-lrsm_memory, thesis_indirect, where present) and writes Markdown: the LRSM paper's Table 3 (GPU
-time per stage) and Table 2 (frame time and memory) with this GPU's medians beside the paper's
-GTX 770 and Iris Pro, and the cross-paper indirect comparison's times. Every time is the median of
-the warm frames with its interquartile range; the cold first frame stands apart."""
+Reads the folder's gpu.txt (the machine), clocks.csv and gpu_samples.csv (the GPU's state per matrix
+and every 200 ms), and its runs and passes tables, and writes Markdown: the machine and its raster
+limit; which rows the report may use (harness/gpu_rows.py: current, not held down, steady); the clocks
+per matrix; the LRSM paper's Tables 3 and 2, the LDM paper's Figs. 8-10 and the thesis' Tables 4.1-4.5
+with this GPU's times beside the papers'; what each pass kind costs a unit of work; the cross-paper
+indirect light. Every time is the median of the warm frames with its interquartile range; the cold
+first frame stands apart. Quality is not here: the run is timing only (the paper profile's llvmpipe
+rows in results/ judge error)."""
 import csv
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+import gpu_rows  # noqa: E402
+import ldm_tables  # noqa: E402
+import thesis_tables  # noqa: E402
+
 PAPER_VALUES = os.path.join(HERE, "..", "..", "..", "shared", "paper-values")
-STAGES = ("voxelization", "lrsm_construction", "shadow_cone", "diffuse_cones", "specular_cone")
+# Where a card runs vertex and fragment work on a part of its chip only: what its times of raster
+# passes then stand for (NVIDIA H100 Tensor Core GPU Architecture whitepaper: of the GH100's TPCs,
+# two per GPU are graphics-capable; the H200 is the same GH100 chip with more memory).
+RASTER_LIMITS = {
+    "H100": "only 2 TPCs of the chip run vertex and fragment shaders (GH100); compute runs on every SM",
+    "H200": "only 2 TPCs of the chip run vertex and fragment shaders (GH100, as the H100); compute "
+            "runs on every SM",
+}
 
 
 def read_csv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    return gpu_rows.read_csv(path)
 
 
 def param(row, key):
@@ -32,10 +44,23 @@ def param(row, key):
     return ""
 
 
+def num(v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return None
+
+
+def ms(row, key="gpu_ms_median", iqr="gpu_ms_iqr"):
+    m, q = num(row.get(key)), num(row.get(iqr))
+    return "" if m is None else f"{m:.2f}" + (f" ({q:.2f})" if q is not None else "")
+
+
 def machine(folder):
     """The lines of gpu.txt that name the machine: GPU, driver, clocks, CPUs, GL renderer."""
     keep = []
-    lines = open(os.path.join(folder, "gpu.txt")).read().splitlines()
+    path = os.path.join(folder, "gpu.txt")
+    lines = open(path).read().splitlines() if os.path.exists(path) else []
     for i, line in enumerate(lines):
         if line.startswith("== nvidia-smi --query-gpu") and i + 2 < len(lines):
             keep += [lines[i + 1], lines[i + 2]]
@@ -44,63 +69,183 @@ def machine(folder):
     return keep
 
 
+def raster_limit(renderer):
+    for card, text in RASTER_LIMITS.items():
+        if card in renderer:
+            return f"{card}: {text}"
+    return ""
+
+
+def judged(folder):
+    """The folder's runs rows, judged (gpu_rows), by matrix."""
+    rows = [r for r in gpu_rows.load(os.path.dirname(os.path.dirname(os.path.abspath(folder))))
+            if os.path.abspath(r["_folder"]) == os.path.abspath(folder)]
+    by = {}
+    for r in rows:
+        by.setdefault(r["matrix"], []).append(r)
+    return by
+
+
+def validity(by):
+    rows = [r for rs in by.values() for r in rs]
+    n = len(rows)
+    count = lambda f: sum(1 for r in rows if f(r))  # noqa: E731
+    return [f"- {n} rows from gibench {', '.join(sorted({r['git_revision'] for r in rows}))}: "
+            f"{count(lambda r: r['status'] == 'ok')} ok, "
+            f"{count(lambda r: r['status'] == 'out_of_memory')} out of memory (plans over the "
+            "technique's memory budget, by design).",
+            f"- Usable by the report (harness/gpu_rows.py): {count(lambda r: r['_valid'])}. "
+            f"Stale (technique changed since): {count(lambda r: not r['_current'])}. Held down "
+            f"(a throttle reason other than idle): {count(lambda r: r['_held_down'])}. Clock below 97% "
+            f"of its maximum somewhere in the row's window: {count(lambda r: r['_clock_moved'])}, of which "
+            f"{count(lambda r: r['_clock_moved'] and not r['_spread_ok'])} also have a spread over 5% "
+            "and are left out.",
+            f"- Warm-up until three frames agree within 5%: "
+            f"{min(int(r['warmup']) for r in rows)}-{max(int(r['warmup']) for r in rows)} frames, "
+            f"then {sorted({r['frames'] for r in rows})[0]} timed frames."]
+
+
+def clocks(folder, by):
+    rows = read_csv(os.path.join(folder, "clocks.csv"))
+    if not rows:
+        return ["(no clocks.csv: nvidia-smi was not there)"]
+    reasons = next((k for k in rows[0] if "reasons" in k), None)
+    pairs = {}
+    for r in rows:
+        pairs.setdefault(r["matrix"], {}).setdefault(r["when"], r)
+    out = ["| matrix | rows | seconds | SM MHz before / after (max) | power W | temp C | reasons | "
+           "marked |", "|---|---|---|---|---|---|---|---|"]
+    for name, p in pairs.items():
+        b, a = p.get("before"), p.get("after")
+        rs = by.get(name, [])
+        if not b or not a or not rs:
+            continue
+        t0, t1 = gpu_rows.epoch(b["timestamp"]), gpu_rows.epoch(a["timestamp"])
+        if t1 - t0 < 1:  # a resumed call that found every row done
+            continue
+        marked = sum(1 for r in rs if r["_held_down"] or r["_clock_moved"])
+        out.append(f"| {name} | {len(rs)} | {t1 - t0:.0f} | {b['clocks.sm'].strip()} / "
+                   f"{a['clocks.sm'].strip()} ({b['clocks.max.sm'].strip()}) | "
+                   f"{b['power.draw'].strip()} / {a['power.draw'].strip()} | "
+                   f"{b['temperature.gpu'].strip()} / {a['temperature.gpu'].strip()} | "
+                   f"{b[reasons].strip() if reasons else ''} / {a[reasons].strip() if reasons else ''} | "
+                   f"{marked} |")
+    return out
+
+
+def passes(folder, matrix):
+    return read_csv(os.path.join(folder, f"{matrix}_passes.csv"))
+
+
 def table3(folder, paper):
-    passes = read_csv(os.path.join(folder, "lrsm_stages_passes.csv"))
-    want = {("lrsm", "512"): "LRSM", ("vct", "256"): "VCT"}
-    ours = {}
-    for r in passes:
-        method = want.get((r["technique"], param(r, "voxel_res")))
-        stage = "diffuse_cones_6" if r["pass"] == "diffuse_cones" else \
-            "specular_cone_1" if r["pass"] == "specular_cone" else r["pass"]
-        if method:
-            ours[(method, stage)] = (float(r["ms_median"]), float(r["ms_iqr"]), float(r["ms_first"]))
+    """LRSM Table 3: per-stage times on Sponza at 1280x720, each preset, with the pass kind."""
+    want = {("lrsm", "512"): "LRSM", ("vct", "256"): "VCT", ("vct", "512"): "VCT"}
+    stage_of = {"diffuse_cones": "diffuse_cones_6", "specular_cone": "specular_cone_1"}
     paper_ms = {(p["method"], p["gpu"], p["stage"]): p["ms"] for p in paper}
-    out = ["| method | stage | this GPU, ms (IQR; cold first) | GTX 770 (paper) | Iris Pro (paper) |",
-           "|---|---|---|---|---|"]
-    for method in ("LRSM", "VCT"):
-        for stage in ("voxelization", "lrsm_construction", "shadow_cone", "diffuse_cones_6",
-                      "specular_cone_1"):
-            o = ours.get((method, stage))
-            g = paper_ms.get((method, "GTX770", stage), "")
-            i = paper_ms.get((method, "Iris Pro", stage), "")
-            if o or g:
-                cell = f"{o[0]:.2f} ({o[1]:.3f}; {o[2]:.1f})" if o else "-"
-                out.append(f"| {method} | {stage} | {cell} | {g} | {i} |")
+    out = ["| method | preset | voxel_res | stage | kind | this GPU ms (IQR; cold first) | "
+           "GTX 770 (paper) | Iris Pro (paper) |", "|---|---|---|---|---|---|---|---|"]
+    rows = sorted(passes(folder, "lrsm_stages"), key=lambda r: (r["technique"], param(r, "preset"),
+                                                                int(param(r, "voxel_res") or 0)))
+    for r in rows:
+        method = want.get((r["technique"], param(r, "voxel_res")))
+        if not method:
+            continue
+        stage = stage_of.get(r["pass"], r["pass"])
+        g = paper_ms.get((method, "GTX770", stage), "")
+        i = paper_ms.get((method, "Iris Pro", stage), "")
+        out.append(f"| {method} | {param(r, 'preset') or 'default'} | {param(r, 'voxel_res')} | {stage} "
+                   f"| {r.get('kind', '')} | {ms(r, 'ms_median', 'ms_iqr')}; {num(r['ms_first']):.1f} "
+                   f"| {g} | {i} |")
     return out
 
 
 def table2(folder, paper):
     rows = [r for r in read_csv(os.path.join(folder, "lrsm_memory.csv")) if r["component"] == "indirect"]
     names = {"sibenik": "SIBENIK", "sponza_glossy": "SPONZA", "sponza_dragon": "SPONZA DRAGON"}
-    out = ["| scene | technique | voxel_res | D | this GPU frame, ms (IQR) | planned MB | driver MB | "
-           "paper total MB | paper GTX 770 ms |", "|---|---|---|---|---|---|---|---|---|"]
+    out = ["| scene | technique | preset | voxel_res | D | this GPU frame ms (IQR) | planned MB | "
+           "driver MB | paper total MB | paper GTX 770 ms |", "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         res, depth = param(r, "voxel_res"), param(r, "layers_depth")
         p = next((p for p in paper if p["scene"] == names.get(r["scene"]) and
                   p["occlusion_voxel_res"] == res and (not depth or p["layers_depth"] == depth)), None)
+        lrsm = p and r["technique"] == "lrsm"
+        head = f"| {r['scene']} | {r['technique']} | {param(r, 'preset') or 'default'} | {res} | {depth} |"
         if r["status"] != "ok":
-            out.append(f"| {r['scene']} | {r['technique']} | {res} | {depth} | {r['status']} | | | | |")
+            out.append(f"{head} {r['status']} | | | {p['total_mb'] if lrsm else ''} | "
+                       f"{p['gtx770_ms'] if lrsm else ''} |")
             continue
-        drv = f"{float(r['driver_mem_bytes']) / 1e6:.1f}" if r["driver_mem_bytes"] else ""
-        out.append(f"| {r['scene']} | {r['technique']} | {res} | {depth} | "
-                   f"{float(r['gpu_ms_median']):.2f} ({float(r['gpu_ms_iqr']):.2f}) | "
-                   f"{float(r['mem_bytes']) / 1e6:.1f} | {drv} | "
-                   f"{p['total_mb'] if p and r['technique'] == 'lrsm' else ''} | "
-                   f"{p['gtx770_ms'] if p and r['technique'] == 'lrsm' else ''} |")
+        drv = f"{float(r['driver_mem_bytes']) / 1e6:.1f}" if r.get("driver_mem_bytes") else ""
+        out.append(f"{head} {ms(r)} | {float(r['mem_bytes']) / 1e6:.1f} | {drv} | "
+                   f"{p['total_mb'] if lrsm else ''} | {p['gtx770_ms'] if lrsm else ''} |")
+    return out
+
+
+def ldm(folder, pv):
+    path = os.path.join(pv, "ldm_figures.csv")
+    if not os.path.exists(path):
+        return ["(no ldm_figures.csv among the paper values)"]
+    out = ["| figure | scene | method | paper's settings | paper ms (GPU) | this GPU ms | ours run |",
+           "|---|---|---|---|---|---|---|"]
+    for rec in ldm_tables.ldm_rows(folder, path):
+        ours = num(rec.get("our_ms"))
+        out.append(f"| {rec['figure']} | {rec['scene']} | {rec['method']} | {rec['paper_settings']} | "
+                   f"{rec['paper_ms']} ({rec['paper_gpu']}) | {'' if ours is None else f'{ours:.1f}'} | "
+                   f"{rec.get('our_settings', 'not run')} |")
+    return out
+
+
+def thesis(folder, pv):
+    path = os.path.join(pv, "thesis_tables.csv")
+    if not os.path.exists(path):
+        return ["(no thesis_tables.csv among the paper values)"]
+    out = ["| table | scene | size | rays | thesis split / gather / tracing / splat / frame ms | "
+           "this GPU split / gather / tracing / splat / frame ms | status |",
+           "|---|---|---|---|---|---|---|"]
+    recs = thesis_tables.rows_for(folder, thesis_tables.thesis_rows(path))[0]
+    for rec in recs:
+        paper = " / ".join(rec.get(k, "") for k in ("paper_split_ms", "paper_gather_ms",
+                                                    "paper_tracing_ms", "paper_splat_ms", "paper_frame_ms"))
+        ours = " / ".join(rec.get(k, "") or "-" for k in ("our_split_ms", "our_gather_ms", "our_tracing_ms",
+                                                          "our_splat_ms", "our_frame_ms"))
+        out.append(f"| {rec['table']} | {rec['paper_scene']} | {rec['resolution']} | "
+                   f"{rec['ray_resolution']} | {paper} | {ours} | {rec.get('status', '')} "
+                   f"{rec.get('note', '')} |")
+    return out
+
+
+def work_rates(folder):
+    """Per pass kind, the work done per microsecond (median over passes): raster passes' fragment
+    invocations and compute passes' invocations, from the pipeline statistics of every passes table."""
+    rates = {"raster": [], "compute": []}
+    for name in sorted(os.listdir(folder)):
+        if not name.endswith("_passes.csv"):
+            continue
+        for r in read_csv(os.path.join(folder, name)):
+            t = num(r.get("ms_median"))
+            if not t or t < 0.05:
+                continue
+            if r.get("kind") == "raster" and num(r.get("fragment_invocations")):
+                rates["raster"].append(num(r["fragment_invocations"]) / (t * 1e3))
+            elif r.get("kind") == "compute" and num(r.get("compute_invocations")):
+                rates["compute"].append(num(r["compute_invocations"]) / (t * 1e3))
+    out = ["| pass kind | passes | invocations per microsecond, median (quartiles) |", "|---|---|---|"]
+    for kind, v in rates.items():
+        if not v:
+            continue
+        v.sort()
+        q = lambda f: v[min(len(v) - 1, int(f * len(v)))]  # noqa: E731
+        out.append(f"| {kind} | {len(v)} | {q(0.5):.0f} ({q(0.25):.0f}-{q(0.75):.0f}) |")
     return out
 
 
 def indirect(folder):
     rows = [r for r in read_csv(os.path.join(folder, "thesis_indirect.csv"))
             if r["component"] == "indirect" and r["status"] == "ok"]
-    out = ["| scene | size | technique | parameters | ms (IQR) | rel RMSE | reference noisy |",
-           "|---|---|---|---|---|---|---|"]
+    out = ["| scene | size | technique | parameters | this GPU ms (IQR) |", "|---|---|---|---|---|"]
     for r in sorted(rows, key=lambda r: (r["scene"], int(r["width"]), float(r["gpu_ms_median"]))):
         short = ";".join(kv for kv in r["params"].split(";") if kv.split("=")[0] in
-                         ("vpl_count", "directions", "voxel_res"))
-        out.append(f"| {r['scene']} | {r['width']}x{r['height']} | {r['technique']} | {short} | "
-                   f"{float(r['gpu_ms_median']):.2f} ({float(r['gpu_ms_iqr']):.2f}) | "
-                   f"{float(r['rel_rmse']):.3f} | {'yes' if r['ref_noisy'] == '1' else 'no'} |")
+                         ("vpl_count", "directions", "voxel_res", "preset"))
+        out.append(f"| {r['scene']} | {r['width']}x{r['height']} | {r['technique']} | {short} | {ms(r)} |")
     return out
 
 
@@ -109,18 +254,33 @@ def main(argv):
         sys.exit(__doc__)
     folder = argv[1]
     pv = argv[argv.index("--paper-values") + 1] if "--paper-values" in argv else PAPER_VALUES
-    revisions = {r["git_revision"] for f in os.listdir(folder) if f.endswith(".csv")
-                 for r in read_csv(os.path.join(folder, f))}
+    by = judged(folder)
+    renderer = next((r["renderer"] for rs in by.values() for r in rs), "")
+    limit = raster_limit(renderer)
     print(f"# gibench on {os.path.basename(os.path.normpath(folder))}\n")
-    print("Written by harness/device/gpu_summary.py from this folder's CSVs and gpu.txt; the rows "
-          f"are from gibench {', '.join(sorted(revisions))} (the bundle, `make bundle`), profile "
-          "`gpu` (the paper's sizes and parameters, 16-spp references: the errors are for "
-          "context, the llvmpipe rows in results/ judge quality).\n")
+    print("Written by harness/device/gpu_summary.py from this folder's CSVs, gpu.txt, clocks.csv and "
+          "gpu_samples.csv. A timing-only run (harness/device/time_all_papers.sh): the papers' "
+          "parameters at the papers' image sizes (profile `gpu`), no references, no scores, no images; "
+          "the paper profile's rows in results/ judge quality.\n")
     print("```\n" + "\n".join(machine(folder)) + "\n```\n")
+    if limit:
+        print(f"**Raster limit.** {limit}. The papers timed GeForce cards whose every SM rasterises: "
+              "here a raster pass (vertex and fragment work) is slower against a compute pass than on "
+              "their GPUs, and each pass below says which it is.\n")
+    print("## Which rows count\n")
+    print("\n".join(validity(by)) + "\n")
+    print("## The GPU per matrix: clocks, power, temperature, throttle reasons (before / after)\n")
+    print("\n".join(clocks(folder, by)) + "\n")
     print("## LRSM paper, Table 3: GPU time per stage, Sponza (sun), 1280x720\n")
     print("\n".join(table3(folder, read_csv(os.path.join(pv, "lrsm_table3.csv")))) + "\n")
     print("## LRSM paper, Table 2: frame time and memory, 1280x720\n")
     print("\n".join(table2(folder, read_csv(os.path.join(pv, "lrsm_table2.csv")))) + "\n")
+    print("## LDM paper, Figs. 8-10: time at the paper's settings\n")
+    print("\n".join(ldm(folder, pv)) + "\n")
+    print("## Thesis, Tables 4.1-4.5: time per stage at the thesis' settings\n")
+    print("\n".join(thesis(folder, pv)) + "\n")
+    print("## Work per microsecond by pass kind (pipeline statistics of the first warm frame)\n")
+    print("\n".join(work_rates(folder)) + "\n")
     ind = indirect(folder)
     if len(ind) > 2:
         print("## Indirect light across the papers (thesis_indirect), fastest first\n")

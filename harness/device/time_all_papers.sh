@@ -13,7 +13,9 @@
 # (harness/device/run_on_nvidia.sh says what each holds). GIB_DEVICE_BUDGET_S bounds the whole run
 # (default 480 s); rows already in $GIB_DEVICE_TMP/results are skipped (a second call resumes), and
 # GIB_DEVICE_RESULTS names a folder of finished CSVs to start from (the results of an earlier
-# machine, carried there). GIB_DEVICE_FRAMES (default 10) timed frames a run.
+# machine, carried there). GIB_DEVICE_FRAMES (default 5) timed frames a run: with 10, all 22
+# matrices took 643 s on an H200; with 5, harness/device/estimate.py puts them at 423 s of the
+# 480 s budget.
 # harness/device/gpu_summary.py writes results/gpu/<gpu>/SUMMARY.md from what comes back.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
@@ -31,4 +33,4 @@ if [ -n "${GIB_DEVICE_RESULTS:-}" ] && [ -d "$GIB_DEVICE_RESULTS" ]; then
 fi
 export GIB_DEVICE_PROFILE=${GIB_DEVICE_PROFILE:-gpu}
 exec bash "$here/run_on_nvidia.sh" "${files[@]}" --timing-only --warmup auto \
-    --frames "${GIB_DEVICE_FRAMES:-10}" --no-history "$@"
+    --frames "${GIB_DEVICE_FRAMES:-5}" --no-history "$@"

@@ -1,0 +1,180 @@
+"""The rows of the device runs (results/gpu/<gpu>/, older runs in results/gpu/<gpu>/older/<rev>/),
+each judged before the report takes a time from it:
+
+- current: its technique's source hash (column technique_hash; for a row written before the column,
+  the hash of its git_revision's files) equals the hash of the sources now (source_hash.py). A stale
+  row describes code that has changed since and is shown as such, never used.
+- held down: a sample of the GPU's state in the row's window (from the previous row's timestamp to
+  its own, gpu_samples.csv) names a reason the clocks are held down other than idle (power or
+  thermal caps, slowdowns, application clocks). Such a row is not used.
+- clock moved: a sample in that window has the SM clock below 97% of its maximum (the GPU idles
+  down between runs while the CPU loads a scene). Its timed frames may still have run at full
+  clock: the row is used when their spread (IQR) is within 5% of their median.
+
+A valid row is ok, current, not held down and steady by that rule; `valid` keeps the newest valid
+row of each run and component."""
+import csv
+import glob
+import os
+import sys
+from datetime import datetime, timezone
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import source_hash  # noqa: E402
+
+IDLE_REASONS = {0x0, 0x1}  # none; GPU idle (nvidia-smi clocks_event_reasons)
+CLOCK_FLOOR = 0.97
+SPREAD_LIMIT = 0.05
+KEY = ("matrix", "scene", "camera", "technique", "component", "params", "width", "height", "time")
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def run_folders(results):
+    """[(gpu, folder)] of every device run under results/gpu, each GPU's newest run first."""
+    out = []
+    for gpu_dir in sorted(glob.glob(os.path.join(results, "gpu", "*"))):
+        if not os.path.isdir(gpu_dir):
+            continue
+        gpu = os.path.basename(gpu_dir)
+        out.append((gpu, gpu_dir))
+        out += [(gpu, d) for d in sorted(glob.glob(os.path.join(gpu_dir, "older", "*")), reverse=True)
+                if os.path.isdir(d)]
+    return out
+
+
+def epoch(text):
+    """Seconds since 1970 of a row's timestamp (2026-11-27T17:35:28Z) or a sample's
+    (2026/11/27 17:35:24.575, UTC on the device machine); None when unreadable."""
+    for fmt in ("%Y-%m-%dT%H:%M:%SZ", "%Y/%m/%d %H:%M:%S.%f", "%Y/%m/%d %H:%M:%S"):
+        try:
+            return datetime.strptime(text.strip(), fmt).replace(tzinfo=timezone.utc).timestamp()
+        except ValueError:
+            pass
+    return None
+
+
+def samples(folder):
+    """[(seconds, sm MHz, max sm MHz, reasons bit mask)] of the folder's gpu_samples.csv."""
+    out = []
+    path = os.path.join(folder, "gpu_samples.csv")
+    if not os.path.exists(path):
+        return out
+    with open(path, newline="") as f:
+        rows = csv.reader(f)
+        head = [h.strip() for h in next(rows, [])]
+        if "timestamp" not in head:
+            return out
+        reason = next((i for i, h in enumerate(head) if "reasons" in h), None)
+        for r in rows:
+            try:
+                t = epoch(r[0])
+                sm, mx = float(r[head.index("clocks.sm")]), float(r[head.index("clocks.max.sm")])
+                bits = int(r[reason].strip(), 16) if reason is not None else 0
+            except (ValueError, IndexError):
+                continue
+            if t is not None:
+                out.append((t, sm, mx, bits))
+    return out
+
+
+def window_state(smp, t0, t1):
+    """(held down, clock moved, samples seen) over [t0 - 1, t1 + 1] (timestamps are whole seconds)."""
+    inside = [s for s in smp if t0 - 1 <= s[0] <= t1 + 1]
+    held = any(s[3] not in IDLE_REASONS for s in inside)
+    moved = any(s[1] < CLOCK_FLOOR * s[2] for s in inside)
+    return held, moved, len(inside)
+
+
+class Hashes:
+    """Technique source hashes now and at past revisions, computed once each."""
+
+    def __init__(self, root=source_hash.ROOT):
+        self.root, self.now, self.past = root, source_hash.Tree(root), {}
+
+    def current(self, technique):
+        return source_hash.technique_hash(self.now, technique)
+
+    def of_row(self, r):
+        if r.get("technique_hash"):
+            return r["technique_hash"]
+        rev = r.get("git_revision", "")
+        key = (rev, r.get("technique"))
+        if key not in self.past:
+            try:
+                tree = source_hash.Tree(self.root, rev) if rev and "dirty" not in rev else None
+                self.past[key] = source_hash.technique_hash(tree, r["technique"]) if tree else ""
+            except Exception:  # a revision this clone lacks: the row cannot be shown current
+                self.past[key] = ""
+        return self.past[key]
+
+
+def judge(r, smp, start, hashes):
+    """The row's judgement fields (see the module's text), added in place."""
+    try:
+        med, iqr = float(r.get("gpu_ms_median") or "nan"), float(r.get("gpu_ms_iqr") or "nan")
+    except ValueError:
+        med = iqr = float("nan")
+    end = epoch(r.get("timestamp", ""))
+    held, moved, seen = window_state(smp, start or end or 0, end or 0) if end else (False, False, 0)
+    now = hashes.current(r.get("technique", ""))
+    r["_current"] = bool(now) and hashes.of_row(r) == now
+    r["_held_down"], r["_clock_moved"], r["_samples"] = held, moved, seen
+    r["_spread_ok"] = med == med and iqr == iqr and iqr <= SPREAD_LIMIT * med
+    r["_valid"] = (r.get("status") == "ok" and r["_current"] and not held
+                   and (not moved or r["_spread_ok"]))
+    why = [w for w, bad in (("not ok", r.get("status") != "ok"), ("stale", not r["_current"]),
+                            ("held down", held), ("clock moved, spread over 5%",
+                                                  moved and not r["_spread_ok"])) if bad]
+    r["_why"] = ", ".join(why)
+    return end
+
+
+def load(results, hashes=None):
+    """Every runs row of every device run, judged, with _gpu (the folder's GPU name) and _folder."""
+    hashes = hashes or Hashes()
+    out = []
+    for gpu, folder in run_folders(results):
+        smp = samples(folder)
+        for path in sorted(glob.glob(os.path.join(folder, "*.csv"))):
+            rows = read_csv(path)
+            if not rows or "gpu_ms_median" not in rows[0] or path.endswith("_passes.csv"):
+                continue
+            start = None
+            for r in rows:
+                r["_gpu"], r["_folder"] = gpu, folder
+                end = judge(r, smp, start, hashes)
+                start = end
+                out.append(r)
+    return out
+
+
+def valid(rows):
+    """{KEY values: the newest valid row} (rows as `load` returns them, each GPU's newest run
+    first: the first valid row met is kept)."""
+    out = {}
+    for r in rows:
+        if r.get("_valid"):
+            out.setdefault(tuple(r.get(k, "") for k in KEY) + (r["_gpu"],), r)
+    return out
+
+
+def summary_counts(rows):
+    """{gpu: {rows, ok, valid, stale, held_down, clock_moved, revisions}} for a report's line."""
+    out = {}
+    for r in rows:
+        c = out.setdefault(r["_gpu"], {"rows": 0, "ok": 0, "valid": 0, "stale": 0, "held_down": 0,
+                                        "clock_moved": 0, "revisions": set()})
+        c["rows"] += 1
+        c["ok"] += r.get("status") == "ok"
+        c["valid"] += bool(r["_valid"])
+        c["stale"] += not r["_current"]
+        c["held_down"] += r["_held_down"]
+        c["clock_moved"] += r["_clock_moved"]
+        c["revisions"].add(r.get("git_revision", ""))
+    return out
