@@ -53,8 +53,10 @@ def group_key(r):
 
 
 def time_cost(r, resolution):
+    """A row's time interval: at the machine's resolution, or at the row's own where it carries one
+    (a GPU-timed copy, gpu_rows.timed_copies)."""
     ms = fnum(r.get("gpu_ms_median"))
-    return None if ms is None else time_interval(ms, resolution)
+    return None if ms is None else time_interval(ms, fnum(r.get("time_resolution")) or resolution)
 
 
 def memory_cost(r, _resolution=None):
@@ -187,25 +189,30 @@ def usable_rows(rows):
     return [c[0] for c in usable + black]
 
 
+def gpu_timed(t):
+    """Whether an answer's times come from a GPU (every row a GPU-timed copy)."""
+    return bool(t["rows"]) and all(r.get("time_source") for r in t["rows"])
+
+
 def headline(ans_list):
-    """One answer per (component, scene, renderer), a group of the papers'-settings rows (profile
-    paper) where there is one, then the group the most techniques estimate (then the largest image,
-    then the most settings, then the fewest worse than black): [(key, time answer, memory answer,
-    [keys of the other groups of that component and scene: other sizes and cameras])], in the order
-    of ans_list."""
+    """One answer per (component, scene): a group timed on a GPU where there is one (its error from
+    the paper profile's rows), then a group of the papers'-settings rows (profile paper), then the
+    group the most techniques estimate (then the largest image, then the most settings, then the
+    fewest worse than black): [(key, time answer, memory answer, [keys of the other groups of that
+    component and scene: other sizes, cameras and renderers])], in the order of ans_list."""
     by = {}
     for a in ans_list:
         key = a[0]
-        by.setdefault((key[0], key[1], key[5]), []).append(a)
+        by.setdefault((key[0], key[1]), []).append(a)
 
     def weight(a):
         key, t, _ = a
-        return (profile_of(t["rows"]) == "paper", len(t["techniques"]), int(key[3]) * int(key[4]),
-                len(answers_rows(t)), -len(t["black"]))
+        return (gpu_timed(t), profile_of(t["rows"]) == "paper", len(t["techniques"]),
+                int(key[3]) * int(key[4]), len(answers_rows(t)), -len(t["black"]))
 
     out = []
     for a in ans_list:
-        peers = by[(a[0][0], a[0][1], a[0][5])]
+        peers = by[(a[0][0], a[0][1])]
         best = max(peers, key=weight)
         if a is best:
             out.append((a[0], a[1], a[2], [p[0] for p in peers if p is not a]))

@@ -28,6 +28,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import read_csv, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
 import temporal_tables  # noqa: E402  (the papers' temporal claims, from the sequence tables)
+import gpu_claims  # noqa: E402  (the time claims a valid device run answers)
 
 COLUMNS = ["paper", "source", "claim", "kind", "paper_value", "our_value", "renderer", "cores",
            "verdict", "reason"]
@@ -212,12 +213,49 @@ def ldm_times(results):
 ORDER = {REPRODUCED: 0, NOT_REPRODUCED: 1, NOT_MEASURABLE: 2}
 
 
-def claims(results):
-    """Per paper, the claims with a verdict first, then the ones not measurable here (stable)."""
+# The order-of-cost claims: judged on a GPU where a valid device run answers them, else on
+# llvmpipe's time, which the reason then says.
+ORDER_CLAIMS = ("Table 3: LRSM diffuse_cones > specular_cone", "Table 3: VCT specular_cone > diffuse_cones",
+                "Table 3: VCT shadow_cone > LRSM shadow_cone (anisotropic vs isotropic voxels)",
+                "Figure 10: Sec. 5.2: the LDM (photon) tracing relatively cheap next to splatting",
+                gpu_claims.GATHER_CLAIM)
+
+
+def on_gpu(r, g):
+    """Claim row r with what the GPU measured laid over it (gpu_claims.judged's entry g)."""
+    before = f"{r['renderer'] or 'llvmpipe'}: {r['verdict']}" + (f" ({r['our_value']})" if r["our_value"] else "")
+    where = f"{g['renderer']}, device run {g['run']}" + (f"; raster limit: {g['limit']}" if g["limit"] else "")
+    if "verdict" in g:
+        v, _ = verdict_of(g["verdict"])
+        return dict(r, verdict=v, our_value=g["our_value"], renderer=g["renderer"], cores="",
+                    reason=f"judged on {where}: {g['evidence']}; before, {before}")
+    return dict(r, our_value=g["our_value"], renderer=g["renderer"], cores="",
+                reason=f"absolute time on the paper's GPU; ours on {where} (not comparable as a number: the "
+                       f"order claims compare ratios); {before}")
+
+
+def overlay_gpu(rows, gpu):
     out = []
+    for r in rows:
+        g = gpu.get(r["claim"])
+        if g and (r["kind"] == ABSOLUTE_TIME or "verdict" in g):
+            out.append(on_gpu(r, g))
+        elif r["claim"].startswith(ORDER_CLAIMS) and r["verdict"] != NOT_MEASURABLE:
+            out.append(dict(r, reason="judged on llvmpipe's time alone (a CPU rasterizer; no valid GPU row "
+                                      "answers it): " + r["reason"]))
+        else:
+            out.append(r)
+    return out
+
+
+def claims(results):
+    """Per paper, the claims with a verdict first, then the ones not measurable here (stable); the
+    time claims a valid device run answers carry the GPU's numbers (gpu_claims.py)."""
+    out = []
+    gpu = gpu_claims.judged(results)
     for part in (thesis(results) + temporal_tables.thesis_claim(results),
                  lrsm(results) + temporal_tables.lrsm_claim(results), ldm(results)):
-        out += sorted(part, key=lambda r: ORDER[r["verdict"]])
+        out += sorted(overlay_gpu(part, gpu), key=lambda r: ORDER[r["verdict"]])
     return out
 
 

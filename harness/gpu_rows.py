@@ -178,3 +178,53 @@ def summary_counts(rows):
         c["clock_moved"] += r["_clock_moved"]
         c["revisions"].add(r.get("git_revision", ""))
     return out
+
+
+GPU_TIE = 0.05  # two GPU medians within 5% tie (the auto warm-up settles frames to within 5%)
+
+
+def size_map(llvm_rows, gpu_rows_of_matrix):
+    """{(width, height) of the paper profile: (width, height) the GPU ran}: the i-th size of one
+    pairs with the i-th of the other (the paper profile shrinks each of the papers' sizes alike),
+    {} when the two list different numbers of sizes."""
+    a = sorted({(int(r["width"]), int(r["height"])) for r in llvm_rows})
+    b = sorted({(int(r["width"]), int(r["height"])) for r in gpu_rows_of_matrix})
+    return dict(zip(a, b)) if len(a) == len(b) else {}
+
+
+def timed_copies(rows, results, gpu_loaded=None):
+    """For the paper profile's rows (error on llvmpipe), copies timed by the newest valid GPU row of
+    the same run at the papers' image size: gpu_ms_* from the GPU, renderer the GPU's, and
+    time_source naming the GPU and that size; the error columns stay the llvmpipe row's. A copy is
+    made only where every ok row of its (matrix, scene, component, size, instant) has one, so that a
+    group is timed on one machine or not at all."""
+    loaded = gpu_loaded if gpu_loaded is not None else load(results)
+    by_matrix = {}
+    for r in loaded:
+        if r["_valid"]:
+            by_matrix.setdefault((r["matrix"], r["_gpu"]), []).append(r)
+    paper = [r for r in rows if r.get("profile") == "paper" and r.get("status") == "ok"]
+    out = []
+    for (matrix, gpu), grs in by_matrix.items():
+        mine = [r for r in paper if r.get("matrix") == matrix]
+        sizes = size_map(mine, grs)
+        index = {}
+        for g in grs:  # each GPU's newest valid row first (load's order)
+            index.setdefault((g["scene"], g["camera"], g["technique"], g["component"], g["params"],
+                              g["time"], int(g["width"]), int(g["height"])), g)
+        groups = {}
+        for r in mine:
+            w, h = sizes.get((int(r["width"]), int(r["height"])), (None, None))
+            g = index.get((r["scene"], r["camera"], r["technique"], r["component"], r["params"],
+                           r["time"], w, h))
+            groups.setdefault((r["scene"], r["component"], r["width"], r["time"]), []).append((r, g))
+        for pairs in groups.values():
+            if any(g is None for _, g in pairs):
+                continue
+            for r, g in pairs:
+                out.append(dict(r, gpu_ms_median=g["gpu_ms_median"], gpu_ms_iqr=g["gpu_ms_iqr"],
+                                gpu_ms_min=g["gpu_ms_min"], gpu_ms_max=g["gpu_ms_max"],
+                                renderer=g["renderer"], time_resolution=str(GPU_TIE),
+                                time_source=f"{gpu} at {g['width']}x{g['height']} (the papers' size), "
+                                            f"gibench {g['git_revision']}; error on {r['renderer']}"))
+    return out

@@ -28,6 +28,8 @@ from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
 import answers  # noqa: E402
+import gpu_rows  # noqa: E402
+from device.gpu_summary import RASTER_LIMITS  # noqa: E402
 import cone_report  # noqa: E402
 import energy_audit  # noqa: E402
 import temporal_tables  # noqa: E402
@@ -215,6 +217,14 @@ def size_text(key):
             + (f" t={t}" if t != "0" else "") + (f" {ref}" if ref else ""))
 
 
+def size_label(key, t, many):
+    """A group's size and profile, and where its times come from: a GPU (the device run's size) or
+    the renderer, named where the answers rank on more than one."""
+    return (size_text(key) + f", {answers.profile_of(t['rows'])} profile"
+            + (f", time on {t['rows'][0]['time_source']}" if answers.gpu_timed(t) else
+               f" on {key[5]}" if many else ""))
+
+
 def other_text(key, head):
     """Another group of a headline's component and scene, by what differs from the headline's."""
     parts = []
@@ -226,6 +236,8 @@ def other_text(key, head):
         parts.append(f"t={key[6]}")
     if key[7] != head[7]:
         parts.append(key[7] or "reference default")
+    if key[5] != head[5]:
+        parts.append(f"on {key[5].split(' (')[0]}")
     return " ".join(parts)
 
 
@@ -233,6 +245,7 @@ def answer_rows(results, mats):
     """Every group two or more techniques estimate, and the headline one per component and scene:
     (all, headline), each [{key, time, memory, others, plot (path from results or None), anchor}]."""
     rows = [r for rs in mats.values() for r in rs]
+    rows += gpu_rows.timed_copies(rows, results)
     resolution = time_resolution(results)
     every = answers.answers(rows, resolution)
 
@@ -260,15 +273,19 @@ ANSWER_COMPONENTS = ("ao", "direct", "indirect", "glossy", "caustic")
 
 
 def renderer_sentences(heads):
-    """One sentence per renderer the answers ranked on; a software renderer's times rank its own speed."""
+    """One sentence per renderer the answers ranked on: a GPU's times with its raster limit, a
+    software renderer's as its own speed only."""
     out = []
     for rend in sorted({h["key"][5] for h in heads}):
         if is_software(rend):
-            out.append(f"Every time here was measured on {rend}, a CPU rasterizer: the ranking by time is "
-                       f"{rend.split()[0]}'s and a GPU's may differ; memory and error rank the same on any "
-                       "machine.")
+            out.append(f"Where no valid GPU row exists, times are {rend}'s, a CPU rasterizer's: the ranking "
+                       f"by time is {rend.split()[0]}'s and a GPU's may differ; memory and error rank the "
+                       "same on any machine.")
         else:
-            out.append(f"Times measured on {rend}.")
+            limit = next((f" ({k}: {v})" for k, v in RASTER_LIMITS.items() if k in rend), "")
+            out.append(f"Times from {rend}{limit}, at the papers' image sizes (a timing-only device run, "
+                       "results/gpu); errors from the paper profile's rows on llvmpipe at at most 4x smaller "
+                       "sizes.")
     return out
 
 
@@ -473,8 +490,7 @@ def answer_table_html(entries, page_dir, results, cls):
     prev, many = None, len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
-        size = (size_text(key) + f", {answers.profile_of(t['rows'])} profile"
-                + (f" on {key[5]}" if many else ""))
+        size = size_label(key, t, many)
         links = [f'<a href="{esc(rel(os.path.join(results, e["plot"]), page_dir))}">plot</a>'] if e["plot"] else []
         if cls == "answers":
             links.append(f'<a href="#{esc(e["anchor"])}">images</a>')
@@ -709,7 +725,7 @@ def answer_table_md(entries, cls="answers"):
     many = len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
-        size = (size_text(key) + f", {answers.profile_of(t['rows'])} profile" + (f" on {key[5]}" if many else "")
+        size = (size_label(key, t, many)
                 + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else ""))
         links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
         beaten = beaten_list(t)
