@@ -272,6 +272,19 @@ def lone_components(mats, heads):
 ANSWER_COMPONENTS = ("ao", "direct", "indirect", "glossy", "caustic")
 
 
+def mark_stale(mats):
+    """Rows whose technique's sources changed since they ran (their technique_hash, or for rows
+    written before the column their revision's, differs from the sources' now: gpu_rows.Hashes)
+    get status `stale`: the answers leave them out, the tables show them as such."""
+    hashes = gpu_rows.Hashes()
+    for rows in mats.values():
+        for r in rows:
+            if r.get("status") == "ok" and r.get("technique") and \
+                    hashes.of_row(r) != hashes.current(r["technique"]):
+                r["status"] = "stale"
+                r["message"] = "the technique's sources changed since this row ran (source_hash.py)"
+
+
 def renderer_sentences(heads):
     """One sentence per renderer the answers ranked on: a GPU's times with its raster limit, a
     software renderer's as its own speed only."""
@@ -286,6 +299,10 @@ def renderer_sentences(heads):
             out.append(f"Times from {rend}{limit}, at the papers' image sizes (a timing-only device run, "
                        "results/gpu); errors from the paper profile's rows on llvmpipe at at most 4x smaller "
                        "sizes.")
+    stale = sum(1 for h in heads for r in h["time"]["rows"] if r.get("status") == "stale")
+    if stale:
+        out.append(f"{stale} rows of these groups are stale (their technique changed since they ran) and "
+                   "are left out.")
     return out
 
 
@@ -914,6 +931,7 @@ def main():
     if missing:
         sys.exit(f"report.py: {claims_path}: columns {', '.join(missing)} missing")
     mats = matrices(results)
+    mark_stale(mats)
     plots = plots_of(results, list(mats))
     seq_path, seq_rows = temporal_tables.write(results)
     if seq_rows:

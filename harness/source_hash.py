@@ -2,11 +2,13 @@
 """The hash of a technique's sources: what a results row records (column technique_hash) so that the
 report can tell whether the row still describes the code.
 
-A technique's sources are the files of its folder (techniques/NAME/), of every technique folder those
-files name (C includes "techniques/X/...", shader names "X/..." and shader includes "X/..."), followed
-from folder to folder, with techniques/technique.h and harness/gl/bindings.h (the GL slots its
-shaders include). Only sources count (.c .h .glsl .vert .frag .geom .comp): notes and tests in a
-folder do not change a row. The hash is SHA-256 over the sorted paths and their bytes, 12 hex digits.
+A technique's sources are the files of its folder (techniques/NAME/) and every file those name,
+followed from file to file: C includes ("techniques/X/f.h", and the f.c beside a header: its
+implementation), shader names in C ("X/f.frag") and shader includes ("common/f.glsl", "gl/bindings.h":
+harness/gl/bindings.h; "f.h" beside the including file). Only sources count (.c .h .glsl .vert .frag .geom .comp): notes and tests in
+a folder do not change a row; nor does techniques/technique.h, the interface, which a change that
+matters to a technique's output also changes the technique's files for. The hash is SHA-256 over the
+sorted paths and their bytes, 12 hex digits.
 
     python3 harness/source_hash.py --c OUT.c            the C table gibench is built with
     python3 harness/source_hash.py [--rev REV] NAME...  the hashes now (or at git revision REV)
@@ -21,9 +23,11 @@ import sys
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 EXTS = (".c", ".h", ".glsl", ".vert", ".frag", ".geom", ".comp")
-ALWAYS = ("techniques/technique.h", "harness/gl/bindings.h")
-# "techniques/X/" in a C include, "X/name.ext" in a shader name or a shader include.
-REFERENCE = re.compile(r'"(?:techniques/)?([a-z_0-9]+)/[A-Za-z_0-9./]+"')
+BINDINGS = "harness/gl/bindings.h"
+# "techniques/X/f.h" in a C include, "X/f.ext" in a shader name or a shader include.
+REFERENCE = re.compile(r'"(?:techniques/)?([a-z_0-9]+)/([A-Za-z_0-9.]+)"')
+# "f.h" in an include of a file of the same folder.
+LOCAL = re.compile(r'#include\s+"([A-Za-z_0-9.]+)"')
 
 
 class Tree:
@@ -35,10 +39,10 @@ class Tree:
             self.paths = []
             for d, _, files in os.walk(os.path.join(root, "techniques")):
                 self.paths += [os.path.relpath(os.path.join(d, f), root) for f in files]
-            self.paths += [p for p in ALWAYS if os.path.exists(os.path.join(root, p))]
+            self.paths += [BINDINGS] if os.path.exists(os.path.join(root, BINDINGS)) else []
         else:
             out = subprocess.run(["git", "-C", root, "ls-tree", "-r", "--name-only", rev, "--",
-                                  "techniques", *ALWAYS], capture_output=True, text=True, check=True)
+                                  "techniques", BINDINGS], capture_output=True, text=True, check=True)
             self.paths = out.stdout.split()
 
     def read(self, path):
@@ -55,22 +59,32 @@ class Tree:
         return sorted(p for p in self.paths if p.startswith(prefix) and p.endswith(EXTS))
 
 
+def referenced(tree, path, known):
+    """The source files file PATH names (see the module's text), of those in `known`."""
+    out, text = set(), tree.read(path).decode("utf-8", "replace")
+    targets = [BINDINGS if (folder, name) == ("gl", "bindings.h") else f"techniques/{folder}/{name}"
+               for folder, name in REFERENCE.findall(text)]
+    targets += [f"{os.path.dirname(path)}/{name}" for name in LOCAL.findall(text)]
+    for target in targets:
+        if target in known:
+            out.add(target)
+            sibling = target[:-2] + ".c" if target.endswith(".h") else None
+            if sibling in known:
+                out.add(sibling)
+    return out
+
+
 def technique_files(tree, name):
     """The source files of technique NAME in tree, sorted (empty when it has no folder)."""
-    folders, todo, files = set(), [name], set()
+    known = {p for p in tree.paths if p.endswith(EXTS)}
+    files = set(tree.folder_files(name))
+    todo = list(files)
     while todo:
-        folder = todo.pop()
-        if folder in folders:
-            continue
-        folders.add(folder)
-        for path in tree.folder_files(folder):
-            files.add(path)
-            for ref in REFERENCE.findall(tree.read(path).decode("utf-8", "replace")):
-                if ref not in folders and tree.folder_files(ref):
-                    todo.append(ref)
-    if not files:
-        return []
-    return sorted(files | {p for p in ALWAYS if p in tree.paths})
+        for ref in referenced(tree, todo.pop(), known):
+            if ref not in files:
+                files.add(ref)
+                todo.append(ref)
+    return sorted(files)
 
 
 def technique_hash(tree, name):
