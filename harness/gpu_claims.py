@@ -18,7 +18,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gpu_rows  # noqa: E402
 import ldm_tables  # noqa: E402
 import thesis_tables  # noqa: E402
-from device.gpu_summary import RASTER_LIMITS  # noqa: E402
+from device.gpu_summary import RASTER_LIMITS, param  # noqa: E402
 from uncertainty import fnum  # noqa: E402
 
 TIE = 0.05  # two GPU times within 5% of each other tie (their IQRs are under 1% here)
@@ -46,14 +46,6 @@ def valid_passes(folder, matrix, valid_runs):
     return [p for p in gpu_rows.read_csv(os.path.join(folder, f"{matrix}_passes.csv"))
             if (p["matrix"], p["scene"], p["technique"], p["params"], p["width"], p["height"],
                 p["time"]) in valid_runs]
-
-
-def param(r, key):
-    for kv in r["params"].split(";"):
-        k, _, v = kv.partition("=")
-        if k == key:
-            return v
-    return ""
 
 
 def work(p):

@@ -21,18 +21,12 @@ from datetime import datetime, timezone
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import source_hash  # noqa: E402
+from schema import read_csv  # noqa: E402
 
 IDLE_REASONS = {0x0, 0x1}  # none; GPU idle (nvidia-smi clocks_event_reasons)
 CLOCK_FLOOR = 0.97
 SPREAD_LIMIT = 0.05
 KEY = ("matrix", "scene", "camera", "technique", "component", "params", "width", "height", "time")
-
-
-def read_csv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
 
 
 def run_folders(results):

@@ -180,37 +180,41 @@ def table2(folder, paper):
     return out
 
 
+def table(header, lines):
+    """A Markdown table: its header cells, then its rows' cells."""
+    return ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)] + \
+        ["| " + " | ".join(str(c) for c in cells) + " |" for cells in lines]
+
+
 def ldm(folder, pv):
     path = os.path.join(pv, "ldm_figures.csv")
     if not os.path.exists(path):
         return ["(no ldm_figures.csv among the paper values)"]
-    out = ["| figure | scene | method | paper's settings | paper ms (GPU) | this GPU ms | ours run |",
-           "|---|---|---|---|---|---|---|"]
-    for rec in ldm_tables.ldm_rows(folder, path):
-        ours = num(rec.get("our_ms"))
-        out.append(f"| {rec['figure']} | {rec['scene']} | {rec['method']} | {rec['paper_settings']} | "
-                   f"{rec['paper_ms']} ({rec['paper_gpu']}) | {'' if ours is None else f'{ours:.1f}'} | "
-                   f"{rec.get('our_settings', 'not run')} |")
-    return out
+    lines = [(rec["figure"], rec["scene"], rec["method"], rec["paper_settings"],
+              f"{rec['paper_ms']} ({rec['paper_gpu']})",
+              "" if num(rec.get("our_ms")) is None else f"{num(rec['our_ms']):.1f}",
+              rec.get("our_settings", "not run")) for rec in ldm_tables.ldm_rows(folder, path)]
+    return table(("figure", "scene", "method", "paper's settings", "paper ms (GPU)", "this GPU ms",
+                  "ours run"), lines)
+
+
+STAGES = ("split", "gather", "tracing", "splat", "frame")
 
 
 def thesis(folder, pv):
     path = os.path.join(pv, "thesis_tables.csv")
     if not os.path.exists(path):
         return ["(no thesis_tables.csv among the paper values)"]
-    out = ["| table | scene | size | rays | thesis split / gather / tracing / splat / frame ms | "
-           "this GPU split / gather / tracing / splat / frame ms | status |",
-           "|---|---|---|---|---|---|---|"]
-    recs = thesis_tables.rows_for(folder, thesis_tables.thesis_rows(path))[0]
-    for rec in recs:
-        paper = " / ".join(rec.get(k, "") for k in ("paper_split_ms", "paper_gather_ms",
-                                                    "paper_tracing_ms", "paper_splat_ms", "paper_frame_ms"))
-        ours = " / ".join(rec.get(k, "") or "-" for k in ("our_split_ms", "our_gather_ms", "our_tracing_ms",
-                                                          "our_splat_ms", "our_frame_ms"))
-        out.append(f"| {rec['table']} | {rec['paper_scene']} | {rec['resolution']} | "
-                   f"{rec['ray_resolution']} | {paper} | {ours} | {rec.get('status', '')} "
-                   f"{rec.get('note', '')} |")
-    return out
+    paper_keys = ("paper_split_ms", "paper_gather_ms", "paper_tracing_ms", "paper_splat_ms", "paper_frame_ms")
+    our_keys = ("our_split_ms", "our_gather_ms", "our_tracing_ms", "our_splat_ms", "our_frame_ms")
+    lines = [(rec["table"], rec["paper_scene"], rec["resolution"], rec["ray_resolution"],
+              " / ".join(rec.get(k, "") for k in paper_keys),
+              " / ".join(rec.get(k, "") or "-" for k in our_keys),
+              f"{rec.get('status', '')} {rec.get('note', '')}")
+             for rec in thesis_tables.rows_for(folder, thesis_tables.thesis_rows(path))[0]]
+    stages = " / ".join(STAGES)
+    return table(("table", "scene", "size", "rays", f"thesis {stages} ms", f"this GPU {stages} ms",
+                  "status"), lines)
 
 
 def work_rates(folder):

@@ -14,21 +14,16 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
 sys.path.insert(0, os.path.join(ROOT, "harness", "device"))
 import estimate  # noqa: E402
 import gpu_rows  # noqa: E402
+from script_checks import check, verdict  # noqa: E402
 
-FAILS = []
 COLS = ["matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
         "time", "warmup", "frames", "gpu_ms_median", "gpu_ms_iqr", "gpu_ms_min", "gpu_ms_max", "cpu_ms",
         "first_frame_ms", "status", "renderer", "git_revision", "technique_hash", "timestamp",
         "rel_rmse", "rmse"]
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILS.append(what)
 
 
 def write(path, cols, rows):
@@ -101,8 +96,7 @@ def run(work):
     want = estimate.LOAD_S + 2 * (100 + 14 * 12) / 1e3
     check(abs(est["lrsm_stages"] - want) < 1e-9,
           f"estimate: cold frame + (warm-up + frames) x frame wall time, plus the loads: {est['lrsm_stages']:.3f} s")
-    print("FAIL" if FAILS else "PASS: device rows judged, GPU-timed copies, run estimate")
-    return 1 if FAILS else 0
+    return verdict("PASS: device rows judged, GPU-timed copies, run estimate")
 
 
 def copies_case(work, hashes):

@@ -13,15 +13,10 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
 import source_hash as sh  # noqa: E402
+from script_checks import check, verdict  # noqa: E402
 
-FAILS = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILS.append(what)
 
 
 def hashes(root):
@@ -72,8 +67,7 @@ def main():
             print("skip HEAD comparison: not a git checkout, or techniques/ has local changes")
     finally:
         shutil.rmtree(work)
-    print("FAIL" if FAILS else "PASS: technique source hashes")
-    return 1 if FAILS else 0
+    return verdict("PASS: technique source hashes")
 
 
 if __name__ == "__main__":

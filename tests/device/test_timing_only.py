@@ -5,31 +5,24 @@ empty, the message saying so), a warm-up that stopped once the frame time settle
 row), each row's technique hash equal to the sources' (harness/source_hash.py), and per pass the
 pipeline statistics and the kind they imply: the G-buffer is raster work, multires_ir's splitting
 has compute work, and the counts of two runs are equal (they count work, not time)."""
-import argparse
 import csv
 import os
-import shutil
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
 import source_hash  # noqa: E402
+from script_checks import args, check, run as run_checked, verdict  # noqa: E402
 
-FAILS = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILS.append(what)
 
 
 def run(gibench, out, cache):
-    subprocess.run([gibench, "run", os.path.join(HERE, "tiny_timing.matrix"), "--timing-only",
-                    "--warmup", "auto", "--out", out, "--cache", cache, "--no-history"],
-                   check=True, stdout=subprocess.DEVNULL)
+    p = run_checked([gibench, "run", os.path.join(HERE, "tiny_timing.matrix"), "--timing-only",
+                     "--warmup", "auto", "--out", out, "--cache", cache, "--no-history"])
+    if p.returncode != 0:
+        sys.exit(f"FAIL: gibench run exited {p.returncode}: {p.stderr[-2000:]}")
     with open(os.path.join(out, "tiny_timing.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
     with open(os.path.join(out, "tiny_timing_passes.csv"), newline="") as f:
@@ -38,11 +31,7 @@ def run(gibench, out, cache):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--gibench", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = args()
     cache = os.path.join(a.work, "cache")
     rows, passes = run(a.gibench, os.path.join(a.work, "one"), cache)
     check(len(rows) == 2 and all(r["status"] == "ok" for r in rows), f"two ok rows ({len(rows)})")
@@ -72,8 +61,7 @@ def main():
     first = {(p["technique"], p["pass"]): tuple(p[c] for c in cols) for p in passes}
     second = {(p["technique"], p["pass"]): tuple(p[c] for c in cols) for p in again}
     check(first == second, "two runs count the same work in every pass")
-    print("FAIL" if FAILS else "PASS: timing-only rows, auto warm-up, work counts")
-    return 1 if FAILS else 0
+    return verdict("PASS: timing-only rows, auto warm-up, work counts")
 
 
 if __name__ == "__main__":
