@@ -1,8 +1,8 @@
 """The energy audit: for every technique, named reading (preset), scene and component, the image's
 mean over the reference's and its RMSE over a black image's, over the rows that ran there.
 
-A cell is read from the papers'-settings rows (profile `paper`) where its matrix has them, else from
-the quick profile, and says which. A cell whose mean ratio leaves 0.85-1.15 needs a cause: either a
+A cell is read from the papers'-settings rows (profile `paper`) where it has any, else from the
+quick profile, and says which. A cell whose mean ratio leaves 0.85-1.15 needs a cause: either a
 fix, or a measured control that shows where the gap comes from; the causes are written by hand in
 harness/energy_causes.csv (technique, preset, scene, component, cause, control), and a cell outside
 the band with none is listed as unexplained. A cause's `verdict` is `explained` (the control
@@ -48,16 +48,18 @@ def cause_of(known, technique, preset_name, scene, component):
 
 
 def chosen_rows(mats):
-    """The rows each cell is read from: per matrix the paper profile's where it has any ok row. A
-    row whose reference is black (a leak test, a component the view lacks) has no energy to audit:
-    the leak claims judge it."""
-    out = []
-    for name, rows in mats.items():
-        ok = [r for r in rows if r.get("status") == "ok" and r.get("component") in COMPONENTS
-              and fnum(r.get("mean_ratio")) is not None and fnum(r.get("black_rmse")) != 0]
-        paper = [r for r in ok if r.get("profile") == "paper"]
-        out += [(name, r) for r in (paper or ok)]
-    return out
+    """The rows each cell is read from: the paper profile's where the cell (technique, preset,
+    scene, component) has any ok row of it in any matrix, else the quick profile's. A parameter
+    study run only at the quick profile (lrsm_sweeps_cones, _layers: apertures and layer counts
+    away from the paper's) then speaks for a cell only where no row at the papers' settings does.
+    A row whose reference is black (a leak test, a component the view lacks) has no energy to
+    audit: the leak claims judge it."""
+    ok = [(name, r) for name, rows in mats.items() for r in rows
+          if r.get("status") == "ok" and r.get("component") in COMPONENTS
+          and fnum(r.get("mean_ratio")) is not None and fnum(r.get("black_rmse")) != 0]
+    cell = lambda r: (r["technique"], preset(r), r["scene"], r["component"])  # noqa: E731
+    with_paper = {cell(r) for _, r in ok if r.get("profile") == "paper"}
+    return [(name, r) for name, r in ok if r.get("profile") == "paper" or cell(r) not in with_paper]
 
 
 def cells(mats):
