@@ -28,7 +28,7 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
@@ -105,6 +105,14 @@ cone-study: build
 # The same on the LRSM paper's sun-lit Sponza at its 512^3 (160x90, 256-spp cone references; needs the
 # shared scenes, ~10 min): results/cone_study_sponza.csv, the energy audit's control for the voxel
 # techniques' indirect light there.
+# The same on the thesis' rooms, where the voxel techniques' indirect light is 0.7-0.84 of the
+# reference's (the energy audit): water_room and ring at 128x128, 256^3 (~2 min):
+# results/cone_study_rooms.csv.
+cone-study-rooms: build
+	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	  --out results/cone_study_rooms.csv --cache results/cache --size 128x128 --spp 256 \
+	  --full-spp 1024 --scenes water_room,ring --voxel-res 256
+
 cone-study-sponza: build
 	for t in lrsm vct; do extra=""; [ $$t = lrsm ] && extra="--param rsm_res=1024"; \
 	  GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
