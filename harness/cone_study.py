@@ -8,7 +8,8 @@ truth, and the weighted sum of the six is the best any technique with this cone 
 the "ideal" rows. Writes results/cone_study.csv:
 
   scene, technique, voxel_res, cone (0-5, or "gather"), weight, mean_ratio, rel_rmse,
-  rel_rmse_denoised, ref_noise_rel, black_rel, worse_than_black, renderer, cores, git_revision
+  rel_rmse_denoised, ref_noise_rel, black_rel, worse_than_black, renderer, cores, git_revision,
+  technique_hash
 
 where a cone row compares the technique's cone i alone (--param cone=i) with the reference's cone
 i, a "gather" row the whole indirect image with the whole reference, and the technique "ideal"
@@ -30,6 +31,9 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import source_hash  # noqa: E402
 
 WEIGHTS = [2 / 7] + [1 / 7] * 5  # harness/base/cone_set.h
 TECHNIQUES = ["lrsm", "vct"]
@@ -71,6 +75,7 @@ def revision():
 
 
 PROVENANCE = {"renderer": "", "cores": str(os.cpu_count()), "git_revision": revision()}
+SOURCES = source_hash.Tree()  # the sources the gibench that renders was built from (a clean tree)
 
 
 def row(scene, technique, res, cone, weight, m):
@@ -83,7 +88,8 @@ def row(scene, technique, res, cone, weight, m):
             "ref_noise_rel": "%.4f" % (m["ref_noise_rmse"] / m["rmse"] * m["rel_rmse"]
                                        if m["rmse"] > 0 else 0.0),
             "black_rel": "%.4f" % (black / m["rmse"] * m["rel_rmse"] if m["rmse"] > 0 else 0.0),
-            "worse_than_black": int(m["rmse"] > black), **PROVENANCE}
+            "worse_than_black": int(m["rmse"] > black), **PROVENANCE,
+            "technique_hash": source_hash.technique_hash(SOURCES, technique) if technique != "ideal" else ""}
 
 
 def weighted_sum(paths, out):
