@@ -32,6 +32,7 @@ import gpu_rows  # noqa: E402
 from device.gpu_summary import RASTER_LIMITS  # noqa: E402
 import cone_report  # noqa: E402
 import energy_audit  # noqa: E402
+import pass_work  # noqa: E402
 import temporal_tables  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -707,7 +708,7 @@ def write_html(results, claims, mats, plots, seq_rows=(), energy=()):
              'GPU (ours ran on the renderer shown), where our run did not run or ran out of memory, or '
              'where our settings differ from the paper\'s (quick profile).</p>',
              claims_html(claims),
-             energy_audit.section_html(energy),
+             energy_audit.section_html(energy), pass_work.section_html(results),
              gpu_runs_html(results, page_dir),
              gallery_html(results, page_dir, mats, heads),
              sequences_html(results, page_dir, seq_rows),
@@ -817,6 +818,7 @@ def write_md(results, claims, mats, plots, seq_rows=(), energy=()):
     lines += ["", f"The papers' {sum(len(v) for v in absolute.values())} absolute GPU times are at the end "
               "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
     lines += energy_audit.section_md(energy)
+    lines += pass_work.section_md(results)
     lines += gallery_md(results, mats, heads)
     lines += sequences_md(seq_rows)
     lines += cone_report.section_md(results)

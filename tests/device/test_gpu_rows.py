@@ -18,6 +18,7 @@ sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
 sys.path.insert(0, os.path.join(ROOT, "harness", "device"))
 import estimate  # noqa: E402
 import gpu_rows  # noqa: E402
+import pass_work  # noqa: E402
 from script_checks import check, verdict  # noqa: E402
 
 COLS = ["matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",
@@ -88,6 +89,7 @@ def run(work):
     a1 = [r for r in v.values() if r["params"] == "a=1"]
     check(len(a1) == 1 and a1[0]["gpu_ms_median"] == "10", "the newest run's row wins over an older one")
     copies_case(work, hashes)
+    work_case()
     est = estimate.estimate(folder, frames=10, warmup=4)
     # estimate reads the script's matrix names; the constructed table is named m: none of them.
     check(all(s is None for _, _, s in est), "estimate: the script's matrices absent here are reported absent")
@@ -97,6 +99,21 @@ def run(work):
     check(abs(est["lrsm_stages"] - want) < 1e-9,
           f"estimate: cold frame + (warm-up + frames) x frame wall time, plus the loads: {est['lrsm_stages']:.3f} s")
     return verdict("PASS: device rows judged, GPU-timed copies, run estimate")
+
+
+def work_case():
+    """The work-and-time table: invocations summed over fragment and compute, a pass with no counts
+    (a table from before the columns) said so, the largest image kept."""
+    base = {"technique": "vct", "scene": "s", "params": "voxel_res=256", "ms_median": "2.5"}
+    passes = [dict(base, width="64", height="64", kind="both", fragment_invocations="10",
+                   compute_invocations="5", **{"pass": "voxelization"}),
+              dict(base, width="128", height="128", kind="both", fragment_invocations="40",
+                   compute_invocations="20", **{"pass": "voxelization"}),
+              dict(base, width="128", height="128", kind="", **{"pass": "cones"})]
+    rows = pass_work.machine_rows(passes, "m")
+    check([r[6] for r in rows] == ["60", ""] and rows[1][3] == "not counted" and
+          all(r[5] == "128x128" for r in rows),
+          "work table: fragment + compute invocations, uncounted passes said so, the largest image")
 
 
 def copies_case(work, hashes):
