@@ -3,8 +3,8 @@
 
 - Orders of costs (LRSM Table 3's stages, the thesis' doubling from 128^2 to 256^2 rays and its
   multi-resolution speed-up, the LDM paper's tracing against splatting) get a verdict from the GPU's
-  times, with the work the pipeline statistics counted beside it: counts are the same on every
-  machine, and say whether a difference in time is a difference in work.
+  times, with the work the pipeline statistics counted beside it: counts follow the work asked for, not
+  the machine's speed, and say whether a difference in time is a difference in work.
 - Absolute times (the papers' tables) stay `not measurable here` (another GPU, and one whose raster
   work runs on a part of its chip), but show the GPU's number instead of llvmpipe's.
 

@@ -1,8 +1,10 @@
 """The papers' timed stages with the work they did: per pass, on each machine that ran the papers'
 settings (the paper profile on llvmpipe, a device run on a GPU), its kind (raster, compute, both),
 the invocations the pipeline statistics counted in the first warm frame and the median time. The
-counts depend on the image size, not on the machine, so a llvmpipe time reads as a CPU rasterizer's
-beside the work that took it, and a GPU's raster passes beside its raster limit.
+counts follow the work asked for (image size, settings), not the machine's speed, so a llvmpipe time
+reads as a CPU rasterizer's beside the work that took it, and a GPU's raster passes beside its raster
+limit; drivers differ in what they count (llvmpipe shades fragments a GPU's early depth test
+rejects) and budget-sized batches in how many dispatches a pass makes.
 
 One table per paper's timed figure: LRSM Table 3 (lrsm_stages), LDM Fig. 10 (ldm_fig10), the
 thesis' gather costs (thesis_gather_cost), each at the paper's reading (preset paper) where a
@@ -25,9 +27,11 @@ WITH_PRESETS = ("lrsm", "vct")
 HEAD = ["technique", "scene", "pass", "kind", "machine", "size", "invocations", "ms"]
 INTRO = ("Each paper's timed stages with the work they did: the pass's kind and the fragment and "
          "compute invocations the GL pipeline statistics counted in its first warm frame, beside its "
-         "median time on each machine that ran the papers' settings. The counts follow the image size, "
-         "not the machine: llvmpipe's times are a CPU rasterizer's for that work, and a GPU's raster "
-         "passes run on its raster units alone (the H100/H200: 2 TPCs).")
+         "median time on each machine that ran the papers' settings. The counts follow the work asked "
+         "for, not the machine's speed: llvmpipe's times are a CPU rasterizer's for that work, and a "
+         "GPU's raster passes run on its raster units alone (the H100/H200: 2 TPCs). Drivers differ in "
+         "what they count: llvmpipe shades fragments a GPU's early depth test rejects (ldm_build), and "
+         "a pass batched by a memory budget (photon_trace) dispatches once per batch.")
 
 
 def keep(p, techniques):
