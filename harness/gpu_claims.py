@@ -26,17 +26,6 @@ PAPER_VALUES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".
                             "paper-values")
 
 
-def newest_run(results):
-    """(gpu, folder, {runs-table row identity: row}) of the newest device run whose rows are
-    mostly valid, or None."""
-    rows = gpu_rows.load(results)
-    for gpu, folder in gpu_rows.run_folders(results):
-        mine = [r for r in rows if r["_folder"] == folder]
-        if mine and sum(r["_valid"] for r in mine) * 2 > len(mine):
-            return gpu, folder, mine
-    return None
-
-
 def run_key(r):
     return (r["matrix"], r["scene"], r["technique"], r["params"], r["width"], r["height"], r["time"])
 
@@ -212,7 +201,7 @@ def ldm_times(folder):
 def judged(results):
     """{claim text: {verdict (yes/no, for an order), our_value, evidence}} with the run's renderer
     and raster limit in every entry; {} without a valid device run."""
-    run = newest_run(results)
+    run = gpu_rows.newest_run(results)
     if not run:
         return {}
     gpu, folder, rows = run

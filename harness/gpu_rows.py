@@ -148,6 +148,17 @@ def load(results, hashes=None):
     return out
 
 
+def newest_run(results, loaded=None):
+    """(gpu, folder, its judged rows) of the newest device run whose rows are mostly valid (the
+    run the report and the claims read), or None."""
+    loaded = load(results) if loaded is None else loaded
+    for gpu, folder in run_folders(results):
+        mine = [r for r in loaded if r["_folder"] == folder]
+        if mine and sum(r["_valid"] for r in mine) * 2 > len(mine):
+            return gpu, folder, mine
+    return None
+
+
 def valid(rows):
     """{KEY values: the newest valid row} (rows as `load` returns them, each GPU's newest run
     first: the first valid row met is kept)."""

@@ -67,14 +67,11 @@ def machine_rows(passes, machine):
 
 def tables(results):
     """[(title, rows)] of every figure with rows on some machine."""
-    run = None
-    loaded = gpu_rows.load(results)
-    for gpu, folder in gpu_rows.run_folders(results):
-        mine = [r for r in loaded if r["_folder"] == folder]
-        if mine and sum(r["_valid"] for r in mine) * 2 > len(mine):
-            run = (gpu, folder, {(r["scene"], r["technique"], r["params"], r["width"]) for r in mine
-                                 if r["_valid"]})
-            break
+    run = gpu_rows.newest_run(results)
+    if run:
+        gpu, folder, mine = run
+        run = (gpu, folder, {(r["scene"], r["technique"], r["params"], r["width"]) for r in mine
+                             if r["_valid"]})
     out = []
     for title, matrix, techniques in FIGURES:
         local = [p for p in read_csv(os.path.join(results, f"{matrix}_passes.csv"))
