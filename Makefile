@@ -28,12 +28,12 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms energy-controls plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make reproduce-studies | make cone-study | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
+	@echo "make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -112,6 +112,14 @@ cone-study-rooms: build
 	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
 	  --out results/cone_study_rooms.csv --cache results/cache --size 128x128 --spp 256 \
 	  --full-spp 1024 --scenes water_room,ring --voxel-res 256
+
+# The energy audit's measured controls (harness/energy_controls/run.py): each cell of
+# harness/energy_controls/cells.csv rendered as committed and with one suspected cause removed (a
+# patch built into build-control from a copy of the sources, or another parameter), against the
+# same cached references; needs the shared scenes, ~40 min: results/energy_controls.csv.
+energy-controls: build
+	GIBENCH_SCHEMA=build/schema.json python3 harness/energy_controls/run.py --gibench build/gibench \
+	  --out results/energy_controls.csv --cache results/cache
 
 cone-study-sponza: build
 	for t in lrsm vct; do extra=""; [ $$t = lrsm ] && extra="--param rsm_res=1024"; \
