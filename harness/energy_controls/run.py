@@ -136,6 +136,7 @@ def main():
         cells = [c for c in cells if "%s:%s" % (c["technique"], c["scene"]) == a.only]
     builds, rows = {}, []
     ours = source_hash.Tree(ROOT)
+    rev = revision()  # at the start: what the build measured, whatever changes while it runs
     for cell in cells:
         mean, black, renderer = score(a.gibench, cell, a.cache)
         if cell["control"].startswith("param "):  # a parameter of the technique as it is
@@ -156,7 +157,7 @@ def main():
                      "control": cell["control"], "mean_ratio": mean, "mean_ratio_control": mean_c,
                      "rmse_over_black": black, "rmse_over_black_control": black_c,
                      "renderer": renderer, "cores": str(os.cpu_count()),
-                     "git_revision": revision(),
+                     "git_revision": rev,
                      "technique_hash": source_hash.technique_hash(ours, cell["technique"]),
                      "technique_hash_control": source_hash.technique_hash(control_tree,
                                                                           cell["technique"])})
