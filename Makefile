@@ -28,7 +28,7 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms energy-controls plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot energy-controls plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
@@ -112,6 +112,14 @@ cone-study-rooms: build
 	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
 	  --out results/cone_study_rooms.csv --cache results/cache --size 128x128 --spp 256 \
 	  --full-spp 1024 --scenes water_room,ring --voxel-res 256
+
+# The same on the LDM paper's Sponza under its spot light (thesis_indirect's and lrsm_sweeps' view),
+# vct at 256^3, 200x200 (~4 min): results/cone_study_sponza_spot.csv, the energy audit's control
+# for vct's indirect light there.
+cone-study-sponza-spot: build
+	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	  --out results/cone_study_sponza_spot.csv --cache results/cache --size 200x200 --spp 256 \
+	  --full-spp 1024 --scenes sponza --voxel-res 256 --techniques vct
 
 # The energy audit's measured controls (harness/energy_controls/run.py): each cell of
 # harness/energy_controls/cells.csv rendered as committed and with one suspected cause removed (a
