@@ -57,7 +57,8 @@ def revision():
 
 
 def control_sources(patch, dest):
-    """The committed sources copied into dest, with the control's patches (a+b: both) applied."""
+    """The tracked sources as the tree holds them (results/ left out), copied into dest, with the
+    control's patches (a+b: both) applied."""
     if os.path.isdir(dest):
         shutil.rmtree(dest)
     os.makedirs(dest)
