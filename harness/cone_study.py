@@ -63,18 +63,8 @@ def compare(a, ref, test):
     return json.loads(run([a.gibench, "compare", ref, test, "--json"]))
 
 
-def revision():
-    """The commit, marked -dirty when tracked files outside results/ differ (as gibench's)."""
-    def git(*args):
-        r = subprocess.run(["git"] + list(args), stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                           text=True)
-        return r.stdout.strip() if r.returncode == 0 else ""
-    rev = git("rev-parse", "--short=12", "HEAD") or "unknown"
-    dirty = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)results")
-    return rev + ("-dirty" if dirty and rev != "unknown" else "")
-
-
-PROVENANCE = {"renderer": "", "cores": str(os.cpu_count()), "git_revision": revision()}
+PROVENANCE = {"renderer": "", "cores": str(os.cpu_count()),
+              "git_revision": source_hash.git_revision()}
 SOURCES = source_hash.Tree()  # the sources the gibench that renders was built from (a clean tree)
 
 

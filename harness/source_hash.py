@@ -30,6 +30,18 @@ REFERENCE = re.compile(r'"(?:techniques/)?([a-z_0-9]+)/([A-Za-z_0-9.]+)"')
 LOCAL = re.compile(r'#include\s+"([A-Za-z_0-9.]+)"')
 
 
+def git_revision(root=ROOT):
+    """The commit of root's checkout, marked -dirty when tracked files outside results/ differ (as
+    gibench's git_revision); "unknown" outside a git checkout."""
+    def git(*args):
+        r = subprocess.run(["git", "-C", root] + list(args), stdout=subprocess.PIPE,
+                           stderr=subprocess.DEVNULL, text=True)
+        return r.stdout.strip() if r.returncode == 0 else ""
+    rev = git("rev-parse", "--short=12", "HEAD") or "unknown"
+    dirty = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)results")
+    return rev + ("-dirty" if dirty and rev != "unknown" else "")
+
+
 class Tree:
     """The project's files: the working tree (rev None) or those of a git revision."""
 

@@ -41,19 +41,13 @@ COLUMNS = ["technique", "scene", "component", "size", "voxel_res", "params", "co
 def run(cmd, **kw):
     env = dict(os.environ)
     # the copy lies elsewhere: scene data stays where the project's own default finds it
-    env.setdefault("GIBENCH_SCENES", os.path.normpath(os.path.join(ROOT, "..", "shared", "scenes")))
+    env.setdefault("GIBENCH_SCENES",
+                   os.path.normpath(os.path.join(ROOT, "..", "shared", "scenes")))
     r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kw)
     if r.returncode != 0:
         sys.exit("energy_controls: %s failed (%d):\n%s" % (" ".join(cmd), r.returncode,
                                                            r.stdout[-3000:]))
     return r.stdout
-
-
-def revision():
-    rev = run(["git", "-C", ROOT, "rev-parse", "--short=12", "HEAD"]).strip()
-    dirty = run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--", ".",
-                 ":(exclude)results"]).strip()
-    return rev + ("-dirty" if dirty else "")
 
 
 def control_sources(patch, dest):
@@ -137,7 +131,8 @@ def main():
         cells = [c for c in cells if "%s:%s" % (c["technique"], c["scene"]) == a.only]
     builds, rows = {}, []
     ours = source_hash.Tree(ROOT)
-    rev = revision()  # at the start: what the build measured, whatever changes while it runs
+    # at the start: what the build measured, whatever changes in the tree while it runs
+    rev = source_hash.git_revision(ROOT)
     for cell in cells:
         mean, black, renderer = score(a.gibench, cell, a.cache)
         if cell["control"].startswith("param "):  # a parameter of the technique as it is
