@@ -17,8 +17,9 @@ Chromium and checks
   animated WebP with one frame per frame of the sequence (its ANMF chunks counted), which Chromium
   loads at its stated size and plays (the page's ?check script decodes it with the browser's own
   ImageDecoder: animated, 4 frames, not all alike; headless Chromium's virtual time does not advance
-  an <img>'s animation, so looking at it twice would not tell); a still image in its place must fail
-  that check;
+  an <img>'s animation, so looking at it twice would not tell; the decoding is awaited off the main
+  thread, so this answer is read over the DevTools pipe in real time, devtools_pipe.py); a still
+  image in its place must fail that check;
 and saves screenshots of the first screen and of an opened matrix (printed paths). Exit 77 (ctest
 SKIP) only where no Chromium is installed.
 
@@ -31,6 +32,8 @@ import re
 import shutil
 import subprocess
 import sys
+
+from devtools_pipe import element_text
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -53,9 +56,12 @@ def chromium():
     return None
 
 
+BROWSER_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                 "--allow-file-access-from-files"]
+
+
 def browser(exe, *args):
-    cmd = [exe, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
-           "--allow-file-access-from-files", "--virtual-time-budget=20000"] + list(args)
+    cmd = [exe] + BROWSER_FLAGS + ["--virtual-time-budget=20000"] + list(args)
     return subprocess.run(cmd, capture_output=True, text=True, timeout=120).stdout
 
 
@@ -179,16 +185,13 @@ def webp_frames(path):
     return n
 
 
-def animation_check(exe, page, tries=3):
-    """(animations, sized, playing) as the page's ?check script reports them. The decoding is
-    asynchronous work that headless virtual time does not wait for, so on a loaded machine the DOM
-    may be dumped before the script wrote its line: an absent line is asked for again."""
-    for _ in range(tries):
-        dom = browser(exe, "--dump-dom", "file://" + page + "?check")
-        m = re.search(r'<pre id="animation-check">animations (\d+) sized (\d+) playing (\d+)</pre>', dom)
-        if m:
-            return tuple(int(x) for x in m.groups())
-    return None
+def animation_check(exe, page):
+    """(animations, sized, playing) as the page's ?check script reports them, read once the script
+    wrote its line (the decoding is asynchronous work that --dump-dom's virtual time does not wait
+    for, so the page is read over the DevTools pipe, in real time, for up to 60 s)."""
+    text = element_text(exe, BROWSER_FLAGS, "file://" + page + "?check", "animation-check")
+    m = re.fullmatch(r"animations (\d+) sized (\d+) playing (\d+)", text or "")
+    return tuple(int(x) for x in m.groups()) if m else None
 
 
 def check_sequences(exe, results, page, src):
