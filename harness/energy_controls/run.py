@@ -17,7 +17,7 @@ energy_causes.csv cites these rows; harness/energy_audit.py shows them beside th
 
 Usage: harness/energy_controls/run.py [--cells harness/energy_controls/cells.csv]
        [--out results/energy_controls.csv] [--gibench build/gibench]
-       [--control-build build-control] [--cache results/cache] [--only TECHNIQUE:SCENE]
+       [--control-build build-control] [--cache results/cache] [--only TECHNIQUE:SCENE,...]
 """
 import argparse
 import csv
@@ -124,11 +124,13 @@ def main():
     ap.add_argument("--gibench", default=os.path.join(ROOT, "build", "gibench"))
     ap.add_argument("--control-build", default=os.path.join(ROOT, "build-control"))
     ap.add_argument("--cache", default=os.path.join(ROOT, "results", "cache"))
-    ap.add_argument("--only", help="TECHNIQUE:SCENE, one cell's rows")
+    ap.add_argument("--only", help="TECHNIQUE:SCENE[,...]: re-measure only these cells' rows and "
+                    "keep the other rows of --out as they are")
     a = ap.parse_args()
     cells = list(csv.DictReader(open(a.cells)))
-    if a.only:
-        cells = [c for c in cells if "%s:%s" % (c["technique"], c["scene"]) == a.only]
+    only = set(a.only.split(",")) if a.only else None
+    if only:
+        cells = [c for c in cells if "%s:%s" % (c["technique"], c["scene"]) in only]
     builds, rows = {}, []
     ours = source_hash.Tree(ROOT)
     # at the start: what the build measured, whatever changes in the tree while it runs
@@ -160,6 +162,11 @@ def main():
         print("%s %s %s %s: mean %s -> %s, RMSE/black %s -> %s" % (
             cell["technique"], cell["scene"], cell["component"], cell["params"], mean, mean_c,
             black, black_c), flush=True)
+    if only and os.path.exists(a.out):
+        with open(a.out, newline="") as f:
+            kept = [r for r in csv.DictReader(f)
+                    if "%s:%s" % (r["technique"], r["scene"]) not in only]
+        rows = kept + rows
     with open(a.out, "w", newline="") as f:
         w = csv.DictWriter(f, COLUMNS, lineterminator="\n")
         w.writeheader()
