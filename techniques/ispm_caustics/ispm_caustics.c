@@ -46,7 +46,7 @@ typedef struct caustics {
     const gib_gpu_scene *scene;
     gib_ledger *ledger;
     int width, height, ray_res, level, res_l, divisor, splat_w, splat_h;
-    float splat_scale, delta, slack, diag;
+    float splat_scale, delta, slack, hit_depth, diag;
     gib_gbuffer gbuffer, low;      /* low: the splats' G-buffer when divisor > 1 */
     gib_light_views views;
     unsigned mask;                 /* R32F 2D array, levels 0..mask_level */
@@ -81,6 +81,9 @@ static const gib_param_spec caustics_params[] = {
      "delta of the Gaussian splat kernel exp(-(r/h)^2 / (2 delta)), cut at r = h"},
     {"hit_slack", GIB_PARAM_FLOAT, 0.5, 0, 4,
      "pixels around a line fragment where a crossing of a list node's plane counts as a hit"},
+    {"hit_depth", GIB_PARAM_FLOAT, 4, 0, 64,
+     "how far in depth a crossing may lie from its list node, in pixel footprints at the node's "
+     "depth (Algorithm 3.5's depth epsilon); 0: no bound, the node's tangent plane alone"},
     {"seed", GIB_PARAM_INT, 1, 0, 1e9, "seed of the pre-generated random numbers"},
     {"redraw", GIB_PARAM_INT, 0, 0, 1,
      "0: the pre-generated random numbers reused every frame (thesis, Ch. 4: temporal coherence); "
@@ -158,6 +161,7 @@ static int read_params(caustics *c, const gib_params *p, int *rsm_res, gib_error
     c->splat_scale = (float)gib_param_float(t, p, "splat_scale");
     c->delta = (float)gib_param_float(t, p, "kernel_delta");
     c->slack = (float)gib_param_float(t, p, "hit_slack");
+    c->hit_depth = (float)gib_param_float(t, p, "hit_depth");
     c->layers = gib_param_int(t, p, "layers");
     if (c->layers != 0 && c->layers != ISPM_LAYERS)
         return gib_fail(err, "ispm_caustics: parameter 'layers' = %d: 0 (linked lists) or 4 (the "
@@ -475,6 +479,7 @@ static void trace_photons(caustics *c, const gib_view *view)
     glUniform1f(ISPM_TRACE_LOC_TMAX, tmax);
     glUniform1ui(ISPM_TRACE_LOC_CAPACITY, c->photon_capacity);
     glUniform1f(ISPM_TRACE_LOC_SLACK, c->slack);
+    glUniform1f(ISPM_TRACE_LOC_DEPTH, c->hit_depth > 0.0f ? c->hit_depth : 1e30f);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_HEADS, c->heads);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_NODES, c->nodes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_PHOTONS, c->photons);

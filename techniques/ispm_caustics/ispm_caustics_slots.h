@@ -49,6 +49,7 @@
 #define ISPM_TRACE_LOC_TMAX 12        // float: a photon ray's length
 #define ISPM_TRACE_LOC_CAPACITY 13    // uint: photons
 #define ISPM_TRACE_LOC_SLACK 14       // float: pixels (trace.frag)
+#define ISPM_TRACE_LOC_DEPTH 16       // float: pixel footprints (trace.frag)
 #define ISPM_RESOLVE_LOC_SPLAT_SCALE 14 // float: C of h = C sqrt(area)
 #define ISPM_RESOLVE_LOC_HMAX 15      // float: the largest splat radius
 

@@ -34,6 +34,12 @@ float node_hit(ivec2 px, Node nd, vec3 o, vec3 d, out vec3 n)
     return dot(node_point(px, nd.depth) - o, n) / dn;
 }
 
+// The camera's linear depth of q (along its forward axis, as the nodes store it).
+float view_depth(vec3 q) { return dot(q - u_origin, u_forward); }
+
+// A ray-resolution pixel's width at linear depth z (along the camera's right axis).
+float pixel_footprint(float z) { return z * 2.0 * length(u_right_tan) / float(u_res); }
+
 // Distance in ray-resolution pixels (Chebyshev) from pixel px's centre to where point q projects.
 float pixel_distance(ivec2 px, vec3 q)
 {
