@@ -28,6 +28,7 @@ from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
 import answers  # noqa: E402
+import shipped_images  # noqa: E402
 import gpu_rows  # noqa: E402
 from device.gpu_summary import RASTER_LIMITS  # noqa: E402
 import cone_report  # noqa: E402
@@ -340,17 +341,19 @@ def gallery_cells(results, group_rows):
             break
         if named is None and r.get("ref_image"):
             named = os.path.join(results, "images", r["matrix"], r["ref_image"])
-    ref = ref or named
+    ref = shipped_images.shipped(results, ref or named)
     cells = [("reference", "path-traced reference", ref, None, "", "")]
     for r in picked:
         base = os.path.join(results, "images", r["matrix"], r.get("image") or image_name(r))
         flip = base + "_flip.png"
-        emap, scale = (flip, "FLIP, 0–1") if os.path.exists(flip) else (base + "_error.png", "RMS error, own scale")
+        has_flip = os.path.exists(flip) or os.path.exists(shipped_images.copy_path(results, flip))
+        emap, scale = (flip, "FLIP, 0–1") if has_flip else (base + "_error.png", "RMS error, own scale")
         e = answers.relative_error(r)
         nums = (f"{ms_text(fnum(r['gpu_ms_median']))} ms · rel. error {err_text(e[1])}"
                 + (f" · {mb_text(fnum(r['mem_bytes']))} MB" if fnum(r.get("mem_bytes")) else "")
                 + (" · WORSE THAN BLACK" if worse_than_black(r) else ""))
-        cells.append((r["technique"], nums, base + ".png", emap, scale, r["params"]))
+        cells.append((r["technique"], nums, shipped_images.shipped(results, base + ".png"),
+                      shipped_images.shipped(results, emap), scale, r["params"]))
     return cells
 
 
@@ -561,7 +564,7 @@ def gallery_html(results, page_dir, mats, heads):
            "<p>Per component and scene, the reference and each technique's setting whose time is nearest "
            "the group's median time, at the scene's one exposure; their error maps beneath (FLIP maps "
            "share one scale, 0–1; an RMS error map is scaled to its own 99th percentile).</p>"]
-    if not os.path.isdir(os.path.join(results, "images")):
+    if not any(os.path.isdir(os.path.join(results, d)) for d in ("images", shipped_images.FOLDER)):
         out.append(f"<p><b>This folder holds no images</b> ({esc(os.path.basename(os.path.abspath(results)))}/images/"
                    "is written by a run, not committed): each cell names the file it would show.</p>")
     for e in heads:
@@ -945,6 +948,7 @@ def main():
     print(energy_path)
     print(write_md(results, claims, mats, plots, seq_rows, energy))
     print(write_html(results, claims, mats, plots, seq_rows, energy))
+    shipped_images.prune(results)
 
 
 if __name__ == "__main__":

@@ -9,7 +9,9 @@ Chromium and checks
 - the answer table comes first and has one row per component and scene that two techniques estimate
   in the CSVs (counted here from the CSVs, not by harness/answers.py), in the HTML and in REPORT.md;
 - the gallery: every cell is an image that loaded or, where its file is absent, the labelled
-  placeholder (one image file removed must turn into a placeholder, not a broken image);
+  placeholder (one image's PNG and shipped copy removed must turn into a placeholder, not a broken
+  image); every cell links its shipped WebP copy under gallery/, and with images/ moved away (as on
+  a fresh clone) the gallery shows the same cells, none broken;
 - the claims are grouped: machine-independent ones first, then the papers' absolute GPU times in
   collapsed sections (the HTML) and a section at the end (REPORT.md), every claims.csv row once;
 - the check itself catches a broken image (a copy of the page with one missing file must say so);
@@ -32,6 +34,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 
 from devtools_pipe import element_text
 
@@ -145,30 +148,70 @@ def gallery_cells(src):
     return out
 
 
+def regenerate(results):
+    subprocess.run([sys.executable, os.path.join(ROOT, "harness", "report.py"), results], check=True,
+                   stdout=subprocess.DEVNULL)
+
+
+def source_png(results, shipped):
+    """The run's PNG under images/ that a shipped gallery copy (gallery/...webp) was made from."""
+    rel_path = os.path.relpath(shipped, os.path.join(results, "gallery"))
+    return os.path.join(results, "images", os.path.splitext(rel_path)[0] + ".png")
+
+
 def check_placeholder(exe, results, page, cells):
-    """A gallery image whose file is absent becomes the labelled placeholder, not a broken image:
-    one technique image moved away, the report written again, then put back."""
+    """A gallery image whose files are absent (the run's PNG and the shipped copy) becomes the
+    labelled placeholder naming the PNG, not a broken image: both moved away, the report written
+    again, then put back."""
     page_dir = os.path.dirname(page)
     victim = next((os.path.normpath(os.path.join(page_dir, src)) for _, src in cells[1:2]), None)
     if not victim or not os.path.exists(victim):
         check(False, f"a gallery image to remove ({victim})")
         return
-    aside = victim + ".aside"
-    os.rename(victim, aside)
+    png = source_png(results, victim)
+    moved = [p for p in (victim, png) if os.path.exists(p)]
+    aside = tempfile.mkdtemp(prefix="aside_", dir=os.path.dirname(os.path.abspath(results)))
+    for i, p in enumerate(moved):  # outside results/: the report prunes what it does not show
+        os.rename(p, os.path.join(aside, str(i)))
     try:
-        subprocess.run([sys.executable, os.path.join(ROOT, "harness", "report.py"), results], check=True,
-                       stdout=subprocess.DEVNULL)
+        regenerate(results)
         with open(page) as f:
             holders = [m for k, m in gallery_cells(f.read()) if k == "placeholder"]
         got, _ = image_check(exe, page)
     finally:
-        os.rename(aside, victim)
-        subprocess.run([sys.executable, os.path.join(ROOT, "harness", "report.py"), results], check=True,
-                       stdout=subprocess.DEVNULL)
-    want = os.path.relpath(victim, results)
+        for i, p in enumerate(moved):
+            os.rename(os.path.join(aside, str(i)), p)
+        os.rmdir(aside)
+        regenerate(results)
+    want = os.path.relpath(png, results)
     check(holders == [want], f"an absent gallery image is a placeholder naming its file ({holders})")
     check(got is not None and got[2] == 0 and got[4] >= 1,
           f"the placeholder is no broken image (broken {got and got[2]}, placeholders {got and got[4]})")
+
+
+def check_shipped_gallery(exe, results, page, cells):
+    """The gallery as a fresh clone has it: every cell links its shipped WebP copy under gallery/,
+    and with the run's images/ folder moved away the page still shows every cell (none a
+    placeholder, none broken)."""
+    page_dir = os.path.dirname(page)
+    files = [os.path.normpath(os.path.join(page_dir, src)) for k, src in cells if k == "img"]
+    shipped = [f for f in files if f.startswith(os.path.join(results, "gallery") + os.sep)
+               and f.endswith(".webp") and os.path.exists(f)]
+    check(files and shipped == files, f"every gallery cell links its shipped WebP copy ({len(shipped)} "
+          f"of {len(files)})")
+    images = os.path.join(results, "images")
+    os.rename(images, images + ".aside")
+    try:
+        regenerate(results)
+        with open(page) as f:
+            fresh = gallery_cells(f.read())
+        got, _ = image_check(exe, page)
+    finally:
+        os.rename(images + ".aside", images)
+        regenerate(results)
+    check(fresh == cells, f"without images/ (a fresh clone) the gallery shows the same cells "
+          f"({sum(k == 'img' for k, _ in fresh)} images of {len(cells)})")
+    check(got is not None and got[2] == 0, f"and none is broken ({got and got[:3]})")
 
 
 def webp_frames(path):
@@ -329,6 +372,7 @@ def main():
 
     check_cones(results, src, md)
     check_placeholder(exe, results, page, cells)
+    check_shipped_gallery(exe, results, page, cells)
     check_sequences(exe, results, page, src)
 
     first = os.path.join(work, "report_first_screen.png")
