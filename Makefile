@@ -152,9 +152,12 @@ plots: build
 	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/claims.py $(RESULTS)
 
 # The reproduction report from the CSVs: $(RESULTS)/REPORT.md and $(RESULTS)/report/index.html
-# (opens offline from the file system).
+# (opens offline from the file system); for the committed results also the README's picture of its
+# first screen, docs/report.png.
 report: plots
 	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/report.py $(RESULTS)
+	@if [ "$(RESULTS)" = results ]; then \
+	  python3 harness/report_screenshot.py results/report/index.html docs/report.png; fi
 
 # libFuzzer over every parser of outside input (tests/fuzz/README.md): FUZZ_SECONDS and FUZZ_RUNS
 # per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv;
