@@ -9,19 +9,20 @@ the "ideal" rows. Writes results/cone_study.csv:
 
   scene, technique, voxel_res, cone (0-5, or "gather"), weight, mean_ratio, rel_rmse,
   rel_rmse_denoised, ref_noise_rel, black_rel, worse_than_black, renderer, cores, git_revision,
-  technique_hash
+  technique_hash, params
 
 where a cone row compares the technique's cone i alone (--param cone=i) with the reference's cone
 i, a "gather" row the whole indirect image with the whole reference, and the technique "ideal"
 row the reference's six cones, weighted, against the whole reference. rel_rmse_denoised is the
 RMSE with the reference's own noise taken out, ref_noise_rel that noise, black_rel what a black
 image scores (gibench compare), each over the reference's mean; worse_than_black is 1 where the
-row's RMSE exceeds that.
+row's RMSE exceeds that; params the --param settings of the technique's renders ("" for its
+defaults). --append adds the rows to --out's (a control: the same study with another parameter).
 
 Usage: harness/cone_study.py [--gibench build/gibench] [--out results/cone_study.csv]
        [--cache results/cache] [--size 128x128] [--spp 256] [--full-spp 1024]
        [--scenes cornell,cornell_spot45] [--voxel-res 64,128,256] [--techniques lrsm,vct]
-       [--param K=V]...
+       [--param K=V]... [--append]
 """
 import argparse
 import csv
@@ -66,6 +67,7 @@ def compare(a, ref, test):
 PROVENANCE = {"renderer": "", "cores": str(os.cpu_count()),
               "git_revision": source_hash.git_revision()}
 SOURCES = source_hash.Tree()  # the sources the gibench that renders was built from (a clean tree)
+PARAMS = []  # --param, recorded in each row
 
 
 def row(scene, technique, res, cone, weight, m):
@@ -79,7 +81,8 @@ def row(scene, technique, res, cone, weight, m):
                                        if m["rmse"] > 0 else 0.0),
             "black_rel": "%.4f" % (black / m["rmse"] * m["rel_rmse"] if m["rmse"] > 0 else 0.0),
             "worse_than_black": int(m["rmse"] > black), **PROVENANCE,
-            "technique_hash": source_hash.technique_hash(SOURCES, technique) if technique != "ideal" else ""}
+            "technique_hash": source_hash.technique_hash(SOURCES, technique) if technique != "ideal" else "",
+            "params": ";".join(PARAMS)}
 
 
 def weighted_sum(paths, out):
@@ -104,7 +107,9 @@ def main():
     ap.add_argument("--param", action="append", default=[], metavar="K=V",
                     help="a technique parameter for every render (repeatable)")
     ap.add_argument("--techniques", default=",".join(TECHNIQUES))
+    ap.add_argument("--append", action="store_true", help="add the rows to --out's")
     a = ap.parse_args()
+    PARAMS.extend(a.param)
     rows = []
     work = tempfile.mkdtemp(prefix="gib_cone_study_")
     for scene in a.scenes.split(","):
@@ -133,8 +138,12 @@ def main():
                         rows[-1]["rel_rmse"]), flush=True)
     for r in rows:  # the ideal rows come before the first render names the renderer
         r["renderer"] = PROVENANCE["renderer"]
+    if a.append and os.path.exists(a.out):
+        with open(a.out, newline="") as f:
+            rows = list(csv.DictReader(f)) + rows
     with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()), lineterminator="\n")
+        w = csv.DictWriter(f, fieldnames=list(rows[-1].keys()), restval="",
+                           lineterminator="\n")
         w.writeheader()
         w.writerows(rows)
     shutil.rmtree(work)
