@@ -24,6 +24,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import claims  # noqa: E402
 from schema import param  # noqa: E402
 from uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
 
@@ -245,8 +246,7 @@ def at_common_cost(rows):
 
 # ---- the papers' claims (claims.csv, harness/claims.py) --------------------------------------------
 
-MACHINE_INDEPENDENT, ABSOLUTE_TIME = "machine_independent", "absolute_time"
-REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
+from claims import ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED, REPRODUCED  # noqa: E402,F401
 
 
 def claim_kind(c):
@@ -264,11 +264,7 @@ def claim_kind(c):
     return MACHINE_INDEPENDENT
 
 
-def stem(text):
-    """A claim's words before its settings (the first ' (' or ' ['), to name a claim tested at
-    several settings once."""
-    cut = [i for i in (text.find(" ("), text.find(" [")) if i > 0]
-    return text[:min(cut)] if cut else text
+stem = claims.stem  # a claim's words before its settings
 
 
 def first_clause(text, keep=110, clauses=1):

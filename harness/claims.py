@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Gathers every claim of every paper that paper_tables.py set beside our numbers into one table,
 RESULTS_DIR/claims.csv: a row per claim with the paper's value, ours, the machine ours ran on, its
-kind and a verdict `reproduced` / `not reproduced` / `not measurable here`, with the reason.
+kind and a verdict `reproduced` / `not reproduced` / `not measurable here`, with the reason. A
+claim tested at several settings is one row (counted_once), its settings the evidence beneath it.
 
 usage: claims.py RESULTS_DIR
 
@@ -154,7 +155,7 @@ def lrsm_fig7(results):
         if r["kind"] != "claim":
             continue
         v, why = verdict_of(r["reproduced"])
-        out.append(row(LRSM, "lrsm_fig7.csv", f"Figure 7: {r['claim']} {r['params']} {r['size']}",
+        out.append(row(LRSM, "lrsm_fig7.csv", f"Figure 7: {r['claim']} ({r['params']} {r['size']})",
                        "LRSM leaks, VCT does not", r["evidence"].split(";")[0], r["renderer"], v,
                        (why + "; " if why else "") + r["evidence"]))
     return out
@@ -248,14 +249,56 @@ def overlay_gpu(rows, gpu):
     return out
 
 
+def stem(text):
+    """A claim's words before its settings (the first ' (' or ' ['): the claim itself."""
+    cut = [i for i in (text.find(" ("), text.find(" [")) if i > 0]
+    return text[:min(cut)] if cut else text
+
+
+def joined(values):
+    """The distinct non-empty values in first-met order, '; '-joined."""
+    return "; ".join(dict.fromkeys(v for v in values if v))
+
+
+def counted_once(rows):
+    """A claim tested at several settings (rows of one paper, source and kind whose claims share a
+    stem) becomes one row: it holds (`reproduced`) where every setting measured holds, it does not
+    (`not reproduced`) where one measured setting fails, and it is `not measurable here` where no
+    setting was measured. Its value is how many settings held; its reason names each setting with
+    its own verdict and reason (' || ' between settings), the evidence beneath the verdict."""
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["paper"], r["source"], r["kind"], stem(r["claim"])), []).append(r)
+    out = []
+    for (paper, source, kind, claim), g in groups.items():
+        if len(g) == 1:
+            out.append(g[0])
+            continue
+        measured = [r for r in g if r["verdict"] != NOT_MEASURABLE]
+        held = sum(r["verdict"] == REPRODUCED for r in measured)
+        verdict = (NOT_MEASURABLE if not measured else
+                   REPRODUCED if held == len(measured) else NOT_REPRODUCED)
+        value = (f"{len(g)} settings, none measurable here" if not measured else
+                 f"holds at {held} of {len(measured)} settings measured" + (
+                     f" ({len(g) - len(measured)} not measurable here)" if len(measured) < len(g) else ""))
+        evidence = " || ".join(f"{r['claim'][len(claim):].strip()} {r['verdict']}"
+                               + (f": {r['reason']}" if r["reason"] else "") for r in g)
+        cores = {r["cores"] for r in g}
+        out.append(row(paper, source, claim, joined(r["paper_value"] for r in g), value,
+                       joined(r["renderer"] for r in g), verdict, f"{value}: {evidence}",
+                       cores.pop() if len(cores) == 1 else "", kind))
+    return out
+
+
 def claims(results):
-    """Per paper, the claims with a verdict first, then the ones not measurable here (stable); the
-    time claims a valid device run answers carry the GPU's numbers (gpu_claims.py)."""
+    """Per paper, the claims with a verdict first, then the ones not measurable here (stable), each
+    claim once over its settings (counted_once); the time claims a valid device run answers carry
+    the GPU's numbers (gpu_claims.py)."""
     out = []
     gpu = gpu_claims.judged(results)
     for part in (thesis(results) + temporal_tables.thesis_claim(results),
                  lrsm(results) + temporal_tables.lrsm_claim(results), ldm(results)):
-        out += sorted(overlay_gpu(part, gpu), key=lambda r: ORDER[r["verdict"]])
+        out += sorted(counted_once(overlay_gpu(part, gpu)), key=lambda r: ORDER[r["verdict"]])
     return out
 
 

@@ -3,12 +3,14 @@
 ties at the machine's time resolution and where error intervals overlap, rows worse than a black
 image set apart, memory ties only on equal bytes, and groups split by renderer and image size; the
 front's technique segments, the headline group per component and scene, each technique's row at a
-common cost (the gallery's), and the claims: kind (absolute GPU time or not) and findings per paper."""
+common cost (the gallery's), and the claims: kind (absolute GPU time or not), findings per paper,
+and a claim tested at several settings counted once."""
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 import answers  # noqa: E402
+import claims  # noqa: E402
 
 failures = []
 
@@ -118,6 +120,31 @@ check(f["counts"] == {"reproduced": 1, "not reproduced": 2, "not measurable here
 check([(x[0], x[1]) for x in f["not_reproduced"]] == [("leak", 2)], f"one claim at two settings named once ({f['not_reproduced']})")
 check(sorted(x[0] for x in f["unmeasured"]) == ["absolute GPU times", "not run here"],
       f"what would measure the rest ({f['unmeasured']})")
+
+# A claim tested at several settings is counted once (claims.counted_once): it holds where every
+# measured setting holds, fails where one fails, and is not measurable where none was measured;
+# claims of another stem, source or kind stay apart.
+def crow(verdict, claim, reason="why", source="s.csv", kind="machine_independent"):
+    return dict(claim_row(verdict, reason, claim=claim), source=source, kind=kind)
+
+
+claim_row = claim
+once = claims.counted_once([
+    crow("reproduced", "leak (x=1)"), crow("not reproduced", "leak (x=2)"),
+    crow("not measurable here", "leak (x=3)"), crow("reproduced", "order (a)"),
+    crow("reproduced", "order (b)"), crow("not measurable here", "time [t=0]"),
+    crow("not measurable here", "time [t=1]"), crow("reproduced", "leak (x=4)", source="t.csv")])
+by = {(c["source"], c["claim"]): c for c in once}
+check(len(once) == 4, f"eight rows, four claims ({sorted(by)})")
+leak = by.get(("s.csv", "leak"), {})
+check(leak.get("verdict") == "not reproduced" and
+      leak.get("our_value") == "holds at 1 of 2 settings measured (1 not measurable here)",
+      f"one measured setting fails: not reproduced, 1 of 2 ({leak.get('verdict')}, {leak.get('our_value')})")
+check(leak.get("reason", "").count(" || ") == 2 and "(x=2) not reproduced: why" in leak.get("reason", ""),
+      "each setting's verdict and reason is the evidence")
+check(by.get(("s.csv", "order"), {}).get("verdict") == "reproduced", "every setting holds: reproduced")
+check(by.get(("s.csv", "time"), {}).get("verdict") == "not measurable here", "none measured: not measurable")
+check(by.get(("t.csv", "leak (x=4)"), {}).get("verdict") == "reproduced", "another source stays apart, as it was")
 
 # Ambient occlusion at two dmax estimates two images (two references): two groups, not one; so do
 # two instants of an animation.
