@@ -15,19 +15,25 @@ Verdict rules (the choice this file makes, stated once):
 - a row whose table already says reproduced yes/no keeps that verdict;
 - an absolute time measured on the paper's GPU is `not measurable here` on another renderer (a
   time on llvmpipe says nothing about a GTX 770's), as is a row that did not run;
-- a memory figure is compared exactly (the table's own `matches` column: byte counts do not depend
-  on the renderer); a run refused for memory is measured by its plan (what the ledger recorded
-  before it would have allocated), which is the same bytes.
+- tolerances, one per kind of claim: memory holds within MEMORY_TOLERANCE (25%) of the paper's
+  figure, every paper alike (byte counts do not depend on the renderer; a paper's figure may count
+  what ours does not, or round); whether our bytes equal the paper's own formula is a separate fact,
+  stated in the reason, never the verdict. Errors are compared as intervals (overlap: a tie, no
+  tolerance), orders of times at the machine's time resolution, qualitative claims by the threshold
+  their table states (a leak visible from 1% of display white). A run refused for memory is
+  measured by its plan (what the ledger recorded before it would have allocated), the same bytes.
 The result CSVs do not record the CPU's cores; `cores` comes from RESULTS_DIR/history.sqlite (the
 machines `gibench run` recorded) where exactly one core count was recorded with the row's renderer,
 and stays empty otherwise (a renderer string alone does not name a machine).
 """
 import os
+import re
 import sqlite3
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import read_csv, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
+from uncertainty import MEMORY_TOLERANCE  # noqa: E402
 import temporal_tables  # noqa: E402  (the papers' temporal claims, from the sequence tables)
 import gpu_claims  # noqa: E402  (the time claims a valid device run answers)
 
@@ -106,17 +112,26 @@ def lrsm_table2(results):
             v, why = NOT_MEASURABLE, "no run of ours measured this structure"
         elif r["status"] != "ok" and not planned:
             v, why = NOT_MEASURABLE, f"our run ended {r['status']} on this machine ({r['note']})".rstrip(" ()")
-        elif planned:
-            v = REPRODUCED if r["matches"] == "yes" else NOT_REPRODUCED
-            why = (f"ours planned, not allocated (over memory_budget_mb), against the formula: "
-                   f"{r['ours_vs_formula']}; paper {r['paper_vs_formula']}")
-        elif r["matches"] == "yes":
-            v, why = REPRODUCED, f"ours {r['ours_vs_formula']} the formula; paper {r['paper_vs_formula']}"
         else:
-            v, why = NOT_REPRODUCED, f"ours {r['ours_vs_formula']} from the formula; paper {r['paper_vs_formula']}"
+            v, why = memory_verdict(float(r["ours_mb"]), paper_number(r["paper_mb"]))
+            why += (f"; against the formula: ours {r['ours_vs_formula']}, the paper's {r['paper_vs_formula']}"
+                    + ("; ours planned, not allocated (over memory_budget_mb)" if planned else ""))
         out.append(row(LRSM, "lrsm_table2.csv", what, f"{r['paper_mb']} MB",
                        f"{r['ours_mb']} MB" if r["ours_mb"] else "", "", v, why))
     return out
+
+
+def paper_number(text):
+    """A paper's figure as a number: '156.4', or 'about 3000 (3 GB)' read as 3000."""
+    m = re.search(r"[-+]?\d+(?:\.\d+)?", text)
+    return float(m.group(0)) if m else float("nan")
+
+
+def memory_verdict(ours_mb, paper_mb):
+    """(verdict, reason) of a memory claim under the one tolerance for memory."""
+    ratio = ours_mb / paper_mb
+    v = REPRODUCED if abs(ratio - 1) <= MEMORY_TOLERANCE else NOT_REPRODUCED
+    return v, f"ours {ours_mb:g} MB = {ratio:.3f}x the paper's (tolerance {100 * MEMORY_TOLERANCE:.0f}%)"
 
 
 def lrsm_table2_time(r):

@@ -28,9 +28,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import params, passes_of, run_key, runs, runs_table  # noqa: E402
 from uncertainty import compare_times, error_interval, fnum, overlap, time_resolution  # noqa: E402
+from uncertainty import MEMORY_TOLERANCE as MEMORY_TOL  # noqa: E402
 
 LARGE_DMAX = 1280.0  # the figure's dmax (Sponza is in cm: "1280 m" is 1280 units)
-MEMORY_TOL = 0.25
 MI = "machine_independent"
 SCENE = {"Crytek Sponza": "sponza", "Hairball": "hairball"}
 CLAIM_COLUMNS = ["figure", "claim", "kind", "paper_value", "our_value", "reproduced", "evidence",
