@@ -246,7 +246,8 @@ def at_common_cost(rows):
 
 # ---- the papers' claims (claims.csv, harness/claims.py) --------------------------------------------
 
-from claims import ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED, REPRODUCED  # noqa: E402,F401
+from claims import (ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED,  # noqa: E402,F401
+                    REPRODUCED, TIME_ORDER)
 
 
 def claim_kind(c):

@@ -9,8 +9,9 @@ usage: claims.py RESULTS_DIR
 Reads only the CSVs paper_tables.py writes (thesis_tables.csv, lrsm_table2.csv, lrsm_table3.csv,
 lrsm_fig7.csv, lrsm_dynamic.csv, ldm_figures_vs_ours.csv, ldm_claims.csv); a missing file gives no
 rows.
-Kinds: `machine_independent` (memory, error, orders, ratios, leaks: what this machine can judge)
-or `absolute_time` (a paper's absolute time on its GPU).
+Kinds, by what a claim depends on: `machine_independent` (memory, error, leaks: any machine judges
+them), `time_order` (an order or ratio of times: judged on the renderer the row names) or
+`absolute_time` (a paper's absolute time on its GPU).
 Verdict rules (the choice this file makes, stated once):
 - a row whose table already says reproduced yes/no keeps that verdict;
 - an absolute time measured on the paper's GPU is `not measurable here` on another renderer (a
@@ -40,6 +41,7 @@ import gpu_claims  # noqa: E402  (the time claims a valid device run answers)
 COLUMNS = ["paper", "source", "claim", "kind", "paper_value", "our_value", "renderer", "cores",
            "verdict", "reason"]
 MACHINE_INDEPENDENT, ABSOLUTE_TIME = "machine_independent", "absolute_time"
+TIME_ORDER = "time_order"  # an order or ratio of times: judged on the renderer the row names
 REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
 THESIS = "Le 2014 (thesis): interactive caustics and multi-resolution indirect illumination"
 LRSM = "Sugihara et al. 2014: Layered Reflective Shadow Maps (LRSM)"
@@ -237,6 +239,21 @@ ORDER_CLAIMS = ("Table 3: LRSM diffuse_cones > specular_cone", "Table 3: VCT spe
                 gpu_claims.GATHER_CLAIM)
 
 
+# The claims whose verdict rests on an order or a ratio of times (with an error beside, for Fig. 9):
+# they carry over between machines only as far as the renderer's pipeline resembles the paper's GPU,
+# so they are a class of their own, judged on the renderer each row names.
+TIME_ORDER_STEMS = ORDER_CLAIMS + ("photon tracing time roughly linear", "photon tracing about doubles",
+                                   "Figure 9: fewer LDMs are faster",
+                                   "Figure 9: lower-resolution LDMs are faster",
+                                   "Figure 10: Sec. 5.2: splatting is the bottleneck")
+
+
+def classed(rows):
+    """The rows with kind time_order where their claim is an order of times."""
+    return [dict(r, kind=TIME_ORDER) if r["kind"] == MACHINE_INDEPENDENT and
+            r["claim"].startswith(TIME_ORDER_STEMS) else r for r in rows]
+
+
 def on_gpu(r, g):
     """Claim row r with what the GPU measured laid over it (gpu_claims.judged's entry g)."""
     before = f"{r['renderer'] or 'llvmpipe'}: {r['verdict']}" + (f" ({r['our_value']})" if r["our_value"] else "")
@@ -313,7 +330,7 @@ def claims(results):
     gpu = gpu_claims.judged(results)
     for part in (thesis(results) + temporal_tables.thesis_claim(results),
                  lrsm(results) + temporal_tables.lrsm_claim(results), ldm(results)):
-        out += sorted(counted_once(overlay_gpu(part, gpu)), key=lambda r: ORDER[r["verdict"]])
+        out += sorted(classed(counted_once(overlay_gpu(part, gpu))), key=lambda r: ORDER[r["verdict"]])
     return out
 
 

@@ -459,13 +459,16 @@ CLAIM_HEAD = ('<thead><tr><th>claim</th><th>paper</th><th>ours</th><th>renderer<
 
 
 def split_claims(claims):
-    """(machine-independent claims, {paper: its absolute GPU times}) (answers.claim_kind)."""
-    mi = [c for c in claims if answers.claim_kind(c) != answers.ABSOLUTE_TIME]
+    """(error and memory claims, orders of times, {paper: its absolute GPU times}), by
+    answers.claim_kind: what each depends on."""
+    kinds = [answers.claim_kind(c) for c in claims]
+    mi = [c for c, k in zip(claims, kinds) if k not in (answers.ABSOLUTE_TIME, answers.TIME_ORDER)]
+    orders = [c for c, k in zip(claims, kinds) if k == answers.TIME_ORDER]
     absolute = {}
-    for c in claims:
-        if answers.claim_kind(c) == answers.ABSOLUTE_TIME:
+    for c, k in zip(claims, kinds):
+        if k == answers.ABSOLUTE_TIME:
             absolute.setdefault(c["paper"], []).append(c)
-    return mi, absolute
+    return mi, orders, absolute
 
 
 def why_not_comparable(cs):
@@ -475,12 +478,21 @@ def why_not_comparable(cs):
             "above compare what carries over: memory, error, orders and ratios).")
 
 
+ORDERS_NOTE = ("An order or a ratio of two times carries over between machines only as far as their "
+               "pipelines agree: each is judged on the renderer its row names (a GPU where a valid device "
+               "run answers it, else llvmpipe, a CPU rasterizer).")
+
+
 def claims_html(claims):
-    """The machine-independent claims (memory, error, orders, leaks) in one table, then each paper's
-    absolute GPU times in a table of their own, collapsed."""
-    mi, absolute = split_claims(claims)
+    """The claims that do not depend on the machine (memory, error, leaks) in one table, the orders
+    of times (judged on the renderer named) in another, then each paper's absolute GPU times in a
+    table of their own, collapsed."""
+    mi, orders, absolute = split_claims(claims)
     out = [f'<h3 id="claims-mi">Claims that do not depend on the machine ({len(mi)}: {esc(summary_counts(mi))})</h3>',
            f'<table id="claims">{CLAIM_HEAD}<tbody>'] + claim_rows_html(mi) + ["</tbody></table>"]
+    out += [f'<h3 id="claims-orders">Orders of times, on the renderer named ({len(orders)}: '
+            f'{esc(summary_counts(orders))})</h3><p>{esc(ORDERS_NOTE)}</p>',
+            f'<table id="claims-orders-table">{CLAIM_HEAD}<tbody>'] + claim_rows_html(orders) + ["</tbody></table>"]
     n = sum(len(v) for v in absolute.values())
     out.append(f'<h3 id="claims-abs">The papers\' absolute GPU times ({n}), per paper</h3>')
     for paper, cs in absolute.items():
@@ -809,7 +821,7 @@ def first_screen_md(results, mats, claims, heads):
 
 def write_md(results, claims, mats, plots, seq_rows=(), energy=()):
     every, heads = answer_rows(results, mats)
-    mi, absolute = split_claims(claims)
+    mi, orders, absolute = split_claims(claims)
     lines = first_screen_md(results, mats, claims, heads)
     lines += ["Generated from the CSVs in this folder; the page with every row's images is "
               "[report/index.html](report/index.html). Below: the claims, the gallery, how to read the "
@@ -818,6 +830,9 @@ def write_md(results, claims, mats, plots, seq_rows=(), energy=()):
               f"## Claims ({len(claims)}: {summary_counts(claims)})", "",
               f"### Claims that do not depend on the machine ({len(mi)}: {summary_counts(mi)})"]
     lines += claims_md(mi)
+    lines += ["", f"### Orders of times, on the renderer named ({len(orders)}: {summary_counts(orders)})", "",
+              ORDERS_NOTE]
+    lines += claims_md(orders)
     lines += ["", f"The papers' {sum(len(v) for v in absolute.values())} absolute GPU times are at the end "
               "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
     lines += energy_audit.section_md(energy)

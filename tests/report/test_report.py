@@ -12,7 +12,8 @@ Chromium and checks
   placeholder (one image's PNG and shipped copy removed must turn into a placeholder, not a broken
   image); every cell links its shipped WebP copy under gallery/, and with images/ moved away (as on
   a fresh clone) the gallery shows the same cells, none broken;
-- the claims are grouped: machine-independent ones first, then the papers' absolute GPU times in
+- the claims are grouped: machine-independent ones first, the orders of times next (as many as
+  claims.csv's kind time_order), then the papers' absolute GPU times in
   collapsed sections (the HTML) and a section at the end (REPORT.md), every claims.csv row once;
 - the check itself catches a broken image (a copy of the page with one missing file must say so);
 - the Sequences section: a sequence (report_tiny_sequence.matrix) has its row and its animation, an
@@ -122,13 +123,21 @@ def check_answer(src, md, results):
 
 
 def check_claims(src, md, claims):
-    """Machine-independent claims first, the absolute GPU times after them, collapsed; each once."""
+    """The claims that do not depend on the machine first, then the orders of times, then the
+    absolute GPU times, collapsed; each once."""
     mi = re.search(r'<table id="claims">(.*?)</table>', src, re.S)
+    orders = re.search(r'<table id="claims-orders-table">(.*?)</table>', src, re.S)
     absolute = re.findall(r'<details class="absolute"( open)?>(.*?)</details>', src, re.S)
     in_mi = len(re.findall(r'<tr class="claim ', mi.group(1))) if mi else 0
+    in_orders = len(re.findall(r'<tr class="claim ', orders.group(1))) if orders else 0
     in_abs = sum(len(re.findall(r'<tr class="claim ', body)) for _, body in absolute)
-    check(mi is not None and in_mi + in_abs == len(claims) and in_abs > 0,
-          f"claims grouped: {in_mi} machine-independent + {in_abs} absolute times = {len(claims)} rows")
+    kinds = [c.get("kind") for c in claims]
+    check(mi is not None and in_mi + in_orders + in_abs == len(claims) and in_abs > 0 and
+          in_orders == kinds.count("time_order") > 0,
+          f"claims grouped: {in_mi} machine-independent + {in_orders} orders of times + {in_abs} absolute "
+          f"times = {len(claims)} rows")
+    check(orders is not None and src.index('<table id="claims">') < src.index('<table id="claims-orders-table">')
+          < src.index('<details class="absolute"'), "the orders of times come between the two")
     check(all(not opened for opened, _ in absolute), "the absolute GPU times are collapsed")
     check(mi is not None and absolute and src.index('<table id="claims">') < src.index('<details class="absolute"'),
           "machine-independent claims come first")
