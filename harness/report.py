@@ -478,6 +478,11 @@ def why_not_comparable(cs):
             "above compare what carries over: memory, error, orders and ratios).")
 
 
+TOLERANCE_NOTE = ("One tolerance per kind of claim: memory holds within 25% of the paper's figure (whether "
+                  "our bytes equal the paper's formula is stated beside); errors are compared as intervals "
+                  "(overlap: a tie); orders of times at the machine's time resolution; qualitative claims by "
+                  "the threshold their reason states. A claim tested at several settings is one row: it "
+                  "holds where every setting measured holds.")
 ORDERS_NOTE = ("An order or a ratio of two times carries over between machines only as far as their "
                "pipelines agree: each is judged on the renderer its row names (a GPU where a valid device "
                "run answers it, else llvmpipe, a CPU rasterizer).")
@@ -488,7 +493,8 @@ def claims_html(claims):
     of times (judged on the renderer named) in another, then each paper's absolute GPU times in a
     table of their own, collapsed."""
     mi, orders, absolute = split_claims(claims)
-    out = [f'<h3 id="claims-mi">Claims that do not depend on the machine ({len(mi)}: {esc(summary_counts(mi))})</h3>',
+    out = [f'<p class="policy">{esc(TOLERANCE_NOTE)}</p>',
+           f'<h3 id="claims-mi">Claims that do not depend on the machine ({len(mi)}: {esc(summary_counts(mi))})</h3>',
            f'<table id="claims">{CLAIM_HEAD}<tbody>'] + claim_rows_html(mi) + ["</tbody></table>"]
     out += [f'<h3 id="claims-orders">Orders of times, on the renderer named ({len(orders)}: '
             f'{esc(summary_counts(orders))})</h3><p>{esc(ORDERS_NOTE)}</p>',
@@ -827,7 +833,7 @@ def write_md(results, claims, mats, plots, seq_rows=(), energy=()):
               "[report/index.html](report/index.html). Below: the claims, the gallery, how to read the "
               "numbers, the answer for every group, every matrix, and at the end the papers' "
               "absolute GPU times.", "",
-              f"## Claims ({len(claims)}: {summary_counts(claims)})", "",
+              f"## Claims ({len(claims)}: {summary_counts(claims)})", "", TOLERANCE_NOTE, "",
               f"### Claims that do not depend on the machine ({len(mi)}: {summary_counts(mi)})"]
     lines += claims_md(mi)
     lines += ["", f"### Orders of times, on the renderer named ({len(orders)}: {summary_counts(orders)})", "",
