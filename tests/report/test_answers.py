@@ -87,6 +87,17 @@ heads = answers.headline(answers.answers(rows))
 check(len(heads) == 1 and heads[0][0][3] == "128" and [k[3] for k in heads[0][3]] == ["64"],
       f"headline: the 128 group (3 techniques), 64 named as another size ({[(h[0], h[3]) for h in heads]})")
 
+# Headline for AO: the paper's point (dmax >= 1280) heads it, even beside a group that a GPU timed
+# and more techniques estimate.
+ao = dict(component="ao", scene="sponza")
+rows = [row("a", 1, 0.5, params="dmax=20", time_source="gpu", **ao),
+        row("b", 2, 0.4, params="dmax=20", time_source="gpu", **ao),
+        row("c", 3, 0.3, params="dmax=20", time_source="gpu", **ao),
+        row("a", 1, 0.5, params="dmax=1280", **ao), row("b", 2, 0.4, params="dmax=1280", **ao)]
+heads = answers.headline(answers.answers(rows))
+check(len(heads) == 1 and heads[0][0][7] == "dmax=1280",
+      f"headline: AO at the paper's dmax 1280, not dmax 20 ({[h[0][7] for h in heads]})")
+
 # A common cost: each technique's row nearest the group's median time (log scale).
 picked = answers.at_common_cost([row("a", 1, 0.5), row("a", 10, 0.4, params="x=2"), row("b", 8, 0.3),
                                  row("b", 100, 0.2, params="y=2")])
