@@ -159,17 +159,41 @@ def span_text(values, show):
     return show(lo) if show(lo) == show(hi) else f"{show(lo)}–{show(hi)}"
 
 
+ERROR_WORDS = ("error: RMSE over the reference's mean, for glossy and caustics over a black image's; "
+               "mean: the image's mean over the reference's")
+OVER_BLACK = ("glossy", "caustic")  # components whose error reads as a share of a black image's
+
+
+def shown_error(r):
+    """The error a front shows for row r: the relative RMSE (over the reference's mean), or for
+    glossy and caustics, whose references are mostly dark (a relative RMSE of 6 or 13 says
+    nothing), the RMSE over a black image's (1: as far off as leaving the component out). Within
+    a group both order the rows alike: the black image's RMSE is the group's own."""
+    if r.get("component") in OVER_BLACK and fnum(r.get("black_rmse")):
+        return (fnum(r.get("rmse_denoised")) or fnum(r.get("rmse")) or 0.0) / fnum(r["black_rmse"])
+    return answers.relative_error(r)[1]
+
+
+def mean_text(cands):
+    """'mean 0.94' (or a span): the rows' image mean over the reference's."""
+    means = [fnum(c[0].get("mean_ratio")) for c in cands]
+    means = [m for m in means if m is not None]
+    return "mean " + span_text(means, lambda m: f"{m:.2f}") if means else ""
+
+
 def segment_text(tech, cands, memory, digits=3):
-    """One technique's step of a front: 'lrsm 168–204 ms 1.62 (9 settings)'."""
+    """One technique's step of a front: 'lrsm 168–204 ms 1.62 mean 0.81–0.94 (9 settings)'."""
     costs = [c[2][1] for c in cands]
-    errs = [err_text(answers.relative_error(c[0])[1], digits) for c in cands]
+    errs = [err_text(shown_error(c[0]), digits) for c in cands]
     cost = span_text(costs, mb_text) + " MB" if memory else span_text(costs, ms_text) + " ms"
     err = errs[0] if errs[0] == errs[-1] else f"{errs[0]}–{errs[-1]}"
-    return f"{tech} {cost} {err}" + (f" ({len(cands)} settings)" if len(cands) > 1 else "")
+    mean = mean_text(cands)
+    return (f"{tech} {cost} {err}" + (f" {mean}" if mean else "")
+            + (f" ({len(cands)} settings)" if len(cands) > 1 else ""))
 
 
 def last_error(cands, digits):
-    return err_text(answers.relative_error(cands[-1][0])[1], digits)
+    return err_text(shown_error(cands[-1][0]), digits)
 
 
 def front_parts(ans, memory=False):
@@ -184,7 +208,7 @@ def front_parts(ans, memory=False):
         prev, mine = ({index[id(c)] for c in segs[j][1]} for j in (k - 1, k))
         tied = any(j in prev for i in mine for j in ties[i])
         joins.append(TIE if tied else STEP)
-        if not tied and last_error(segs[k - 1][1], 3) == err_text(answers.relative_error(segs[k][1][0][0])[1]):
+        if not tied and last_error(segs[k - 1][1], 3) == err_text(shown_error(segs[k][1][0][0])):
             digits[k - 1] = digits[k] = 4
     return [(joins[k], segment_text(t, cands, memory, digits[k]), "; ".join(c[0]["params"] for c in cands))
             for k, (t, cands) in enumerate(segs)]
@@ -524,8 +548,8 @@ def answer_table_html(entries, page_dir, results, cls):
     """One row per group: component (once per run of rows), scene and size with the links to its plot
     and gallery, the front by time with the rows worse than black beneath, the front by memory."""
     out = [f'<table class="{cls}"><thead><tr><th></th><th>scene, size</th>'
-           '<th>least error for its time: Pareto front, cheapest first (ms, relative error)</th>'
-           '<th>for its memory (MB, relative error)</th></tr></thead><tbody>']
+           f'<th>least error for its time: Pareto front, cheapest first (ms, {esc(ERROR_WORDS)})</th>'
+           f'<th>for its memory (MB, the same)</th></tr></thead><tbody>']
     prev, many = None, len({e["key"][5] for e in entries}) > 1
     for e in entries:
         key, t = e["key"], e["time"]
@@ -759,7 +783,7 @@ def md(text):
 
 def answer_table_md(entries, cls="answers"):
     lines = ["| component | scene | size | least error for its time: the Pareto front, cheapest first (ms, "
-             "relative error) | for its memory (MB, relative error) | worse than black | |",
+             f"{ERROR_WORDS}) | for its memory (MB, the same) | worse than black | |",
              "|---|---|---|---|---|---|---|"]
     many = len({e["key"][5] for e in entries}) > 1
     for e in entries:
