@@ -4,13 +4,14 @@ ties at the machine's time resolution and where error intervals overlap, rows wo
 image set apart, memory ties only on equal bytes, and groups split by renderer and image size; the
 front's technique segments, the headline group per component and scene, each technique's row at a
 common cost (the gallery's), and the claims: kind (absolute GPU time or not), findings per paper,
-and a claim tested at several settings counted once."""
+a claim tested at several settings counted once, and what a front shows (report.shown_error)."""
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 import answers  # noqa: E402
 import claims  # noqa: E402
+import report  # noqa: E402
 
 failures = []
 
@@ -97,6 +98,12 @@ rows = [row("a", 1, 0.5, params="dmax=20", time_source="gpu", **ao),
 heads = answers.headline(answers.answers(rows))
 check(len(heads) == 1 and heads[0][0][7] == "dmax=1280",
       f"headline: AO at the paper's dmax 1280, not dmax 20 ({[h[0][7] for h in heads]})")
+
+# What a front shows: glossy and caustics over a black image's RMSE, the rest relative; the mean.
+g = row("a", 1, 0.6, black=3.0, component="glossy", mean_ratio="0.8")
+check(abs(report.shown_error(g) - 0.2) < 1e-9, f"glossy: RMSE over black's ({report.shown_error(g)})")
+check(abs(report.shown_error(row("a", 1, 0.6, black=3.0)) - 0.6) < 1e-9, "indirect: the relative RMSE")
+check(report.mean_text([(g,), (dict(g, mean_ratio="0.95"),)]) == "mean 0.80–0.95", "the mean beside it")
 
 # A common cost: each technique's row nearest the group's median time (log scale).
 picked = answers.at_common_cost([row("a", 1, 0.5), row("a", 10, 0.4, params="x=2"), row("b", 8, 0.3),
