@@ -11,7 +11,8 @@ usage: report.py RESULTS_DIR
   the FLIP map where one was written) with the row's numbers, the reference's noise beside every
   error.
 The page works offline from the file system: images are linked relative to it (../images, ../plots),
-style.css is copied beside it, the one script is inline. Each matrix is a collapsible <details> and
+style.css is copied beside it, the scripts are inline (the checks below, and report_compare.js: each
+gallery group's image comparison, A over B at a split, zoom, exposure, by keys). Each matrix is a collapsible <details> and
 every image loads lazily, so a page of ~500 rows opens at once. Opening it with `?check` expands
 every matrix, loads every image and writes how many loaded into <pre id="image-check"> (the browser
 test reads it with chromium --dump-dom).
@@ -624,8 +625,38 @@ def gallery_html(results, page_dir, mats, heads):
         out.append("</tr><tr>")
         out += [f'<td>{media_html(c[3], page_dir, "error map", results) if c[3] else ""}'
                 f'<div class="scale">{esc(c[4])}</div></td>' for c in cells]
-        out.append("</tr></table></section>")
+        out.append("</tr></table>")
+        out.append(compare_html(cells, page_dir))
+        out.append("</section>")
     return "\n".join(out)
+
+
+def compare_html(cells, page_dir):
+    """A gallery group's comparison (report_compare.js): every image of its cells that exists (the
+    reference, each technique, their error maps with their scale) to pick as A and B, A the first
+    technique and B the reference at first; each option carries its numbers from the CSVs."""
+    options = []
+    for caption, nums, img, emap, scale, _ in cells:
+        if img and os.path.exists(img):
+            options.append((caption, nums, img))
+        if emap and os.path.exists(emap):
+            options.append((f"{caption} error map", scale, emap))
+    if len(options) < 2:
+        return ""
+
+    def select(cls, chosen):
+        return (f'<select class="{cls}">' + "".join(
+            f'<option value="{esc(rel(path, page_dir))}" data-nums="{esc(nums)}"'
+            f'{" selected" if i == chosen else ""}>{i + 1} {esc(caption)}</option>'
+            for i, (caption, nums, path) in enumerate(options)) + "</select>")
+    first_technique = next((i for i, o in enumerate(options) if i and "error map" not in o[0]), 1)
+    return ('<div class="compare"><div class="cmp-view" tabindex="0"><div class="cmp-stage">'
+            '<img class="cmp-b" alt="B"><img class="cmp-a" alt="A"><div class="cmp-line"></div></div></div>'
+            f'<div class="cmp-bar">A {select("cmp-pick-a", first_technique)} B {select("cmp-pick-b", 0)} '
+            'split <input type="range" class="cmp-split" min="0" max="100" value="50"> '
+            '<span class="cmp-state"></span></div><div class="cmp-nums"></div>'
+            '<div class="cmp-help">Click the image, then: ← → move the split, f swaps A and B, 1-9 pick '
+            'A (Shift: B), + − zoom (nearest pixel), e E exposure in stops, 0 resets.</div></div>')
 
 
 SEQ_HEAD = ("scene", "technique", "component", "settings", "frames", "frame RMSE mean (worst, frame)",
@@ -742,7 +773,7 @@ def write_html(results, claims, mats, plots, seq_rows=(), energy=()):
              f'<p class="source">Generated from the CSVs in <code>{esc(os.path.basename(os.path.abspath(results)))}/</code>: '
              f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
              f'{esc(", ".join(revs) or "unknown")}.</p>',
-             '<pre id="image-check"></pre><pre id="animation-check"></pre>',
+             '<pre id="image-check"></pre><pre id="animation-check"></pre><pre id="compare-check"></pre>',
              '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · '
              + ('<a href="#energy">Energy audit</a> · ' if energy else '') + '<a href="#gallery">Gallery</a> · '
              + ('<a href="#sequences">Sequences</a> · ' if seq_rows else '') +
@@ -768,7 +799,9 @@ def write_html(results, claims, mats, plots, seq_rows=(), energy=()):
              'reference\'s own noise beside it (an error near that noise cannot rank techniques).</p>']
     parts += [matrix_html(results, page_dir, m, rows, plots[m], time_resolution(results))
               for m, rows in mats.items()]
-    parts.append(f"<script>{CHECK_SCRIPT}</script></body></html>")
+    with open(os.path.join(HERE, "report_compare.js")) as f:
+        compare_js = f.read()
+    parts.append(f"<script>{CHECK_SCRIPT}</script><script>{compare_js}</script></body></html>")
     path = os.path.join(page_dir, "index.html")
     with open(path, "w") as f:
         f.write("\n".join(parts) + "\n")

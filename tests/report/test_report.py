@@ -12,6 +12,8 @@ Chromium and checks
   placeholder (one image's PNG and shipped copy removed must turn into a placeholder, not a broken
   image); every cell links its shipped WebP copy under gallery/, and with images/ moved away (as on
   a fresh clone) the gallery shows the same cells, none broken;
+- the gallery's comparison: driven by keys (split, pick A and B, zoom, exposure), its images decode
+  and its numbers are the CSV's;
 - the claims are grouped: machine-independent ones first, the orders of times next (as many as
   claims.csv's kind time_order), then the papers' absolute GPU times in
   collapsed sections (the HTML) and a section at the end (REPORT.md), every claims.csv row once;
@@ -198,6 +200,34 @@ def check_placeholder(exe, results, page, cells):
           f"the placeholder is no broken image (broken {got and got[2]}, placeholders {got and got[4]})")
 
 
+def check_compare(exe, results, page, src):
+    """The gallery's comparison, driven by keys in Chromium (the page's ?check script presses them
+    on the first group and writes what it sees into <pre id="compare-check">): one per group, an
+    option per image of the group, the split moved by Left (50 -> 45, the clip follows), 2 and
+    Shift+1 pick A and B, + zooms, e raises the exposure, both images decode, and A's numbers are
+    its CSV row's (the time as the report prints it)."""
+    text = element_text(exe, BROWSER_FLAGS, "file://" + page + "?check", "compare-check") or ""
+    got = dict(line.split(" ", 1) for line in text.splitlines() if " " in line)
+    sections = re.findall(r'<section class="gallery".*?</section>', src, re.S)
+    first = sections[0] if sections else ""
+    options = re.findall(r'<select class="cmp-pick-a">(.*?)</select>', first, re.S)
+    n_options = len(re.findall(r"<option ", options[0])) if options else 0
+    check(got.get("compares", "").split() == ["%d" % len(sections), "options", "%d" % n_options]
+          and n_options == 5, f"a comparison per gallery group, an option per image ({got.get('compares')})")
+    check(got.get("split") == "45 clip inset(0px 55% 0px 0px)", f"Left moves the split ({got.get('split')})")
+    check(got.get("A") == "1 B 0", f"2 picks A, Shift+1 picks B ({got.get('A')})")
+    check(got.get("zoom") == "2 ev 1 filter brightness(2)", f"+ zooms, e adds a stop ({got.get('zoom')})")
+    check((got.get("decoded") or "").startswith("1 widths 32 32"), f"A and B decode ({got.get('decoded')})")
+    tech = re.search(r'<option value="[^"]*" data-nums="[^"]*"(?: selected)?>2 ([^<]*)</option>',
+                     options[0] if options else "")
+    with open(os.path.join(results, "report_tiny.csv"), newline="") as f:
+        rows = [r for r in csv.DictReader(f) if tech and r["technique"] == tech.group(1)]
+    ms = float(rows[0]["gpu_ms_median"]) if rows else None
+    want = (f"{ms:.2g}" if ms < 10 else f"{ms:.0f}") + " ms" if ms is not None else "?"
+    check(len(rows) == 1 and (got.get("nums") or "").startswith(want),
+          f"A's numbers are its row's ({got.get('nums')}; the CSV: {want})")
+
+
 def check_shipped_gallery(exe, results, page, cells):
     """The gallery as a fresh clone has it: every cell links its shipped WebP copy under gallery/,
     and with the run's images/ folder moved away the page still shows every cell (none a
@@ -382,6 +412,7 @@ def main():
     check_cones(results, src, md)
     check_placeholder(exe, results, page, cells)
     check_shipped_gallery(exe, results, page, cells)
+    check_compare(exe, results, page, src)
     check_sequences(exe, results, page, src)
 
     first = os.path.join(work, "report_first_screen.png")
