@@ -63,7 +63,7 @@ def _start(exe, flags):
     return process, _Pipe(from_us, to_us)
 
 
-def element_text(exe, flags, url, element_id, timeout=60.0):
+def element_text(exe, flags, url, element_id, timeout=120.0):
     """The text of #element_id once it is not empty, or None if it is still empty after timeout s."""
     process, pipe = _start(exe, flags)
     deadline = time.monotonic() + timeout

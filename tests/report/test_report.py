@@ -270,7 +270,7 @@ def webp_frames(path):
 def animation_check(exe, page):
     """(animations, sized, playing) as the page's ?check script reports them, read once the script
     wrote its line (the decoding is asynchronous work that --dump-dom's virtual time does not wait
-    for, so the page is read over the DevTools pipe, in real time, for up to 60 s)."""
+    for, so the page is read over the DevTools pipe, in real time, for up to 120 s)."""
     text = element_text(exe, BROWSER_FLAGS, "file://" + page + "?check", "animation-check")
     m = re.fullmatch(r"animations (\d+) sized (\d+) playing (\d+)", text or "")
     return tuple(int(x) for x in m.groups()) if m else None
