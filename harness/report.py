@@ -373,8 +373,10 @@ def gallery_cells(results, group_rows):
         flip = base + "_flip.png"
         has_flip = os.path.exists(flip) or os.path.exists(shipped_images.copy_path(results, flip))
         emap, scale = (flip, "FLIP, 0–1") if has_flip else (base + "_error.png", "RMS error, own scale")
-        e = answers.relative_error(r)
-        nums = (f"{ms_text(fnum(r['gpu_ms_median']))} ms · rel. error {err_text(e[1])}"
+        what = "error over black's" if r.get("component") in OVER_BLACK else "rel. error"
+        mean = fnum(r.get("mean_ratio"))
+        nums = (f"{ms_text(fnum(r['gpu_ms_median']))} ms · {what} {err_text(shown_error(r))}"
+                + (f" · mean {mean:.2f}" if mean is not None else "")
                 + (f" · {mb_text(fnum(r['mem_bytes']))} MB" if fnum(r.get("mem_bytes")) else "")
                 + (" · WORSE THAN BLACK" if worse_than_black(r) else ""))
         cells.append((r["technique"], nums, shipped_images.shipped(results, base + ".png"),
@@ -611,7 +613,7 @@ def gallery_html(results, page_dir, mats, heads):
         out.append(f"<p><b>This folder holds no images</b> ({esc(os.path.basename(os.path.abspath(results)))}/images/"
                    "is written by a run, not committed): each cell names the file it would show.</p>")
     for e in heads:
-        grp = [r for r in rows if answers.group_key(r) == e["key"]]
+        grp = e["time"]["rows"]  # a GPU-timed group's rows are the timed copies of llvmpipe's
         cells = gallery_cells(results, grp)
         key = e["key"]
         out.append(f'<section class="gallery" id="{esc(e["anchor"])}"><h3>{esc(key[0])}, {esc(key[1])} '
@@ -845,7 +847,6 @@ def claims_md(claims, with_renderer=True):
 
 
 def gallery_md(results, mats, heads):
-    rows = [r for rs in mats.values() for r in rs]
     lines = ["## Gallery: each technique at a common cost", "",
              "Per component and scene, the reference and each technique's setting whose time is nearest the "
              "group's median time, at the scene's one exposure, error maps beneath (FLIP maps share one scale, "
@@ -857,7 +858,7 @@ def gallery_md(results, mats, heads):
             return f"![{what}]({rel(path, results)})"
         return f"*{what}: not written here*"
     for e in heads:
-        cells = gallery_cells(results, [r for r in rows if answers.group_key(r) == e["key"]])
+        cells = gallery_cells(results, e["time"]["rows"])
         lines += [f"### {e['key'][0]}, {e['key'][1]} {size_text(e['key'])}", "",
                   "| " + " | ".join(md(c[0]) for c in cells) + " |", "|" + "---|" * len(cells),
                   "| " + " | ".join(cell(c[2], c[0]) for c in cells) + " |",
