@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The committed report's gallery as a fresh clone shows it: every gallery group of
+"""The committed report's gallery as a fresh clone shows it (HEAD's REPORT.md and files): every gallery group of
 results/REPORT.md has its reference and at least two techniques, each an image that links a
 committed file under results/gallery/ (no placeholder), and the folder holds no file the report
 does not show. A report written from a results folder whose headline groups were timed on a GPU
@@ -7,7 +7,6 @@ once showed only placeholders (the gallery looked the group's rows up under the 
 where only llvmpipe rows exist): this reads what is committed, so that cannot ship again.
 
 usage: test_committed_gallery.py ROOT"""
-import os
 import re
 import subprocess
 import sys
@@ -22,10 +21,14 @@ def check(ok, what):
         failures.append(what)
 
 
-tracked = set(subprocess.run(["git", "-C", root, "ls-files", "results/gallery"], capture_output=True,
-                             text=True, check=True).stdout.split())
-with open(os.path.join(root, "results", "REPORT.md")) as f:
-    md = f.read()
+def git(*args):
+    return subprocess.run(["git", "-C", root] + list(args), capture_output=True, text=True,
+                          check=True).stdout
+
+
+# HEAD's files, not the working tree's: a local `make reproduce` rewrites both
+tracked = set(git("ls-tree", "-r", "--name-only", "HEAD", "results/gallery").split())
+md = git("show", "HEAD:results/REPORT.md")
 gallery = md[md.index("## Gallery"):]
 gallery = gallery[:gallery.index("\n## ", 4)]
 groups = re.split(r"\n### ", gallery)[1:]
