@@ -25,14 +25,16 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import claims  # noqa: E402
+import schema  # noqa: E402
 from schema import param  # noqa: E402
 from uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
 
 GROUP = ("component", "scene", "camera", "width", "height", "renderer")
 # The technique parameters that change a component's reference image, with the reference's own
-# value where a technique lacks one (harness/app/util.c, gib_ref_request_match: ao at a dmax, as
-# obscurance or not). Rows at two settings of these estimate two different images: not one group.
-REFERENCE_PARAMS = {"ao": (("dmax", float("inf")), ("obscurance", 0.0))}
+# value where a technique lacks one (the techniques' gib_ref_binding, as gibench exports them: ao
+# at a dmax, as obscurance or not). Rows at two settings of these estimate two different images:
+# not one group.
+REFERENCE_PARAMS = schema.reference_params()
 
 
 def reference_text(r):

@@ -34,9 +34,10 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import schema  # noqa: E402
 import source_hash  # noqa: E402
 
-WEIGHTS = [2 / 7] + [1 / 7] * 5  # harness/base/cone_set.h
+WEIGHTS = schema.cone_weights()  # harness/base/cone_set.h, as gibench exports it
 TECHNIQUES = ["lrsm", "vct"]
 
 

@@ -25,6 +25,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from claims import COLUMNS as CLAIM_COLUMNS  # noqa: E402
+import schema  # noqa: E402
 from schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
@@ -134,12 +135,11 @@ def rel(path, start):
 
 # ---- the answer: which technique for which effect ---------------------------------------------
 
-SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "lavapipe", "swiftshader")
 TIE, STEP = " ≈ ", " → "
 
 
 def is_software(renderer):
-    return any(w in renderer.lower() for w in SOFTWARE_RENDERERS)
+    return schema.is_software_renderer(renderer)
 
 
 def ms_text(ms):

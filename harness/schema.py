@@ -46,6 +46,23 @@ def columns(table="runs"):
     return [c["name"] for c in schema()[table]["columns"]]
 
 
+def cone_weights():
+    """The diffuse cone set's weights in the gather (harness/base/cone_set.h), cone 0 first."""
+    return list(schema()["cone_set"]["weights"])
+
+
+def reference_params():
+    """{component: ((technique parameter, the reference's default), ...)}: the parameters that set
+    a component's reference (the techniques' gib_ref_binding), as gibench exports them."""
+    return {comp: tuple((b["param"], float(b["default"])) for b in binds)
+            for comp, binds in schema()["reference_params"].items()}
+
+
+def is_software_renderer(renderer):
+    """Whether a GL_RENDERER names a software rasteriser (history.c's rule, the schema's list)."""
+    return any(w.lower() in (renderer or "").lower() for w in schema()["software_renderers"])
+
+
 def key_columns(table="runs", key="row_key"):
     """The names of the columns of a row's identity (row_key) or its run's (run_key)."""
     return [c["name"] for c in schema()[table]["columns"] if c[key]]

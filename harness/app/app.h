@@ -90,6 +90,9 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
  * a setting no binding names keeps its default (dmax unbounded, visibility not obscurance). */
 void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p,
                            unsigned output);
+/* A reference setting's (enum gib_ref_setting) name and its default where no binding names it. */
+const char *gib_ref_setting_name(int setting);
+double gib_ref_setting_default(int setting);
 /* The renderer parameters of a request (seed 1). */
 gib_ref_params gib_ref_request_params(const gib_ref_request *rq);
 /* The seal of a reference EXR: appends a "content_hash" attribute (when max allows) that hashes

@@ -103,10 +103,19 @@ void gib_history_machine_detect(gib_history_machine *m, const char *renderer,
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     m->cores = n > 0 ? (int)n : 0;
     /* Mesa's software rasterisers name no GPU; any other GL_RENDERER is the device itself. */
-    int software = strstr(m->renderer, "llvmpipe") || strstr(m->renderer, "softpipe") ||
-                   strstr(m->renderer, "swrast") || strstr(m->renderer, "Software Rasterizer");
-    if (!software)
+    if (!gib_is_software_renderer(m->renderer))
         snprintf(m->gpu, sizeof m->gpu, "%s", m->renderer);
+}
+
+const char *const gib_software_renderers[] = {"llvmpipe", "softpipe", "swrast", "Software Rasterizer",
+                                              "lavapipe", "SwiftShader", NULL};
+
+int gib_is_software_renderer(const char *renderer)
+{
+    for (int i = 0; gib_software_renderers[i]; i++)
+        if (strstr(renderer, gib_software_renderers[i]))
+            return 1;
+    return 0;
 }
 
 static int history_open(gib_history **out, const char *path, int readonly, gib_error *err)

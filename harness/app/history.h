@@ -96,4 +96,10 @@ int gib_history_higher_is_better(const char *metric);
 int gib_history_find_worse(const gib_history_series *s, int higher_is_better, double rel_tol,
                            double abs_tol);
 
+/* The GL_RENDERER substrings that name a software rasteriser (Mesa's), NULL-terminated: such a
+ * renderer names no GPU (gib_machine.gpu stays empty). `gibench schema` exports the list. */
+extern const char *const gib_software_renderers[];
+/* Whether GL_RENDERER `renderer` is a software rasteriser (one of gib_software_renderers in it). */
+int gib_is_software_renderer(const char *renderer);
+
 #endif

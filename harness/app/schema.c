@@ -1,10 +1,14 @@
 #include "schema.h"
 
 #include <ini.h>
+#include <math.h>
 #include <string.h>
 
 #include "app.h"
+#include "harness/base/cone_set.h"
 #include "harness/base/hash.h"
+#include "history.h"
+#include "runner.h"
 
 #define GIB_COL_DESC(id, name, kind, key, doc) {name, kind, key, doc},
 const gib_column gib_run_columns[GIB_C_COUNT] = {GIB_RUN_COLUMNS(GIB_COL_DESC)};
@@ -189,6 +193,44 @@ static void json_columns(FILE *f, const char *name, const char *file, const gib_
     fprintf(f, "    ]\n  },\n");
 }
 
+/* "reference_params": per component, the technique parameters that set its reference (every
+ * technique's gib_ref_binding, each parameter once) with the setting and its default ("inf":
+ * unbounded). */
+static void json_reference_params(FILE *f)
+{
+    int n;
+    const gib_technique *const *all = gib_techniques(&n);
+    const char *sep = "";
+    fprintf(f, "  \"reference_params\": {");
+    for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
+        const gib_ref_binding *seen[16];
+        int nseen = 0;
+        for (int t = 0; t < n; t++)
+            for (const gib_ref_binding *b = all[t]->reference; b && b->setting != GIB_REF_END; b++) {
+                int dup = 0;
+                for (int k = 0; k < nseen; k++)
+                    dup |= !strcmp(seen[k]->param, b->param);
+                if ((b->components & bit) && !dup && nseen < 16)
+                    seen[nseen++] = b;
+            }
+        if (!nseen)
+            continue;
+        fprintf(f, "%s\"%s\": [", sep, gib_output_name(bit));
+        for (int k = 0; k < nseen; k++) {
+            double d = gib_ref_setting_default(seen[k]->setting);
+            fprintf(f, "%s{\"param\": \"%s\", \"setting\": \"%s\", \"default\": ", k ? ", " : "",
+                    seen[k]->param, gib_ref_setting_name(seen[k]->setting));
+            if (isinf(d))
+                fprintf(f, "\"inf\"}");
+            else
+                fprintf(f, "%.9g}", d);
+        }
+        fprintf(f, "]");
+        sep = ", ";
+    }
+    fprintf(f, "},\n");
+}
+
 void gib_schema_write_json(FILE *f)
 {
     fprintf(f, "{\n  \"version\": 1,\n");
@@ -203,7 +245,15 @@ void gib_schema_write_json(FILE *f)
     fprintf(f, "    \"long_template\": \"%s\",\n", image_template_long);
     fprintf(f, "    \"long_when_over\": %d,\n", IMAGE_NAME_MAX);
     fprintf(f, "    \"at\": \"_t%%g of time, empty at time 0\",\n    \"params_hash\": \"fnv1a64\",\n");
-    fprintf(f, "    \"replace\": {\";\": \"_\", \"=\": \"-\"}\n  }\n}\n");
+    fprintf(f, "    \"replace\": {\";\": \"_\", \"=\": \"-\"}\n  },\n");
+    fprintf(f, "  \"cone_set\": {\"aperture_deg\": %g, \"weights\": [", GIB_DIFFUSE_CONE_APERTURE_DEG);
+    for (int i = 0; i < GIB_DIFFUSE_CONES; i++)
+        fprintf(f, "%.9g%s", gib_diffuse_cone_weight(i), i + 1 < GIB_DIFFUSE_CONES ? ", " : "]},\n");
+    json_reference_params(f);
+    fprintf(f, "  \"software_renderers\": [");
+    for (int i = 0; gib_software_renderers[i]; i++)
+        fprintf(f, "%s\"%s\"", i ? ", " : "", gib_software_renderers[i]);
+    fprintf(f, "]\n}\n");
 }
 
 static const char schema_help[] =

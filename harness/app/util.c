@@ -229,11 +229,21 @@ int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposur
     return 0;
 }
 
+const char *gib_ref_setting_name(int setting)
+{
+    return setting == GIB_REF_AO_DMAX ? "dmax" : setting == GIB_REF_AO_OBSCURANCE ? "obscurance" : "";
+}
+
+double gib_ref_setting_default(int setting)
+{
+    return setting == GIB_REF_AO_DMAX ? INFINITY : 0.0;
+}
+
 void gib_ref_request_match(gib_ref_request *rq, const gib_technique *t, const gib_params *p,
                            unsigned output)
 {
-    rq->dmax = INFINITY;
-    rq->obscurance = 0;
+    rq->dmax = (float)gib_ref_setting_default(GIB_REF_AO_DMAX);
+    rq->obscurance = (int)gib_ref_setting_default(GIB_REF_AO_OBSCURANCE);
     for (const gib_ref_binding *b = t->reference; b && b->setting != GIB_REF_END; b++) {
         if (!(b->components & output))
             continue;
