@@ -4,7 +4,8 @@
 - speed against error, one plot per (matrix, scene, component): each point is one run (technique +
   parameters) at its median GPU frame time (bar: its interquartile range) and relative RMSE with the
   reference's noise taken out (bar: its 95% interval; overlapping bars are a tie); the line joins
-  the Pareto front (runs no other run beats in both); a dotted line marks what an all-black image
+  the Pareto front (answers.py's, as the report's tables: no run beats it on both, ties called
+  within the error intervals and the time resolution, runs worse than black left out); a dotted line marks what an all-black image
   scores, and a red ring every run worse than it (harness/uncertainty.py);
 - sweeps: for every parameter a matrix varies over three or more values, GPU time and relative RMSE
   against that parameter, one line per technique and setting of the other parameters (scaling curves:
@@ -34,16 +35,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from schema import fnum as finite_num, matrices, params, read_csv  # noqa: E402
 from uncertainty import error_interval, time_interval, time_resolution, worse_than_black  # noqa: E402
 import answers  # noqa: E402
-
-
-def pareto(points):
-    """Points (x, y, ...) not dominated in both x and y, sorted by x."""
-    front, best = [], float("inf")
-    for p in sorted(points, key=lambda p: (p[0], p[1])):
-        if p[1] < best:
-            front.append(p)
-            best = p[1]
-    return front
 
 
 def gp_quote(s):
@@ -113,9 +104,14 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
                 f.write(f"{p[0]:.6g} {p[1]:.6g} \"{p[2]} {p[3]}\" {p[4]:.6g} {p[5]:.6g} {p[6]:.6g} {p[7]:.6g}\n")
             f.write("\n\n")
             blocks.append(tech)
-        f.write("# pareto front\n")
-        for p in pareto([p for pts in by_tech.values() for p in pts]):
-            f.write(f"{p[0]:.6g} {p[1]:.6g}\n")
+        f.write("# pareto front (answers.py's: ties called, rows worse than black left out)\n")
+        cost = answers.time_cost if x == "time" else answers.memory_cost
+        front = answers.answer(rows, cost)["front"]
+        for c in front:  # at the plot's own error (answers ranks by the RMSE: the same order)
+            f.write(f"{finite_num(c[0][col]) * scale:.6g} "
+                    f"{error_interval(c[0], relative=metric == 'rel_rmse')[1]:.6g}\n")
+        if not front:
+            f.write("NaN NaN\n")  # keeps the block, so the next one's index holds
         f.write("\n\n# worse than a black image\n")
         for p in worse or [(float("nan"), float("nan"))]:
             f.write(f"{p[0]:.6g} {p[1]:.6g}\n")
