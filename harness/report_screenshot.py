@@ -10,12 +10,17 @@ import subprocess
 import sys
 
 
+def find_chromium():
+    """The Chromium (or Chrome) on PATH, or None."""
+    return next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")
+                 if shutil.which(n)), None)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit("usage: report_screenshot.py PAGE OUT_PNG")
     page, out = (os.path.abspath(p) for p in sys.argv[1:])
-    exe = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome")
-                if shutil.which(n)), None)
+    exe = find_chromium()
     if not exe:
         print(f"report_screenshot: no Chromium here: {out} not refreshed", file=sys.stderr)
         return

@@ -142,11 +142,10 @@ check(sorted(x[0] for x in f["unmeasured"]) == ["absolute GPU times", "not run h
 # A claim tested at several settings is counted once (claims.counted_once): it holds where every
 # measured setting holds, fails where one fails, and is not measurable where none was measured;
 # claims of another stem, source or kind stay apart.
-def crow(verdict, claim, reason="why", source="s.csv", kind="machine_independent"):
-    return dict(claim_row(verdict, reason, claim=claim), source=source, kind=kind)
+def crow(verdict, text, reason="why", source="s.csv", kind="machine_independent"):
+    return dict(claim(verdict, reason, claim=text), source=source, kind=kind)
 
 
-claim_row = claim
 once = claims.counted_once([
     crow("reproduced", "leak (x=1)"), crow("not reproduced", "leak (x=2)"),
     crow("not measurable here", "leak (x=3)"), crow("reproduced", "order (a)"),

@@ -39,7 +39,9 @@ import subprocess
 import sys
 import tempfile
 
-from devtools_pipe import element_text
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
+from devtools_pipe import element_text  # noqa: E402
+from report_screenshot import find_chromium  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -52,14 +54,6 @@ def check(cond, what):
     print(("ok    " if cond else "FAIL  ") + what)
     if not cond:
         failures.append(what)
-
-
-def chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    return None
 
 
 BROWSER_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
@@ -328,7 +322,7 @@ def main():
     ap.add_argument("--gibench", required=True)
     ap.add_argument("--work", required=True)
     a = ap.parse_args()
-    exe = chromium()
+    exe = find_chromium()
     if not exe:
         print("SKIP: no Chromium installed (Debian package `chromium`): the report's browser test "
               "cannot run here")
