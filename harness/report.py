@@ -444,6 +444,11 @@ function plays(img) {
 if (location.search.indexOf('check') >= 0) {
   window.addEventListener('load', async function () {
     var anims = Array.prototype.slice.call(document.querySelectorAll('img.animation'));
+    /* a lazy image may not have loaded by the page's load event: wait for each to decode */
+    for (var j = 0; j < anims.length; j++) {
+      anims[j].loading = 'eager';
+      await anims[j].decode().catch(function () {});
+    }
     var sized = anims.filter(function (i) {
       return i.naturalWidth === +i.dataset.width && i.naturalHeight === +i.dataset.height; });
     var playing = 0;
