@@ -28,7 +28,7 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot energy-controls plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
@@ -131,6 +131,13 @@ cone-controls-sponza-spot: build
 	    --out results/cone_controls_sponza_spot.csv --cache results/cache --size 200x200 \
 	    --spp 256 --full-spp 1024 --scenes sponza --voxel-res 256 --techniques vct \
 	    --param $$p --append || exit 1; done
+
+# What a vct cone reads of a lit floor that fills its cap (synthetic volume, 256^3; 60- and
+# 10-degree cones at several heights and tilts; seconds): results/vct_floor_control.csv, the energy
+# audit's control for vct's cones over Sponza's floor. The same program is the ctest
+# vct_test_vct_oblique_floor, which asserts what must hold whatever the sampling.
+vct-floor-control: build
+	$(BUILD)/tests/vct/test_vct_oblique_floor --csv results/vct_floor_control.csv
 
 # The energy audit's measured controls (harness/energy_controls/run.py): each cell of
 # harness/energy_controls/cells.csv rendered as committed and with one suspected cause removed (a
