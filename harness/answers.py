@@ -297,7 +297,7 @@ def what_would_measure(c):
         return "not run here", "a run at the paper's setting, which our matrices lack"
     if claim_kind(c) == ABSOLUTE_TIME:
         return "absolute GPU times", "a GPU: the papers timed theirs"
-    if "out_of_memory" in r or "out of memory" in r:
+    if schema.status("out_of_memory") in r or "out of memory" in r:
         return "out of memory here", "a machine with more memory"
     if "profile" in r or "settings" in r:
         return "not at the paper's settings", "make reproduce PROFILE=paper"

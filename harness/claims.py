@@ -33,7 +33,7 @@ import sqlite3
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import read_csv, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
+from schema import read_csv, status, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
 from uncertainty import MEMORY_TOLERANCE  # noqa: E402
 import temporal_tables  # noqa: E402  (the papers' temporal claims, from the sequence tables)
 import gpu_claims  # noqa: E402  (the time claims a valid device run answers)
@@ -109,7 +109,7 @@ def lrsm_table2(results):
         if not r["paper_mb"]:
             continue  # a formula's figure with no number of the paper's beside it
         what = f"Table 2 {r['paper_scene']} {r['technique']} {r['structure']} memory ({r['setting']})"
-        planned = r["status"] == "out_of_memory" and r["ours_mb"]
+        planned = r["status"] == status("out_of_memory") and r["ours_mb"]
         if r["status"] == "missing" or not r["ours_mb"]:
             v, why = NOT_MEASURABLE, "no run of ours measured this structure"
         elif r["status"] != "ok" and not planned:

@@ -17,6 +17,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gpu_rows  # noqa: E402
 import ldm_tables  # noqa: E402
+import lrsm_tables  # noqa: E402
 import thesis_tables  # noqa: E402
 from device.gpu_summary import RASTER_LIMITS, param  # noqa: E402
 from uncertainty import fnum  # noqa: E402
@@ -67,10 +68,7 @@ def table3_orders(folder, passes):
         res = param(p, "voxel_res")
         if (p["technique"], res) in (("lrsm", "512"), ("vct", "256")):
             by[(p["technique"], param(p, "preset") or "default", p["pass"])] = p
-    specs = [("Table 3: LRSM diffuse_cones > specular_cone", ("lrsm", "diffuse_cones"), ("lrsm", "specular_cone")),
-             ("Table 3: VCT specular_cone > diffuse_cones", ("vct", "specular_cone"), ("vct", "diffuse_cones")),
-             ("Table 3: VCT shadow_cone > LRSM shadow_cone (anisotropic vs isotropic voxels)",
-              ("vct", "shadow_cone"), ("lrsm", "shadow_cone"))]
+    specs = [("Table 3: " + text, a, b) for text, a, b in lrsm_tables.TABLE3_CLAIMS]
     out = {}
     for text, (ta, pa), (tb, pb) in specs:
         parts, verdict = [], None
@@ -130,8 +128,8 @@ def gather_speedup(results, passes):
     of the same matrix (the device run scores nothing)."""
     sums = {}
     for p in passes:
-        if p["technique"] == "multires_ir" and p["pass"] in ("splitting", "gathering", "upsampling") or \
-                p["technique"] == "rsm_gather" and p["pass"] == "gathering":
+        if p["technique"] == "multires_ir" and p["pass"] in thesis_tables.MULTIRES_SCREEN_PASSES or \
+                p["technique"] == "rsm_gather" and p["pass"] == thesis_tables.RSM_GATHERING:
             k = (p["scene"], int(p["width"]), p["technique"])
             ms, w = sums.get(k, (0.0, 0.0))
             sums[k] = (ms + float(p["ms_median"]), w + (work(p) or 0))

@@ -2,8 +2,12 @@
 
 The columns of a matrix's runs table (RESULTS/<matrix>.csv) and passes table (<matrix>_passes.csv),
 which columns make a row's identity and a run's, and the names of a row's images are defined once,
-in C where the rows are written; the build exports them as build/schema.json (`gibench schema`),
-read here. This module is the scripts' one way to
+in C where the rows are written; the build exports them as build/schema.json (`gibench describe`),
+read here with what else the binary knows: each technique's outputs, passes and parameters, the
+row statuses, the parameters that set a component's reference, the cone set, the software
+renderers. A name the scripts use for one of those (a pass a table reads, a status a claim tests)
+goes through pass_name or status, which refuse a name the binary does not declare, so a renamed
+pass fails the report at once instead of leaving a table empty. This module is the scripts' one way to
 - read a CSV (read_csv), a matrix's runs (runs_table, matrices) and its passes (passes_of);
 - know a row (row_key: its identity in its table; run_key: the run it belongs to, shared by the
   run's rows, one per component, and its passes rows);
@@ -35,7 +39,7 @@ def schema():
             path = found[-1] if found else path
         if not os.path.exists(path):
             raise SystemExit(f"schema.py: {path} not found: build gibench first (make build writes "
-                             "it; or set GIBENCH_SCHEMA to the output of `gibench schema`)")
+                             "it; or set GIBENCH_SCHEMA to the output of `gibench describe`)")
         with open(path) as f:
             _schema = json.load(f)
     return _schema
@@ -61,6 +65,29 @@ def reference_params():
 def is_software_renderer(renderer):
     """Whether a GL_RENDERER names a software rasteriser (history.c's rule, the schema's list)."""
     return any(w.lower() in (renderer or "").lower() for w in schema()["software_renderers"])
+
+
+def technique(name):
+    """The exported descriptor of technique `name` (outputs, passes, params, presets)."""
+    for t in schema()["techniques"]:
+        if t["name"] == name:
+            return t
+    raise SystemExit(f"schema.py: gibench declares no technique '{name}'")
+
+
+def pass_name(technique_name, name):
+    """`name`, checked to be a pass technique_name declares (or one the runner times itself)."""
+    if name not in technique(technique_name)["passes"] + schema()["harness_passes"]:
+        raise SystemExit(f"schema.py: technique '{technique_name}' declares no pass '{name}' "
+                         f"(its passes: {', '.join(technique(technique_name)['passes'])})")
+    return name
+
+
+def status(name):
+    """`name`, checked to be one of the row statuses gibench declares (harness/base/status.h)."""
+    if name not in [s["name"] for s in schema()["statuses"]]:
+        raise SystemExit(f"schema.py: gibench declares no row status '{name}'")
+    return name
 
 
 def key_columns(table="runs", key="row_key"):

@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "harness/base/error.h"
+#include "harness/base/status.h"
 #include "harness/gl/gpu_scene.h"
 #include "harness/gl/ledger.h"
 #include "harness/gl/timers.h"
@@ -97,6 +98,9 @@ typedef struct gib_technique {
     const char *source;          /* "rasterised direct light with PCF shadow maps (Williams 1978)" */
     unsigned components;         /* GIB_OUT_* bits it outputs */
     const gib_param_spec *params;/* terminated by {0} */
+    /* The passes its render() brackets with gib_timer_begin, NULL-terminated: the names of its
+     * rows in <matrix>_passes.csv, which the report's tables read (a frame may run fewer). */
+    const char *const *passes;
     /* How its parameters set its references (terminated by {0}; NULL: none). A technique that
      * outputs `ao` must bind GIB_REF_AO_DMAX: AO has no meaning without its range. */
     const gib_ref_binding *reference;
@@ -111,8 +115,10 @@ typedef struct gib_technique {
      * by gib_timer_begin/end. Returns 0, or -1 with err set (a shader or overflow failure). */
     int (*render)(void *self, const gib_view *view, gib_timers *timers,
                   const gib_image_target *targets, int target_count, gib_error *err);
-    /* Optional: a status word for conditions found while rendering ("overflow"), or NULL. */
-    const char *(*status)(void *self);
+    /* Optional: a status for conditions found while rendering (GIB_STATUS_OVERFLOW, ...; harness/
+     * base/status.h), GIB_STATUS_OK when the image is an answer. NaN and infinities are the
+     * runner's to find (GIB_STATUS_NONFINITE), not the technique's. */
+    gib_status (*status)(void *self);
     /* Optional: what the last frame counted, as name=value pairs joined by ';' ("photons=6954"),
      * written to the row's `counters` column (a photon count the thesis' tables are indexed by). */
     void (*counters)(void *self, char *buf, size_t len);

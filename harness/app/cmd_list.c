@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "harness/base/status.h"
 
 static void print_components(unsigned bits)
 {
@@ -19,9 +20,9 @@ static void print_components(unsigned bits)
 int gib_cmd_list(int argc, char **argv)
 {
     if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        puts("usage: gibench list\n\nPrints every technique (its source, output components and "
-             "parameters with defaults and ranges) and every scene file (availability and "
-             "features).");
+        puts("usage: gibench list\n\nPrints every technique (its source, output components, passes and "
+             "parameters with defaults and ranges), the statuses a result row can hold, and every "
+             "scene file (availability and features).");
         return 0;
     }
     int n;
@@ -31,7 +32,10 @@ int gib_cmd_list(int argc, char **argv)
         const gib_technique *t = all[i];
         printf("  %-14s outputs ", t->name);
         print_components(t->components);
-        printf("  — %s\n", t->source);
+        printf("  — %s\n      passes:", t->source);
+        for (int k = 0; t->passes && t->passes[k]; k++)
+            printf(" %s", t->passes[k]);
+        putchar('\n');
         for (int k = 0; t->params && t->params[k].name; k++) {
             const gib_param_spec *p = &t->params[k];
             printf("      %-16s %-5s default %-8g [%g, %g]  %s\n", p->name,
@@ -44,6 +48,9 @@ int gib_cmd_list(int argc, char **argv)
             printf("      preset=%-9s %s\n          sets %s\n", t->presets[k].name,
                    t->presets[k].why, t->presets[k].values);
     }
+    puts("statuses (a result row's `status`):");
+    for (int s = 0; s < GIB_STATUS_COUNT; s++)
+        printf("  %-20s %s\n", gib_status_name((gib_status)s), gib_status_doc((gib_status)s));
     gib_scene_info *infos = NULL;
     int count = 0;
     gib_error err;

@@ -13,6 +13,7 @@
 #include "app.h"
 #include "csv.h"
 #include "history.h"
+#include "harness/base/status.h"
 #include "harness/base/hash.h"
 #include "matrix.h"
 #include "progress.h"
@@ -172,9 +173,9 @@ void append_row(run_ctx *ctx, row *r)
     record_history(ctx, r);
     ctx->rows_written++;
     /* out_of_memory is a result (the plan exceeds the device), not a failure of the run. */
-    if (!strcmp(r->v[GIB_C_STATUS], "out_of_memory"))
+    if (gib_status_find(r->v[GIB_C_STATUS]) == GIB_STATUS_OUT_OF_MEMORY)
         ctx->rows_out_of_memory++;
-    else if (strcmp(r->v[GIB_C_STATUS], "ok"))
+    else if (gib_status_find(r->v[GIB_C_STATUS]) != GIB_STATUS_OK)
         ctx->rows_failed++;
 }
 

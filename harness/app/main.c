@@ -18,7 +18,9 @@ static const char usage[] =
     "  merge     SHARD_DIR... --out DIR      the shards' CSVs as one run's table\n"
     "  bench     reference [--scene S] [--size WxH] [--out F.csv]   ray throughput\n"
     "  history   [--metric M] [--scene S] [--technique T] [--find] [--plot F.png]   results history\n"
-    "  schema    [--out FILE]           the results tables' columns and image names, as JSON\n"
+    "  describe  [--out FILE]           what the binary knows, as JSON: the tables' columns, the\n"
+    "                                   techniques (outputs, passes, parameters, presets), the\n"
+    "                                   statuses, the references' bindings, the revision (alias: schema)\n"
     "\n"
     "Scene data (Crytek Sponza, Sibenik, ...) is found through $GIBENCH_SCENES\n"
     "(default ../shared/scenes beside the project); the procedural scenes need none.\n";
@@ -47,7 +49,7 @@ int main(int argc, char **argv)
         return gib_cmd_bench(argc - 1, argv + 1);
     if (!strcmp(cmd, "history"))
         return gib_cmd_history(argc - 1, argv + 1);
-    if (!strcmp(cmd, "schema"))
+    if (!strcmp(cmd, "describe") || !strcmp(cmd, "schema"))
         return gib_cmd_schema(argc - 1, argv + 1);
     fprintf(stderr, "gibench: unknown command '%s'\n\n%s", cmd, usage);
     return 2;

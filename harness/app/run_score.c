@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "run_rows.h"
+#include "harness/base/status.h"
 #include "harness/imaging/temporal.h"
 #include "refrank.h"
 
@@ -203,7 +204,8 @@ static void row_metrics(row *r, const gib_metrics *m, const gib_ref_result *ref,
     row_set(r, GIB_C_NONFINITE, "%ld", m->nonfinite);
     /* A reference noisier than a fifth of the error cannot rank techniques. */
     row_set(r, GIB_C_REF_NOISY, "%d", ref->noise_rmse > 0.2 * m->rmse);
-    row_set(r, GIB_C_STATUS, "%s", m->nonfinite ? "nonfinite" : "ok");
+    row_set(r, GIB_C_STATUS, "%s",
+            gib_status_name(m->nonfinite ? GIB_STATUS_NONFINITE : GIB_STATUS_OK));
     if (m->nonfinite)
         row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image", m->nonfinite);
 }
@@ -322,7 +324,7 @@ static int score_sequence(run_ctx *ctx, const gib_scene *scene, const gib_matrix
     if (rc == GIB_REF_WRITE_FAILED)
         write_failed(ctx, &err);
     else if (rc < 0) {
-        row_set(r, GIB_C_STATUS, "sequence_failed");
+        row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SEQUENCE_FAILED));
         row_set(r, GIB_C_MESSAGE, "%s", err.msg);
     }
     for (int k = 0; k < sc.have; k++)
@@ -346,7 +348,7 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
         return;
     }
     if (grc < 0) {
-        row_set(r, GIB_C_STATUS, "reference_failed");
+        row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_REFERENCE_FAILED));
         row_set(r, GIB_C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
                                                       : err.msg);
         append_row(ctx, r);
@@ -366,7 +368,7 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
         return;
     }
     if (src < 0) {
-        row_set(r, GIB_C_STATUS, "scoring_failed");
+        row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SCORING_FAILED));
         row_set(r, GIB_C_MESSAGE, "%s", err.msg);
     } else {
         row_metrics(r, &m, &ref, (long)mr->width * mr->height);
@@ -397,7 +399,8 @@ static void time_component(run_ctx *ctx, const gib_matrix_run *mr, const gib_run
     for (size_t k = 0; k < (size_t)img->width * img->height * img->channels; k++)
         nonfinite += !isfinite(img->px[k]);
     row_set(r, GIB_C_NONFINITE, "%ld", nonfinite);
-    row_set(r, GIB_C_STATUS, "%s", nonfinite ? "nonfinite" : "ok");
+    row_set(r, GIB_C_STATUS, "%s",
+            gib_status_name(nonfinite ? GIB_STATUS_NONFINITE : GIB_STATUS_OK));
     if (nonfinite)
         row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image (timing only)", nonfinite);
     else

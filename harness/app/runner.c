@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "harness/base/status.h"
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
 #include "harness/gl/view.h"
@@ -21,18 +22,18 @@ const char *gib_output_name(unsigned bit)
     }
 }
 
-static void set_status(gib_run_result *r, const char *status)
+static void set_status(gib_run_result *r, gib_status status)
 {
-    snprintf(r->status, sizeof r->status, "%s", status);
-    r->ok = !strcmp(status, "ok");
+    snprintf(r->status, sizeof r->status, "%s", gib_status_name(status));
+    r->ok = status == GIB_STATUS_OK;
 }
 
 /* A failed step's status: the code its error carries (out_of_memory, shader_failed, ...), or the
- * step's own word when the failure has no code of its own. */
-static void set_failure_status(gib_run_result *r, const char *step_status)
+ * step's own status when the failure has no code of its own. */
+static void set_failure_status(gib_run_result *r, gib_status step_status)
 {
-    const char *coded = gib_error_code_status(r->err.code);
-    set_status(r, coded ? coded : step_status);
+    int coded = gib_error_code_status(r->err.code);
+    set_status(r, coded >= 0 ? (gib_status)coded : step_status);
 }
 
 /* Reads an RGBA32F target into a 3-channel image with row 0 on top. */
@@ -179,7 +180,7 @@ static int read_sequence_frame(const gib_run_request *rq, run_state *st, gib_run
     for (int i = 0; i < st->target_count; i++)
         if (read_target(st->targets[i].texture, rq->width, rq->height, &r->seq_images[i][k],
                         &r->err) < 0) {
-            set_status(r, "readback_failed");
+            set_status(r, GIB_STATUS_READBACK_FAILED);
             return -1;
         }
     return 0;
@@ -204,12 +205,12 @@ static int render_frames(const gib_run_request *rq, run_state *st, gib_run_resul
         st->timers.count_next = f == (warmup > 0);
         gib_timers_frame_begin(&st->timers, f > warmup);
         if (moves) {
-            gib_timer_begin(&st->timers, "scene_update");
+            gib_timer_begin(&st->timers, GIB_SCENE_UPDATE_PASS);
             int urc = gib_gpu_scene_set_time(scene, tf, &r->err);
             gib_timer_end(&st->timers);
             if (urc < 0) {
                 gib_timers_frame_end(&st->timers);
-                set_status(r, "scene_update_failed");
+                set_status(r, GIB_STATUS_SCENE_UPDATE_FAILED);
                 return -1;
             }
         }
@@ -219,7 +220,7 @@ static int render_frames(const gib_run_request *rq, run_state *st, gib_run_resul
         if (f == 0)
             r->first_frame_ms = gib_now_ms() - create_start;
         if (rc < 0) {
-            set_failure_status(r, "render_failed");
+            set_failure_status(r, GIB_STATUS_RENDER_FAILED);
             return -1;
         }
         if (read_sequence_frame(rq, st, r, f, nf) < 0)
@@ -251,10 +252,11 @@ static int collect(const gib_run_request *rq, run_state *st, gib_run_result *r)
 {
     const gib_technique *t = rq->technique;
     if (t->status) {
-        const char *s = t->status(st->self);
-        if (s && strcmp(s, "ok")) {
+        gib_status s = t->status(st->self);
+        if (s != GIB_STATUS_OK) {
             set_status(r, s);
-            snprintf(r->err.msg, sizeof r->err.msg, "technique '%s' reported '%s'", t->name, s);
+            snprintf(r->err.msg, sizeof r->err.msg, "technique '%s' reported '%s' (%s)", t->name,
+                     r->status, gib_status_doc(s) ? gib_status_doc(s) : "not a status");
         }
     }
     if (t->counters)
@@ -262,7 +264,7 @@ static int collect(const gib_run_request *rq, run_state *st, gib_run_result *r)
     for (int i = 0; i < st->target_count; i++)
         if (read_target(st->targets[i].texture, rq->width, rq->height, &r->images[i], &r->err) <
             0) {
-            set_status(r, "readback_failed");
+            set_status(r, GIB_STATUS_READBACK_FAILED);
             return -1;
         }
     r->frames = st->timers.frames;
@@ -291,7 +293,7 @@ static void release(const gib_run_request *rq, run_state *st, gib_run_result *r)
 void gib_run(const gib_run_request *rq, gib_run_result *r)
 {
     memset(r, 0, sizeof *r);
-    set_status(r, "ok");
+    set_status(r, GIB_STATUS_OK);
     r->driver_bytes = -1;
     run_state st;
     memset(&st, 0, sizeof st);
@@ -304,7 +306,7 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
     gib_timers_init(&st.timers);
     glGetError();
     if (make_targets(rq, &st, r) < 0 || alloc_sequence(rq, &st, r) < 0) {
-        set_status(r, "alloc_failed");
+        set_status(r, GIB_STATUS_ALLOC_FAILED);
         release(rq, &st, r);
         return;
     }
@@ -313,7 +315,7 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
     const int moves = rq->scene->scene->motion_count > 0;
     const int nf = 1 + warmup_frames(rq) + rq->frames;
     if (moves && gib_gpu_scene_set_time(rq->scene, frame_time(rq, 0, nf), &r->err) < 0) {
-        set_status(r, "scene_update_failed");
+        set_status(r, GIB_STATUS_SCENE_UPDATE_FAILED);
         release(rq, &st, r);
         return;
     }
@@ -321,7 +323,7 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
     st.self = rq->technique->create(rq->scene, rq->params, rq->width, rq->height, &st.ledger,
                                     &r->err);
     if (!st.self)
-        set_failure_status(r, "create_failed");
+        set_failure_status(r, GIB_STATUS_CREATE_FAILED);
     else if (render_frames(rq, &st, r, create_start) == 0 && collect(rq, &st, r) == 0) {
         const long long avail_after = nvx_available_bytes();
         if (avail_before >= 0 && avail_after >= 0)

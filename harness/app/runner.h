@@ -74,5 +74,7 @@ void gib_run_result_free(gib_run_result *r);
 
 /* Name of a GIB_OUT_* bit: "ao", "direct", ... (matching the reference's component names). */
 const char *gib_output_name(unsigned bit);
+/* The pass the runner times itself, around an animated scene's upload before a frame. */
+#define GIB_SCENE_UPDATE_PASS "scene_update"
 
 #endif

@@ -7,6 +7,7 @@
 #include "app.h"
 #include "harness/base/cone_set.h"
 #include "harness/base/hash.h"
+#include "harness/base/status.h"
 #include "history.h"
 #include "runner.h"
 
@@ -231,6 +232,86 @@ static void json_reference_params(FILE *f)
     fprintf(f, "},\n");
 }
 
+/* A JSON number, "inf" / "-inf" as strings (JSON has no infinity). */
+static void json_num(FILE *f, double v)
+{
+    if (isinf(v))
+        fprintf(f, v > 0 ? "\"inf\"" : "\"-inf\"");
+    else
+        fprintf(f, "%.9g", v);
+}
+
+static void json_strings(FILE *f, const char *const *s)
+{
+    fputc('[', f);
+    for (int i = 0; s && s[i]; i++) {
+        fputs(i ? ", " : "", f);
+        json_str(f, s[i]);
+    }
+    fputc(']', f);
+}
+
+static void json_technique(FILE *f, const gib_technique *t)
+{
+    static const char *const types[] = {"int", "float", "length"};
+    fprintf(f, "    {\"name\": ");
+    json_str(f, t->name);
+    fprintf(f, ", \"source\": ");
+    json_str(f, t->source);
+    fprintf(f, ",\n     \"outputs\": [");
+    const char *sep = "";
+    for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1)
+        if (t->components & bit) {
+            fprintf(f, "%s\"%s\"", sep, gib_output_name(bit));
+            sep = ", ";
+        }
+    fprintf(f, "], \"passes\": ");
+    json_strings(f, t->passes);
+    fprintf(f, ",\n     \"params\": [");
+    for (int i = 0; t->params[i].name; i++) {
+        const gib_param_spec *p = &t->params[i];
+        fprintf(f, "%s\n       {\"name\": \"%s\", \"type\": \"%s\", \"default\": ", i ? "," : "",
+                p->name, types[p->type]);
+        json_num(f, p->def);
+        fprintf(f, ", \"min\": ");
+        json_num(f, p->min);
+        fprintf(f, ", \"max\": ");
+        json_num(f, p->max);
+        fprintf(f, ", \"help\": ");
+        json_str(f, p->help);
+        fputc('}', f);
+    }
+    fprintf(f, "],\n     \"presets\": [");
+    for (int i = 0; t->presets && t->presets[i].name; i++) {
+        fprintf(f, "%s{\"name\": ", i ? ", " : "");
+        json_str(f, t->presets[i].name);
+        fprintf(f, ", \"values\": ");
+        json_str(f, t->presets[i].values);
+        fputc('}', f);
+    }
+    fprintf(f, "]}");
+}
+
+/* "techniques": every registered technique's descriptor: outputs, passes, parameters, presets;
+ * "harness_passes": the passes the runner itself times; "statuses": harness/base/status.h. */
+static void json_techniques(FILE *f)
+{
+    int n;
+    const gib_technique *const *all = gib_techniques(&n);
+    fprintf(f, "  \"techniques\": [\n");
+    for (int t = 0; t < n; t++) {
+        json_technique(f, all[t]);
+        fprintf(f, "%s\n", t + 1 < n ? "," : "");
+    }
+    fprintf(f, "  ],\n  \"harness_passes\": [\"%s\"],\n  \"statuses\": [\n", GIB_SCENE_UPDATE_PASS);
+    for (int s = 0; s < GIB_STATUS_COUNT; s++) {
+        fprintf(f, "    {\"name\": \"%s\", \"doc\": ", gib_status_name((gib_status)s));
+        json_str(f, gib_status_doc((gib_status)s));
+        fprintf(f, "}%s\n", s + 1 < GIB_STATUS_COUNT ? "," : "");
+    }
+    fprintf(f, "  ],\n");
+}
+
 void gib_schema_write_json(FILE *f)
 {
     fprintf(f, "{\n  \"version\": 1,\n");
@@ -250,6 +331,8 @@ void gib_schema_write_json(FILE *f)
     for (int i = 0; i < GIB_DIFFUSE_CONES; i++)
         fprintf(f, "%.9g%s", gib_diffuse_cone_weight(i), i + 1 < GIB_DIFFUSE_CONES ? ", " : "]},\n");
     json_reference_params(f);
+    json_techniques(f);
+    fprintf(f, "  \"revision\": \"%s\",\n", gib_git_revision());
     fprintf(f, "  \"software_renderers\": [");
     for (int i = 0; gib_software_renderers[i]; i++)
         fprintf(f, "%s\"%s\"", i ? ", " : "", gib_software_renderers[i]);
@@ -257,11 +340,14 @@ void gib_schema_write_json(FILE *f)
 }
 
 static const char schema_help[] =
-    "usage: gibench schema [--out FILE]\n"
+    "usage: gibench describe [--out FILE]   (also: gibench schema)\n"
     "\n"
-    "Prints the results schema as JSON: the columns of a matrix's runs and passes tables, the\n"
-    "columns of a row's and a run's identity, and the names of a row's images (the build writes\n"
-    "it to build/schema.json; harness/schema.py reads it).\n";
+    "Prints what the binary knows as JSON: the columns of a matrix's runs and passes tables, the\n"
+    "columns of a row's and a run's identity, the names of a row's images, every technique's\n"
+    "outputs, passes, parameters and presets, the passes the runner times, the row statuses with\n"
+    "what each means, the parameters that set each component's reference, the diffuse cone set,\n"
+    "the software renderers and the revision (the build writes it to build/schema.json;\n"
+    "harness/schema.py reads it, and tests/report/test_describe.py checks what it uses).\n";
 
 int gib_cmd_schema(int argc, char **argv)
 {
@@ -275,17 +361,17 @@ int gib_cmd_schema(int argc, char **argv)
             out = argv[++i];
             continue;
         }
-        fprintf(stderr, "gibench schema: unknown argument '%s'\n%s", argv[i], schema_help);
+        fprintf(stderr, "gibench describe: unknown argument '%s'\n%s", argv[i], schema_help);
         return 2;
     }
     FILE *f = out ? fopen(out, "w") : stdout;
     if (!f) {
-        fprintf(stderr, "gibench schema: cannot write %s\n", out);
+        fprintf(stderr, "gibench describe: cannot write %s\n", out);
         return 1;
     }
     gib_schema_write_json(f);
     if (out && fclose(f) != 0) {
-        fprintf(stderr, "gibench schema: cannot write %s\n", out);
+        fprintf(stderr, "gibench describe: cannot write %s\n", out);
         return 1;
     }
     return 0;

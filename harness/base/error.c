@@ -1,5 +1,7 @@
 #include "error.h"
 
+#include "status.h"
+
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -34,18 +36,18 @@ int gib_fail_code(gib_error *err, gib_error_code code, const char *fmt, ...)
     return -1;
 }
 
-const char *gib_error_code_status(gib_error_code code)
+int gib_error_code_status(gib_error_code code)
 {
     switch (code) {
-    case GIB_ERR_OUT_OF_MEMORY: return "out_of_memory";
-    case GIB_ERR_SHADER: return "shader_failed";
-    case GIB_ERR_OVERFLOW: return "overflow";
-    case GIB_ERR_NON_FINITE: return "nonfinite";
-    case GIB_ERR_REFERENCE: return "reference_failed";
+    case GIB_ERR_OUT_OF_MEMORY: return GIB_STATUS_OUT_OF_MEMORY;
+    case GIB_ERR_SHADER: return GIB_STATUS_SHADER_FAILED;
+    case GIB_ERR_OVERFLOW: return GIB_STATUS_OVERFLOW;
+    case GIB_ERR_NON_FINITE: return GIB_STATUS_NONFINITE;
+    case GIB_ERR_REFERENCE: return GIB_STATUS_REFERENCE_FAILED;
     case GIB_ERR_NONE:
     case GIB_ERR_FAILED: break;
     }
-    return NULL;
+    return -1;
 }
 
 int gib_error_prefix(gib_error *err, const char *fmt, ...)

@@ -30,9 +30,9 @@ int gib_fail(gib_error *err, const char *fmt, ...) __attribute__((format(printf,
 /* The same with the failure's code. */
 int gib_fail_code(gib_error *err, gib_error_code code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
-/* A code's name as a result row's status uses it ("out_of_memory", "shader_failed", "nonfinite",
- * ...); NULL for GIB_ERR_NONE and GIB_ERR_FAILED, which have none. */
-const char *gib_error_code_status(gib_error_code code);
+/* The result row's status a code stands for (GIB_STATUS_OUT_OF_MEMORY, ...: harness/base/status.h);
+ * -1 for GIB_ERR_NONE and GIB_ERR_FAILED, which have none. */
+int gib_error_code_status(gib_error_code code);
 
 /* Prefixes an existing message: "context: old message"; the code is kept. Returns -1. */
 int gib_error_prefix(gib_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

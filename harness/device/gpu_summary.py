@@ -19,6 +19,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 import gpu_rows  # noqa: E402
 import ldm_tables  # noqa: E402
+import lrsm_tables  # noqa: E402
 import thesis_tables  # noqa: E402
 
 PAPER_VALUES = os.path.join(HERE, "..", "..", "..", "shared", "paper-values")
@@ -140,7 +141,7 @@ def passes(folder, matrix):
 def table3(folder, paper):
     """LRSM Table 3: per-stage times on Sponza at 1280x720, each preset, with the pass kind."""
     want = {("lrsm", "512"): "LRSM", ("vct", "256"): "VCT", ("vct", "512"): "VCT"}
-    stage_of = {"diffuse_cones": "diffuse_cones_6", "specular_cone": "specular_cone_1"}
+    stage_of = {ours: paper for paper, ours in lrsm_tables.TABLE3_STAGE.items()}
     paper_ms = {(p["method"], p["gpu"], p["stage"]): p["ms"] for p in paper}
     out = ["| method | preset | voxel_res | stage | kind | this GPU ms (IQR; cold first) | "
            "GTX 770 (paper) | Iris Pro (paper) |", "|---|---|---|---|---|---|---|---|"]

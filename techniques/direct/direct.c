@@ -68,11 +68,14 @@ static void direct_destroy(void *self)
     free(d);
 }
 
+static const char *const direct_passes[] = {"gbuffer", "shadow", "shade", NULL};
+
 const gib_technique gib_technique_direct = {
     .name = "direct",
     .source = "rasterised direct light, shadow maps with PCF (Williams 1978; Reeves et al. 1987)",
     .components = GIB_OUT_DIRECT,
     .params = direct_params,
+    .passes = direct_passes,
     .scene_needs = 0,
     .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,
     .create = direct_create,

@@ -200,11 +200,14 @@ static const gib_ref_binding hbao_reference[] = {
     {0},
 };
 
+static const char *const hbao_passes[] = {"gbuffer", "hbao", "blur", NULL};
+
 const gib_technique gib_technique_hbao = {
     .name = "hbao",
     .source = "image-space horizon-based AO (Bavoil, Sainz and Dimitrov 2008); LDM paper Sec. 5.1",
     .components = GIB_OUT_AO,
     .params = hbao_params,
+    .passes = hbao_passes,
     .reference = hbao_reference,
     .scene_needs = 0,
     .scene_needs_any = 0,

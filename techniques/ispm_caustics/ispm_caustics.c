@@ -60,7 +60,6 @@ typedef struct caustics {
     int redraw, frames_rendered;   /* random numbers drawn anew each frame after the first */
     uint64_t rng;                  /* the PCG32 state the numbers continue from */
     float *rnd;                    /* with redraw: the CPU copy refilled each frame */
-    char status[32];
 } caustics;
 
 static const gib_param_spec caustics_params[] = {
@@ -331,7 +330,6 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     c->ledger = ledger;
     c->width = w;
     c->height = h;
-    strcpy(c->status, "ok");
     int rsm_res = 0;
     if (read_params(c, p, &rsm_res, err) < 0 || create_passes(c, rsm_res, err) < 0 ||
         size_pool(c, p, err) < 0)
@@ -609,7 +607,7 @@ static void caustics_counters(void *self, char *buf, size_t len)
 /* `overflow` when the lists' pool ran out; `no_photons` when the mask's level emitted none (no
  * specular texel whose 4^level texels below are all specular): the caustic image is then black by
  * construction, a status of its own rather than an error score. */
-static const char *caustics_status(void *self)
+static gib_status caustics_status(void *self)
 {
     caustics *c = self;
     uint32_t st[3], cmd[8];
@@ -617,11 +615,12 @@ static const char *caustics_status(void *self)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(c->command, 0, sizeof cmd, cmd);
     if (st[1] || st[2])
-        strcpy(c->status, "overflow");
-    else if (cmd[1] == 0)
-        strcpy(c->status, "no_photons");
-    return c->status;
+        return GIB_STATUS_OVERFLOW;
+    return cmd[1] == 0 ? GIB_STATUS_NO_PHOTONS : GIB_STATUS_OK;
 }
+
+static const char *const caustics_passes[] = {"gbuffer", "rsm", "list_build", "photon_tracing",
+    "random_redraw", "splatting", "upsampling", NULL};
 
 const gib_technique gib_technique_ispm_caustics = {
     .name = "ispm_caustics",
@@ -629,6 +628,7 @@ const gib_technique gib_technique_ispm_caustics = {
               "through per-pixel linked lists)",
     .components = GIB_OUT_CAUSTIC,
     .params = caustics_params,
+    .passes = caustics_passes,
     .scene_needs_any = GIB_FEAT_SPECULAR | GIB_FEAT_MIRROR,
     .create = caustics_create,
     .render = caustics_render,

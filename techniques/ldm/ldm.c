@@ -196,7 +196,7 @@ int ldm_create(ldm_set *l, const gib_gpu_scene *scene, int directions, int res, 
                uint64_t budget_bytes, gib_ledger *ledger, gib_error *err)
 {
     memset(l, 0, sizeof *l);
-    snprintf(l->status_word, sizeof l->status_word, "ok");
+    l->state = GIB_STATUS_OK;
     l->res = res;
     l->node_budget = node_budget;
     l->ledger = ledger;
@@ -278,7 +278,7 @@ static void recount(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers)
     gib_error err;
     if (!counts32 || !cap || (grow && (free_pages(l, l->ledger),
                                        lay_out_pages(l, cap, l->ledger, &err) < 0)))
-        snprintf(l->status_word, sizeof l->status_word, "alloc_failed");
+        l->state = GIB_STATUS_ALLOC_FAILED;
     free(counts32);
     free(cap);
     gib_timer_end(timers);
@@ -311,15 +311,15 @@ void ldm_bind_page(const ldm_set *l, int page)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_LDM_NODES, l->pages[page].nodes);
 }
 
-const char *ldm_status(ldm_set *l)
+gib_status ldm_status(ldm_set *l)
 {
     uint32_t st[2] = {0, 0};
     glGetNamedBufferSubData(l->status, 0, 8, st);
     if (st[0])
-        snprintf(l->status_word, sizeof l->status_word, "overflow");
+        l->state = GIB_STATUS_OVERFLOW;
     else if (st[1])
-        snprintf(l->status_word, sizeof l->status_word, "contention");
-    return l->status_word;
+        l->state = GIB_STATUS_CONTENTION;
+    return l->state;
 }
 
 void ldm_destroy(ldm_set *l, gib_ledger *ledger)

@@ -54,7 +54,7 @@ typedef struct ldm_set {
     uint64_t fragments;      /* total nodes (measured at create) */
     double mean_depth_complexity;
     ldm_plan plan;           /* what create planned (and, within the budget, allocated) */
-    char status_word[32];
+    gib_status state;         /* GIB_STATUS_OK, or ALLOC_FAILED from the last build */
 } ldm_set;
 
 /* Builds the direction set, measures node counts, plans, allocates heads and nodes through the
@@ -72,7 +72,7 @@ void ldm_build(ldm_set *l, const gib_gpu_scene *scene, gib_timers *timers);
 /* Binds page p's heads and nodes (bindings 4, 5) and the info SSBO (3). */
 void ldm_bind_page(const ldm_set *l, int page);
 /* "ok", "overflow" or "contention", read back from the GPU (call after rendering). */
-const char *ldm_status(ldm_set *l);
+gib_status ldm_status(ldm_set *l);
 void ldm_destroy(ldm_set *l, gib_ledger *ledger);
 
 /* Validation: traces n rays (4 floats each: origin xyz, w = +-(LDM index + 1) for direction +-v)

@@ -114,7 +114,7 @@ static int ldm_ao_render(void *self, const gib_view *view, gib_timers *timers,
     return gib_gl_check("ldm_ao", err);
 }
 
-static const char *ldm_ao_status(void *self) { return ldm_status(&((ldm_ao *)self)->ldms); }
+static gib_status ldm_ao_status(void *self) { return ldm_status(&((ldm_ao *)self)->ldms); }
 
 static const gib_ref_binding ldm_ao_reference[] = {
     {GIB_OUT_AO, GIB_REF_AO_DMAX, "dmax"},
@@ -122,11 +122,14 @@ static const gib_ref_binding ldm_ao_reference[] = {
     {0},
 };
 
+static const char *const ldm_ao_passes[] = {"gbuffer", "ldm_build", "ldm_trace", NULL};
+
 const gib_technique gib_technique_ldm_ao = {
     .name = "ldm_ao",
     .source = "Aalund, Frisvad, Baerentzen 2015, Sec. 3.1-3.3, 4.1 (layered depth maps)",
     .components = GIB_OUT_AO,
     .params = ldm_ao_params,
+    .passes = ldm_ao_passes,
     .reference = ldm_ao_reference,
     .create = ldm_ao_create,
     .render = ldm_ao_render,

@@ -105,13 +105,17 @@ static int ldm_env_render(void *self, const gib_view *view, gib_timers *timers,
     return gib_gl_check("ldm_env", err);
 }
 
-static const char *ldm_env_status(void *self) { return ldm_status(&((ldm_env *)self)->ldms); }
+static gib_status ldm_env_status(void *self) { return ldm_status(&((ldm_env *)self)->ldms); }
+
+static const char *const ldm_env_passes[] = {"gbuffer", "ldm_build", "ldm_sky", "shadow", "shade",
+    NULL};
 
 const gib_technique gib_technique_ldm_env = {
     .name = "ldm_env",
     .source = "Aalund, Frisvad, Baerentzen 2015, Fig. 11 (uniform sky through LDMs) + shadow maps",
     .components = GIB_OUT_DIRECT,
     .params = ldm_env_params,
+    .passes = ldm_env_passes,
     .scene_needs = GIB_FEAT_SKY,
     .create = ldm_env_create,
     .render = ldm_env_render,

@@ -46,7 +46,6 @@ typedef struct ldm_indirect {
     uint32_t capacity;
     int photon_res;
     float offset, topo_bias;
-    char status[32];
     /* Flux audit (ldm_indirect.h): its own trace and splat programs, one slot of AUDIT_SHADER_FATES
      * vec4 per trace work group, and a float target the audit splat sums into. */
     int audit, audit_log;
@@ -158,7 +157,6 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
     const char *env = getenv("GIBENCH_LDM_AUDIT");
     a->audit_log = env && *env && strcmp(env, "0");
     a->audit = audit_requested || a->audit_log;
-    strcpy(a->status, "ok");
     const char *trace[] = {"ldm_indirect/photon_trace.comp"};
     const char *splat[] = {"ldm_indirect/splat.vert", "ldm_indirect/splat.geom",
                            "ldm_indirect/splat.frag"};
@@ -370,11 +368,11 @@ static int ldm_indirect_render(void *self, const gib_view *view, gib_timers *tim
     return gib_gl_check("ldm_indirect", err);
 }
 
-static const char *ldm_indirect_status(void *self)
+static gib_status ldm_indirect_status(void *self)
 {
     ldm_indirect *a = self;
-    const char *s = ldm_status(&a->ldms);
-    if (strcmp(s, "ok"))
+    gib_status s = ldm_status(&a->ldms);
+    if (s != GIB_STATUS_OK)
         return s;
     if (a->audit_log && a->last.valid) {
         char line[1024];
@@ -383,16 +381,18 @@ static const char *ldm_indirect_status(void *self)
     }
     uint32_t cmd[5];
     glGetNamedBufferSubData(a->command, 0, sizeof cmd, cmd);
-    if (cmd[4])
-        strcpy(a->status, "overflow");
-    return a->status;
+    return cmd[4] ? GIB_STATUS_OVERFLOW : GIB_STATUS_OK;
 }
+
+static const char *const ldm_indirect_passes[] = {"gbuffer", "rsm", "ldm_build", "ldm_count",
+    "photon_trace", "splat", "audit", NULL};
 
 const gib_technique gib_technique_ldm_indirect = {
     .name = "ldm_indirect",
     .source = "Aalund, Frisvad, Baerentzen 2015, Sec. 3.4, 4.2 (photon differentials through LDMs)",
     .components = GIB_OUT_INDIRECT,
     .params = ldm_indirect_params,
+    .passes = ldm_indirect_passes,
     .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT,
     .create = ldm_indirect_create,
     .render = ldm_indirect_render,

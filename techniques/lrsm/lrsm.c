@@ -12,7 +12,7 @@
  * Spot lights (perspective view), directional lights (orthographic) and point lights and spots
  * wider than 45 degrees (the light views' cube: 6 faces, each with its own D x N layers, so such a
  * light costs 6 times the layers' memory; a cone sample is looked up in the face its centre falls
- * in). Status "nan" when an output holds a NaN (read back once, when the harness asks). */
+ * in). */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -48,10 +48,6 @@ typedef struct lrsm {
     int visibility;                 /* Eq. 12's window: +-r_c or widened by 1/<n.l> */
     int cone;                       /* the diffuse cone rendered alone, < 0 all */
     int rebuild, built;             /* structures every frame, or only the first frame's */
-    int width, height;
-    unsigned targets[PASSES];    /* the last frame's output textures (NaN check) */
-    int target_count;
-    char status[16];
 } lrsm;
 
 static const gib_param_spec lrsm_params[] = {
@@ -140,8 +136,6 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     }
     s->scene = scene;
     s->ledger = ledger;
-    s->width = width;
-    s->height = height;
     const double deg = M_PI / 180;
     s->aperture[PASS_SHADOW] = (float)(gib_param_float(t, p, "shadow_aperture") * deg);
     s->aperture[PASS_DIFFUSE] = (float)(gib_param_float(t, p, "diffuse_aperture") * deg);
@@ -158,7 +152,6 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
     s->hits = gib_param_int(t, p, "hits");
     s->rebuild = gib_param_int(t, p, "rebuild");
     s->cone = gib_param_int(t, p, "cone");
-    strcpy(s->status, "");
     static const char *const define[PASSES] = {"#define SHADOW 1\n", "#define DIFFUSE 1\n",
                                                "#define SPECULAR 1\n"};
     if (gib_gbuffer_create(&s->gbuffer, width, height, ledger, err) < 0)
@@ -231,7 +224,6 @@ static int lrsm_render(void *self, const gib_view *view, gib_timers *timers,
         gib_timer_end(timers);
         s->built = 1;
     }
-    s->target_count = 0;
     for (int i = 0; i < target_count; i++) {
         unsigned c = targets[i].component;
         if (c == GIB_OUT_DIRECT)
@@ -240,32 +232,8 @@ static int lrsm_render(void *self, const gib_view *view, gib_timers *timers,
             cone_pass(s, PASS_DIFFUSE, "diffuse_cones", view, targets[i].fbo, timers);
         else if (c == GIB_OUT_GLOSSY)
             cone_pass(s, PASS_SPECULAR, "specular_cone", view, targets[i].fbo, timers);
-        else
-            continue;
-        if (s->target_count < PASSES)
-            s->targets[s->target_count++] = targets[i].texture;
     }
     return gib_gl_check("lrsm", err);
-}
-
-/* "nan" when a NaN reached an output: the last frame's targets read back once. */
-static const char *lrsm_status(void *self)
-{
-    lrsm *s = self;
-    size_t n = (size_t)s->width * (size_t)s->height * 4;
-    float *px = malloc(n * sizeof *px);
-    if (!px)
-        return NULL;
-    for (int i = 0; i < s->target_count && !s->status[0]; i++) {
-        glGetTextureImage(s->targets[i], 0, GL_RGBA, GL_FLOAT, (GLsizei)(n * sizeof *px), px);
-        for (size_t k = 0; k < n; k++)
-            if (isnan(px[k])) {
-                strcpy(s->status, "nan");
-                break;
-            }
-    }
-    free(px);
-    return s->status[0] ? s->status : NULL;
 }
 
 static void lrsm_destroy(void *self)
@@ -283,18 +251,21 @@ static void lrsm_destroy(void *self)
     free(s);
 }
 
+static const char *const lrsm_passes[] = {"gbuffer", "voxelization", "lrsm_construction",
+    "shadow_cone", "diffuse_cones", "specular_cone", NULL};
+
 const gib_technique gib_technique_lrsm = {
     .name = "lrsm",
     .source = "layered reflective shadow maps with voxel cone tracing (Sugihara, Rauwendaal, Salvi "
               "2014, Sec. 3-6, Eq. 1, 5-15, Alg. 1)",
     .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
     .params = lrsm_params,
+    .passes = lrsm_passes,
     .presets = lrsm_presets,
     .reference = NULL,
     .scene_needs = 0,
     .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,
     .create = lrsm_create,
     .render = lrsm_render,
-    .status = lrsm_status,
     .destroy = lrsm_destroy,
 };

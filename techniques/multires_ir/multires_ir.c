@@ -108,12 +108,16 @@ static int multires_ir_render(void *self, const gib_view *view, gib_timers *time
     return gib_gl_check("multires_ir", err);
 }
 
+static const char *const multires_ir_passes[] = {"gbuffer", "rsm", "splitting", "gathering",
+    "upsampling", NULL};
+
 const gib_technique gib_technique_multires_ir = {
     .name = "multires_ir",
     .source = "VPLs gathered by multi-resolution splatting over min-max mips and stencil-marked "
               "regions (thesis 004 Sec. 3.2, Alg. 3.1, 3.2; Nichols et al. 2009)",
     .components = GIB_OUT_INDIRECT,
     .params = multires_ir_params,
+    .passes = multires_ir_passes,
     .reference = NULL,
     .scene_needs = 0,
     .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,

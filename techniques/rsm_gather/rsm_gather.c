@@ -104,12 +104,15 @@ static int rsm_gather_render(void *self, const gib_view *view, gib_timers *timer
     return gib_gl_check("rsm_gather", err);
 }
 
+static const char *const rsm_gather_passes[] = {"gbuffer", "rsm", "gathering", NULL};
+
 const gib_technique gib_technique_rsm_gather = {
     .name = "rsm_gather",
     .source = "VPLs from reflective shadow maps gathered at every pixel (Dachsbacher and "
               "Stamminger 2005; thesis 004 Sec. 2.2.2, 3.2.1, Alg. 2.1)",
     .components = GIB_OUT_INDIRECT,
     .params = rsm_gather_params,
+    .passes = rsm_gather_passes,
     .reference = NULL,
     .scene_needs = 0,
     .scene_needs_any = GIB_FEAT_POINT_LIGHT | GIB_FEAT_SPOT_LIGHT | GIB_FEAT_DIR_LIGHT,

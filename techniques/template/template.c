@@ -188,17 +188,17 @@ static int template_render(void *self, const gib_view *view, gib_timers *timers,
 
 /* ---- 5. status and counters ----
  * Both are optional (NULL in the descriptor) and are called once, after the last frame.
- * status: NULL or "ok" when the image is an answer; otherwise a word (`overflow`, `no_photons`,
- * ...) that becomes the row's status instead of scores, for a condition that makes the image
- * no estimate at all. Here: lights that give no power (E = 0) leave a black image that would
+ * status: GIB_STATUS_OK when the image is an answer; otherwise one of harness/base/status.h's
+ * (GIB_STATUS_OVERFLOW, GIB_STATUS_NO_PHOTONS, ...), which becomes the row's status instead of
+ * scores, for a condition that makes the image no estimate at all (NaN is the runner's to find). Here: lights that give no power (E = 0) leave a black image that would
  * score as if it were the technique's answer.
  * counters: what the last frame counted, "name=value" pairs joined by ';', written to the row's
  * `counters` column. Here the pixels the pass shaded, read back from the SSBO. */
-static const char *template_status(void *self)
+static gib_status template_status(void *self)
 {
     const template_state *s = self;
     const int lit = s->irradiance[0] > 0 || s->irradiance[1] > 0 || s->irradiance[2] > 0;
-    return lit ? "ok" : "no_light";
+    return lit ? GIB_STATUS_OK : GIB_STATUS_NO_LIGHT;
 }
 
 static void template_counters(void *self, char *buf, size_t len)
@@ -234,11 +234,14 @@ static const gib_ref_binding template_reference[] = {
     {0},
 };
 
+static const char *const template_passes[] = {"gbuffer", "ambient", NULL};
+
 const gib_technique gib_technique_template = {
     .name = "template",
     .source = "the technique template: ambient term of a closed scene (after Cohen et al. 1988)",
     .components = GIB_OUT_INDIRECT,
     .params = template_params,
+    .passes = template_passes,
     .reference = template_reference,
     /* The estimate needs a closed scene (all light lands on its surfaces) and a point or spot
      * light (a finite power): other scenes are skipped, with the reason, by matrices and tests. */

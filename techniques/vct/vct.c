@@ -207,11 +207,15 @@ static int vct_render(void *self, const gib_view *view, gib_timers *timers,
     return gib_gl_check("vct", err);
 }
 
+static const char *const vct_passes[] = {"gbuffer", "voxelization", "shadow_cone", "diffuse_cones",
+    "specular_cone", NULL};
+
 const gib_technique gib_technique_vct = {
     .name = "vct",
     .source = "Crassin et al. 2011 voxel cone tracing, dense, as Sugihara et al. 2014 Sec. 6 ran it",
     .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
     .params = vct_params,
+    .passes = vct_passes,
     .presets = vct_presets,
     .create = vct_create,
     .render = vct_render,

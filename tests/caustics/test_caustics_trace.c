@@ -135,7 +135,7 @@ static int run(gib_gl_fixture *fx, RTCScene rs, const char *layers, const char *
     ispm_photon *ph;
     int n = ispm_caustics_read_photons(self, &ph);
     memset(c, 0, sizeof *c);
-    snprintf(c->status, sizeof c->status, "%s", t->status(self));
+    snprintf(c->status, sizeof c->status, "%s", gib_status_name(t->status(self)));
     c->photons = n;
     const float *eye = fx->gpu.scene->cameras[0].eye;
     const float fwd[3] = {-view.view[2], -view.view[6], -view.view[10]};

@@ -10,7 +10,8 @@
  *  - create returns a state, render returns 0 both frames, and no GL error is left;
  *  - at least one timed pass, none left open after render;
  *  - every output value finite (no NaN, no Inf);
- *  - status NULL or one of KNOWN_STATUS (the words the CSV's status column can hold);
+ *  - every timed pass one of the descriptor's `passes` (the names the report's tables read);
+ *  - status one of harness/base/status.h's (the words the CSV's status column can hold);
  *  - counters "" or name=value pairs joined by ';' (name [a-z0-9_]+, value a number);
  *  - after destroy the ledger empty: no object, no byte (what destroy forgot would be freed by
  *    the runner and never show up), and no GL error.
@@ -41,8 +42,6 @@ static const int SIZES[2][2] = {{32, 24}, {48, 40}};
 
 /* The words a technique's status may return (the CSV's status column): ARCHITECTURE.md, "Data
  * flow of a matrix row". A technique with a new word adds it here and there. */
-static const char *const KNOWN_STATUS[] = {"ok", "overflow", "contention", "no_photons", "nan",
-                                           "alloc_failed", "no_light"};
 
 typedef struct loaded {
     gib_scene scene;
@@ -50,15 +49,6 @@ typedef struct loaded {
     int state; /* 0 not tried, 1 loaded, -1 failed */
 } loaded;
 
-static int status_known(const char *s)
-{
-    if (!s)
-        return 1;
-    for (size_t i = 0; i < sizeof KNOWN_STATUS / sizeof KNOWN_STATUS[0]; i++)
-        if (!strcmp(s, KNOWN_STATUS[i]))
-            return 1;
-    return 0;
-}
 
 /* "" or name=value;name=value with name [a-z0-9_]+ and value a number. */
 static int counters_parse(const char *s)
@@ -122,15 +112,27 @@ static long nonfinite_outputs(const gib_image_target *targets, int n, int w, int
     return rgba ? bad : -1;
 }
 
+/* Whether `name` is one of the passes t's descriptor declares. */
+static int declared_pass(const gib_technique *t, const char *name)
+{
+    for (int i = 0; t->passes && t->passes[i]; i++)
+        if (!strcmp(t->passes[i], name))
+            return 1;
+    return 0;
+}
+
 /* What the frames left: the passes, the status, the counters, the images. */
 static void check_frames(const gib_technique *t, void *self, const gib_timers *timers,
                          const gib_image_target *targets, int n, int w, int h)
 {
     CHECK(timers->pass_count > 0, "%s %dx%d: no timed pass", t->name, w, h);
+    for (int i = 0; i < timers->pass_count; i++)
+        CHECK(declared_pass(t, timers->names[i]), "%s %dx%d: pass '%s' is not in its descriptor's "
+              "passes", t->name, w, h, timers->names[i]);
     CHECK(timers->active < 0, "%s %dx%d: a pass left open after render", t->name, w, h);
-    const char *status = t->status ? t->status(self) : NULL;
-    CHECK(status_known(status), "%s %dx%d: status '%s' is not a known word", t->name, w, h,
-          status);
+    gib_status status = t->status ? t->status(self) : GIB_STATUS_OK;
+    CHECK(gib_status_name(status) != NULL, "%s %dx%d: status %d is not one of status.h's",
+          t->name, w, h, (int)status);
     char counters[256] = "";
     if (t->counters)
         t->counters(self, counters, sizeof counters);
@@ -139,7 +141,7 @@ static void check_frames(const gib_technique *t, void *self, const gib_timers *t
     long bad = nonfinite_outputs(targets, n, w, h);
     CHECK(bad == 0, "%s %dx%d: %ld non-finite output values", t->name, w, h, bad);
     printf("  %dx%d: %d passes, status %s, counters '%s', %ld non-finite\n", w, h,
-           timers->pass_count, status ? status : "(none)", counters, bad);
+           timers->pass_count, gib_status_name(status), counters, bad);
 }
 
 /* create, FRAMES x render, the checks, destroy, at one size. */

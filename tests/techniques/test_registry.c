@@ -47,6 +47,20 @@ static void check_params(const gib_technique *t)
     CHECK(p.count == n, "%s: defaults fill %d values for %d parameters", t->name, p.count, n);
 }
 
+/* Its passes declared: at least one, each a non-empty name [a-z0-9_]+, none twice. */
+static void check_passes(const gib_technique *t)
+{
+    int n = 0;
+    for (; t->passes && t->passes[n]; n++) {
+        const char *name = t->passes[n];
+        CHECK(name[0] && strspn(name, "abcdefghijklmnopqrstuvwxyz0123456789_") == strlen(name),
+              "%s: pass name '%s' is not [a-z0-9_]+", t->name, name);
+        for (int k = 0; k < n; k++)
+            CHECK(strcmp(t->passes[k], name), "%s: pass '%s' declared twice", t->name, name);
+    }
+    CHECK(n > 0, "%s: no passes declared", t->name);
+}
+
 static void check_reference(const gib_technique *t)
 {
     int binds_dmax = 0;
@@ -222,6 +236,7 @@ int main(void)
         for (int k = 0; k < i; k++)
             CHECK(strcmp(all[k]->name, t->name), "technique '%s' registered twice", t->name);
         check_params(t);
+        check_passes(t);
         check_reference(t);
         check_presets(t);
     }
