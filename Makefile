@@ -3,6 +3,8 @@
 #   make test        install missing packages, build (normal + ASan/UBSan), run every test
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+# The report's Python is one package, harness/reporting, run as modules.
+PY         = PYTHONPATH=harness python3 -m
 PROFILE    ?= quick
 RESULTS    ?= results
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
@@ -11,7 +13,7 @@ CMAKE_ARGS ?=
 # Debian 12 packages gibench builds and runs with (ARCHITECTURE.md, "Toolchain facts"); parallel,
 # slurm-wlm and munge are for spreading matrices over machines (harness/cluster/, tests/cluster/);
 # chromium opens the report in its test (tests/report/); ffmpeg makes the sequences' animations
-# (harness/temporal_tables.py).
+# (harness/reporting/temporal_tables.py).
 PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libassimp-dev \
@@ -87,7 +89,7 @@ reproduce: build
 	@if [ "$(PROFILE)" = quick ]; then echo "make reproduce: the quick profile, a smoke" \
 	  "reproduction at reduced settings; the committed verdicts are the paper profile's" \
 	  "(make reproduce PROFILE=paper)"; fi
-	@if [ -z "$(RESUME)" ]; then python3 harness/set_aside.py $(RESULTS) $(PROFILE) $(MATRICES); fi
+	@if [ -z "$(RESUME)" ]; then $(PY) reporting.set_aside $(RESULTS) $(PROFILE) $(MATRICES); fi
 	$(BUILD)/gibench run $(MATRICES) --profile $(PROFILE) --out $(RESULTS); \
 	  rc=$$?; \
 	  $(MAKE) --no-print-directory report || rc=1; exit $$rc
@@ -96,10 +98,10 @@ reproduce-studies:
 	$(MAKE) --no-print-directory reproduce MATRICES="$(STUDIES)"
 
 # The voxel techniques' diffuse gather split into its six cones, each against the reference's cone
-# (gibench reference --cone), and the best any six-cone gather scores (harness/cone_study.py,
+# (gibench reference --cone), and the best any six-cone gather scores (harness/reporting/cone_study.py,
 # ~4 min): results/cone_study.csv.
 cone-study: build
-	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	GIBENCH_SCHEMA=build/schema.json $(PY) reporting.cone_study --gibench build/gibench \
 	  --out results/cone_study.csv --cache results/cache
 
 # The same on the LRSM paper's sun-lit Sponza at its 512^3 (160x90, 256-spp cone references; needs the
@@ -109,7 +111,7 @@ cone-study: build
 # reference's (the energy audit): water_room and ring at 128x128, 256^3 (~2 min):
 # results/cone_study_rooms.csv.
 cone-study-rooms: build
-	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	GIBENCH_SCHEMA=build/schema.json $(PY) reporting.cone_study --gibench build/gibench \
 	  --out results/cone_study_rooms.csv --cache results/cache --size 128x128 --spp 256 \
 	  --full-spp 1024 --scenes water_room,ring --voxel-res 256
 
@@ -117,7 +119,7 @@ cone-study-rooms: build
 # vct at 256^3, 200x200 (~4 min): results/cone_study_sponza_spot.csv, the energy audit's control
 # for vct's indirect light there.
 cone-study-sponza-spot: build
-	GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	GIBENCH_SCHEMA=build/schema.json $(PY) reporting.cone_study --gibench build/gibench \
 	  --out results/cone_study_sponza_spot.csv --cache results/cache --size 200x200 --spp 256 \
 	  --full-spp 1024 --scenes sponza --voxel-res 256 --techniques vct
 
@@ -127,7 +129,7 @@ cone-study-sponza-spot: build
 cone-controls-sponza-spot: build
 	rm -f results/cone_controls_sponza_spot.csv
 	for p in front_faces=0 sample_level=0 clearance=0 fill=0; do \
-	  GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	  GIBENCH_SCHEMA=build/schema.json $(PY) reporting.cone_study --gibench build/gibench \
 	    --out results/cone_controls_sponza_spot.csv --cache results/cache --size 200x200 \
 	    --spp 256 --full-spp 1024 --scenes sponza --voxel-res 256 --techniques vct \
 	    --param $$p --append || exit 1; done
@@ -142,14 +144,14 @@ vct-floor-control: build
 # The energy audit's measured controls (harness/energy_controls/run.py): each cell of
 # harness/energy_controls/cells.csv rendered as committed and with one suspected cause removed (a
 # patch built into build-control from a copy of the sources, or another parameter), against the
-# same cached references; needs the shared scenes, ~40 min: results/energy_controls.csv.
+# same cached references; needs the shared scenes (its time: PERFORMANCE.md): results/energy_controls.csv.
 energy-controls: build
 	GIBENCH_SCHEMA=build/schema.json python3 harness/energy_controls/run.py --gibench build/gibench \
 	  --out results/energy_controls.csv --cache results/cache
 
 cone-study-sponza: build
 	for t in lrsm vct; do extra=""; [ $$t = lrsm ] && extra="--param rsm_res=1024"; \
-	  GIBENCH_SCHEMA=build/schema.json python3 harness/cone_study.py --gibench build/gibench \
+	  GIBENCH_SCHEMA=build/schema.json $(PY) reporting.cone_study --gibench build/gibench \
 	    --out $(BUILD)/cone_study_sponza_$$t.csv --cache results/cache --size 160x90 --spp 256 \
 	    --full-spp 1024 --scenes sponza_glossy --voxel-res 512 --techniques $$t $$extra || exit 1; done
 	(cat $(BUILD)/cone_study_sponza_lrsm.csv; tail -n +2 $(BUILD)/cone_study_sponza_vct.csv | \
@@ -163,19 +165,19 @@ bench: build
 	  --out $(RESULTS)/bench_reference.csv
 	$(MAKE) --no-print-directory bench-timing
 
-# The scripts read the results schema the build exports ($(BUILD)/schema.json, harness/schema.py).
+# The scripts read the results schema the build exports ($(BUILD)/schema.json, harness/reporting/schema.py).
 plots: build
-	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/plot.py $(RESULTS) --out $(RESULTS)/plots
-	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/paper_tables.py $(RESULTS)
-	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/claims.py $(RESULTS)
+	GIBENCH_SCHEMA=$(BUILD)/schema.json $(PY) reporting.plot $(RESULTS) --out $(RESULTS)/plots
+	GIBENCH_SCHEMA=$(BUILD)/schema.json $(PY) reporting.paper_tables $(RESULTS)
+	GIBENCH_SCHEMA=$(BUILD)/schema.json $(PY) reporting.claims $(RESULTS)
 
 # The reproduction report from the CSVs: $(RESULTS)/REPORT.md and $(RESULTS)/report/index.html
 # (opens offline from the file system); for the committed results also the README's picture of its
 # first screen, docs/report.png.
 report: plots
-	GIBENCH_SCHEMA=$(BUILD)/schema.json python3 harness/report.py $(RESULTS)
+	GIBENCH_SCHEMA=$(BUILD)/schema.json $(PY) reporting.report $(RESULTS)
 	@if [ "$(RESULTS)" = results ]; then \
-	  python3 harness/report_screenshot.py results/report/index.html docs/report.png; fi
+	  $(PY) reporting.report_screenshot results/report/index.html docs/report.png; fi
 
 # libFuzzer over every parser of outside input (tests/fuzz/README.md): FUZZ_SECONDS and FUZZ_RUNS
 # per target (the first reached stops it; -1: no count), a summary in $(FUZZ_BUILD)/fuzz.csv;
@@ -194,7 +196,7 @@ fuzz: deps
 # warm-up; writes $(RESULTS)/bench_timing.csv and $(RESULTS)/timing_resolution.csv, the resolution the
 # report and the claims call ties by. About 10 minutes on 2 cores; run it on an otherwise idle machine.
 bench-timing: build
-	python3 harness/bench_timing.py $(BUILD)/gibench $(RESULTS) --work $(BUILD)/bench_timing
+	$(PY) reporting.bench_timing $(BUILD)/gibench $(RESULTS) --work $(BUILD)/bench_timing
 
 # Accepts the current quality numbers as the new baselines: a deliberate step, never automatic.
 baselines: build

@@ -52,15 +52,15 @@ target_link_libraries(gib_techniques PUBLIC gib_gl)
 gib_layer_root(GIB_APP_ROOT app harness/app)
 file(GLOB GIB_APP_SOURCES CONFIGURE_DEPENDS harness/app/*.c)
 list(FILTER GIB_APP_SOURCES EXCLUDE REGEX "/main\\.c$")
-# Each technique's source hash (harness/source_hash.py), which every results row records so that
+# Each technique's source hash (harness/reporting/source_hash.py), which every results row records so that
 # the report can tell whether the row still describes the code.
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
 file(GLOB_RECURSE GIB_TECH_ALL_FILES CONFIGURE_DEPENDS techniques/*.c techniques/*.h)
 set(GIB_TECH_HASH_C ${CMAKE_BINARY_DIR}/generated/technique_hashes.c)
 add_custom_command(
   OUTPUT ${GIB_TECH_HASH_C}
-  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/harness/source_hash.py --c ${GIB_TECH_HASH_C}
-  DEPENDS ${GIB_TECH_ALL_FILES} ${GIB_SHADERS} ${CMAKE_SOURCE_DIR}/harness/source_hash.py
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/harness/reporting/source_hash.py --c ${GIB_TECH_HASH_C}
+  DEPENDS ${GIB_TECH_ALL_FILES} ${GIB_SHADERS} ${CMAKE_SOURCE_DIR}/harness/reporting/source_hash.py
   COMMENT "Hashing each technique's sources"
   VERBATIM)
 add_library(gib_app STATIC ${GIB_APP_SOURCES} ${GIB_TECH_HASH_C})

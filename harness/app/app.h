@@ -38,7 +38,7 @@ int gib_check_output(const char *opt, const char *path, const char *ext, gib_err
 /* The git revision the binary was built from: GIB_REVISION when the build names it (a bundle, built
  * to run away from its checkout), else asked of git ("unknown" outside a checkout). */
 const char *gib_git_revision(void);
-/* The hash of technique NAME's sources when the binary was built (harness/source_hash.py, generated
+/* The hash of technique NAME's sources when the binary was built (harness/reporting/source_hash.py, generated
  * at build time), "" for a name it does not know. */
 const char *gib_technique_source_hash(const char *name);
 

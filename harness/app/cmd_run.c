@@ -46,7 +46,7 @@ static const char help[] =
     "Timing: every run renders a cold first frame (its time to the first image, compiles\n"
     "included, is the column first_frame_ms), then the profile's warm-up frames, then its timed\n"
     "frames: median, interquartile range, min and max. --warmup W and --frames F replace the\n"
-    "profile's counts (the timing benchmark's longer warm-up, harness/bench_timing.py).\n"
+    "profile's counts (the timing benchmark's longer warm-up, harness/reporting/bench_timing.py).\n"
     "--warmup auto renders warm-up frames until three frames' GPU times agree within 5%\n"
     "(at most 60 frames or 2 s); the rows' warmup column says how many it took.\n"
     "\n"

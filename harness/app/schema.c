@@ -347,7 +347,7 @@ static const char schema_help[] =
     "outputs, passes, parameters and presets, the passes the runner times, the row statuses with\n"
     "what each means, the parameters that set each component's reference, the diffuse cone set,\n"
     "the software renderers and the revision (the build writes it to build/schema.json;\n"
-    "harness/schema.py reads it, and tests/report/test_describe.py checks what it uses).\n";
+    "harness/reporting/schema.py reads it, and tests/report/test_describe.py checks what it uses).\n";
 
 int gib_cmd_schema(int argc, char **argv)
 {

@@ -3,7 +3,7 @@
  * (DIR/<matrix>_passes.csv), which of them make a row's identity and a run's, and the names of a
  * row's images. `gibench run` writes its rows from these tables, `gibench merge` finds its keys
  * by them, and `gibench schema` exports them as JSON (the build writes it to build/schema.json),
- * which harness/schema.py reads for every report script.
+ * which harness/reporting/schema.py reads for every report script.
  *
  * A runs table holds the base columns below, then one column per technique parameter that the
  * matrix file names ([params.T] keys, [profile.P] T.key overrides), in registry order; every
@@ -164,7 +164,7 @@ int gib_table_layout_of(const gib_matrix *m, gib_table_layout *l, gib_error *err
 void gib_image_name(const char *scene, const char *technique, const char *params, int width,
                     int height, double time, const char *component, char *out, size_t len);
 
-/* The schema as one JSON object (harness/schema.py reads it). */
+/* The schema as one JSON object (harness/reporting/schema.py reads it). */
 void gib_schema_write_json(FILE *f);
 int gib_cmd_schema(int argc, char **argv);
 

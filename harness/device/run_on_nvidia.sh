@@ -120,7 +120,7 @@ fi
 # clocks are held down (nvidia-smi's clocks_event_reasons, named clocks_throttle_reasons by older
 # drivers), as one CSV line; a sampler writes it every 200 ms for the whole run (gpu_samples.csv)
 # and each matrix gets a line before and after (clocks.csv), so that rows timed while the clock
-# moved or the GPU was held down can be marked (harness/device/gpu_summary.py).
+# moved or the GPU was held down can be marked (harness/reporting/gpu_summary.py).
 fields=timestamp,clocks.sm,clocks.mem,clocks.max.sm,power.draw,temperature.gpu,pstate,utilization.gpu
 if command -v nvidia-smi >/dev/null 2>&1; then
     if nvidia-smi --query-gpu=clocks_event_reasons.active --format=csv,noheader >/dev/null 2>&1; then

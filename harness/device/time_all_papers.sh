@@ -16,7 +16,7 @@
 # machine, carried there). GIB_DEVICE_FRAMES (default 5) timed frames a run: with 10, all 22
 # matrices took 643 s on an H200; with 5, harness/device/estimate.py puts them at 423 s of the
 # 480 s budget.
-# harness/device/gpu_summary.py writes results/gpu/<gpu>/SUMMARY.md from what comes back.
+# harness/reporting/gpu_summary.py writes results/gpu/<gpu>/SUMMARY.md from what comes back.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 m=harness/matrices

@@ -13,7 +13,7 @@ results/energy_controls.csv:
   rmse_over_black, rmse_over_black_control, renderer, cores, git_revision, technique_hash,
   technique_hash_control
 
-energy_causes.csv cites these rows; harness/energy_audit.py shows them beside their cells.
+energy_causes.csv cites these rows; harness/reporting/energy_audit.py shows them beside their cells.
 
 Usage: harness/energy_controls/run.py [--cells harness/energy_controls/cells.csv]
        [--out results/energy_controls.csv] [--gibench build/gibench]
@@ -30,7 +30,7 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-import source_hash  # noqa: E402
+from reporting import source_hash  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(HERE))
 COLUMNS = ["technique", "scene", "component", "size", "voxel_res", "params", "control",

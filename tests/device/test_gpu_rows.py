@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Which device-run rows the report may use (harness/gpu_rows.py), on a constructed run: a row timed
+"""Which device-run rows the report may use (harness/reporting/gpu_rows.py), on a constructed run: a row timed
 while nvidia-smi named a reason other than idle is held down; a row whose window saw the clock drop
 is used only when its timed frames agree (IQR within 5% of the median); a row of a technique whose
 sources changed since is stale; the newest valid row of a run wins. Then the GPU-timed copies the
@@ -17,8 +17,8 @@ sys.path.insert(0, os.path.join(ROOT, "harness"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
 sys.path.insert(0, os.path.join(ROOT, "harness", "device"))
 import estimate  # noqa: E402
-import gpu_rows  # noqa: E402
-import pass_work  # noqa: E402
+from reporting import gpu_rows  # noqa: E402
+from reporting import pass_work  # noqa: E402
 from script_checks import check, verdict  # noqa: E402
 
 COLS = ["matrix", "profile", "scene", "camera", "technique", "component", "params", "width", "height",

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A technique's source hash (harness/source_hash.py), on a copy of techniques/: it changes when a
+"""A technique's source hash (harness/reporting/source_hash.py), on a copy of techniques/: it changes when a
 file of its folder, of a folder it uses (ldm_ao uses techniques/ldm) or of techniques/common changes,
 and not when another technique's file or a non-source file changes; the C table the build compiles
 names every technique of the registry with its hash; and a git revision's hash equals the working
@@ -14,7 +14,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
-import source_hash as sh  # noqa: E402
+from reporting import source_hash as sh  # noqa: E402
 from script_checks import check, verdict  # noqa: E402
 
 

@@ -2,7 +2,7 @@
 """A timing-only run (`gibench run --timing-only --warmup auto`), as the device script makes it:
 rows that are timed but not scored (no reference rendered, no image written, the metric columns
 empty, the message saying so), a warm-up that stopped once the frame time settled (its count in the
-row), each row's technique hash equal to the sources' (harness/source_hash.py), and per pass the
+row), each row's technique hash equal to the sources' (harness/reporting/source_hash.py), and per pass the
 pipeline statistics and the kind they imply: the G-buffer is raster work, multires_ir's splitting
 has compute work, and the counts of two runs are equal (they count work, not time)."""
 import csv
@@ -13,7 +13,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
-import source_hash  # noqa: E402
+from reporting import source_hash  # noqa: E402
 from script_checks import args, check, run as run_checked, verdict  # noqa: E402
 
 

@@ -9,7 +9,7 @@ The test runs a one-row matrix naming one parameter of `direct` and checks
 - `params` holds every parameter of the run, the unnamed ones included (no column for them);
 - a matrix naming no parameter has the base columns alone, whatever its techniques' parameters;
 - a rerun resumes: nothing moved aside, nothing written again;
-- the image name harness/schema.py derives equals the one `gibench run` wrote;
+- the image name harness/reporting/schema.py derives equals the one `gibench run` wrote;
 - naming a further parameter in the matrix file is what restarts its table (moved aside).
 """
 import json
@@ -60,7 +60,7 @@ def main():
     schema_path = os.path.join(a.work, "schema.json")
     subprocess.run([a.gibench, "schema", "--out", schema_path], check=True)
     os.environ["GIBENCH_SCHEMA"] = schema_path
-    import schema
+    from reporting import schema
     with open(schema_path) as f:
         base = [c["name"] for c in json.load(f)["runs"]["columns"]]
 
@@ -79,7 +79,7 @@ def main():
     check(rows and schema.param(rows[0], "pcf") == p.get("pcf") and schema.param(rows[0], "shadow_res") == 256,
           "schema.param reads a wide column and, without one, params")
     check(rows and schema.image_name(rows[0]) == rows[0]["image"],
-          f"harness/schema.py names the row's images as gibench run did ({rows[0]['image'] if rows else ''})")
+          f"harness/reporting/schema.py names the row's images as gibench run did ({rows[0]['image'] if rows else ''})")
 
     none = write_matrix(a.work, "none", "")
     r = run(a.gibench, none, out, cache, images=False)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The papers' machine-independent claims on constructed result tables (no GL): harness/ldm_claims.py
+"""The papers' machine-independent claims on constructed result tables (no GL): harness/reporting/ldm_claims.py
 (the LDM paper's Figs. 8-10), thesis_tables.py's list pool and claims.py's kinds and planned memory.
 
 - Fig. 8: LDM's RMSE interval wholly below HBAO's at dmax >= 1280 is reproduced; overlapping
@@ -19,10 +19,10 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "harness"))
-import claims  # noqa: E402
-import ldm_claims  # noqa: E402
-import schema  # noqa: E402
-import thesis_tables  # noqa: E402
+from reporting import claims  # noqa: E402
+from reporting import ldm_claims  # noqa: E402
+from reporting import schema  # noqa: E402
+from reporting import thesis_tables  # noqa: E402
 
 failures = []
 PAPER = [

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""harness/uncertainty.py on constructed rows: ranks with ties (overlapping intervals share a rank),
+"""harness/reporting/uncertainty.py on constructed rows: ranks with ties (overlapping intervals share a rank),
 time ties at the machine's resolution, the black image's ratio, the interval read from a row (and
 the plain RMSE for a table without one)."""
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
-from uncertainty import compare_times, error_interval, over_black, ranks, worse_than_black  # noqa: E402
+from reporting.uncertainty import compare_times, error_interval, over_black, ranks, worse_than_black  # noqa: E402
 
 failures = 0
 

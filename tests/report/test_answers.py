@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""harness/answers.py on constructed rows with known answers: the Pareto set over error and time,
+"""harness/reporting/answers.py on constructed rows with known answers: the Pareto set over error and time,
 ties at the machine's time resolution and where error intervals overlap, rows worse than a black
 image set apart, memory ties only on equal bytes, and groups split by renderer and image size; the
 front's technique segments, the headline group per component and scene, each technique's row at a
@@ -9,9 +9,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
-import answers  # noqa: E402
-import claims  # noqa: E402
-import report  # noqa: E402
+from reporting import answers  # noqa: E402
+from reporting import claims  # noqa: E402
+from reporting import report  # noqa: E402
 
 failures = []
 

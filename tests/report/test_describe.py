@@ -20,13 +20,13 @@ fresh = os.path.join(work, "schema.json")
 subprocess.run([gibench, "describe", "--out", fresh], check=True)
 os.environ["GIBENCH_SCHEMA"] = fresh
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
-import answers  # noqa: E402
-import cone_study  # noqa: E402
-import lrsm_tables  # noqa: E402
-import report  # noqa: E402
-import schema  # noqa: E402
-import source_hash  # noqa: E402
-import thesis_tables  # noqa: E402
+from reporting import answers  # noqa: E402
+from reporting import cone_study  # noqa: E402
+from reporting import lrsm_tables  # noqa: E402
+from reporting import report  # noqa: E402
+from reporting import schema  # noqa: E402
+from reporting import source_hash  # noqa: E402
+from reporting import thesis_tables  # noqa: E402
 
 with open(fresh) as f:
     exported = json.load(f)

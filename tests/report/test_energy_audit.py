@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""harness/energy_audit.py on constructed tables with known cells: a matrix's paper-profile rows are
+"""harness/reporting/energy_audit.py on constructed tables with known cells: a matrix's paper-profile rows are
 read where it has any (its quick rows then left out), the quick rows where it has none (and the cell
 says so); the least and most mean ratio and RMSE over black over a cell's rows; a cell outside
 0.85-1.15 flagged, beside its cause where harness/energy_causes.csv has one and counted unexplained
@@ -11,7 +11,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "harness"))
 sys.path.insert(0, os.path.join(HERE, "..", "common"))
-import energy_audit  # noqa: E402
+from reporting import energy_audit  # noqa: E402
 from script_checks import check, verdict  # noqa: E402
 
 

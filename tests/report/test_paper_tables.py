@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""harness/lrsm_tables.py's Table 2 on constructed runner tables (no GL): a dense VCT run that ran
+"""harness/reporting/lrsm_tables.py's Table 2 on constructed runner tables (no GL): a dense VCT run that ran
 out of memory is measured by what it planned, from its mem_planned_by_structure column
 ("structure=bytes;..."); a table written before that column gives its plan in the message only
 ("plans N bytes (radiance a, normal b, ...)"), which is read then. Both give the same row, and the
@@ -13,8 +13,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "harness"))
-import lrsm_tables  # noqa: E402
-import schema  # noqa: E402
+from reporting import lrsm_tables  # noqa: E402
+from reporting import schema  # noqa: E402
 
 failures = []
 PLAN = {"radiance": 1073741824, "normal": 1073741824, "aniso": 920350128, "voxels": 153391897}

@@ -7,7 +7,7 @@ Chromium and checks
   read back with --dump-dom; --virtual-time-budget lets the loads finish first);
 - every row of the tiny matrix shows its reference, its image and its error map;
 - the answer table comes first and has one row per component and scene that two techniques estimate
-  in the CSVs (counted here from the CSVs, not by harness/answers.py), in the HTML and in REPORT.md;
+  in the CSVs (counted here from the CSVs, not by harness/reporting/answers.py), in the HTML and in REPORT.md;
 - the gallery: every cell is an image that loaded or, where its file is absent, the labelled
   placeholder (one image's PNG and shipped copy removed must turn into a placeholder, not a broken
   image); every cell links its shipped WebP copy under gallery/, and with images/ moved away (as on
@@ -41,7 +41,7 @@ import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 from devtools_pipe import element_text  # noqa: E402
-from report_screenshot import find_chromium  # noqa: E402
+from reporting.report_screenshot import find_chromium  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -153,9 +153,14 @@ def gallery_cells(src):
     return out
 
 
+def reporting(module, *args, **kw):
+    """`python3 -m reporting.<module> ARGS` from the repository's harness/, as the Makefile runs it."""
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "harness"))
+    subprocess.run([sys.executable, "-m", "reporting." + module] + list(args), check=True, env=env, **kw)
+
+
 def regenerate(results):
-    subprocess.run([sys.executable, os.path.join(ROOT, "harness", "report.py"), results], check=True,
-                   stdout=subprocess.DEVNULL)
+    reporting("report", results, stdout=subprocess.DEVNULL)
 
 
 def source_png(results, shipped):
@@ -341,11 +346,9 @@ def main():
     for matrix in ("report_tiny.matrix", "report_tiny_sequence.matrix"):
         subprocess.run([a.gibench, "run", os.path.join(HERE, matrix), "--out", results,
                         "--cache", os.path.join(work, "cache")], check=True)
-    py = sys.executable
-    subprocess.run([py, os.path.join(ROOT, "harness", "plot.py"), results, "--out",
-                    os.path.join(results, "plots")], check=True)
-    subprocess.run([py, os.path.join(ROOT, "harness", "claims.py"), results], check=True)
-    subprocess.run([py, os.path.join(ROOT, "harness", "report.py"), results], check=True)
+    reporting("plot", results, "--out", os.path.join(results, "plots"))
+    reporting("claims", results)
+    reporting("report", results)
     page = os.path.join(results, "report", "index.html")
     check(os.path.exists(page) and os.path.exists(os.path.join(results, "REPORT.md")),
           "report.py wrote report/index.html and REPORT.md")

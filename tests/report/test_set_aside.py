@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""harness/set_aside.py, which `make reproduce` runs before a profile's fresh run: the rows of that
+"""harness/reporting/set_aside.py, which `make reproduce` runs before a profile's fresh run: the rows of that
 profile move to RESULTS/previous/ (runs and passes tables alike), every other profile's rows stay
 where they are, byte for byte (a quoted field stays quoted), and a table without the profile's rows
 is left untouched. No GL.
@@ -26,9 +26,10 @@ other = "matrix,profile,scene\nn,paper,ring\n"
 for name, text in (("m.csv", runs), ("m_passes.csv", passes), ("n.csv", other)):
     with open(os.path.join(work, name), "w") as f:
         f.write(text)
-p = subprocess.run([sys.executable, os.path.join(HERE, "..", "..", "harness", "set_aside.py"), work,
+p = subprocess.run([sys.executable, "-m", "reporting.set_aside", work,
                     "quick", "harness/matrices/m.matrix", "harness/matrices/n.matrix"],
-                   capture_output=True, text=True)
+                   capture_output=True, text=True,
+                   env=dict(os.environ, PYTHONPATH=os.path.join(HERE, "..", "..", "harness")))
 check(p.returncode == 0 and "3 rows of profile quick" in p.stdout, f"ran and counted 3 rows ({p.stdout.strip()})")
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""harness/temporal_tables.py on constructed rows with known answers (no GL):
+"""harness/reporting/temporal_tables.py on constructed rows with known answers (no GL):
 - flicker: a steady error (temporal error 0) scores 0; an error drawn anew each frame, temporal
   error sqrt(2) x the frame error, scores 1; over_frozen is the temporal error over the frozen scale;
 - steady: yes within both thresholds, no past either, empty where the references' noise hides the
@@ -20,8 +20,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "harness"))
-import temporal_tables as tt  # noqa: E402
-from schema import columns  # noqa: E402
+from reporting import temporal_tables as tt  # noqa: E402
+from reporting.schema import columns  # noqa: E402
 
 FAILS = []
 

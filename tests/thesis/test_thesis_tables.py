@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""harness/thesis_tables.py on synthetic runner CSVs (the columns of results/<matrix>.csv and
+"""harness/reporting/thesis_tables.py on synthetic runner CSVs (the columns of results/<matrix>.csv and
 <matrix>_passes.csv): the thesis rows get our pass times and errors, matched by photon count (the
 runs' `counters`; a run 29% off the thesis' count matches no row: `count_mismatch`), absent
 matrices say `missing`,
@@ -17,7 +17,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
-import thesis_tables  # noqa: E402
+from reporting import thesis_tables  # noqa: E402
 
 HEAD = ("matrix,profile,scene,camera,technique,component,params,width,height,time,warmup,frames,dt,"
         "gpu_ms_median,gpu_ms_min,gpu_ms_max,cpu_ms,mem_bytes,mem_by_structure,scene_mem_bytes,"

@@ -2,7 +2,7 @@
 """The timing method's own benchmark: how far apart two runs of the same matrices land on one machine,
 and how far a longer warm-up moves a median. Not a test: it measures, it asserts nothing.
 
-usage: bench_timing.py GIBENCH RESULTS_DIR [--matrices A,B,...] [--work DIR] [--long-warmup N]
+usage: python3 -m reporting.bench_timing GIBENCH RESULTS_DIR [--matrices A,B,...] [--work DIR] [--long-warmup N]
 
 Runs the matrices three times with the quick profile into WORK/{a,b,long} (no images, no history,
 references from RESULTS_DIR/cache): a and b as the profile says, `long` with --warmup N (default
@@ -24,8 +24,7 @@ import os
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import read_csv, write_csv  # noqa: E402
+from reporting.schema import ROOT, read_csv, write_csv  # noqa: E402
 
 DEFAULT_MATRICES = ["thesis_t41_ring", "direct_shadows", "ldm_fig11", "lrsm_stages"]
 MIN_MS = 0.5
@@ -117,7 +116,7 @@ def main():
     ap.add_argument("--work", default=None)
     ap.add_argument("--long-warmup", type=int, default=10)
     args = ap.parse_args()
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = ROOT
     names = [m for m in args.matrices.split(",") if m]
     paths = [os.path.join(root, "harness", "matrices", m + ".matrix") for m in names]
     work = args.work or os.path.join(args.results, "bench_timing_work")

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Summarises a device run (harness/device/time_all_papers.sh) beside the papers' own numbers.
 
-    python3 harness/device/gpu_summary.py results/gpu/NAME [--paper-values DIR] > results/gpu/NAME/SUMMARY.md
+    PYTHONPATH=harness python3 -m reporting.gpu_summary results/gpu/NAME [--paper-values DIR] > results/gpu/NAME/SUMMARY.md
 
 Reads the folder's gpu.txt (the machine), clocks.csv and gpu_samples.csv (the GPU's state per matrix
 and every 200 ms), and its runs and passes tables, and writes Markdown: the machine and its raster
-limit; which rows the report may use (harness/gpu_rows.py: current, not held down, steady); the clocks
+limit; which rows the report may use (harness/reporting/gpu_rows.py: current, not held down, steady); the clocks
 per matrix; the LRSM paper's Tables 3 and 2, the LDM paper's Figs. 8-10 and the thesis' Tables 4.1-4.5
 with this GPU's times beside the papers'; what each pass kind costs a unit of work; the cross-paper
 indirect light. Every time is the median of the warm frames with its interquartile range; the cold
@@ -16,11 +16,10 @@ import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, ".."))
-import gpu_rows  # noqa: E402
-import ldm_tables  # noqa: E402
-import lrsm_tables  # noqa: E402
-import thesis_tables  # noqa: E402
+from reporting import gpu_rows  # noqa: E402
+from reporting import ldm_tables  # noqa: E402
+from reporting import lrsm_tables  # noqa: E402
+from reporting import thesis_tables  # noqa: E402
 
 PAPER_VALUES = os.path.join(HERE, "..", "..", "..", "shared", "paper-values")
 # Where a card runs vertex and fragment work on a part of its chip only: what its times of raster
@@ -95,7 +94,7 @@ def validity(by):
             f"{count(lambda r: r['status'] == 'ok')} ok, "
             f"{count(lambda r: r['status'] == 'out_of_memory')} out of memory (plans over the "
             "technique's memory budget, by design).",
-            f"- Usable by the report (harness/gpu_rows.py): {count(lambda r: r['_valid'])}. "
+            f"- Usable by the report (harness/reporting/gpu_rows.py): {count(lambda r: r['_valid'])}. "
             f"Stale (technique changed since): {count(lambda r: not r['_current'])}. Held down "
             f"(a throttle reason other than idle): {count(lambda r: r['_held_down'])}. Clock below 97% "
             f"of its maximum somewhere in the row's window: {count(lambda r: r['_clock_moved'])}, of which "
@@ -263,7 +262,7 @@ def main(argv):
     renderer = next((r["renderer"] for rs in by.values() for r in rs), "")
     limit = raster_limit(renderer)
     print(f"# gibench on {os.path.basename(os.path.normpath(folder))}\n")
-    print("Written by harness/device/gpu_summary.py from this folder's CSVs, gpu.txt, clocks.csv and "
+    print("Written by harness/reporting/gpu_summary.py from this folder's CSVs, gpu.txt, clocks.csv and "
           "gpu_samples.csv. A timing-only run (harness/device/time_all_papers.sh): the papers' "
           "parameters at the papers' image sizes (profile `gpu`), no references, no scores, no images; "
           "the paper profile's rows in results/ judge quality.\n")

@@ -22,11 +22,9 @@ instant.
 import argparse
 import os
 import re
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import schema  # noqa: E402
-from schema import fnum, params, read_csv, run_key, runs_table  # noqa: E402
+from reporting import schema  # noqa: E402
+from reporting.schema import fnum, params, read_csv, run_key, runs_table  # noqa: E402
 
 MISSING = "missing"
 

@@ -8,7 +8,7 @@ settings best, with our time, memory and error, and the renderer it ran on. One 
   lrsm_table2.csv, lrsm_table3.csv, lrsm_fig7.csv and lrsm_dynamic.csv, with a row per claim;
 - thesis_tables.py: the thesis' (Le 2014) Tables 4.1-4.5, RESULTS_DIR/thesis_tables.csv.
 
-usage: paper_tables.py RESULTS_DIR [--paper-values DIR]
+usage: python3 -m reporting.paper_tables RESULTS_DIR [--paper-values DIR]
 
 "Best match" is the run with the paper's settings when the profile ran them (profile `paper`), else
 the run closest to them: the `our_settings` column says which, so a reader never takes a
@@ -19,12 +19,11 @@ import os
 import shutil
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ldm_tables import ldm_table  # noqa: E402
-from lrsm_tables import lrsm_tables  # noqa: E402
-from thesis_tables import thesis_table  # noqa: E402
+from reporting.ldm_tables import ldm_table  # noqa: E402
+from reporting.lrsm_tables import lrsm_tables  # noqa: E402
+from reporting.thesis_tables import thesis_table  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from reporting.schema import ROOT  # noqa: E402
 
 
 def main():

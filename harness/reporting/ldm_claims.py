@@ -21,14 +21,11 @@ The rules (the choices this file makes, stated once):
   complexity of the scene as modelled and framed, which differs between their Sponza and ours
   (and our hairball is a procedural stand-in).
 """
-import os
 import re
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import params, passes_of, run_key, runs, runs_table  # noqa: E402
-from uncertainty import compare_times, error_interval, fnum, overlap, time_resolution  # noqa: E402
-from uncertainty import MEMORY_TOLERANCE as MEMORY_TOL  # noqa: E402
+from reporting.schema import params, passes_of, run_key, runs, runs_table  # noqa: E402
+from reporting.uncertainty import compare_times, error_interval, fnum, overlap, time_resolution  # noqa: E402
+from reporting.uncertainty import MEMORY_TOLERANCE as MEMORY_TOL  # noqa: E402
 
 LARGE_DMAX = 1280.0  # the figure's dmax (Sponza is in cm: "1280 m" is 1280 units)
 MI = "machine_independent"

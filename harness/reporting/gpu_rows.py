@@ -16,12 +16,10 @@ row of each run and component."""
 import csv
 import glob
 import os
-import sys
 from datetime import datetime, timezone
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import source_hash  # noqa: E402
-from schema import read_csv  # noqa: E402
+from reporting import source_hash  # noqa: E402
+from reporting.schema import read_csv  # noqa: E402
 
 IDLE_REASONS = {0x0, 0x1}  # none; GPU idle (nvidia-smi clocks_event_reasons)
 CLOCK_FLOOR = 0.97

@@ -20,14 +20,11 @@ should be dark) ranks nothing: any error there is light that should not be, whic
 judge, so it is not a question of this table.
 """
 import math
-import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import claims  # noqa: E402
-import schema  # noqa: E402
-from schema import param  # noqa: E402
-from uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
+from reporting import claims  # noqa: E402
+from reporting import schema  # noqa: E402
+from reporting.schema import param  # noqa: E402
+from reporting.uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
 
 GROUP = ("component", "scene", "camera", "width", "height", "renderer")
 # The technique parameters that change a component's reference image, with the reference's own
@@ -260,9 +257,9 @@ def at_common_cost(rows):
     return sorted((v[1] for v in best.values()), key=lambda r: fnum(r["gpu_ms_median"]))
 
 
-# ---- the papers' claims (claims.csv, harness/claims.py) --------------------------------------------
+# ---- the papers' claims (claims.csv, harness/reporting/claims.py) --------------------------------------------
 
-from claims import (ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED,  # noqa: E402,F401
+from reporting.claims import (ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED,  # noqa: E402,F401
                     REPRODUCED, TIME_ORDER)
 
 

@@ -2,9 +2,9 @@
 """The reproduction report, generated from the result CSVs only: RESULTS_DIR/REPORT.md and
 RESULTS_DIR/report/index.html.
 
-usage: report.py RESULTS_DIR
+usage: python3 -m reporting.report RESULTS_DIR
 
-- per paper, every claim of claims.csv (harness/claims.py): the paper's number, ours, the machine,
+- per paper, every claim of claims.csv (harness/reporting/claims.py): the paper's number, ours, the machine,
   the verdict and its reason;
 - per matrix (RESULTS_DIR/<matrix>.csv), its plots (RESULTS_DIR/plots/<matrix>_*.png: speed against
   error first) and per row the images side by side (reference, technique, false-colour error map,
@@ -23,20 +23,19 @@ import os
 import shutil
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from claims import COLUMNS as CLAIM_COLUMNS  # noqa: E402
-import schema  # noqa: E402
-from schema import fmt, image_name, matrices, read_csv  # noqa: E402
-from uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
+from reporting.claims import COLUMNS as CLAIM_COLUMNS  # noqa: E402
+from reporting import schema  # noqa: E402
+from reporting.schema import fmt, image_name, matrices, read_csv  # noqa: E402
+from reporting.uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
-import answers  # noqa: E402
-import shipped_images  # noqa: E402
-import gpu_rows  # noqa: E402
-from device.gpu_summary import RASTER_LIMITS  # noqa: E402
-import cone_report  # noqa: E402
-import energy_audit  # noqa: E402
-import pass_work  # noqa: E402
-import temporal_tables  # noqa: E402
+from reporting import answers  # noqa: E402
+from reporting import shipped_images  # noqa: E402
+from reporting import gpu_rows  # noqa: E402
+from reporting.gpu_summary import RASTER_LIMITS  # noqa: E402
+from reporting import cone_report  # noqa: E402
+from reporting import energy_audit  # noqa: E402
+from reporting import pass_work  # noqa: E402
+from reporting import temporal_tables  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 VERDICT_CLASS = {"reproduced": "yes", "not reproduced": "no", "not measurable here": "na"}
@@ -684,7 +683,7 @@ def sequences_intro():
             "to frame), each scored against the reference at its instant; the temporal error is the "
             "RMSE of its frame-to-frame changes against the reference's, the reference's noise taken "
             "out. Beside it the frozen scale (what a sequence that never changes scores) and two ratios "
-            "(harness/temporal_tables.py): flicker = temporal error / (sqrt 2 x frame error), 0 for an "
+            "(harness/reporting/temporal_tables.py): flicker = temporal error / (sqrt 2 x frame error), 0 for an "
             f"error steady over time, 1 for one drawn anew every frame; steady means flicker <= "
             f"{temporal_tables.FLICKER_MAX} and under the frozen scale. Each animation shows reference | "
             "technique | error map (one scale for the sequence), 4 frames a second.")
@@ -930,7 +929,7 @@ GPU_RUNS_TEXT = ("Matrices run on a GPU (harness/device/run_on_nvidia.sh), each 
 
 
 def gpu_runs(results):
-    """The runs on a GPU: results/gpu/<gpu>/SUMMARY.md (harness/device/gpu_summary.py), by name."""
+    """The runs on a GPU: results/gpu/<gpu>/SUMMARY.md (harness/reporting/gpu_summary.py), by name."""
     paths = sorted(glob.glob(os.path.join(results, "gpu", "*", "SUMMARY.md")))
     return [(os.path.basename(os.path.dirname(p)), p) for p in paths]
 
@@ -989,9 +988,9 @@ def reading_guide(results, mats):
     if res is not None:
         out.append(f"This machine resolves time differences of {100 * res:.1f}% (the 95th percentile of "
                    "the run-to-run difference of the same runs, timing_resolution.csv, "
-                   "harness/bench_timing.py): two medians closer than that are a tie (rank 'n=').")
+                   "harness/reporting/bench_timing.py): two medians closer than that are a tie (rank 'n=').")
     else:
-        out.append("The timing benchmark (harness/bench_timing.py) has not been run into this folder: no "
+        out.append("The timing benchmark (harness/reporting/bench_timing.py) has not been run into this folder: no "
                    "time difference is called a tie, and small ones may be noise.")
     out.append("Every error stands beside what an all-black image scores against the same reference "
                "(RMSE / black image's): above 1, the technique is further from the reference than "
@@ -1010,11 +1009,11 @@ def reading_guide(results, mats):
 
 def main():
     if len(sys.argv) != 2:
-        sys.exit("usage: report.py RESULTS_DIR")
+        sys.exit("usage: python3 -m reporting.report RESULTS_DIR")
     results = sys.argv[1]
     claims_path = os.path.join(results, "claims.csv")
     if not os.path.exists(claims_path):
-        sys.exit(f"report.py: {claims_path} not found: run harness/claims.py {results} first (make plots)")
+        sys.exit(f"report.py: {claims_path} not found: run harness/reporting/claims.py {results} first (make plots)")
     claims = read_csv(claims_path)
     missing = [c for c in CLAIM_COLUMNS if claims and c not in claims[0]]
     if missing:

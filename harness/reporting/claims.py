@@ -4,7 +4,7 @@ RESULTS_DIR/claims.csv: a row per claim with the paper's value, ours, the machin
 kind and a verdict `reproduced` / `not reproduced` / `not measurable here`, with the reason. A
 claim tested at several settings is one row (counted_once), its settings the evidence beneath it.
 
-usage: claims.py RESULTS_DIR
+usage: python3 -m reporting.claims RESULTS_DIR
 
 Reads only the CSVs paper_tables.py writes (thesis_tables.csv, lrsm_table2.csv, lrsm_table3.csv,
 lrsm_fig7.csv, lrsm_dynamic.csv, ldm_figures_vs_ours.csv, ldm_claims.csv); a missing file gives no
@@ -32,11 +32,11 @@ import re
 import sqlite3
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import read_csv, status, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
-from uncertainty import MEMORY_TOLERANCE  # noqa: E402
-import temporal_tables  # noqa: E402  (the papers' temporal claims, from the sequence tables)
-import gpu_claims  # noqa: E402  (the time claims a valid device run answers)
+from reporting.schema import read_csv, status, write_csv  # noqa: E402  (a CSV's rows, [] when absent)
+from reporting.uncertainty import MEMORY_TOLERANCE  # noqa: E402
+from reporting import temporal_tables  # noqa: E402  (the papers' temporal claims, from the sequence tables)
+from reporting import gpu_claims  # noqa: E402  (the time claims a valid device run answers)
+from reporting import lrsm_tables  # noqa: E402  (Table 3's stage-order claims)
 
 COLUMNS = ["paper", "source", "claim", "kind", "paper_value", "our_value", "renderer", "cores",
            "verdict", "reason"]
@@ -233,10 +233,9 @@ ORDER = {REPRODUCED: 0, NOT_REPRODUCED: 1, NOT_MEASURABLE: 2}
 
 # The order-of-cost claims: judged on a GPU where a valid device run answers them, else on
 # llvmpipe's time, which the reason then says.
-ORDER_CLAIMS = ("Table 3: LRSM diffuse_cones > specular_cone", "Table 3: VCT specular_cone > diffuse_cones",
-                "Table 3: VCT shadow_cone > LRSM shadow_cone (anisotropic vs isotropic voxels)",
-                "Figure 10: Sec. 5.2: the LDM (photon) tracing relatively cheap next to splatting",
-                gpu_claims.GATHER_CLAIM)
+ORDER_CLAIMS = tuple("Table 3: " + text for text, _, _ in lrsm_tables.TABLE3_CLAIMS) + (
+    "Figure 10: Sec. 5.2: the LDM (photon) tracing relatively cheap next to splatting",
+    gpu_claims.GATHER_CLAIM)
 
 
 # The claims whose verdict rests on an order or a ratio of times (with an error beside, for Fig. 9):
@@ -360,7 +359,7 @@ def write(results):
 
 def main():
     if len(sys.argv) != 2:
-        sys.exit("usage: claims.py RESULTS_DIR")
+        sys.exit("usage: python3 -m reporting.claims RESULTS_DIR")
     path, rows = write(sys.argv[1])
     counts = {}
     for r in rows:

@@ -13,8 +13,8 @@ own passes tables."""
 import html
 import os
 
-import gpu_rows
-from schema import fnum, param, preset, read_csv
+from reporting import gpu_rows
+from reporting.schema import fnum, param, preset, read_csv
 
 # (title, matrix, {technique: the parameters of the paper's row}); lrsm and vct at their paper
 # reading (preset paper) and Table 3's voxel grids.

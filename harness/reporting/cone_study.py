@@ -19,7 +19,7 @@ image scores (gibench compare), each over the reference's mean; worse_than_black
 row's RMSE exceeds that; params the --param settings of the technique's renders ("" for its
 defaults). --append adds the rows to --out's (a control: the same study with another parameter).
 
-Usage: harness/cone_study.py [--gibench build/gibench] [--out results/cone_study.csv]
+Usage: python3 -m reporting.cone_study [--gibench build/gibench] [--out results/cone_study.csv]
        [--cache results/cache] [--size 128x128] [--spp 256] [--full-spp 1024]
        [--scenes cornell,cornell_spot45] [--voxel-res 64,128,256] [--techniques lrsm,vct]
        [--param K=V]... [--append]
@@ -33,9 +33,8 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import schema  # noqa: E402
-import source_hash  # noqa: E402
+from reporting import schema  # noqa: E402
+from reporting import source_hash  # noqa: E402
 
 WEIGHTS = schema.cone_weights()  # harness/base/cone_set.h, as gibench exports it
 TECHNIQUES = ["lrsm", "vct"]

@@ -6,7 +6,7 @@ profile's rows where they are: a quick smoke reproduction never discards the com
 papers'-settings rows. A table whose header the run would change is restarted by gibench itself,
 which moves the whole table aside.
 
-usage: set_aside.py RESULTS PROFILE MATRIX_FILE...
+usage: python3 -m reporting.set_aside RESULTS PROFILE MATRIX_FILE...
 """
 import csv
 import os

@@ -6,7 +6,7 @@
   reference's noise taken out (bar: its 95% interval; overlapping bars are a tie); the line joins
   the Pareto front (answers.py's, as the report's tables: no run beats it on both, ties called
   within the error intervals and the time resolution, runs worse than black left out); a dotted line marks what an all-black image
-  scores, and a red ring every run worse than it (harness/uncertainty.py);
+  scores, and a red ring every run worse than it (harness/reporting/uncertainty.py);
 - sweeps: for every parameter a matrix varies over three or more values, GPU time and relative RMSE
   against that parameter, one line per technique and setting of the other parameters (scaling curves:
   time against LDM count, resolution, dmax...). An unbounded value (inf) is drawn at the right end;
@@ -23,7 +23,7 @@ Error is the relative RMSE, or the RMSE where the reference's mean is 0 (a view 
 thin_wall_leak's); rows without a finite error or time are left out of the plots (not the CSV).
 Writes PNG and SVG. Uses only the standard library and gnuplot (Debian's gnuplot-nox).
 
-usage: plot.py RESULTS_DIR [--out PLOTS_DIR]
+usage: python3 -m reporting.plot RESULTS_DIR [--out PLOTS_DIR]
 """
 import argparse
 import os
@@ -31,10 +31,9 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import fnum as finite_num, matrices, params, read_csv  # noqa: E402
-from uncertainty import error_interval, time_interval, time_resolution, worse_than_black  # noqa: E402
-import answers  # noqa: E402
+from reporting.schema import fnum as finite_num, matrices, params, read_csv  # noqa: E402
+from reporting.uncertainty import error_interval, time_interval, time_resolution, worse_than_black  # noqa: E402
+from reporting import answers  # noqa: E402
 
 
 def gp_quote(s):

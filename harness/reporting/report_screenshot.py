@@ -3,7 +3,7 @@
 Chromium from the page `make report` just wrote, so the picture never shows older numbers than the
 committed CSVs. Without Chromium it says so and leaves the old picture.
 
-usage: report_screenshot.py PAGE OUT_PNG"""
+usage: python3 -m reporting.report_screenshot PAGE OUT_PNG"""
 import os
 import shutil
 import subprocess
@@ -18,14 +18,14 @@ def find_chromium():
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit("usage: report_screenshot.py PAGE OUT_PNG")
+        sys.exit("usage: python3 -m reporting.report_screenshot PAGE OUT_PNG")
     page, out = (os.path.abspath(p) for p in sys.argv[1:])
     exe = find_chromium()
     if not exe:
         print(f"report_screenshot: no Chromium here: {out} not refreshed", file=sys.stderr)
         return
     if not os.path.exists(page):
-        sys.exit(f"report_screenshot: {page} not found (run harness/report.py first)")
+        sys.exit(f"report_screenshot: {page} not found (run harness/reporting/report.py first)")
     tmp = out + ".tmp.png"
     subprocess.run([exe, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
                     "--allow-file-access-from-files", "--virtual-time-budget=10000",

@@ -5,14 +5,12 @@ lrsm_dynamic.csv (SPONZA DRAGON at two instants), each with a row per claim sayi
 reproduced here. The paper's figures come from paper-values/lrsm_table2.csv and lrsm_table3.csv."""
 import os
 import re
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import (fmt, fnum, papers_rows, params, pass_name, passes_of, preset, read_csv,  # noqa: E402
+from reporting.schema import (fmt, fnum, papers_rows, params, pass_name, passes_of, preset, read_csv,  # noqa: E402
                     run_key, runs, runs_table, status, write_csv)
-from uncertainty import compare_times, time_resolution  # noqa: E402
+from reporting.uncertainty import compare_times, time_resolution  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from reporting.schema import ROOT  # noqa: E402
 
 
 def paper_values(paper_dir, name):

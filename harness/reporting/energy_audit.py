@@ -14,7 +14,7 @@ import csv
 import html
 import os
 
-from schema import fnum, matrices, preset, read_csv
+from reporting.schema import fnum, matrices, preset, read_csv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BAND = (0.85, 1.15)

@@ -2,7 +2,7 @@
 """The sequences' tables, the papers' temporal claims and the sequences' animations
 (ARCHITECTURE.md, "Metrics": "Temporal error").
 
-usage: temporal_tables.py RESULTS_DIR
+usage: python3 -m reporting.temporal_tables RESULTS_DIR
 
 Reads every runs table with the sequence columns (a matrix with `sequence` above 1: the
 harness/matrices/temporal_*.matrix) and writes RESULTS_DIR/temporal_sequences.csv, a row per run and
@@ -41,8 +41,7 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import fnum, fmt, matrices, param, write_csv  # noqa: E402
+from reporting.schema import fnum, fmt, matrices, param, write_csv  # noqa: E402
 
 LRSM = "Sugihara et al. 2014: Layered Reflective Shadow Maps (LRSM)"
 THESIS = "Le 2014 (thesis): interactive caustics and multi-resolution indirect illumination"
@@ -131,7 +130,7 @@ def lrsm_claim(results):
     text = ("SPONZA DRAGON is rendered smoothly without any temporal artifacts, every structure "
             "rebuilt every frame (Sec. 6)")
     thresholds = (f"stated thresholds: flicker <= {FLICKER_MAX} and temporal error under the frozen "
-                  "scale for every component (harness/temporal_tables.py)")
+                  "scale for every component (harness/reporting/temporal_tables.py)")
     lrsm = [r for r in rows if r["technique"] == "lrsm" and param(r, "rebuild", 1.0) == 1.0]
     if not lrsm or any(r["status"] != "ok" for r in lrsm):
         why = "no sequence of lrsm on sponza_dragon ran" if not lrsm else "a run is not ok"
@@ -194,7 +193,7 @@ def thesis_claim(results):
                       "", NOT_MEASURABLE, "no water_room sequence with both settings ran")]
     ok = all(holds)
     reason = ("temporal_rmse_denoised, mean over seeds; stated threshold: lower with reuse by more "
-              "than the seeds' spread at every photon count (harness/temporal_tables.py)")
+              "than the seeds' spread at every photon count (harness/reporting/temporal_tables.py)")
     r0 = rows[0]
     reason += (f"; {r0['sequence']} frames {r0['dt']} s apart ending at t = {r0['time']} s, "
                f"{r0['width']}x{r0['height']}")
@@ -283,7 +282,7 @@ def write(results):
 
 def main():
     if len(sys.argv) != 2:
-        sys.exit("usage: temporal_tables.py RESULTS_DIR")
+        sys.exit("usage: python3 -m reporting.temporal_tables RESULTS_DIR")
     path, rows = write(sys.argv[1])
     print(f"{path}: {len(rows)} sequence rows")
     for name, why in sorted(animations(sys.argv[1]).items()):

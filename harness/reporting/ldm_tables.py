@@ -9,11 +9,9 @@ The paper's machine-independent claims, judged: RESULTS/ldm_claims.csv (ldm_clai
 below), one row per claim, which claims.py gathers.
 """
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from ldm_claims import CLAIM_COLUMNS, ldm_claims, planned_ldm  # noqa: E402
-from schema import papers_rows, params, passes_of, read_csv, run_key, runs_table, write_csv  # noqa: E402
+from reporting.ldm_claims import CLAIM_COLUMNS, ldm_claims, planned_ldm  # noqa: E402
+from reporting.schema import papers_rows, params, passes_of, read_csv, run_key, runs_table, write_csv  # noqa: E402
 
 
 def pass_ms(results, matrix, row, names):

@@ -1,5 +1,5 @@
 """The papers' time claims judged on a GPU: for each claim of claims.csv that a valid device run
-(harness/gpu_rows.py) can answer, what that GPU measured, keyed by the claim's text.
+(harness/reporting/gpu_rows.py) can answer, what that GPU measured, keyed by the claim's text.
 
 - Orders of costs (LRSM Table 3's stages, the thesis' doubling from 128^2 to 256^2 rays and its
   multi-resolution speed-up, the LDM paper's tracing against splatting) get a verdict from the GPU's
@@ -12,19 +12,16 @@ claims.py lays these over its rows: a claim the GPU judged takes the GPU's verdi
 verdict moves into the reason; an order claim no GPU row answers says it stands on llvmpipe's time
 alone."""
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import gpu_rows  # noqa: E402
-import ldm_tables  # noqa: E402
-import lrsm_tables  # noqa: E402
-import thesis_tables  # noqa: E402
-from device.gpu_summary import RASTER_LIMITS, param  # noqa: E402
-from uncertainty import fnum  # noqa: E402
+from reporting import gpu_rows  # noqa: E402
+from reporting import ldm_tables  # noqa: E402
+from reporting import lrsm_tables  # noqa: E402
+from reporting import thesis_tables  # noqa: E402
+from reporting.gpu_summary import PAPER_VALUES, RASTER_LIMITS, param  # noqa: E402
+from reporting.uncertainty import fnum  # noqa: E402
 
 TIE = 0.05  # two GPU times within 5% of each other tie (their IQRs are under 1% here)
-PAPER_VALUES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared",
-                            "paper-values")
+
 
 
 def run_key(r):

@@ -6,16 +6,14 @@
 - the black image: `black_rmse`, what an all-black image scores against the same reference; a row
   with `rmse_over_black` above 1 is further from the reference than leaving the component out;
 - a time's resolution: the smallest relative difference between two medians this machine resolves,
-  from RESULTS_DIR/timing_resolution.csv (harness/bench_timing.py: the 95th percentile of the
+  from RESULTS_DIR/timing_resolution.csv (harness/reporting/bench_timing.py: the 95th percentile of the
   run-to-run difference of the same runs); two times closer than it are a tie;
 - a memory figure: bytes do not depend on the machine, but a paper's figure may count what ours
   does not, or round: ours agrees with it within MEMORY_TOLERANCE, for every paper alike.
 """
 import os
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from schema import fnum, read_csv  # noqa: E402,F401  (fnum: a finite float or None)
+from reporting.schema import fnum, read_csv  # noqa: E402,F401  (fnum: a finite float or None)
 
 MEMORY_TOLERANCE = 0.25  # a memory figure agrees within 25% of the paper's
 
