@@ -58,125 +58,30 @@ static const char help[] =
     "primitives, fragment and compute invocations) and says whether it ran raster or compute.\n";
 
 /* Whether run j is this process's to do: every run, or with --shard this shard's share. */
-static int run_mine(const run_ctx *ctx, int j)
+static int run_mine(const gib_run_ctx *ctx, int j)
 {
     return !ctx->shard.count || ctx->owner[j] == ctx->shard.index;
 }
 
-static void run_state(run_ctx *ctx, int j, char state)
+static void run_state(gib_run_ctx *ctx, int j, char state)
 {
     if (ctx->state)
         ctx->state[j] = state;
 }
 
-/* A table could not be written (a full disk): the run stops there. */
-void write_failed(run_ctx *ctx, const gib_error *err)
-{
-    fprintf(stderr, "gibench run: %s: stopping (the rows before it are intact; a rerun resumes)\n",
-            err->msg);
-    ctx->write_failed = 1;
-}
-
-/* The identity part of a row: what makes it this run, and the run's settings and machine. */
-void row_identity(row *r, const run_ctx *ctx, const gib_matrix_run *mr, unsigned comp)
-{
-    memset(r->ptr, 0, sizeof r->ptr);
-    row_set(r, GIB_C_MATRIX, "%s", ctx->m->name);
-    row_set(r, GIB_C_PROFILE, "%s", ctx->m->profile);
-    row_set(r, GIB_C_SCENE, "%s", mr->scene);
-    row_set(r, GIB_C_CAMERA, "%d", ctx->m->camera);
-    row_set(r, GIB_C_TECHNIQUE, "%s", mr->technique->name);
-    row_set(r, GIB_C_COMPONENT, "%s", gib_output_name(comp));
-    row_set(r, GIB_C_PARAMS, "%s", mr->params_key);
-    row_set(r, GIB_C_WIDTH, "%d", mr->width);
-    row_set(r, GIB_C_HEIGHT, "%d", mr->height);
-    row_set(r, GIB_C_TIME, "%.9g", mr->time);
-    row_set(r, GIB_C_DT, "%.9g", ctx->m->dt);
-    /* The warm-up the runner renders: more where a sequence needs more frames (runner.h); a run
-     * that rendered sets the count it took (an auto warm-up's). */
-    const int seq_warmup = ctx->m->sequence - 1 - ctx->m->frames;
-    const int warmup = ctx->m->warmup < 0 ? GIB_WARMUP_FALLBACK : ctx->m->warmup;
-    row_set(r, GIB_C_WARMUP, "%d", warmup > seq_warmup ? warmup : seq_warmup);
-    row_set(r, GIB_C_FRAMES, "%d", ctx->m->frames);
-    row_set(r, GIB_C_BACKEND, "%s", ctx->info.backend);
-    row_set(r, GIB_C_RENDERER, "%s", ctx->info.renderer);
-    row_set(r, GIB_C_GL_VERSION, "%s", ctx->info.version);
-    row_set(r, GIB_C_GIT, "%s", gib_git_revision());
-    row_set(r, GIB_C_TECH_HASH, "%s", gib_technique_source_hash(mr->technique->name));
-    time_t now = time(NULL);
-    strftime(r->v[GIB_C_TIMESTAMP], sizeof r->v[GIB_C_TIMESTAMP], "%Y-%m-%dT%H:%M:%SZ",
-             gmtime(&now));
-    r->ptr[GIB_C_TIMESTAMP] = r->v[GIB_C_TIMESTAMP];
-    /* The parameters the matrix names have columns of their own; all of them are in params. */
-    const gib_technique *t = mr->technique;
-    for (int p = 0; t->params && t->params[p].name; p++)
-        for (int k = GIB_C_COUNT; k < ctx->cols->count; k++)
-            if (strcmp(ctx->cols->names[k], t->params[p].name))
-                continue;
-            else if (!strcmp(t->params[p].name, GIB_PRESET_PARAM))
-                row_set(r, k, "%s", gib_params_preset_name(t, &mr->params));
-            else
-                fmt_num(r, k, mr->params.values[p]);
-}
-
-static int run_done(const run_ctx *ctx, const gib_matrix_run *mr)
+static int run_done(const gib_run_ctx *ctx, const gib_matrix_run *mr)
 {
     for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
         if (!(mr->technique->components & bit))
             continue;
-        row r;
+        gib_row r;
         char key[4096];
-        row_identity(&r, ctx, mr, bit);
-        row_key(&r, key, sizeof key);
+        gib_run_row_identity(&r, ctx, mr, bit);
+        gib_row_key(&r, key, sizeof key);
         if (!gib_csv_has(ctx->csv, key))
             return 0;
     }
     return 1;
-}
-
-/* Stops recording after the first failure, which makes the run's exit status 1. */
-static void history_failed(run_ctx *ctx, const gib_error *err)
-{
-    fprintf(stderr, "gibench run: results history not recorded from here on: %s\n", err->msg);
-    gib_history_close(ctx->hist);
-    ctx->hist = NULL;
-    ctx->hist_failed = 1;
-}
-
-static void record_history(run_ctx *ctx, const row *r)
-{
-    gib_error err;
-    if (ctx->hist && !ctx->hist_run &&
-        gib_history_begin_run(ctx->hist, ctx->machine, gib_git_revision(), ctx->m->name,
-                              ctx->m->profile, &ctx->hist_run, &err) < 0)
-        history_failed(ctx, &err);
-    /* One transaction per row: short, so concurrent runs writing the same history wait for each
-     * other only milliseconds (history.h). */
-    if (ctx->hist && (gib_history_begin(ctx->hist, &err) < 0 ||
-                      gib_history_add_row(ctx->hist, ctx->hist_run, ctx->cols->names, r->ptr,
-                                          ctx->cols->count, &err) < 0 ||
-                      gib_history_commit(ctx->hist, &err) < 0))
-        history_failed(ctx, &err);
-}
-
-void append_row(run_ctx *ctx, row *r)
-{
-    gib_error err;
-    int w = gib_csv_append(ctx->csv, r->ptr, &err);
-    if (w < 0) {
-        write_failed(ctx, &err);
-        return;
-    }
-    if (w == 0) /* written before an interruption: the row is there once (and in
-                 * the history, unless the run was killed between the two writes) */
-        return;
-    record_history(ctx, r);
-    ctx->rows_written++;
-    /* out_of_memory is a result (the plan exceeds the device), not a failure of the run. */
-    if (gib_status_find(r->v[GIB_C_STATUS]) == GIB_STATUS_OUT_OF_MEMORY)
-        ctx->rows_out_of_memory++;
-    else if (gib_status_find(r->v[GIB_C_STATUS]) != GIB_STATUS_OK)
-        ctx->rows_failed++;
 }
 
 static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, size_t len)
@@ -198,7 +103,7 @@ static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, s
 
 /* Marks this process's unfinished runs of scene sname (from run `from` on) with state; they
  * count as done for the progress. */
-static void mark_scene_runs(run_ctx *ctx, int from, const char *sname, char state)
+static void mark_scene_runs(gib_run_ctx *ctx, int from, const char *sname, char state)
 {
     const gib_matrix *m = ctx->m;
     for (int j = from; j < m->run_count; j++)
@@ -210,7 +115,8 @@ static void mark_scene_runs(run_ctx *ctx, int from, const char *sname, char stat
 }
 
 /* Runs this process's unfinished runs of an uploaded scene (from run `from` on). */
-static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const gib_gpu_scene *gpu)
+static void run_scene_runs(gib_run_ctx *ctx, int from, const gib_scene *scene,
+                           const gib_gpu_scene *gpu)
 {
     const gib_matrix *m = ctx->m;
     const char *sname = m->runs[from].scene;
@@ -237,7 +143,7 @@ static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const
         if (!res.ok)
             fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
                     mr->params_key, res.status, res.err.msg);
-        score_run(ctx, scene, gpu, mr, &res);
+        gib_run_score(ctx, scene, gpu, mr, &res);
         gib_run_result_free(&res);
         gib_progress_run_done(&ctx->progress, j);
         gib_progress_report(&ctx->progress);
@@ -245,7 +151,7 @@ static void run_scene_runs(run_ctx *ctx, int from, const gib_scene *scene, const
 }
 
 /* The runs of the scene of run i (i its first): loads and uploads it once for them all. */
-static void run_scene(run_ctx *ctx, int i, int pending)
+static void run_scene(gib_run_ctx *ctx, int i, int pending)
 {
     const char *sname = ctx->m->runs[i].scene;
     gib_scene scene;
@@ -274,7 +180,7 @@ static void run_scene(run_ctx *ctx, int i, int pending)
 }
 
 /* Which runs this process will do (its share, not yet in the table), for the progress. */
-static int start_progress(run_ctx *ctx)
+static int start_progress(gib_run_ctx *ctx)
 {
     const gib_matrix *m = ctx->m;
     char *todo = calloc(m->run_count ? (size_t)m->run_count : 1, 1);
@@ -287,7 +193,7 @@ static int start_progress(run_ctx *ctx)
     return rc;
 }
 
-static void run_matrix(run_ctx *ctx)
+static void run_matrix(gib_run_ctx *ctx)
 {
     const gib_matrix *m = ctx->m;
     if (start_progress(ctx) < 0) {
@@ -322,7 +228,7 @@ static void run_matrix(run_ctx *ctx)
 
 /* DIR/<matrix>.shard (shard.h): this shard's runs, their state and the keys of the rows each
  * writes, written under a temporary name and renamed once the runs are done. */
-static int write_manifest(const run_ctx *ctx, gib_error *err)
+static int write_manifest(const gib_run_ctx *ctx, gib_error *err)
 {
     const gib_matrix *m = ctx->m;
     char path[2048], tmp[2100], hex[17];
@@ -349,10 +255,10 @@ static int write_manifest(const run_ctx *ctx, gib_error *err)
         for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
             if (!(m->runs[j].technique->components & bit))
                 continue;
-            row r;
+            gib_row r;
             char key[4096];
-            row_identity(&r, ctx, &m->runs[j], bit);
-            row_key(&r, key, sizeof key);
+            gib_run_row_identity(&r, ctx, &m->runs[j], bit);
+            gib_row_key(&r, key, sizeof key);
             fprintf(f, "row\t%s\n", key);
         }
     }
@@ -515,7 +421,7 @@ static int open_tables(const char *out, const gib_matrix *m, const gib_table_lay
 }
 
 /* With --shard: which runs are this shard's (ctx->owner, ctx->state). */
-static int assign_shard(run_ctx *ctx, int **owner)
+static int assign_shard(gib_run_ctx *ctx, int **owner)
 {
     const gib_matrix *m = ctx->m;
     *owner = malloc((size_t)m->run_count * sizeof **owner);
@@ -540,7 +446,7 @@ static int assign_shard(run_ctx *ctx, int **owner)
 }
 
 /* One matrix into its tables. Returns 1 when it could not run or write its manifest. */
-static int run_one_matrix(run_ctx *ctx, const gib_matrix *m, const gib_table_layout *l)
+static int run_one_matrix(gib_run_ctx *ctx, const gib_matrix *m, const gib_table_layout *l)
 {
     gib_csv csv = {.lock_fd = -1}, passes = {.lock_fd = -1};
     gib_error err;
@@ -552,7 +458,7 @@ static int run_one_matrix(run_ctx *ctx, const gib_matrix *m, const gib_table_lay
         return 1;
     }
     printf("matrix %s (%d runs): %s\n", m->name, m->run_count, m->description);
-    ctx->hist_run = 0; /* a history run is recorded with the matrix's first new row */
+    ctx->hist_run = 0; /* a history run is recorded with the matrix's first new gib_row */
     ctx->m = m;
     ctx->cols = l;
     ctx->csv = &csv;
@@ -576,7 +482,7 @@ static int run_one_matrix(run_ctx *ctx, const gib_matrix *m, const gib_table_lay
 }
 
 /* The GL context and the results history. Returns 0, or 1 (reported). */
-static int start_run(run_ctx *ctx, const run_opts *o, char *hist_path, size_t len,
+static int start_run(gib_run_ctx *ctx, const run_opts *o, char *hist_path, size_t len,
                      gib_history_machine *machine)
 {
     gib_error err;
@@ -611,7 +517,7 @@ int gib_cmd_run(int argc, char **argv)
     char cache_dir[2048], hist_path[2048];
     snprintf(cache_dir, sizeof cache_dir, "%s",
              o.cache ? o.cache : GIB_PROJECT_ROOT "/results/cache");
-    run_ctx ctx = {.out = o.out, .cache = cache_dir, .images = o.images && !o.timing_only,
+    gib_run_ctx ctx = {.out = o.out, .cache = cache_dir, .images = o.images && !o.timing_only,
                    .timing_only = o.timing_only, .shard = o.shard};
     gib_history_machine machine;
     if (start_run(&ctx, &o, hist_path, sizeof hist_path, &machine)) {

@@ -13,40 +13,9 @@
 #include "harness/imaging/temporal.h"
 #include "refrank.h"
 
-void row_set(row *r, int col, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(r->v[col], sizeof r->v[col], fmt, ap);
-    va_end(ap);
-    r->ptr[col] = r->v[col];
-}
-
-/* A runs row's identity key: its GIB_KEY_ROW columns joined by '|' (as gib_csv keys rows). */
-void row_key(const row *r, char *key, size_t len)
-{
-    int cols[GIB_C_COUNT];
-    int n = gib_schema_key(gib_run_columns, GIB_C_COUNT, GIB_KEY_ROW, cols, GIB_C_COUNT);
-    key[0] = 0;
-    for (int k = 0; k < n; k++) {
-        strncat(key, k ? "|" : "", len - strlen(key) - 1);
-        strncat(key, r->v[cols[k]], len - strlen(key) - 1);
-    }
-}
-
-void fmt_num(row *r, int col, double v)
-{
-    if (isnan(v))
-        row_set(r, col, "nan");
-    else if (isinf(v))
-        row_set(r, col, v > 0 ? "inf" : "-inf");
-    else
-        row_set(r, col, "%.9g", v);
-}
-
 /* The reference request of a row (component GIB_OUT_* bit `bit` of run mr), at the matrix's spp.
  * Returns the reference component, -1 when there is no estimator for it. */
-static int row_request(const run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
+static int row_request(const gib_run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
                        unsigned bit, gib_ref_request *rq)
 {
     int component = gib_component_parse(gib_output_name(bit));
@@ -61,7 +30,7 @@ static int row_request(const run_ctx *ctx, const gib_scene *scene, const gib_mat
 
 /* The reference a row is scored against (refrank.h): the matrix's, or where its noise is over a
  * fifth of the row's error, one with more samples. Returns what gib_reference_get returns. */
-static int reference_to_rank(const run_ctx *ctx, gib_ref_request *rq, const gib_image *img,
+static int reference_to_rank(const gib_run_ctx *ctx, gib_ref_request *rq, const gib_image *img,
                              float exposure, gib_ref_result *ref, gib_error *err)
 {
     int grc = gib_reference_get(rq, ref, err);
@@ -82,62 +51,62 @@ static int reference_to_rank(const run_ctx *ctx, gib_ref_request *rq, const gib_
 
 /* The row's error beside what a black image scores and with the reference's noise taken out
  * (metrics.h, gib_rmse_interval). */
-static void set_error_scale(row *r, const gib_metrics *m, double noise_rmse, long pixels)
+static void set_error_scale(gib_row *r, const gib_metrics *m, double noise_rmse, long pixels)
 {
     gib_rmse_bounds b;
     gib_rmse_interval(m->rmse, noise_rmse, pixels, &b);
-    fmt_num(r, GIB_C_BLACK_RMSE, m->black_rmse);
-    fmt_num(r, GIB_C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
+    gib_row_num(r, GIB_C_BLACK_RMSE, m->black_rmse);
+    gib_row_num(r, GIB_C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
                                                    : m->rmse > 0 ? INFINITY : 0.0);
-    fmt_num(r, GIB_C_RMSE_DENOISED, b.denoised);
-    fmt_num(r, GIB_C_RMSE_LO, b.lo);
-    fmt_num(r, GIB_C_RMSE_HI, b.hi);
+    gib_row_num(r, GIB_C_RMSE_DENOISED, b.denoised);
+    gib_row_num(r, GIB_C_RMSE_LO, b.lo);
+    gib_row_num(r, GIB_C_RMSE_HI, b.hi);
 }
 
 /* What a pass ran, from its counted work: raster (vertices and fragments), compute, both, or none
  * (a copy or clear). Empty where the driver counts nothing. */
-static void pass_work(row *r, const gib_pass_stats *ps)
+static void pass_work(gib_row *r, const gib_pass_stats *ps)
 {
     if (!ps->counted)
         return;
     static const int cols[GIB_WORK_COUNT] = {GIB_P_VERTICES, GIB_P_PRIMITIVES, GIB_P_FRAGMENTS,
                                              GIB_P_COMPUTE};
     for (int k = 0; k < GIB_WORK_COUNT; k++)
-        row_set(r, cols[k], "%llu", ps->work[k]);
+        gib_row_set(r, cols[k], "%llu", ps->work[k]);
     const int raster = ps->work[GIB_WORK_PRIMITIVES] > 0 || ps->work[GIB_WORK_FRAGMENTS] > 0;
     const int compute = ps->work[GIB_WORK_COMPUTE] > 0;
-    row_set(r, GIB_P_KIND, "%s", raster && compute ? "both" : raster ? "raster"
-                                 : compute ? "compute" : "none");
+    gib_row_set(r, GIB_P_KIND, "%s", raster && compute ? "both" : raster ? "raster"
+                                     : compute ? "compute" : "none");
 }
 
 /* The run's passes, before its rows: a run whose rows are all in the CSV (run_done) then has its
  * passes too, whenever the process is stopped. Returns -1 when the table cannot be written. */
-static int write_passes(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res)
+static int write_passes(gib_run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res)
 {
     for (int p = 0; res->ok && p < res->pass_count; p++) {
-        row r;
+        gib_row r;
         const gib_pass_stats *ps = &res->passes[p];
         memset(r.ptr, 0, sizeof r.ptr);
-        row_set(&r, GIB_P_MATRIX, "%s", ctx->m->name);
-        row_set(&r, GIB_P_PROFILE, "%s", ctx->m->profile);
-        row_set(&r, GIB_P_SCENE, "%s", mr->scene);
-        row_set(&r, GIB_P_TECHNIQUE, "%s", mr->technique->name);
-        row_set(&r, GIB_P_PARAMS, "%s", mr->params_key);
-        row_set(&r, GIB_P_WIDTH, "%d", mr->width);
-        row_set(&r, GIB_P_HEIGHT, "%d", mr->height);
-        row_set(&r, GIB_P_TIME, "%.9g", mr->time);
-        row_set(&r, GIB_P_PASS, "%s", ps->name);
-        row_set(&r, GIB_P_MEDIAN, "%.6g", ps->median_ms);
-        row_set(&r, GIB_P_MIN, "%.6g", ps->min_ms);
-        row_set(&r, GIB_P_MAX, "%.6g", ps->max_ms);
-        row_set(&r, GIB_P_IQR, "%.6g", ps->iqr_ms);
-        row_set(&r, GIB_P_FIRST, "%.6g", ps->first_ms);
+        gib_row_set(&r, GIB_P_MATRIX, "%s", ctx->m->name);
+        gib_row_set(&r, GIB_P_PROFILE, "%s", ctx->m->profile);
+        gib_row_set(&r, GIB_P_SCENE, "%s", mr->scene);
+        gib_row_set(&r, GIB_P_TECHNIQUE, "%s", mr->technique->name);
+        gib_row_set(&r, GIB_P_PARAMS, "%s", mr->params_key);
+        gib_row_set(&r, GIB_P_WIDTH, "%d", mr->width);
+        gib_row_set(&r, GIB_P_HEIGHT, "%d", mr->height);
+        gib_row_set(&r, GIB_P_TIME, "%.9g", mr->time);
+        gib_row_set(&r, GIB_P_PASS, "%s", ps->name);
+        gib_row_set(&r, GIB_P_MEDIAN, "%.6g", ps->median_ms);
+        gib_row_set(&r, GIB_P_MIN, "%.6g", ps->min_ms);
+        gib_row_set(&r, GIB_P_MAX, "%.6g", ps->max_ms);
+        gib_row_set(&r, GIB_P_IQR, "%.6g", ps->iqr_ms);
+        gib_row_set(&r, GIB_P_FIRST, "%.6g", ps->first_ms);
         pass_work(&r, ps);
-        row_set(&r, GIB_P_RENDERER, "%s", ctx->info.renderer);
-        row_set(&r, GIB_P_GIT, "%s", gib_git_revision());
+        gib_row_set(&r, GIB_P_RENDERER, "%s", ctx->info.renderer);
+        gib_row_set(&r, GIB_P_GIT, "%s", gib_git_revision());
         gib_error err;
         if (gib_csv_append(ctx->passes, r.ptr, &err) < 0) {
-            write_failed(ctx, &err);
+            gib_run_write_failed(ctx, &err);
             return -1;
         }
     }
@@ -145,36 +114,36 @@ static int write_passes(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_re
 }
 
 /* What every row of a run holds, ok or not: memory and counters; its times when it rendered. */
-static void row_run_result(row *r, const gib_gpu_scene *gpu, const gib_run_result *res)
+static void row_run_result(gib_row *r, const gib_gpu_scene *gpu, const gib_run_result *res)
 {
-    row_set(r, GIB_C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
-    row_set(r, GIB_C_MEM, "%llu", (unsigned long long)res->technique_bytes);
-    row_set(r, GIB_C_MEM_STRUCT, "%s", res->memory_by_structure);
+    gib_row_set(r, GIB_C_SCENE_MEM, "%llu", (unsigned long long)gpu->ledger.peak_bytes);
+    gib_row_set(r, GIB_C_MEM, "%llu", (unsigned long long)res->technique_bytes);
+    gib_row_set(r, GIB_C_MEM_STRUCT, "%s", res->memory_by_structure);
     /* What the technique planned, filled when the runner reports it (empty until then). */
-    row_set(r, GIB_C_MEM_PLANNED, "%s", res->planned_structures);
-    row_set(r, GIB_C_COUNTERS, "%s", res->counters);
+    gib_row_set(r, GIB_C_MEM_PLANNED, "%s", res->planned_structures);
+    gib_row_set(r, GIB_C_COUNTERS, "%s", res->counters);
     if (res->ok)
-        row_set(r, GIB_C_WARMUP, "%d", res->warmup_frames);
+        gib_row_set(r, GIB_C_WARMUP, "%d", res->warmup_frames);
     if (res->driver_bytes >= 0)
-        row_set(r, GIB_C_DRIVER_MEM, "%lld", res->driver_bytes);
+        gib_row_set(r, GIB_C_DRIVER_MEM, "%lld", res->driver_bytes);
     if (!res->ok) {
-        row_set(r, GIB_C_STATUS, "%s", res->status);
-        row_set(r, GIB_C_MESSAGE, "%s", res->err.msg);
+        gib_row_set(r, GIB_C_STATUS, "%s", res->status);
+        gib_row_set(r, GIB_C_MESSAGE, "%s", res->err.msg);
         return;
     }
-    fmt_num(r, GIB_C_GPU_MED, res->gpu_total.median_ms);
-    fmt_num(r, GIB_C_GPU_MIN, res->gpu_total.min_ms);
-    fmt_num(r, GIB_C_GPU_MAX, res->gpu_total.max_ms);
-    fmt_num(r, GIB_C_GPU_IQR, res->gpu_total.iqr_ms);
-    fmt_num(r, GIB_C_CPU, res->cpu_total.median_ms);
-    fmt_num(r, GIB_C_CPU_IQR, res->cpu_total.iqr_ms);
-    fmt_num(r, GIB_C_FIRST_FRAME, res->first_frame_ms);
-    fmt_num(r, GIB_C_FIRST_GPU, res->gpu_total.first_ms);
+    gib_row_num(r, GIB_C_GPU_MED, res->gpu_total.median_ms);
+    gib_row_num(r, GIB_C_GPU_MIN, res->gpu_total.min_ms);
+    gib_row_num(r, GIB_C_GPU_MAX, res->gpu_total.max_ms);
+    gib_row_num(r, GIB_C_GPU_IQR, res->gpu_total.iqr_ms);
+    gib_row_num(r, GIB_C_CPU, res->cpu_total.median_ms);
+    gib_row_num(r, GIB_C_CPU_IQR, res->cpu_total.iqr_ms);
+    gib_row_num(r, GIB_C_FIRST_FRAME, res->first_frame_ms);
+    gib_row_num(r, GIB_C_FIRST_GPU, res->gpu_total.first_ms);
 }
 
 /* The reference's preview beside the technique images, once per (scene, component, size, dmax),
  * and the row's image names, relative to DIR/images/<matrix>/ (the report reads them). */
-static void row_images(row *r, const char *img_dir, const char *name, const gib_ref_result *ref,
+static void row_images(gib_row *r, const char *img_dir, const char *name, const gib_ref_result *ref,
                        float exposure)
 {
     char ref_png[4096];
@@ -187,27 +156,27 @@ static void row_images(row *r, const char *img_dir, const char *name, const gib_
     if (access(ref_png, F_OK) != 0 &&
         gib_png_write_preview(ref_png, &ref->image, exposure, &err) < 0)
         fprintf(stderr, "gibench run: %s\n", err.msg);
-    row_set(r, GIB_C_IMAGE, "%s", name);
-    row_set(r, GIB_C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
+    gib_row_set(r, GIB_C_IMAGE, "%s", name);
+    gib_row_set(r, GIB_C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
 }
 
-static void row_metrics(row *r, const gib_metrics *m, const gib_ref_result *ref, long pixels)
+static void row_metrics(gib_row *r, const gib_metrics *m, const gib_ref_result *ref, long pixels)
 {
-    fmt_num(r, GIB_C_RMSE, m->rmse);
-    fmt_num(r, GIB_C_REL_RMSE, m->rel_rmse);
-    fmt_num(r, GIB_C_MEAN_RATIO, m->mean_ratio);
+    gib_row_num(r, GIB_C_RMSE, m->rmse);
+    gib_row_num(r, GIB_C_REL_RMSE, m->rel_rmse);
+    gib_row_num(r, GIB_C_MEAN_RATIO, m->mean_ratio);
     set_error_scale(r, m, ref->noise_rmse, pixels);
-    fmt_num(r, GIB_C_PSNR, m->psnr);
-    fmt_num(r, GIB_C_SSIM, m->ssim);
-    fmt_num(r, GIB_C_FLIP, m->flip);
-    fmt_num(r, GIB_C_HDRFLIP, m->hdrflip);
-    row_set(r, GIB_C_NONFINITE, "%ld", m->nonfinite);
+    gib_row_num(r, GIB_C_PSNR, m->psnr);
+    gib_row_num(r, GIB_C_SSIM, m->ssim);
+    gib_row_num(r, GIB_C_FLIP, m->flip);
+    gib_row_num(r, GIB_C_HDRFLIP, m->hdrflip);
+    gib_row_set(r, GIB_C_NONFINITE, "%ld", m->nonfinite);
     /* A reference noisier than a fifth of the error cannot rank techniques. */
-    row_set(r, GIB_C_REF_NOISY, "%d", ref->noise_rmse > 0.2 * m->rmse);
-    row_set(r, GIB_C_STATUS, "%s",
+    gib_row_set(r, GIB_C_REF_NOISY, "%d", ref->noise_rmse > 0.2 * m->rmse);
+    gib_row_set(r, GIB_C_STATUS, "%s",
             gib_status_name(m->nonfinite ? GIB_STATUS_NONFINITE : GIB_STATUS_OK));
     if (m->nonfinite)
-        row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image", m->nonfinite);
+        gib_row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image", m->nonfinite);
 }
 
 /* ---- sequences: each frame against the reference at its instant, and what changes ---- */
@@ -225,7 +194,7 @@ typedef struct seq_scores {
 
 /* The references of the frames, at the spp the row's last frame was ranked at (rq), and each
  * frame's error. Returns 0, -1 (err set), or GIB_REF_WRITE_FAILED. */
-static int seq_references(const run_ctx *ctx, const gib_matrix_run *mr, const gib_image *frames,
+static int seq_references(const gib_run_ctx *ctx, const gib_matrix_run *mr, const gib_image *frames,
                           float exposure, gib_ref_request rq, seq_scores *sc, gib_error *err)
 {
     for (int k = 0; k < sc->n; k++) {
@@ -271,7 +240,7 @@ static int seq_images(const char *img_dir, const char *name, const gib_image *fr
 }
 
 /* The sequence columns from the frames' scores and the temporal error. */
-static int seq_columns(row *r, const seq_scores *sc, const gib_image *frames, float exposure,
+static int seq_columns(gib_row *r, const seq_scores *sc, const gib_image *frames, float exposure,
                        double *worst, gib_error *err)
 {
     double sum = 0, sum_dn = 0;
@@ -287,25 +256,25 @@ static int seq_columns(row *r, const seq_scores *sc, const gib_image *frames, fl
     const double noise = sqrt(sc->noise2 / sc->n);
     if (gib_temporal_compute(sc->refs, frames, sc->n, noise, exposure, 1, &t, err) < 0)
         return -1;
-    row_set(r, SEQ_COL(SEQUENCE), "%d", sc->n);
-    fmt_num(r, SEQ_COL(SEQ_RMSE_MEAN), sum / sc->n);
-    fmt_num(r, SEQ_COL(SEQ_RMSE_WORST), sc->rmse[wk]);
-    row_set(r, SEQ_COL(SEQ_WORST_FRAME), "%d", wk);
-    fmt_num(r, SEQ_COL(SEQ_DENOISED_MEAN), sum_dn / sc->n);
-    fmt_num(r, SEQ_COL(T_RMSE), t.rmse);
-    fmt_num(r, SEQ_COL(T_DENOISED), t.rmse_denoised);
-    fmt_num(r, SEQ_COL(T_PEAK), t.peak);
-    fmt_num(r, SEQ_COL(T_FROZEN), t.frozen);
-    fmt_num(r, SEQ_COL(T_FLIP), t.flip);
-    fmt_num(r, SEQ_COL(T_REF_NOISE), noise);
+    gib_row_set(r, SEQ_COL(SEQUENCE), "%d", sc->n);
+    gib_row_num(r, SEQ_COL(SEQ_RMSE_MEAN), sum / sc->n);
+    gib_row_num(r, SEQ_COL(SEQ_RMSE_WORST), sc->rmse[wk]);
+    gib_row_set(r, SEQ_COL(SEQ_WORST_FRAME), "%d", wk);
+    gib_row_num(r, SEQ_COL(SEQ_DENOISED_MEAN), sum_dn / sc->n);
+    gib_row_num(r, SEQ_COL(T_RMSE), t.rmse);
+    gib_row_num(r, SEQ_COL(T_DENOISED), t.rmse_denoised);
+    gib_row_num(r, SEQ_COL(T_PEAK), t.peak);
+    gib_row_num(r, SEQ_COL(T_FROZEN), t.frozen);
+    gib_row_num(r, SEQ_COL(T_FLIP), t.flip);
+    gib_row_num(r, SEQ_COL(T_REF_NOISE), noise);
     return 0;
 }
 
 /* A sequence run's row (its image i) gets the sequence columns; a failure to score them makes the
  * row's status sequence_failed. Returns -1 only when a table or image cannot be written. */
-static int score_sequence(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
+static int score_sequence(gib_run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
                           const gib_run_result *res, int i, const gib_ref_request *rq,
-                          const char *img_dir, const char *name, row *r)
+                          const char *img_dir, const char *name, gib_row *r)
 {
     if (res->sequence < 2)
         return 0;
@@ -322,10 +291,10 @@ static int score_sequence(run_ctx *ctx, const gib_scene *scene, const gib_matrix
         seq_images(img_dir, name, frames, &sc, worst, scene->exposure, &err) < 0)
         rc = GIB_REF_WRITE_FAILED;
     if (rc == GIB_REF_WRITE_FAILED)
-        write_failed(ctx, &err);
+        gib_run_write_failed(ctx, &err);
     else if (rc < 0) {
-        row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SEQUENCE_FAILED));
-        row_set(r, GIB_C_MESSAGE, "%s", err.msg);
+        gib_row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SEQUENCE_FAILED));
+        gib_row_set(r, GIB_C_MESSAGE, "%s", err.msg);
     }
     for (int k = 0; k < sc.have; k++)
         gib_image_free(&sc.refs[k]);
@@ -333,9 +302,9 @@ static int score_sequence(run_ctx *ctx, const gib_scene *scene, const gib_matrix
 }
 
 /* Scores image img (component bit of run mr) against its reference into row r and appends it. */
-static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
+static void score_component(gib_run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
                             const gib_run_result *res, unsigned bit, int index,
-                            const char *img_dir, row *r)
+                            const char *img_dir, gib_row *r)
 {
     gib_error err;
     gib_ref_request rq;
@@ -344,14 +313,14 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
     gib_ref_result ref;
     int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
     if (grc == GIB_REF_WRITE_FAILED) { /* no row (a rerun redoes this run) */
-        write_failed(ctx, &err);
+        gib_run_write_failed(ctx, &err);
         return;
     }
     if (grc < 0) {
-        row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_REFERENCE_FAILED));
-        row_set(r, GIB_C_MESSAGE, "%s", component < 0 ? "no reference estimator for this component"
-                                                      : err.msg);
-        append_row(ctx, r);
+        gib_row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_REFERENCE_FAILED));
+        gib_row_set(r, GIB_C_MESSAGE, "%s",
+                    component < 0 ? "no reference estimator for this component" : err.msg);
+        gib_run_append_row(ctx, r);
         return;
     }
     char name[512];
@@ -363,23 +332,23 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
     int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
                                  name, &m, &err);
     if (src == GIB_IMAGE_WRITE_FAILED) {
-        write_failed(ctx, &err);
+        gib_run_write_failed(ctx, &err);
         gib_image_free(&ref.image);
         return;
     }
     if (src < 0) {
-        row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SCORING_FAILED));
-        row_set(r, GIB_C_MESSAGE, "%s", err.msg);
+        gib_row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SCORING_FAILED));
+        gib_row_set(r, GIB_C_MESSAGE, "%s", err.msg);
     } else {
         row_metrics(r, &m, &ref, (long)mr->width * mr->height);
     }
-    row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
-    fmt_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
+    gib_row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
+    gib_row_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
     if (src == 0 && score_sequence(ctx, scene, mr, res, index, &rq, img_dir, name, r) < 0) {
         gib_image_free(&ref.image);
         return;
     }
-    append_row(ctx, r);
+    gib_run_append_row(ctx, r);
     char tag[32];
     gib_progress_tag(&ctx->progress, tag, sizeof tag);
     gib_progress_clear(&ctx->progress);
@@ -391,21 +360,21 @@ static void score_component(run_ctx *ctx, const gib_scene *scene, const gib_matr
 
 /* A timed row without a reference (--timing-only): its image is only checked for NaN/Inf, which
  * would make its times those of a broken frame. */
-static void time_component(run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res,
-                           int index, row *r)
+static void time_component(gib_run_ctx *ctx, const gib_matrix_run *mr, const gib_run_result *res,
+                           int index, gib_row *r)
 {
     const gib_image *img = &res->images[index];
     long nonfinite = 0;
     for (size_t k = 0; k < (size_t)img->width * img->height * img->channels; k++)
         nonfinite += !isfinite(img->px[k]);
-    row_set(r, GIB_C_NONFINITE, "%ld", nonfinite);
-    row_set(r, GIB_C_STATUS, "%s",
+    gib_row_set(r, GIB_C_NONFINITE, "%ld", nonfinite);
+    gib_row_set(r, GIB_C_STATUS, "%s",
             gib_status_name(nonfinite ? GIB_STATUS_NONFINITE : GIB_STATUS_OK));
     if (nonfinite)
-        row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image (timing only)", nonfinite);
+        gib_row_set(r, GIB_C_MESSAGE, "%ld NaN/Inf values in the image (timing only)", nonfinite);
     else
-        row_set(r, GIB_C_MESSAGE, "timing only: not scored");
-    append_row(ctx, r);
+        gib_row_set(r, GIB_C_MESSAGE, "timing only: not scored");
+    gib_run_append_row(ctx, r);
     char tag[32];
     gib_progress_tag(&ctx->progress, tag, sizeof tag);
     gib_progress_clear(&ctx->progress);
@@ -416,8 +385,8 @@ static void time_component(run_ctx *ctx, const gib_matrix_run *mr, const gib_run
 }
 
 /* A run's passes, then a row per output component. */
-void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
-                      const gib_matrix_run *mr, gib_run_result *res)
+void gib_run_score(gib_run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
+                   const gib_matrix_run *mr, gib_run_result *res)
 {
     gib_progress_clear(&ctx->progress); /* references may report their own progress */
     char img_dir[2048];
@@ -432,11 +401,11 @@ void score_run(run_ctx *ctx, const gib_scene *scene, const gib_gpu_scene *gpu,
     for (unsigned bit = 1, i = 0; bit <= GIB_OUT_CAUSTIC && !ctx->write_failed; bit <<= 1) {
         if (!(mr->technique->components & bit))
             continue;
-        row r;
-        row_identity(&r, ctx, mr, bit);
+        gib_row r;
+        gib_run_row_identity(&r, ctx, mr, bit);
         row_run_result(&r, gpu, res);
         if (!res->ok)
-            append_row(ctx, &r);
+            gib_run_append_row(ctx, &r);
         else if (ctx->timing_only)
             time_component(ctx, mr, res, (int)i++, &r);
         else
