@@ -123,4 +123,16 @@ int gib_score_flip(const gib_image *ref, const gib_image *img, float exposure, f
 int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,
                        const char *name, gib_metrics *m, gib_error *err);
 
+/* What every command reports of an image against a reference: the metrics and FLIP means
+ * (gib_score_and_save, the images written where dir is set) and the RMSE's 95% interval with the
+ * reference's noise (its RMSE against the truth, 0 for an exact image) taken out. `gibench run`,
+ * `render` and `compare` score through it. Returns as gib_score_and_save. */
+typedef struct gib_score {
+    gib_metrics m;
+    gib_rmse_bounds rmse; /* metrics.h, gib_rmse_interval */
+} gib_score;
+int gib_score_image(const gib_image *ref, double ref_noise_rmse, const gib_image *img,
+                    float exposure, const char *dir, const char *name, gib_score *s,
+                    gib_error *err);
+
 #endif

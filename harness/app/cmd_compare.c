@@ -121,17 +121,16 @@ static int score(const compare_opts *o, const gib_image *ref, const gib_image *t
 {
     /* A reference of ours names its own noise; any other image is taken as exact. */
     const double noise = noise_attr ? strtod(noise_attr, NULL) : 0.0;
-    gib_metrics m;
+    gib_score s;
     gib_error err = {0};
-    if (gib_metrics_compute(ref, test, (float)o->exposure, &m, &err) < 0 ||
-        gib_score_flip(ref, test, (float)o->exposure, NULL, &m, &err) < 0) {
+    if (gib_score_image(ref, noise, test, (float)o->exposure, NULL, NULL, &s, &err) < 0) {
         fprintf(stderr, "gibench compare: %s vs %s: %s\n", o->paths[0], o->paths[1], err.msg);
         return 2;
     }
+    const gib_metrics m = s.m;
+    const gib_rmse_bounds b = s.rmse;
     int fail = m.nonfinite > 0 || !(m.rmse <= o->fail_rmse) || !(m.rel_rmse <= o->fail_rel) ||
                !(m.ssim >= o->fail_ssim);
-    gib_rmse_bounds b;
-    gib_rmse_interval(m.rmse, noise, (long)ref->width * ref->height, &b);
     if (o->json)
         print_json(&m, noise, &b, fail);
     else

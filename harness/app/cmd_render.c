@@ -6,6 +6,7 @@
 
 #include "runner.h"
 #include "app.h"
+#include "refrank.h"
 
 static const char help[] =
     "usage: gibench render --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
@@ -165,16 +166,22 @@ static int score_output(const render_opts *o, const gib_scene *scene, const gib_
                           .cache_dir = o->cache};
     gib_ref_request_match(&rq, o->t, &o->p, r->output_components[i]);
     gib_ref_result ref;
-    gib_metrics m;
-    if (rq.component < 0 || gib_reference_get(&rq, &ref, &err) < 0 ||
-        gib_score_and_save(&ref.image, &r->images[i], scene->exposure, o->out, name, &m,
-                           &err) < 0) {
+    gib_score s;
+    if (rq.component < 0 ||
+        gib_reference_to_rank(&rq, &r->images[i], scene->exposure, GIB_REF_SPP_GROWTH_DEFAULT,
+                              &ref, &err) < 0) {
         fprintf(stderr, "gibench render: %s\n",
                 rq.component < 0 ? "no reference for this component" : err.msg);
         return 1;
     }
-    gib_rmse_bounds b;
-    gib_rmse_interval(m.rmse, ref.noise_rmse, (long)o->w * o->h, &b);
+    if (gib_score_image(&ref.image, ref.noise_rmse, &r->images[i], scene->exposure, o->out, name,
+                        &s, &err) < 0) {
+        fprintf(stderr, "gibench render: %s\n", err.msg);
+        gib_image_free(&ref.image);
+        return 1;
+    }
+    const gib_metrics m = s.m;
+    const gib_rmse_bounds b = s.rmse;
     printf("  %s: rmse %.6g rel_rmse %.6g mean %.4g of the reference's psnr %.3f ssim %.6f "
            "nonfinite %ld (reference %d spp, noise rmse %.3g)\n", comp, m.rmse, m.rel_rmse,
            m.mean_ratio, m.psnr, m.ssim,

@@ -8,6 +8,7 @@
 
 #include "reference/reference.h"
 #include "app.h"
+#include "refrank.h"
 
 /* What the file says, before expansion; profile keys override base keys. */
 typedef struct raw_value {
@@ -181,7 +182,7 @@ static int load_settings(const parse_state *s, const char *psec, gib_matrix *m)
     const raw_value *v;
     m->frames = 5;
     m->warmup = 2;
-    m->ref_spp_growth = 16;
+    m->ref_spp_growth = GIB_REF_SPP_GROWTH_DEFAULT;
     m->sequence = 1;
     struct { char key[48]; int *dst; long min, max; } ints[5 + GIB_MATRIX_MAX_COMPONENTS] = {
         {"camera", &m->camera, 0, 64}, {"frames", &m->frames, 1, 256}, {"warmup", &m->warmup, 0, 100},

@@ -1,6 +1,7 @@
 #include "refrank.h"
 
 #include <math.h>
+#include <stdio.h>
 
 #include "harness/imaging/metrics.h"
 
@@ -16,4 +17,23 @@ int gib_ref_spp_to_rank(int spp, double noise_rmse, double rmse, long pixels, in
     while (k < growth && k < factor)
         k *= 2;
     return spp * (k < growth ? k : growth);
+}
+
+int gib_reference_to_rank(gib_ref_request *rq, const gib_image *img, float exposure, int growth,
+                          gib_ref_result *ref, gib_error *err)
+{
+    int grc = gib_reference_get(rq, ref, err);
+    gib_metrics m;
+    if (grc < 0 || gib_metrics_compute(&ref->image, img, exposure, &m, err) < 0 || m.nonfinite)
+        return grc;
+    int spp = gib_ref_spp_to_rank(rq->spp, ref->noise_rmse, m.rmse, (long)rq->width * rq->height,
+                                  growth);
+    if (spp == rq->spp)
+        return grc;
+    printf("    reference %s %dx%d: noise %.3g at %d spp is over a fifth of the row's error %.3g: "
+           "scored at %d spp\n", gib_component_name(rq->component), rq->width, rq->height,
+           ref->noise_rmse, rq->spp, m.rmse, spp);
+    gib_image_free(&ref->image);
+    rq->spp = spp;
+    return gib_reference_get(rq, ref, err);
 }

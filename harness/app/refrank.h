@@ -13,6 +13,12 @@
 #ifndef GIB_REFRANK_H
 #define GIB_REFRANK_H
 
+#include "app.h"
+
+/* How many times the requested samples a reference may grow to rank a row: a matrix's
+ * ref_spp_growth when it names none, and gibench render's. */
+#define GIB_REF_SPP_GROWTH_DEFAULT 16
+
 /* The noise a reference may have: this fraction of the row's de-noised error, below the fifth (0.2)
  * that ref_noisy tests, because the de-noised error is itself an estimate. */
 #define GIB_REF_RANK_FRACTION 0.18
@@ -21,5 +27,11 @@
  * `noise_rmse` over `pixels` pixels: spp itself when the noise is at most a fifth of the RMSE,
  * else spp x 2^k as above, k >= 1, at most spp x growth. */
 int gib_ref_spp_to_rank(int spp, double noise_rmse, double rmse, long pixels, int growth);
+
+/* The reference image img is scored against: rq's, or where its noise is over a fifth of img's
+ * error against it, one with more samples (gib_ref_spp_to_rank; rq->spp is set to the samples
+ * used, and a line says so). Returns what gib_reference_get returns. */
+int gib_reference_to_rank(gib_ref_request *rq, const gib_image *img, float exposure, int growth,
+                          gib_ref_result *ref, gib_error *err);
 
 #endif

@@ -28,39 +28,16 @@ static int row_request(const gib_run_ctx *ctx, const gib_scene *scene, const gib
     return component;
 }
 
-/* The reference a row is scored against (refrank.h): the matrix's, or where its noise is over a
- * fifth of the row's error, one with more samples. Returns what gib_reference_get returns. */
-static int reference_to_rank(const gib_run_ctx *ctx, gib_ref_request *rq, const gib_image *img,
-                             float exposure, gib_ref_result *ref, gib_error *err)
-{
-    int grc = gib_reference_get(rq, ref, err);
-    gib_metrics m;
-    if (grc < 0 || gib_metrics_compute(&ref->image, img, exposure, &m, err) < 0 || m.nonfinite)
-        return grc;
-    int spp = gib_ref_spp_to_rank(rq->spp, ref->noise_rmse, m.rmse, (long)rq->width * rq->height,
-                                  ctx->m->ref_spp_growth);
-    if (spp == rq->spp)
-        return grc;
-    printf("    reference %s %dx%d: noise %.3g at %d spp is over a fifth of the row's error %.3g: "
-           "scored at %d spp\n", gib_component_name(rq->component), rq->width, rq->height,
-           ref->noise_rmse, rq->spp, m.rmse, spp);
-    gib_image_free(&ref->image);
-    rq->spp = spp;
-    return gib_reference_get(rq, ref, err);
-}
-
 /* The row's error beside what a black image scores and with the reference's noise taken out
  * (metrics.h, gib_rmse_interval). */
-static void set_error_scale(gib_row *r, const gib_metrics *m, double noise_rmse, long pixels)
+static void set_error_scale(gib_row *r, const gib_metrics *m, const gib_rmse_bounds *b)
 {
-    gib_rmse_bounds b;
-    gib_rmse_interval(m->rmse, noise_rmse, pixels, &b);
     gib_row_num(r, GIB_C_BLACK_RMSE, m->black_rmse);
     gib_row_num(r, GIB_C_OVER_BLACK, m->black_rmse > 0 ? m->rmse / m->black_rmse
                                                    : m->rmse > 0 ? INFINITY : 0.0);
-    gib_row_num(r, GIB_C_RMSE_DENOISED, b.denoised);
-    gib_row_num(r, GIB_C_RMSE_LO, b.lo);
-    gib_row_num(r, GIB_C_RMSE_HI, b.hi);
+    gib_row_num(r, GIB_C_RMSE_DENOISED, b->denoised);
+    gib_row_num(r, GIB_C_RMSE_LO, b->lo);
+    gib_row_num(r, GIB_C_RMSE_HI, b->hi);
 }
 
 /* What a pass ran, from its counted work: raster (vertices and fragments), compute, both, or none
@@ -160,12 +137,13 @@ static void row_images(gib_row *r, const char *img_dir, const char *name, const 
     gib_row_set(r, GIB_C_REF_IMAGE, "%s", strrchr(ref_png, '/') + 1);
 }
 
-static void row_metrics(gib_row *r, const gib_metrics *m, const gib_ref_result *ref, long pixels)
+static void row_metrics(gib_row *r, const gib_score *s, const gib_ref_result *ref)
 {
+    const gib_metrics *m = &s->m;
     gib_row_num(r, GIB_C_RMSE, m->rmse);
     gib_row_num(r, GIB_C_REL_RMSE, m->rel_rmse);
     gib_row_num(r, GIB_C_MEAN_RATIO, m->mean_ratio);
-    set_error_scale(r, m, ref->noise_rmse, pixels);
+    set_error_scale(r, m, &s->rmse);
     gib_row_num(r, GIB_C_PSNR, m->psnr);
     gib_row_num(r, GIB_C_SSIM, m->ssim);
     gib_row_num(r, GIB_C_FLIP, m->flip);
@@ -311,7 +289,9 @@ static void score_component(gib_run_ctx *ctx, const gib_scene *scene, const gib_
     const gib_image *img = &res->images[index];
     int component = row_request(ctx, scene, mr, bit, &rq);
     gib_ref_result ref;
-    int grc = component < 0 ? -1 : reference_to_rank(ctx, &rq, img, scene->exposure, &ref, &err);
+    int grc = component < 0 ? -1
+                            : gib_reference_to_rank(&rq, img, scene->exposure,
+                                                    ctx->m->ref_spp_growth, &ref, &err);
     if (grc == GIB_REF_WRITE_FAILED) { /* no row (a rerun redoes this run) */
         gib_run_write_failed(ctx, &err);
         return;
@@ -328,9 +308,9 @@ static void score_component(gib_run_ctx *ctx, const gib_scene *scene, const gib_
                    gib_output_name(bit), name, sizeof name);
     if (ctx->images)
         row_images(r, img_dir, name, &ref, scene->exposure);
-    gib_metrics m;
-    int src = gib_score_and_save(&ref.image, img, scene->exposure, ctx->images ? img_dir : NULL,
-                                 name, &m, &err);
+    gib_score s;
+    int src = gib_score_image(&ref.image, ref.noise_rmse, img, scene->exposure,
+                              ctx->images ? img_dir : NULL, name, &s, &err);
     if (src == GIB_IMAGE_WRITE_FAILED) {
         gib_run_write_failed(ctx, &err);
         gib_image_free(&ref.image);
@@ -340,7 +320,7 @@ static void score_component(gib_run_ctx *ctx, const gib_scene *scene, const gib_
         gib_row_set(r, GIB_C_STATUS, "%s", gib_status_name(GIB_STATUS_SCORING_FAILED));
         gib_row_set(r, GIB_C_MESSAGE, "%s", err.msg);
     } else {
-        row_metrics(r, &m, &ref, (long)mr->width * mr->height);
+        row_metrics(r, &s, &ref);
     }
     gib_row_set(r, GIB_C_REF_SPP, "%d", ref.spp);
     gib_row_num(r, GIB_C_REF_NOISE, ref.noise_rmse);
@@ -354,7 +334,7 @@ static void score_component(gib_run_ctx *ctx, const gib_scene *scene, const gib_
     gib_progress_clear(&ctx->progress);
     printf("%s %-10s %-8s %-36s %4dx%-4d t %-5g gpu %8.3f ms  rmse %.4g  ssim %.4f  flip %.4f  %s\n",
            tag, mr->scene, mr->technique->name, mr->params_key, mr->width, mr->height, mr->time,
-           res->gpu_total.median_ms, m.rmse, m.ssim, m.flip, r->v[GIB_C_STATUS]);
+           res->gpu_total.median_ms, s.m.rmse, s.m.ssim, s.m.flip, r->v[GIB_C_STATUS]);
     gib_image_free(&ref.image);
 }
 

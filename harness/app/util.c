@@ -229,6 +229,16 @@ int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposur
     return 0;
 }
 
+int gib_score_image(const gib_image *ref, double ref_noise_rmse, const gib_image *img,
+                    float exposure, const char *dir, const char *name, gib_score *s,
+                    gib_error *err)
+{
+    int rc = gib_score_and_save(ref, img, exposure, dir, name, &s->m, err);
+    if (rc == 0 || rc == GIB_IMAGE_WRITE_FAILED)
+        gib_rmse_interval(s->m.rmse, ref_noise_rmse, (long)ref->width * ref->height, &s->rmse);
+    return rc;
+}
+
 const char *gib_ref_setting_name(int setting)
 {
     return setting == GIB_REF_AO_DMAX ? "dmax" : setting == GIB_REF_AO_OBSCURANCE ? "obscurance" : "";

@@ -76,6 +76,20 @@ printf '[matrix]\nscenes = cornell\ntechniques = hbao\nsizes = 32x32\n[scene_sca
 expect_rc 2 "scene_scale taking dmax out of its range" $G run "$W/scale.matrix" --profile default --out "$W/badrun"
 grep -q "scale.matrix:6.*hbao.dmax" "$W/out.txt" && pass "the error names the scaled parameter" || fail "$(cat "$W/out.txt")"
 
+# One scoring path: `run`, `render` and `compare` give the same RMSE for the same image against the
+# same reference (the CSV writes %.9g, render prints %.6g: equal to 1e-5 relative).
+printf '[matrix]\nscenes = cornell\ntechniques = hbao\nsizes = 32x32\nframes = 1\nwarmup = 0\nref_spp_ao = 4\n' >"$W/one.matrix"
+expect_rc 0 "one row run" $G run "$W/one.matrix" --profile default --out "$W/one" --cache "$W/onecache" --no-history
+expect_rc 0 "the same row rendered and scored" $G render --scene cornell --technique hbao --size 32x32 --frames 1 --warmup 0 --ref-spp 4 --cache "$W/onecache" --out "$W/onerender"
+rmse_render=$(grep -o 'ao: rmse [0-9.e+-]*' "$W/out.txt" | awk '{print $3}')
+rmse_run=$(python3 -c 'import csv, sys; print(next(csv.DictReader(open(sys.argv[1])))["rmse"])' "$W/one/one.csv")
+ref_exr=$(ls -t "$W/onecache"/cornell_ao_32x32_*.exr | head -1)
+$G compare "$ref_exr" "$W/onerender/hbao_ao.exr" --json >"$W/onejson.txt" 2>&1
+rmse_compare=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["rmse"])' "$W/onejson.txt" 2>/dev/null)
+if python3 -c 'import sys; a, b, c = map(float, sys.argv[1:]); sys.exit(0 if max(a, b, c) - min(a, b, c) <= 1e-5 * max(a, b, c) else 1)' "$rmse_run" "$rmse_render" "$rmse_compare" 2>/dev/null; then
+  pass "run, render and compare score alike (rmse $rmse_run, $rmse_render, $rmse_compare)"
+else fail "run, render and compare differ: rmse '$rmse_run', '$rmse_render', '$rmse_compare'"; fi
+
 # Moving scenes: --time changes a moving scene's reference and its cache key, not a static one's;
 # a matrix's `times` gives a CSV column `time` and is checked like any value.
 expect_rc 0 "reference of a moving scene at t = 0" $G reference --scene cornell_moving --component depth --size 32x32 --cache "$W/tcache" --quiet
