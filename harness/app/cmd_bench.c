@@ -11,14 +11,10 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "options.h"
 
-static const char help[] =
-    "usage: gibench bench reference [--scene S[,S...]] [--size WxH] [--component C] [--spp N]\n"
-    "                               [--threads N] [--repeat N] [--out F.csv]\n"
-    "       gibench bench reference --efficiency [--scene S[,S...]] [--size WxH]\n"
-    "                               [--component C[,C...]] [--sampler random,sobol] [--spp N[,N...]]\n"
-    "                               [--truth-spp N] [--threads N] [--repeat N] [--out F.csv]\n"
-    "\n"
+static const gib_command_doc doc = {
+    "bench", "reference [--efficiency] [options]",
     "Measures, on one scene and BVH: raw Embree throughput on random incoherent rays\n"
     "(rtcIntersect1; from the bounding box, and Aila and Laine's diffuse rays from the visible\n"
     "surfaces), the path tracer's own rays replayed with each ray API (single rays,\n"
@@ -41,7 +37,7 @@ static const char help[] =
     "relative variance that error over the truth's squared mean, the seconds those of sampling\n"
     "(the BVH build left out); beside it the efficiency the renderer's own noise estimate\n"
     "predicts, and their ratio (an honest estimate gives ~1). Defaults: scenes cornell,sibenik,\n"
-    "sponza, components full,indirect, 128x128, spp 16,64, samplers random,sobol, 3 repeats.\n";
+    "sponza, components full,indirect, 128x128, spp 16,64, samplers random,sobol, 3 repeats.\n"};
 
 static void machine_name(char *out, size_t len)
 {
@@ -503,47 +499,24 @@ typedef struct bench_opts {
     int efficiency;
 } bench_opts;
 
-#define PROCEED (-1) /* bench_parse_args: go on (else the exit status) */
+#define PROCEED GIB_OPTIONS_PROCEED /* bench_parse_args: go on (else the exit status) */
 
+/* The options after `reference`. */
 static int bench_parse_args(int argc, char **argv, bench_opts *o)
 {
-    gib_error err = {0};
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--efficiency")) {
-            o->efficiency = 1;
-            continue;
-        }
-        if (!v) {
-            fprintf(stderr, "gibench bench: option %s needs a value\n%s", a, help);
-            return 2;
-        }
-        i++;
-        int rc = 0;
-        if (!strcmp(a, "--scene")) o->scene_name = v;
-        else if (!strcmp(a, "--size")) o->size = v;
-        else if (!strcmp(a, "--out")) o->out = v;
-        else if (!strcmp(a, "--component")) o->comp = v;
-        else if (!strcmp(a, "--spp")) o->spps = v;
-        else if (!strcmp(a, "--sampler")) o->samplers = v;
-        else if (!strcmp(a, "--truth-spp"))
-            rc = gib_parse_int(a, v, 2, 1 << 20, &o->truth_spp, &err);
-        else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &o->threads, &err);
-        else if (!strcmp(a, "--repeat")) rc = gib_parse_int(a, v, 1, 100, &o->repeat, &err);
-        else {
-            fprintf(stderr, "gibench bench: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
-        if (rc < 0) {
-            fprintf(stderr, "gibench bench: %s\n", err.msg);
-            return 2;
-        }
-    }
-    return PROCEED;
+    const gib_option opts[] = {
+        GIB_OPTION_FLAG("--efficiency", &o->efficiency, "efficiency against a truth image"),
+        GIB_OPTION_TEXT("--scene", &o->scene_name, "S[,S...]", "the scenes"),
+        GIB_OPTION_TEXT("--size", &o->size, "WxH", "the image size"),
+        GIB_OPTION_TEXT("--component", &o->comp, "C[,C...]", "the components"),
+        GIB_OPTION_TEXT("--spp", &o->spps, "N[,N...]", "samples per pixel"),
+        GIB_OPTION_TEXT("--sampler", &o->samplers, "random,sobol", "--efficiency's samplers"),
+        GIB_OPTION_INT("--truth-spp", &o->truth_spp, 2, 1 << 20, "N", "the truth image's samples"),
+        GIB_OPTION_INT("--threads", &o->threads, 0, 1024, "N", "0: every core"),
+        GIB_OPTION_INT("--repeat", &o->repeat, 1, 100, "N", "rounds (default 3)"),
+        GIB_OPTION_TEXT("--out", &o->out, "F.csv", "write the rows here"),
+        {0}};
+    return gib_options_parse(&doc, opts, argc - 1, argv + 1, NULL, NULL, 0);
 }
 
 /* --efficiency: its lists, then its scenes. Returns the exit status. */
@@ -670,10 +643,11 @@ int gib_cmd_bench(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "reference") != 0) {
         if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-            fputs(help, stdout);
+            gib_options_usage(stdout, &doc, NULL);
             return 0;
         }
-        fprintf(stderr, "gibench bench: what to measure? ('reference')\n%s", help);
+        fputs("gibench bench: what to measure? ('reference')\n", stderr);
+        gib_options_usage(stderr, &doc, NULL);
         return 2;
     }
     bench_opts o = {.samplers = "random,sobol", .spp = 16, .repeat = 3, .truth_spp = 2048};

@@ -6,15 +6,14 @@
 #include <string.h>
 
 #include "app.h"
+#include "options.h"
 
-static const char help[] =
-    "usage: gibench compare REF.exr TEST.exr [--exposure E] [--json] [--map ERR.png]\n"
-    "                       [--fail-rmse X] [--fail-rel-rmse X] [--fail-ssim X]\n"
-    "\n"
+static const gib_command_doc doc = {
+    "compare", "REF.exr TEST.exr [options]",
     "Prints RMSE, relative RMSE, PSNR and SSIM (Wang et al. 2004 for SSIM) of TEST against REF.\n"
     "--exposure scales the linear images before the SSIM channel (default: the reference's\n"
     "`exposure` header attribute, else 1). --json prints one JSON object.\n"
-    "Exit status: 0 within thresholds, 1 above a threshold or any non-finite pixel, 2 on error.\n";
+    "Exit status: 0 within thresholds, 1 above a threshold or any non-finite pixel, 2 on error.\n"};
 
 static void json_num(const char *key, double v, int last)
 {
@@ -36,46 +35,23 @@ static int parse_compare_options(int argc, char **argv, compare_opts *o)
 {
     *o = (compare_opts){.exposure = -1, .fail_rmse = INFINITY, .fail_rel = INFINITY,
                         .fail_ssim = -INFINITY};
+    const gib_option opts[] = {
+        GIB_OPTION_FLOAT("--exposure", &o->exposure, 0, 1e30, "E",
+                         "scale before SSIM (default: REF's exposure attribute, else 1)"),
+        GIB_OPTION_FLAG("--json", &o->json, "one JSON object"),
+        GIB_OPTION_TEXT("--map", &o->map, "ERR.png", "write the false-colour error map"),
+        GIB_OPTION_FLOAT("--fail-rmse", &o->fail_rmse, 0, 1e30, "X", "exit 1 above this RMSE"),
+        GIB_OPTION_FLOAT("--fail-rel-rmse", &o->fail_rel, 0, 1e30, "X",
+                         "exit 1 above this relative RMSE"),
+        GIB_OPTION_FLOAT("--fail-ssim", &o->fail_ssim, -1, 1, "X", "exit 1 below this SSIM"),
+        {0}};
     int np = 0;
-    gib_error err = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int rc = 0;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        } else if (!strcmp(a, "--json")) {
-            o->json = 1;
-            continue;
-        } else if (a[0] != '-' || !a[1]) {
-            if (np == 2) {
-                fprintf(stderr, "gibench compare: expected two images, got a third '%s'\n", a);
-                return 2;
-            }
-            o->paths[np++] = a;
-            continue;
-        }
-        if (!v) {
-            fprintf(stderr, "gibench compare: option %s needs a value\n%s", a, help);
-            return 2;
-        }
-        i++;
-        if (!strcmp(a, "--map")) o->map = v;
-        else if (!strcmp(a, "--exposure")) rc = gib_parse_float(a, v, 0, 1e30, &o->exposure, &err);
-        else if (!strcmp(a, "--fail-rmse")) rc = gib_parse_float(a, v, 0, 1e30, &o->fail_rmse, &err);
-        else if (!strcmp(a, "--fail-rel-rmse")) rc = gib_parse_float(a, v, 0, 1e30, &o->fail_rel, &err);
-        else if (!strcmp(a, "--fail-ssim")) rc = gib_parse_float(a, v, -1, 1, &o->fail_ssim, &err);
-        else {
-            fprintf(stderr, "gibench compare: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
-        if (rc < 0) {
-            fprintf(stderr, "gibench compare: %s\n", err.msg);
-            return 2;
-        }
-    }
+    int rc = gib_options_parse(&doc, opts, argc, argv, o->paths, &np, 2);
+    if (rc != GIB_OPTIONS_PROCEED)
+        return rc;
     if (np != 2) {
-        fprintf(stderr, "gibench compare: needs REF.exr and TEST.exr\n%s", help);
+        fputs("gibench compare: needs REF.exr and TEST.exr\n", stderr);
+        gib_options_usage(stderr, &doc, opts);
         return 2;
     }
     return -1;

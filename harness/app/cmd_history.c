@@ -9,13 +9,10 @@
 
 #include "app.h"
 #include "history.h"
+#include "options.h"
 
-static const char help[] =
-    "usage: gibench history [--db PATH] [--metric M] [--matrix M] [--scene S] [--technique T]\n"
-    "                       [--component C] [--params P] [--size WxH] [--renderer TEXT]\n"
-    "                       [--machine ID] [--find [--tol REL] [--abs A]] [--plot FILE.png]\n"
-    "                       [--machines]\n"
-    "\n"
+static const gib_command_doc doc = {
+    "history", "[filters] [--find [--tol REL] [--abs A] | --plot FILE.png | --machines]",
     "Reads the results history `gibench run` records (default results/history.sqlite). Every\n"
     "(matrix, scene, camera, technique, component, params, size, instant) row on one machine is a\n"
     "series; each revision is a point, the median of its `ok` rows' metric (default rmse; any\n"
@@ -28,7 +25,7 @@ static const char help[] =
     "  --plot F.png the metric by revision, a line per series (gnuplot)\n"
     "  --machines   the machines in the history (ids for --machine)\n"
     "--renderer keeps machines whose GL renderer contains TEXT. Exit status 1 when --find finds a\n"
-    "regression, 2 for bad options, 3 when nothing matches.\n";
+    "regression, 2 for bad options, 3 when nothing matches.\n"};
 
 static int is_time_metric(const char *m)
 {
@@ -174,71 +171,58 @@ typedef struct history_opts {
     double tol, abs_tol;
 } history_opts;
 
-#define PROCEED (-1) /* history_parse_args, history_load: go on (else the exit status) */
+/* history_parse_args, history_load: go on (else the exit status) */
+#define PROCEED GIB_OPTIONS_PROCEED
 
-/* An option with a value: 0, -1 with err filled, or 1 when a is no such option. */
-static int history_parse_value(history_opts *o, const char *a, const char *v, gib_error *err)
+static int parse_plot(const gib_option *o, const char *v, gib_error *err)
+{
+    *(const char **)o->dest = v;
+    return gib_check_output(o->name, v, ".png", err);
+}
+
+static int parse_size(const gib_option *o, const char *v, gib_error *err)
+{
+    gib_history_filter *f = o->dest;
+    return gib_parse_size(o->name, v, &f->width, &f->height, err);
+}
+
+static int parse_machine(const gib_option *o, const char *v, gib_error *err)
 {
     long id;
-    int rc = 0;
-    gib_history_filter *f = &o->f;
-    if (!strcmp(a, "--db")) o->db = v;
-    else if (!strcmp(a, "--metric")) o->metric = v;
-    else if (!strcmp(a, "--matrix")) f->matrix = v;
-    else if (!strcmp(a, "--scene")) f->scene = v;
-    else if (!strcmp(a, "--technique")) f->technique = v;
-    else if (!strcmp(a, "--component")) f->component = v;
-    else if (!strcmp(a, "--params")) f->params = v;
-    else if (!strcmp(a, "--renderer")) f->renderer = v;
-    else if (!strcmp(a, "--plot")) {
-        o->png = v;
-        rc = gib_check_output("--plot", v, ".png", err);
-    } else if (!strcmp(a, "--size")) rc = gib_parse_size(a, v, &f->width, &f->height, err);
-    else if (!strcmp(a, "--machine")) {
-        rc = gib_parse_int(a, v, 1, 1L << 40, &id, err);
-        f->machine = id;
-    } else if (!strcmp(a, "--tol")) {
-        rc = gib_parse_float(a, v, 0, 1e6, &o->tol, err);
-        o->have_tol = 1;
-    } else if (!strcmp(a, "--abs")) rc = gib_parse_float(a, v, 0, 1e30, &o->abs_tol, err);
-    else
-        rc = 1;
-    return rc;
+    if (gib_parse_int(o->name, v, 1, 1L << 40, &id, err) < 0)
+        return -1;
+    ((gib_history_filter *)o->dest)->machine = id;
+    return 0;
+}
+
+static int parse_tol(const gib_option *o, const char *v, gib_error *err)
+{
+    history_opts *h = o->dest;
+    h->have_tol = 1;
+    return gib_parse_float(o->name, v, 0, 1e6, &h->tol, err);
 }
 
 static int history_parse_args(int argc, char **argv, history_opts *o)
 {
-    gib_error err;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--find")) {
-            o->find = 1;
-            continue;
-        }
-        if (!strcmp(a, "--machines")) {
-            o->machines = 1;
-            continue;
-        }
-        if (a[0] != '-' || i + 1 >= argc) {
-            fprintf(stderr, "gibench history: %s '%s'\n%s",
-                    a[0] != '-' ? "unexpected argument" : "option needs a value:", a, help);
-            return 2;
-        }
-        int rc = history_parse_value(o, a, argv[++i], &err);
-        if (rc > 0) {
-            fprintf(stderr, "gibench history: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
-        if (rc < 0) {
-            fprintf(stderr, "gibench history: %s\n", err.msg);
-            return 2;
-        }
-    }
-    return PROCEED;
+    gib_history_filter *f = &o->f;
+    const gib_option opts[] = {
+        GIB_OPTION_TEXT("--db", &o->db, "PATH", "the history (default results/history.sqlite)"),
+        GIB_OPTION_TEXT("--metric", &o->metric, "M", "a numeric column (default rmse)"),
+        GIB_OPTION_TEXT("--matrix", &f->matrix, "M", "only this matrix's series"),
+        GIB_OPTION_TEXT("--scene", &f->scene, "S", "only this scene's"),
+        GIB_OPTION_TEXT("--technique", &f->technique, "T", "only this technique's"),
+        GIB_OPTION_TEXT("--component", &f->component, "C", "only this component's"),
+        GIB_OPTION_TEXT("--params", &f->params, "P", "only these parameters'"),
+        GIB_OPTION_CUSTOM("--size", f, parse_size, "WxH", "only this size's"),
+        GIB_OPTION_TEXT("--renderer", &f->renderer, "TEXT", "machines whose renderer holds TEXT"),
+        GIB_OPTION_CUSTOM("--machine", f, parse_machine, "ID", "one machine (--machines lists)"),
+        GIB_OPTION_FLAG("--find", &o->find, "the first regression of each series"),
+        GIB_OPTION_CUSTOM("--tol", o, parse_tol, "REL", "--find's relative tolerance"),
+        GIB_OPTION_FLOAT("--abs", &o->abs_tol, 0, 1e30, "A", "--find's absolute tolerance"),
+        GIB_OPTION_CUSTOM("--plot", &o->png, parse_plot, "FILE.png", "plot the metric by revision"),
+        GIB_OPTION_FLAG("--machines", &o->machines, "the machines in the history"),
+        {0}};
+    return gib_options_parse(&doc, opts, argc, argv, NULL, NULL, 0);
 }
 
 /* The matching series from the history (or, with --machines, the machines printed). Returns

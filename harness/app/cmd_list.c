@@ -5,6 +5,7 @@
 
 #include "app.h"
 #include "harness/base/status.h"
+#include "options.h"
 
 static void print_components(unsigned bits)
 {
@@ -19,12 +20,15 @@ static void print_components(unsigned bits)
 
 int gib_cmd_list(int argc, char **argv)
 {
-    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        puts("usage: gibench list\n\nPrints every technique (its source, output components, passes and "
-             "parameters with defaults and ranges), the statuses a result row can hold, and every "
-             "scene file (availability and features).");
-        return 0;
-    }
+    static const gib_command_doc doc = {
+        "list", "",
+        "Prints every technique (its source, output components, passes and parameters with\n"
+        "defaults and ranges), the statuses a result row can hold, and every scene file\n"
+        "(availability and features).\n"};
+    const gib_option none[] = {{0}};
+    int rc = gib_options_parse(&doc, none, argc, argv, NULL, NULL, 0);
+    if (rc != GIB_OPTIONS_PROCEED)
+        return rc;
     int n;
     const gib_technique *const *all = gib_techniques(&n);
     puts("techniques:");

@@ -11,18 +11,18 @@
 
 #include "app.h"
 #include "schema.h"
+#include "options.h"
 #include "shard.h"
 
-static const char help[] =
-    "usage: gibench merge SHARD_DIR... --out DIR [--matrix NAME]...\n"
-    "\n"
+static const gib_command_doc doc = {
+    "merge", "SHARD_DIR... --out DIR [--matrix NAME]...",
     "Combines the shards of each matrix found in the SHARD_DIRs (the --out folders of\n"
     "`gibench run M --shard I/N`, one per shard) into DIR/<matrix>.csv and DIR/<matrix>_passes.csv,\n"
     "row for row what one unsharded run writes. Refuses (exit 1, that matrix not written) shards of\n"
     "different matrices, matrix expansions, profiles or revisions, a missing or repeated shard, and\n"
     "rows that are missing, duplicated or not the shard's. Refuses to overwrite an existing\n"
     "DIR/<matrix>.csv. --matrix limits the merge to the named matrices. The shards' images\n"
-    "(SHARD_DIR/images/<matrix>/) are gathered into DIR/images/<matrix>/, hard-linked or copied.\n";
+    "(SHARD_DIR/images/<matrix>/) are gathered into DIR/images/<matrix>/, hard-linked or copied.\n"};
 
 typedef struct lines {
     char *buf;
@@ -628,37 +628,18 @@ typedef struct merge_opts {
 static int parse_merge_options(int argc, char **argv, merge_opts *o)
 {
     memset(o, 0, sizeof *o);
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        }
-        if (a[0] != '-') {
-            if (o->ndirs == GIB_SHARD_MAX) {
-                fprintf(stderr, "gibench merge: more than %d folders\n", GIB_SHARD_MAX);
-                return 2;
-            }
-            o->dirs[o->ndirs++] = a;
-            continue;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "gibench merge: option %s needs a value\n%s", a, help);
-            return 2;
-        }
-        const char *v = argv[++i];
-        if (!strcmp(a, "--out"))
-            o->out = v;
-        else if (!strcmp(a, "--matrix") && o->nonly < 64)
-            o->only[o->nonly++] = v;
-        else {
-            fprintf(stderr, "gibench merge: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
-    }
+    const gib_option opts[] = {
+        GIB_OPTION_TEXT("--out", &o->out, "DIR", "where the merged tables go (required)"),
+        GIB_OPTION_LIST("--matrix", o->only, 64, &o->nonly, "NAME",
+                        "merge only this matrix (repeatable)"),
+        {0}};
+    int rc = gib_options_parse(&doc, opts, argc, argv, o->dirs, &o->ndirs, GIB_SHARD_MAX);
+    if (rc != GIB_OPTIONS_PROCEED)
+        return rc;
     if (!o->ndirs || !o->out) {
-        fprintf(stderr, "gibench merge: %s\n%s",
-                !o->ndirs ? "no shard folder given" : "--out DIR missing", help);
+        fprintf(stderr, "gibench merge: %s\n",
+                !o->ndirs ? "no shard folder given" : "--out DIR missing");
+        gib_options_usage(stderr, &doc, opts);
         return 2;
     }
     return -1;

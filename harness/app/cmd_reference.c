@@ -13,15 +13,10 @@
 
 #include "harness/base/cone_set.h"
 #include "app.h"
+#include "options.h"
 
-static const char help[] =
-    "usage: gibench reference --scene S --component C [--spp N] [--size WxH]\n"
-    "                         (--out F.exr | --cache DIR [--force] [--out F.exr])\n"
-    "                         [--dmax D] [--obscurance 0|1] [--max-depth N] [--min-depth N]\n"
-    "                         [--max-specular N] [--target-noise X] [--max-spp N]\n"
-    "                         [--camera I] [--seed N] [--threads N] [--stderr F.exr] [--quiet]\n"
-    "                         [--time T] [--sampler sobol|random] [--cone I [--cone-aperture D]]\n"
-    "\n"
+static const gib_command_doc doc = {
+    "reference", "--scene S --component C (--out F.exr | --cache DIR) [options]",
     "Components (paths in Heckbert notation, reference/reference.h):\n"
     "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
     "            weights an occluder at distance d by min(d / dmax, 1) (Zhukov et al. 1998; needs\n"
@@ -55,7 +50,7 @@ static const char help[] =
     "T; the cache key and header include it. A static scene is the same at every T.\n"
     "--sampler picks the camera samples' numbers: sobol (default; Owen-scrambled Sobol, noise from\n"
     "8 independently scrambled batches) or random (PCG32, the renderer before version 6). With\n"
-    "--out only: the cache holds sobol renders. The header records it.\n";
+    "--out only: the cache holds sobol renders. The header records it.\n"};
 
 /* Ctrl-C: once a round is done, the first one asks the renderer to stop and keep the rounds
  * finished (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
@@ -142,83 +137,67 @@ typedef struct ref_opts {
     int component, w, h; /* from comp and size (check_args) */
 } ref_opts;
 
-#define PROCEED (-1) /* parse_args, check_args: go on (else the exit status) */
+#define PROCEED GIB_OPTIONS_PROCEED /* parse_args, check_args: go on (else the exit status) */
 
-/* An option with a value: 0, -1 with err filled, or 1 when a is no such option. */
-static int parse_value_option(ref_opts *o, const char *a, const char *v, gib_error *err)
+/* --cone I: the cap of diffuse cone I (stored as I + 1: gib_ref_params.cone's 0 is the whole
+ * hemisphere). */
+static int parse_cone(const gib_option *o, const char *v, gib_error *err)
 {
-    int rc = 0;
-    if (!strcmp(a, "--scene")) o->scene_name = v;
-    else if (!strcmp(a, "--component")) o->comp = v;
-    else if (!strcmp(a, "--out")) o->out = v;
-    else if (!strcmp(a, "--cache")) o->cache = v;
-    else if (!strcmp(a, "--stderr")) o->se_out = v;
-    else if (!strcmp(a, "--size")) o->size = v;
-    else if (!strcmp(a, "--spp")) rc = gib_parse_int(a, v, 1, 1 << 24, &o->spp, err);
-    else if (!strcmp(a, "--camera")) rc = gib_parse_int(a, v, 0, 64, &o->camera, err);
-    else if (!strcmp(a, "--seed")) rc = gib_parse_int(a, v, 0, 1L << 30, &o->seed, err);
-    else if (!strcmp(a, "--threads")) rc = gib_parse_int(a, v, 0, 1024, &o->threads, err);
-    else if (!strcmp(a, "--obscurance")) rc = gib_parse_int(a, v, 0, 1, &o->obsc, err);
-    else if (!strcmp(a, "--max-depth")) rc = gib_parse_int(a, v, 1, 1024, &o->max_depth, err);
-    else if (!strcmp(a, "--min-depth")) rc = gib_parse_int(a, v, 1, 1024, &o->min_depth, err);
-    else if (!strcmp(a, "--max-specular")) rc = gib_parse_int(a, v, 1, 64, &o->max_spec, err);
-    else if (!strcmp(a, "--max-spp")) rc = gib_parse_int(a, v, 2, 1 << 24, &o->max_spp, err);
-    else if (!strcmp(a, "--target-noise")) rc = gib_parse_float(a, v, 1e-9, 10, &o->target, err);
-    else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &o->time, err);
-    else if (!strcmp(a, "--cone")) {
-        rc = gib_parse_int(a, v, 0, GIB_DIFFUSE_CONES - 1, &o->cone, err);
-        o->cone += 1; /* gib_ref_params.cone: 0 = the whole hemisphere */
+    long *cone = o->dest;
+    if (gib_parse_int(o->name, v, 0, GIB_DIFFUSE_CONES - 1, cone, err) < 0)
+        return -1;
+    *cone += 1;
+    return 0;
+}
+
+static int parse_sampler(const gib_option *o, const char *v, gib_error *err)
+{
+    if ((*(int *)o->dest = gib_ref_sampler_parse(v)) < 0)
+        return gib_fail(err, "%s '%s': sobol or random", o->name, v);
+    return 0;
+}
+
+/* --dmax D: a length, or inf / unbounded. */
+static int parse_dmax(const gib_option *o, const char *v, gib_error *err)
+{
+    if (!strcmp(v, "inf") || !strcmp(v, "unbounded")) {
+        *(double *)o->dest = INFINITY;
+        return 0;
     }
-    else if (!strcmp(a, "--cone-aperture"))
-        rc = gib_parse_float(a, v, 1, 179, &o->cone_aperture, err);
-    else if (!strcmp(a, "--sampler")) {
-        if ((o->sampler = gib_ref_sampler_parse(v)) < 0)
-            rc = gib_fail(err, "--sampler '%s': sobol or random", v);
-    }
-    else if (!strcmp(a, "--dmax")) {
-        if (!strcmp(v, "inf") || !strcmp(v, "unbounded"))
-            o->dmax = INFINITY;
-        else
-            rc = gib_parse_float(a, v, 0, 1e30, &o->dmax, err);
-    } else {
-        rc = 1;
-    }
-    return rc;
+    return gib_parse_float(o->name, v, 0, 1e30, o->dest, err);
 }
 
 static int parse_args(int argc, char **argv, ref_opts *o)
 {
-    gib_error err = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--force")) {
-            o->force = 1;
-            continue;
-        }
-        if (!strcmp(a, "--quiet")) {
-            o->quiet = 1;
-            continue;
-        }
-        if (!v) {
-            fprintf(stderr, "gibench reference: option %s needs a value\n%s", a, help);
-            return 2;
-        }
-        i++;
-        int rc = parse_value_option(o, a, v, &err);
-        if (rc > 0) {
-            fprintf(stderr, "gibench reference: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
-        if (rc < 0) {
-            fprintf(stderr, "gibench reference: %s\n", err.msg);
-            return 2;
-        }
-    }
-    return PROCEED;
+    const gib_option opts[] = {
+        GIB_OPTION_TEXT("--scene", &o->scene_name, "S", "the scene (gibench list)"),
+        GIB_OPTION_TEXT("--component", &o->comp, "C", "the component (below)"),
+        GIB_OPTION_INT("--spp", &o->spp, 1, 1 << 24, "N", "samples per pixel (default 16)"),
+        GIB_OPTION_TEXT("--size", &o->size, "WxH", "the image size"),
+        GIB_OPTION_TEXT("--out", &o->out, "F.exr", "write the image here"),
+        GIB_OPTION_TEXT("--cache", &o->cache, "DIR", "look the image up in, or add it to, a cache"),
+        GIB_OPTION_FLAG("--force", &o->force, "render again what the cache holds"),
+        GIB_OPTION_CUSTOM("--dmax", &o->dmax, parse_dmax, "D", "ao's range (inf: unbounded)"),
+        GIB_OPTION_INT("--obscurance", &o->obsc, 0, 1, "0|1", "ao as Zhukov's obscurance"),
+        GIB_OPTION_INT("--max-depth", &o->max_depth, 1, 1024, "N", "full's longest path"),
+        GIB_OPTION_INT("--min-depth", &o->min_depth, 1, 1024, "N", "Russian roulette from here"),
+        GIB_OPTION_INT("--max-specular", &o->max_spec, 1, 64, "N", "caustic's specular vertices"),
+        GIB_OPTION_FLOAT("--target-noise", &o->target, 1e-9, 10, "X",
+                         "add rounds until the noise RMSE is X times the mean"),
+        GIB_OPTION_INT("--max-spp", &o->max_spp, 2, 1 << 24, "N", "with --target-noise"),
+        GIB_OPTION_INT("--camera", &o->camera, 0, 64, "I", "the scene's camera (default 0)"),
+        GIB_OPTION_INT("--seed", &o->seed, 0, 1L << 30, "N", "with --out only (default 1)"),
+        GIB_OPTION_INT("--threads", &o->threads, 0, 1024, "N", "0: every core"),
+        GIB_OPTION_TEXT("--stderr", &o->se_out, "F.exr", "each pixel's standard error"),
+        GIB_OPTION_FLAG("--quiet", &o->quiet, "print the image's path alone"),
+        GIB_OPTION_FLOAT("--time", &o->time, -1e6, 1e6, "T", "the instant, seconds"),
+        GIB_OPTION_CUSTOM("--sampler", &o->sampler, parse_sampler, "sobol|random",
+                          "the camera samples' numbers"),
+        GIB_OPTION_CUSTOM("--cone", &o->cone, parse_cone, "I", "indirect: diffuse cone I's cap"),
+        GIB_OPTION_FLOAT("--cone-aperture", &o->cone_aperture, 1, 179, "DEG",
+                         "the cap's aperture (default 60)"),
+        {0}};
+    return gib_options_parse(&doc, opts, argc, argv, NULL, NULL, 0);
 }
 
 /* What the cache cannot hold, and the component and size; sets component, w and h. */
@@ -267,8 +246,9 @@ static int check_args(ref_opts *o)
 {
     gib_error err = {0};
     if (!o->scene_name || !o->comp || (!o->out && !o->cache)) {
-        fprintf(stderr, "gibench reference: --scene, --component and --out or --cache are "
-                        "required\n%s", help);
+        fputs("gibench reference: --scene, --component and --out or --cache are required\n",
+              stderr);
+        gib_options_usage(stderr, &doc, NULL);
         return 2;
     }
     if (o->force && !o->cache) {

@@ -6,23 +6,8 @@
 
 #include "runner.h"
 #include "app.h"
+#include "options.h"
 #include "refrank.h"
-
-static const char help[] =
-    "usage: gibench render --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
-    "                      [--camera I] [--warmup W] [--frames F] [--backend egl|egl-device|osmesa|auto]\n"
-    "                      [--ref-spp N] [--cache DIR] [--time T] [--dt DT]\n"
-    "\n"
-    "Renders technique T on scene S and writes DIR/T_<component>.exr and .png. With --ref-spp N,\n"
-    "also scores each component against an N-spp reference (cached under --cache, default\n"
-    "results/cache) and writes an error map. --time T (seconds, default 0): the instant a moving\n"
-    "scene (scenes/FORMAT.md, Motion) is shown at, in the image and in the reference; --dt DT\n"
-    "(default 0): the frames before the last are DT apart (frame f of n at T - (n-1-f) DT), so\n"
-    "every frame is a new instant.\n"
-    "\n"
-    "Timing: a cold first frame (shader compiles and first uses; reported apart, with the time\n"
-    "from create to its image), then W warm-up frames (default 2), then F timed frames (default\n"
-    "5): their median, interquartile range, min and max per pass.\n";
 
 /* What the command line asks for. */
 typedef struct render_opts {
@@ -36,58 +21,43 @@ typedef struct render_opts {
     int w, h;
 } render_opts;
 
-#define PROCEED (-1) /* parse_args, resolve_args: go on (else the exit status) */
+#define PROCEED GIB_OPTIONS_PROCEED /* parse_args, resolve_args: go on (else the exit status) */
 
-/* An option with a value: 0, -1 with err filled, or 1 when a is no such option. */
-static int parse_value_option(render_opts *o, const char *a, const char *v, gib_error *err)
-{
-    int rc = 0;
-    if (!strcmp(a, "--scene")) o->scene_name = v;
-    else if (!strcmp(a, "--technique")) o->tech_name = v;
-    else if (!strcmp(a, "--out")) o->out = v;
-    else if (!strcmp(a, "--size")) o->size = v;
-    else if (!strcmp(a, "--cache")) o->cache = v;
-    else if (!strcmp(a, "--param") && o->nparams < GIB_MAX_PARAMS * 2) o->params[o->nparams++] = v;
-    else if (!strcmp(a, "--camera")) rc = gib_parse_int(a, v, 0, 64, &o->camera, err);
-    else if (!strcmp(a, "--warmup")) rc = gib_parse_int(a, v, 0, 100, &o->warmup, err);
-    else if (!strcmp(a, "--frames")) rc = gib_parse_int(a, v, 1, GIB_TIMER_MAX_FRAMES, &o->frames, err);
-    else if (!strcmp(a, "--ref-spp")) rc = gib_parse_int(a, v, 1, 1 << 20, &o->ref_spp, err);
-    else if (!strcmp(a, "--time")) rc = gib_parse_float(a, v, -1e6, 1e6, &o->time, err);
-    else if (!strcmp(a, "--dt")) rc = gib_parse_float(a, v, 0, 1e4, &o->dt, err);
-    else if (!strcmp(a, "--backend")) {
-        if ((o->backend = gib_backend_parse(v)) < 0)
-            rc = gib_fail(err, "--backend expects egl, egl-device, osmesa or auto, got '%s'", v);
-    } else {
-        rc = 1;
-    }
-    return rc;
-}
+static const gib_command_doc doc = {
+    "render", "--scene S --technique T [--param k=v]... --size WxH --out DIR [options]",
+    "Renders technique T on scene S and writes DIR/T_<component>.exr and .png. With --ref-spp N,\n"
+    "also scores each component against an N-spp reference (cached under --cache, default\n"
+    "results/cache; deepened as `gibench run` deepens one too noisy to rank the image) and writes\n"
+    "an error map. --time T (seconds, default 0): the instant a moving scene (scenes/FORMAT.md,\n"
+    "Motion) is shown at, in the image and in the reference; --dt DT (default 0): the frames\n"
+    "before the last are DT apart (frame f of n at T - (n-1-f) DT), so every frame is a new\n"
+    "instant.\n"
+    "\n"
+    "Timing: a cold first frame (shader compiles and first uses; reported apart, with the time\n"
+    "from create to its image), then W warm-up frames (default 2), then F timed frames (default\n"
+    "5): their median, interquartile range, min and max per pass.\n"};
 
 static int parse_args(int argc, char **argv, render_opts *o)
 {
-    gib_error err = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        }
-        if (!v) {
-            fprintf(stderr, "gibench render: option %s needs a value\n%s", a, help);
-            return 2;
-        }
-        i++;
-        int rc = parse_value_option(o, a, v, &err);
-        if (rc > 0) {
-            fprintf(stderr, "gibench render: unknown option '%s'\n%s", a, help);
-            return 2;
-        }
-        if (rc < 0) {
-            fprintf(stderr, "gibench render: %s\n", err.msg);
-            return 2;
-        }
-    }
-    return PROCEED;
+    const gib_option opts[] = {
+        GIB_OPTION_TEXT("--scene", &o->scene_name, "S", "the scene (gibench list)"),
+        GIB_OPTION_TEXT("--technique", &o->tech_name, "T", "the technique (gibench list)"),
+        GIB_OPTION_LIST("--param", o->params, GIB_MAX_PARAMS * 2, &o->nparams, "k=v",
+                        "a parameter of the technique (repeatable)"),
+        GIB_OPTION_TEXT("--size", &o->size, "WxH", "the image size (default 256x256)"),
+        GIB_OPTION_TEXT("--out", &o->out, "DIR", "where the images go"),
+        GIB_OPTION_INT("--camera", &o->camera, 0, 64, "I", "the scene's camera (default 0)"),
+        GIB_OPTION_INT("--warmup", &o->warmup, 0, 100, "W", "warm-up frames (default 2)"),
+        GIB_OPTION_INT("--frames", &o->frames, 1, GIB_TIMER_MAX_FRAMES, "F",
+                       "timed frames (default 5)"),
+        GIB_OPTION_BACKEND("--backend", &o->backend),
+        GIB_OPTION_INT("--ref-spp", &o->ref_spp, 1, 1 << 20, "N",
+                       "score against an N-spp reference"),
+        GIB_OPTION_TEXT("--cache", &o->cache, "DIR", "the references' cache (results/cache)"),
+        GIB_OPTION_FLOAT("--time", &o->time, -1e6, 1e6, "T", "the instant, seconds (default 0)"),
+        GIB_OPTION_FLOAT("--dt", &o->dt, 0, 1e4, "DT", "seconds between frames (default 0)"),
+        {0}};
+    return gib_options_parse(&doc, opts, argc, argv, NULL, NULL, 0);
 }
 
 /* The technique, its parameters and the size from their names. */
@@ -95,7 +65,8 @@ static int resolve_args(render_opts *o)
 {
     gib_error err = {0};
     if (!o->scene_name || !o->tech_name || !o->out) {
-        fprintf(stderr, "gibench render: --scene, --technique and --out are required\n%s", help);
+        fputs("gibench render: --scene, --technique and --out are required\n", stderr);
+        gib_options_usage(stderr, &doc, NULL);
         return 2;
     }
     const gib_technique *t = o->t = gib_technique_find(o->tech_name);

@@ -18,15 +18,12 @@
 #include "matrix.h"
 #include "progress.h"
 #include "schema.h"
+#include "options.h"
 #include "run_rows.h"
 #include "shard.h"
 
-static const char help[] =
-    "usage: gibench run MATRIX... [--profile quick|paper] [--out DIR] [--cache DIR]\n"
-    "                   [--backend egl|egl-device|osmesa|auto] [--no-images] [--shard I/N]\n"
-    "                   [--history PATH | --no-history] [--warmup W|auto] [--frames F]\n"
-    "                   [--timing-only]\n"
-    "\n"
+static const gib_command_doc doc = {
+    "run", "MATRIX... [options]",
     "Expands each matrix (scenes x techniques x parameter lists x sizes), validates it, then runs\n"
     "it: DIR/<matrix>.csv gets one row per run and component, DIR/<matrix>_passes.csv the per-pass\n"
     "GPU times, DIR/images/<matrix>/ the images, previews and error maps. Rows are appended as\n"
@@ -55,7 +52,7 @@ static const char help[] =
     "whose minutes go to frames (harness/device/run_on_nvidia.sh).\n"
     "\n"
     "Every pass row counts its work in the first warm frame (GL pipeline statistics: vertices,\n"
-    "primitives, fragment and compute invocations) and says whether it ran raster or compute.\n";
+    "primitives, fragment and compute invocations) and says whether it ran raster or compute.\n"};
 
 /* Whether run j is this process's to do: every run, or with --shard this shard's share. */
 static int run_mine(const gib_run_ctx *ctx, int j)
@@ -276,84 +273,53 @@ static int write_manifest(const gib_run_ctx *ctx, gib_error *err)
 typedef struct run_opts {
     const char *profile, *out, *cache, *history;
     const char *files[64];
-    int nfiles, backend, images, no_history, timing_only;
+    int nfiles, backend, images, no_images, no_history, timing_only;
     gib_shard shard;
     long warmup, frames;
 } run_opts;
 
-/* An option with a value (a = argv[i], v its value). Returns 0, or 2 on bad usage. */
-static int parse_value_option(run_opts *o, const char *a, const char *v)
+static int parse_shard(const gib_option *o, const char *v, gib_error *err)
 {
-    gib_error err;
-    if (!strcmp(a, "--profile")) o->profile = v;
-    else if (!strcmp(a, "--out")) o->out = v;
-    else if (!strcmp(a, "--cache")) o->cache = v;
-    else if (!strcmp(a, "--history")) o->history = v;
-    else if (!strcmp(a, "--shard")) {
-        if (gib_shard_parse("--shard", v, &o->shard, &err) < 0) {
-            fprintf(stderr, "gibench run: %s\n", err.msg);
-            return 2;
-        }
-    } else if (!strcmp(a, "--warmup") && !strcmp(v, "auto")) {
-        o->warmup = GIB_WARMUP_AUTO;
-    } else if (!strcmp(a, "--warmup") || !strcmp(a, "--frames")) {
-        int warm = !strcmp(a, "--warmup");
-        if (gib_parse_int(a, v, warm ? 0 : 1, warm ? 100 : GIB_TIMER_MAX_FRAMES,
-                          warm ? &o->warmup : &o->frames, &err) < 0) {
-            fprintf(stderr, "gibench run: %s\n", err.msg);
-            return 2;
-        }
-    } else if (!strcmp(a, "--backend")) {
-        if ((o->backend = gib_backend_parse(v)) < 0) {
-            fprintf(stderr, "gibench run: --backend expects egl, egl-device, osmesa or auto, got "
-                            "'%s'\n", v);
-            return 2;
-        }
-    } else {
-        fprintf(stderr, "gibench run: unknown option '%s'\n%s", a, help);
-        return 2;
+    return gib_shard_parse(o->name, v, o->dest, err);
+}
+
+/* --warmup W, or auto: until three frames' GPU times agree. */
+static int parse_warmup(const gib_option *o, const char *v, gib_error *err)
+{
+    if (!strcmp(v, "auto")) {
+        *(long *)o->dest = GIB_WARMUP_AUTO;
+        return 0;
     }
-    return 0;
+    return gib_parse_int(o->name, v, 0, 100, o->dest, err);
 }
 
 /* Returns -1 to go on, 0 after --help, 2 on bad usage. */
 static int parse_options(int argc, char **argv, run_opts *o)
 {
     *o = (run_opts){.profile = "quick", .out = GIB_PROJECT_ROOT "/results",
-                    .backend = GIB_BACKEND_AUTO, .images = 1, .warmup = -1, .frames = -1};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(help, stdout);
-            return 0;
-        }
-        if (!strcmp(a, "--no-images")) {
-            o->images = 0;
-            continue;
-        }
-        if (!strcmp(a, "--no-history")) {
-            o->no_history = 1;
-            continue;
-        }
-        if (!strcmp(a, "--timing-only")) {
-            o->timing_only = 1;
-            continue;
-        }
-        if (a[0] != '-') {
-            if (o->nfiles < 64)
-                o->files[o->nfiles++] = a;
-            continue;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "gibench run: option %s needs a value\n%s", a, help);
-            return 2;
-        }
-        int rc = parse_value_option(o, a, argv[++i]);
-        if (rc)
-            return rc;
-    }
+                    .backend = GIB_BACKEND_AUTO, .warmup = -1, .frames = -1};
+    const gib_option opts[] = {
+        GIB_OPTION_TEXT("--profile", &o->profile, "P", "the matrices' profile (quick, paper, ...)"),
+        GIB_OPTION_TEXT("--out", &o->out, "DIR", "the tables and images (default results)"),
+        GIB_OPTION_TEXT("--cache", &o->cache, "DIR", "the references (default results/cache)"),
+        GIB_OPTION_BACKEND("--backend", &o->backend),
+        GIB_OPTION_FLAG("--no-images", &o->no_images, "write no images"),
+        GIB_OPTION_CUSTOM("--shard", &o->shard, parse_shard, "I/N", "run share I of N"),
+        GIB_OPTION_TEXT("--history", &o->history, "PATH", "the results history"),
+        GIB_OPTION_FLAG("--no-history", &o->no_history, "record no history"),
+        GIB_OPTION_CUSTOM("--warmup", &o->warmup, parse_warmup, "W|auto",
+                          "warm-up frames instead of the profile's"),
+        GIB_OPTION_INT("--frames", &o->frames, 1, GIB_TIMER_MAX_FRAMES, "F",
+                       "timed frames instead of the profile's"),
+        GIB_OPTION_FLAG("--timing-only", &o->timing_only, "times and memory only, no scores"),
+        {0}};
+    int rc = gib_options_parse(&doc, opts, argc, argv, o->files, &o->nfiles, 64);
+    if (rc != GIB_OPTIONS_PROCEED)
+        return rc;
+    o->images = !o->no_images;
     if (!o->nfiles) {
-        fprintf(stderr, "gibench run: no matrix file given\n%s", help);
+        fputs("gibench run: no matrix file given\n", stderr);
+        gib_options_usage(stderr, &doc, opts);
         return 2;
     }
     return -1;

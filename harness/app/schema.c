@@ -9,6 +9,7 @@
 #include "harness/base/hash.h"
 #include "harness/base/status.h"
 #include "history.h"
+#include "options.h"
 #include "runner.h"
 
 #define GIB_COL_DESC(id, name, kind, key, doc) {name, kind, key, doc},
@@ -339,31 +340,24 @@ void gib_schema_write_json(FILE *f)
     fprintf(f, "]\n}\n");
 }
 
-static const char schema_help[] =
-    "usage: gibench describe [--out FILE]   (also: gibench schema)\n"
-    "\n"
+static const gib_command_doc describe_doc = {
+    "describe", "[--out FILE]   (also: gibench schema)",
     "Prints what the binary knows as JSON: the columns of a matrix's runs and passes tables, the\n"
     "columns of a row's and a run's identity, the names of a row's images, every technique's\n"
     "outputs, passes, parameters and presets, the passes the runner times, the row statuses with\n"
     "what each means, the parameters that set each component's reference, the diffuse cone set,\n"
     "the software renderers and the revision (the build writes it to build/schema.json;\n"
-    "harness/reporting/schema.py reads it, and tests/report/test_describe.py checks what it uses).\n";
+    "harness/reporting/schema.py reads it, and tests/report/test_describe.py checks what it\n"
+    "uses).\n"};
 
 int gib_cmd_schema(int argc, char **argv)
 {
     const char *out = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            fputs(schema_help, stdout);
-            return 0;
-        }
-        if (!strcmp(argv[i], "--out") && i + 1 < argc) {
-            out = argv[++i];
-            continue;
-        }
-        fprintf(stderr, "gibench describe: unknown argument '%s'\n%s", argv[i], schema_help);
-        return 2;
-    }
+    const gib_option opts[] = {GIB_OPTION_TEXT("--out", &out, "FILE", "write here, not to stdout"),
+                               {0}};
+    int rc = gib_options_parse(&describe_doc, opts, argc, argv, NULL, NULL, 0);
+    if (rc != GIB_OPTIONS_PROCEED)
+        return rc;
     FILE *f = out ? fopen(out, "w") : stdout;
     if (!f) {
         fprintf(stderr, "gibench describe: cannot write %s\n", out);
