@@ -9,6 +9,7 @@
  * obtained here, so its published means (LDR 0.159691, HDR 0.283478) are not checked.
  *
  * Usage: test_flip [--dump DIR]. Exit status: number of failed checks. */
+#include "tests/common/check.h"
 #include "harness/imaging/flip.h"
 
 #include <math.h>
@@ -19,20 +20,7 @@
 
 static int failures;
 
-static void check_near(const char *what, double expected, double measured, double tol,
-                       const char *why)
-{
-    int ok = (expected == measured) || fabs(expected - measured) <= tol;
-    printf("%s %-44s expected %.7g measured %.7g tol %.2g (%s)\n", ok ? "PASS" : "FAIL", what,
-           expected, measured, tol, why);
-    failures += !ok;
-}
 
-static void check(const char *what, int ok, const char *detail)
-{
-    printf("%s %-44s %s\n", ok ? "PASS" : "FAIL", what, detail);
-    failures += !ok;
-}
 
 static uint32_t rng_state;
 static float rnd(void) /* xorshift32 in [0,1) */
@@ -147,7 +135,7 @@ int main(int argc, char **argv)
     static float ref[3 * W * H], test[3 * W * H], map[W * H];
     gib_error err = {0};
     const float ppd = gib_flip_default_ppd();
-    check_near("default ppd = 0.7*3840/0.7*pi/180", 67.0206432, ppd, 1e-4, "float rounding");
+    CHECK_NEAR("default ppd = 0.7*3840/0.7*pi/180", 67.0206432, ppd, 1e-4, "float rounding");
 
     /* Against the reference implementation. Tolerance 1e-5 (measured differences are ~1e-7): the
      * same float filters summed in the same order; what differs is cbrtf against powf(x, 1/3),
@@ -159,16 +147,16 @@ int main(int argc, char **argv)
         if (k < 2) {
             double m = gib_flip_ldr(ref, test, W, H, ppd, map, &err);
             snprintf(what, sizeof what, "LDR-FLIP mean, %s", pair_names[k]);
-            check_near(what, expected_mean[k], m, 1e-5, "vs NVlabs/flip FLIP.h");
+            CHECK_NEAR(what, expected_mean[k], m, 1e-5, "vs NVlabs/flip FLIP.h");
         } else {
             float start, stop;
             double m = gib_flip_hdr(ref, test, W, H, ppd, map, &start, &stop, &err);
             snprintf(what, sizeof what, "HDR-FLIP mean, %s", pair_names[k]);
-            check_near(what, expected_mean[k], m, 1e-5, "vs NVlabs/flip FLIP.h");
+            CHECK_NEAR(what, expected_mean[k], m, 1e-5, "vs NVlabs/flip FLIP.h");
             snprintf(what, sizeof what, "HDR-FLIP start exposure, %s", pair_names[k]);
-            check_near(what, expected_start[k - 2], start, 1e-5, "vs FLIP.h, float log2");
+            CHECK_NEAR(what, expected_start[k - 2], start, 1e-5, "vs FLIP.h, float log2");
             snprintf(what, sizeof what, "HDR-FLIP stop exposure, %s", pair_names[k]);
-            check_near(what, expected_stop[k - 2], stop, 1e-5, "vs FLIP.h, float log2");
+            CHECK_NEAR(what, expected_stop[k - 2], stop, 1e-5, "vs FLIP.h, float log2");
         }
         float lo = 1, hi = 0;
         for (int i = 0; i < W * H; i++) {
@@ -176,13 +164,13 @@ int main(int argc, char **argv)
             hi = fmaxf(hi, map[i]);
         }
         snprintf(what, sizeof what, "error map in [0,1], %s", pair_names[k]);
-        check(what, lo >= 0 && hi <= 1 && hi > lo, "FLIP's error is a value in [0,1]");
+        CHECK_TRUE(what, lo >= 0 && hi <= 1 && hi > lo, "FLIP's error is a value in [0,1]");
     }
 
     /* Identical images: no colour difference, so the error is exactly 0 (Eq. 9: 0^(1-f) = 0). */
     make_pair(0, ref, test);
-    check_near("LDR-FLIP(a, a)", 0.0, gib_flip_ldr(ref, ref, W, H, ppd, NULL, &err), 0.0, "exact");
-    check_near("HDR-FLIP(a, a)", 0.0, gib_flip_hdr(ref, ref, W, H, ppd, NULL, NULL, NULL, &err),
+    CHECK_NEAR("LDR-FLIP(a, a)", 0.0, gib_flip_ldr(ref, ref, W, H, ppd, NULL, &err), 0.0, "exact");
+    CHECK_NEAR("HDR-FLIP(a, a)", 0.0, gib_flip_hdr(ref, ref, W, H, ppd, NULL, NULL, NULL, &err),
                0.0, "exact");
     /* Green against blue, flat: the colour difference is the largest there is, cmax, which the
      * compression of Sec. 4.2 maps to exactly 1; flat images have no features. */
@@ -190,19 +178,19 @@ int main(int argc, char **argv)
         ref[3 * i] = 0, ref[3 * i + 1] = 1, ref[3 * i + 2] = 0;
         test[3 * i] = 0, test[3 * i + 1] = 0, test[3 * i + 2] = 1;
     }
-    check_near("LDR-FLIP(green, blue) = 1", 1.0, gib_flip_ldr(ref, test, W, H, ppd, NULL, &err),
+    CHECK_NEAR("LDR-FLIP(green, blue) = 1", 1.0, gib_flip_ldr(ref, test, W, H, ppd, NULL, &err),
                1e-5, "cmax maps to 1, float rounding");
     /* Values over 1 are clamped in LDR-FLIP, as the reference clamps its input. */
     for (int i = 0; i < 3 * W * H; i++)
         test[i] = ref[i] * 5.0f;
-    check_near("LDR-FLIP clamps: (g, 5g) = 0", 0.0, gib_flip_ldr(ref, test, W, H, ppd, NULL, &err),
+    CHECK_NEAR("LDR-FLIP clamps: (g, 5g) = 0", 0.0, gib_flip_ldr(ref, test, W, H, ppd, NULL, &err),
                0.0, "exact");
 
     /* Bad input: a NaN gives NaN and a message naming the image. */
     test[3 * 7 + 1] = NAN;
     double m = gib_flip_ldr(ref, test, W, H, ppd, NULL, &err);
-    check("NaN in test -> NaN mean", isnan(m), err.msg);
-    check("message names the test image", strstr(err.msg, "test image") != NULL, err.msg);
+    CHECK_TRUE("NaN in test -> NaN mean", isnan(m), err.msg);
+    CHECK_TRUE("message names the test image", strstr(err.msg, "test image") != NULL, err.msg);
     /* Over half the reference black (a caustic component): the median of the positive
      * luminances sets the stop exposure (our stated choice; FLIP.h would get an infinite range). */
     make_pair(2, ref, test);
@@ -210,20 +198,20 @@ int main(int argc, char **argv)
         ref[i] = test[i] = 0.0f;
     float s0, s1;
     m = gib_flip_hdr(ref, test, W, H, ppd, NULL, &s0, &s1, &err);
-    check("HDR-FLIP, 60% black reference: finite range", isfinite(m) && isfinite(s1) && s1 > s0,
+    CHECK_TRUE("HDR-FLIP, 60% black reference: finite range", isfinite(m) && isfinite(s1) && s1 > s0,
           "median of the positive luminances");
     /* A black reference has no HDR exposure range. */
     memset(ref, 0, sizeof ref);
     memset(test, 0, sizeof test);
     m = gib_flip_hdr(ref, test, W, H, ppd, NULL, NULL, NULL, &err);
-    check("HDR-FLIP of a black reference -> NaN", isnan(m), err.msg);
+    CHECK_TRUE("HDR-FLIP of a black reference -> NaN", isnan(m), err.msg);
 
     /* The magma map's ends, as matplotlib's magma (the reference tool's colour map). */
     unsigned char c0[3], c1[3];
     gib_flip_magma(0.0f, c0);
     gib_flip_magma(1.0f, c1);
-    check("magma(0) = (0,0,4)", c0[0] == 0 && c0[1] == 0 && c0[2] == 4, "dark end");
-    check("magma(1) = (252,253,191)", c1[0] == 252 && c1[1] == 253 && c1[2] == 191, "light end");
+    CHECK_TRUE("magma(0) = (0,0,4)", c0[0] == 0 && c0[1] == 0 && c0[2] == 4, "dark end");
+    CHECK_TRUE("magma(1) = (252,253,191)", c1[0] == 252 && c1[1] == 253 && c1[2] == 191, "light end");
 
     printf("%d failure(s)\n", failures);
     return failures > 100 ? 100 : failures;

@@ -1,6 +1,7 @@
 /* Unit tests for harness/imaging: metrics, sRGB, EXR round trip, PNG output, error messages.
  * Usage: test_metrics [output_dir]. Each check prints expected, measured and tolerance; the exit
  * status is the number of failed checks (capped). */
+#include "tests/common/check.h"
 #include "harness/imaging/image.h"
 #include "harness/imaging/metrics.h"
 #include "harness/imaging/oiio_shim.h"
@@ -16,20 +17,7 @@
 
 static int failures;
 
-static void check_near(const char *what, double expected, double measured, double tol,
-                       const char *why)
-{
-    int ok = (expected == measured) || fabs(expected - measured) <= tol;
-    printf("%s %-46s expected %.12g measured %.12g tol %.3g (%s)\n", ok ? "PASS" : "FAIL", what,
-           expected, measured, tol, why);
-    failures += !ok;
-}
 
-static void check(const char *what, int ok, const char *detail)
-{
-    printf("%s %-46s %s\n", ok ? "PASS" : "FAIL", what, detail);
-    failures += !ok;
-}
 
 static uint32_t rng_state = 12345u;
 static uint32_t rng(void)
@@ -59,15 +47,15 @@ static double now_ms(void)
 static void test_srgb(void)
 {
     const char *why = "IEC 61966-2-1 closed form, float rounding";
-    check_near("srgb_encode(0)", 0.0, gib_srgb_encode(0.0f), 0.0, "exact");
-    check_near("srgb_encode(1)", 1.0, gib_srgb_encode(1.0f), 0.0, "exact");
-    check_near("srgb_encode(-1) clamps", 0.0, gib_srgb_encode(-1.0f), 0.0, "exact");
-    check_near("srgb_encode(5) clamps", 1.0, gib_srgb_encode(5.0f), 0.0, "exact");
-    check_near("srgb_encode(NaN) -> 0", 0.0, gib_srgb_encode(NAN), 0.0, "exact");
-    check_near("srgb_encode(0.0031308)", 0.0404500, gib_srgb_encode(0.0031308f), 1e-6, why);
-    check_near("srgb_encode(0.5)", 1.055 * pow(0.5, 1 / 2.4) - 0.055, gib_srgb_encode(0.5f), 1e-6,
+    CHECK_NEAR("srgb_encode(0)", 0.0, gib_srgb_encode(0.0f), 0.0, "exact");
+    CHECK_NEAR("srgb_encode(1)", 1.0, gib_srgb_encode(1.0f), 0.0, "exact");
+    CHECK_NEAR("srgb_encode(-1) clamps", 0.0, gib_srgb_encode(-1.0f), 0.0, "exact");
+    CHECK_NEAR("srgb_encode(5) clamps", 1.0, gib_srgb_encode(5.0f), 0.0, "exact");
+    CHECK_NEAR("srgb_encode(NaN) -> 0", 0.0, gib_srgb_encode(NAN), 0.0, "exact");
+    CHECK_NEAR("srgb_encode(0.0031308)", 0.0404500, gib_srgb_encode(0.0031308f), 1e-6, why);
+    CHECK_NEAR("srgb_encode(0.5)", 1.055 * pow(0.5, 1 / 2.4) - 0.055, gib_srgb_encode(0.5f), 1e-6,
                why);
-    check_near("srgb_encode(0.18)", 0.4613561, gib_srgb_encode(0.18f), 1e-6, why);
+    CHECK_NEAR("srgb_encode(0.18)", 0.4613561, gib_srgb_encode(0.18f), 1e-6, why);
 }
 
 static void test_metrics(void)
@@ -75,7 +63,7 @@ static void test_metrics(void)
     gib_error err = {0};
     gib_image ref, test;
     if (gib_image_alloc(&ref, 64, 48, 3, &err) || gib_image_alloc(&test, 64, 48, 4, &err)) {
-        check("alloc", 0, err.msg);
+        CHECK_TRUE("alloc", 0, err.msg);
         return;
     }
     fill_grid(&ref);
@@ -87,11 +75,11 @@ static void test_metrics(void)
     }
     gib_metrics m;
     int rc = gib_metrics_compute(&ref, &test, 1.0f, &m, &err);
-    check("identical: compute returns 0", rc == 0, rc ? err.msg : "");
-    check_near("identical: rmse", 0.0, m.rmse, 0.0, "exact: every difference is 0");
-    check_near("identical: ssim", 1.0, m.ssim, 1e-12, "every map value is 1; double rounding");
-    check("identical: psnr is +inf", isinf(m.psnr) && m.psnr > 0, "20 log10(peak / 0)");
-    check_near("identical: nonfinite", 0, (double)m.nonfinite, 0, "exact");
+    CHECK_TRUE("identical: compute returns 0", rc == 0, rc ? err.msg : "");
+    CHECK_NEAR("identical: rmse", 0.0, m.rmse, 0.0, "exact: every difference is 0");
+    CHECK_NEAR("identical: ssim", 1.0, m.ssim, 1e-12, "every map value is 1; double rounding");
+    CHECK_TRUE("identical: psnr is +inf", isinf(m.psnr) && m.psnr > 0, "20 log10(peak / 0)");
+    CHECK_NEAR("identical: nonfinite", 0, (double)m.nonfinite, 0, "exact");
 
     const double c = 0.125;
     double sum = 0, peak = 0;
@@ -105,32 +93,32 @@ static void test_metrics(void)
     }
     double mean = sum / (double)(n * 3);
     gib_metrics_compute(&ref, &test, 1.0f, &m, &err);
-    check_near("offset 0.125: rmse", c, m.rmse, 0.0, "exact: grid values + 2^-3 are exact floats");
-    check_near("offset 0.125: ref_mean", mean, m.ref_mean, 1e-12, "double summation order");
-    check_near("offset 0.125: rel_rmse = c / mean", c / mean, m.rel_rmse, 1e-12,
+    CHECK_NEAR("offset 0.125: rmse", c, m.rmse, 0.0, "exact: grid values + 2^-3 are exact floats");
+    CHECK_NEAR("offset 0.125: ref_mean", mean, m.ref_mean, 1e-12, "double summation order");
+    CHECK_NEAR("offset 0.125: rel_rmse = c / mean", c / mean, m.rel_rmse, 1e-12,
                "double summation order");
-    check_near("offset 0.125: psnr = 20 log10(peak / c)", 20 * log10(peak / c), m.psnr, 1e-9,
+    CHECK_NEAR("offset 0.125: psnr = 20 log10(peak / c)", 20 * log10(peak / c), m.psnr, 1e-9,
                "log10 rounding");
-    check("offset 0.125: 0 < ssim < 1", m.ssim > 0 && m.ssim < 1, "structure is kept");
+    CHECK_TRUE("offset 0.125: 0 < ssim < 1", m.ssim > 0 && m.ssim < 1, "structure is kept");
 
     /* Broken samples are counted (test and reference) and excluded, not averaged. */
     test.px[5 * 4 + 1] = NAN;
     test.px[200 * 4 + 0] = INFINITY;
     ref.px[300 * 3 + 2] = -INFINITY;
     rc = gib_metrics_compute(&ref, &test, 1.0f, &m, &err);
-    check("nonfinite: compute returns 0", rc == 0, rc ? err.msg : "");
-    check_near("nonfinite: count (NaN, +Inf, ref -Inf)", 3, (double)m.nonfinite, 0, "exact");
-    check_near("nonfinite: rmse over finite pairs", c, m.rmse, 0.0, "exact, as above");
-    check("nonfinite: ssim finite", isfinite(m.ssim), "NaN/Inf encode to 0/1 in the channel");
-    check_near("count_nonfinite(test)", 2, (double)gib_image_count_nonfinite(&test), 0, "exact");
+    CHECK_TRUE("nonfinite: compute returns 0", rc == 0, rc ? err.msg : "");
+    CHECK_NEAR("nonfinite: count (NaN, +Inf, ref -Inf)", 3, (double)m.nonfinite, 0, "exact");
+    CHECK_NEAR("nonfinite: rmse over finite pairs", c, m.rmse, 0.0, "exact, as above");
+    CHECK_TRUE("nonfinite: ssim finite", isfinite(m.ssim), "NaN/Inf encode to 0/1 in the channel");
+    CHECK_NEAR("count_nonfinite(test)", 2, (double)gib_image_count_nonfinite(&test), 0, "exact");
 
     gib_image small;
     gib_image_alloc(&small, 10, 48, 3, &err);
     rc = gib_metrics_compute(&ref, &small, 1.0f, &m, &err);
-    check("size mismatch is an error", rc != 0 && strstr(err.msg, "size mismatch"), err.msg);
+    CHECK_TRUE("size mismatch is an error", rc != 0 && strstr(err.msg, "size mismatch"), err.msg);
     gib_image_free(&small);
     float g[10 * 10] = {0};
-    check("ssim of a 10x10 image is NaN", isnan(gib_ssim_gray(g, g, 10, 10)), "no valid window");
+    CHECK_TRUE("ssim of a 10x10 image is NaN", isnan(gib_ssim_gray(g, g, 10, 10)), "no valid window");
 
     gib_image_free(&ref);
     gib_image_free(&test);
@@ -154,7 +142,7 @@ static void test_ssim_speed(void)
      * large image gives a valid SSIM. */
     char buf[128];
     snprintf(buf, sizeof buf, "512x512 in %.1f ms (best of 3), ssim %.4f", best, s);
-    check("ssim 512x512 is finite and in [-1, 1]", isfinite(s) && s >= -1 && s <= 1, buf);
+    CHECK_TRUE("ssim 512x512 is finite and in [-1, 1]", isfinite(s) && s >= -1 && s <= 1, buf);
     free(a);
     free(b);
 }
@@ -182,12 +170,12 @@ static void test_exr(const char *dir)
         int rc = gib_exr_write(path, &img, attrs, 2, &err);
         char what[80];
         snprintf(what, sizeof what, "exr %d-channel write", channels);
-        check(what, rc == 0, rc ? err.msg : path);
+        CHECK_TRUE(what, rc == 0, rc ? err.msg : path);
         gib_kv *kv = NULL;
         int nkv = 0;
         rc = gib_exr_read(path, &back, &kv, &nkv, &err);
         snprintf(what, sizeof what, "exr %d-channel read", channels);
-        check(what, rc == 0, rc ? err.msg : path);
+        CHECK_TRUE(what, rc == 0, rc ? err.msg : path);
         if (rc != 0) {
             gib_image_free(&img);
             continue;
@@ -202,14 +190,14 @@ static void test_exr(const char *dir)
         char buf[128];
         snprintf(buf, sizeof buf, "%zu differing samples, size %dx%dx%d", diff, back.width,
                  back.height, back.channels);
-        check(what, same && diff == 0, buf);
+        CHECK_TRUE(what, same && diff == 0, buf);
         const char *s = gib_kv_get(kv, nkv, "gib.scene");
         const char *t = gib_kv_get(kv, nkv, "gib.technique");
         snprintf(what, sizeof what, "exr %d-channel attributes", channels);
         snprintf(buf, sizeof buf, "gib.scene='%s' gib.technique='%s' (%d string attrs)",
                  s ? s : "(null)", t ? t : "(null)", nkv);
-        check(what, s && t && !strcmp(s, "cornell box") && !strcmp(t, "lpv cascades=3"), buf);
-        check("kv_get of an absent key is NULL", gib_kv_get(kv, nkv, "nope") == NULL, "");
+        CHECK_TRUE(what, s && t && !strcmp(s, "cornell box") && !strcmp(t, "lpv cascades=3"), buf);
+        CHECK_TRUE("kv_get of an absent key is NULL", gib_kv_get(kv, nkv, "nope") == NULL, "");
         free(kv);
         gib_image_free(&back);
         gib_image_free(&img);
@@ -218,12 +206,12 @@ static void test_exr(const char *dir)
     snprintf(path, sizeof path, "%s/does_not_exist/missing.exr", dir);
     gib_image img;
     int rc = gib_exr_read(path, &img, NULL, NULL, &err);
-    check("missing exr: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
+    CHECK_TRUE("missing exr: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
           err.msg);
     gib_image_alloc(&img, 4, 4, 3, &err);
     rc = gib_exr_write(path, &img, NULL, 0, &err);
     gib_image_free(&img);
-    check("unwritable exr: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
+    CHECK_TRUE("unwritable exr: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
           err.msg);
 }
 
@@ -281,11 +269,11 @@ static void test_exr_half(const char *dir)
 {
     char path[1024], buf[160];
     snprintf(path, sizeof path, "%s/imaging_half.exr", dir);
-    check("half exr written with the core API", write_half_exr(path) == 0, path);
+    CHECK_TRUE("half exr written with the core API", write_half_exr(path) == 0, path);
     gib_error err = {0};
     gib_image img;
     int rc = gib_exr_read(path, &img, NULL, NULL, &err);
-    check("half exr read", rc == 0 && img.width == 3 && img.height == 2, rc ? err.msg : path);
+    CHECK_TRUE("half exr read", rc == 0 && img.width == 3 && img.height == 2, rc ? err.msg : path);
     if (rc != 0)
         return;
     int bad = 0;
@@ -294,7 +282,7 @@ static void test_exr_half(const char *dir)
             bad += img.px[p * 3 + k] != half_vals[(p + k) % 6];
     snprintf(buf, sizeof buf, "%d of 18 samples differ; first pixel (%g, %g, %g)", bad, img.px[0],
              img.px[1], img.px[2]);
-    check("half exr values exact (row 0 on top)", bad == 0, buf);
+    CHECK_TRUE("half exr values exact (row 0 on top)", bad == 0, buf);
     gib_image_free(&img);
 }
 
@@ -312,38 +300,38 @@ static void test_png(const char *dir)
     img.px[3] = 10.0f; /* over range: must clamp to 255 */
     snprintf(path, sizeof path, "%s/imaging_preview.png", dir);
     int rc = gib_png_write_preview(path, &img, 2.0f, &err);
-    check("png preview write", rc == 0, rc ? err.msg : path);
+    CHECK_TRUE("png preview write", rc == 0, rc ? err.msg : path);
     int w = 0, h = 0;
     float *rgba = NULL;
     rc = gib_oiio_read_rgba(path, &w, &h, &rgba, buf, (int)sizeof buf);
-    check("png preview read back (OIIO shim)", rc == 0 && w == 16 && h == 8, rc ? buf : path);
+    CHECK_TRUE("png preview read back (OIIO shim)", rc == 0 && w == 16 && h == 8, rc ? buf : path);
     if (rc == 0) {
-        check_near("png preview: 0.25 at exposure 2", 188.0 / 255.0, rgba[0], 1e-6, "8-bit");
-        check_near("png preview: 10.0 clamps", 1.0, rgba[4], 1e-6, "8-bit");
-        check_near("png preview: alpha filled with 1", 1.0, rgba[3], 0.0, "exact");
+        CHECK_NEAR("png preview: 0.25 at exposure 2", 188.0 / 255.0, rgba[0], 1e-6, "8-bit");
+        CHECK_NEAR("png preview: 10.0 clamps", 1.0, rgba[4], 1e-6, "8-bit");
+        CHECK_NEAR("png preview: alpha filled with 1", 1.0, rgba[3], 0.0, "exact");
     }
     free(rgba);
 
     other.px[5 * 3 + 1] = NAN;
     snprintf(path, sizeof path, "%s/imaging_errmap.png", dir);
     rc = gib_png_write_error_map(path, &img, &other, 0.0f, &err);
-    check("error map write", rc == 0, rc ? err.msg : path);
+    CHECK_TRUE("error map write", rc == 0, rc ? err.msg : path);
     rgba = NULL;
     rc = gib_oiio_read_rgba(path, &w, &h, &rgba, buf, (int)sizeof buf);
-    check("error map read back", rc == 0 && w == 16 && h == 8, rc ? buf : path);
+    CHECK_TRUE("error map read back", rc == 0 && w == 16 && h == 8, rc ? buf : path);
     if (rc == 0) {
         snprintf(buf, sizeof buf, "pixel 5 = (%g, %g, %g)", rgba[20], rgba[21], rgba[22]);
-        check("error map: NaN pixel is magenta",
+        CHECK_TRUE("error map: NaN pixel is magenta",
               rgba[20] == 1.0f && rgba[21] == 0.0f && rgba[22] == 1.0f, buf);
     }
     free(rgba);
 
     snprintf(path, sizeof path, "%s/no_such_dir/x.png", dir);
     rc = gib_png_write_preview(path, &img, 1.0f, &err);
-    check("unwritable png: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
+    CHECK_TRUE("unwritable png: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
           err.msg);
     rc = gib_oiio_read_rgba(path, &w, &h, &rgba, buf, (int)sizeof buf);
-    check("missing image read: error names the file", rc != 0 && strstr(buf, path) != NULL, buf);
+    CHECK_TRUE("missing image read: error names the file", rc != 0 && strstr(buf, path) != NULL, buf);
 
     /* A 69-byte PNG whose header claims 60000x60000 RGBA (58 GB as floats): refused by size before
      * any pixel is allocated. The IHDR and IDAT are valid, CRCs included. */
@@ -360,7 +348,7 @@ static void test_png(const char *dir)
         fclose(f);
     }
     rc = gib_oiio_read_rgba(path, &w, &h, &rgba, buf, (int)sizeof buf);
-    check("60000x60000 PNG header: refused by size, naming the file",
+    CHECK_TRUE("60000x60000 PNG header: refused by size, naming the file",
           rc != 0 && strstr(buf, path) && strstr(buf, "60000x60000") && strstr(buf, "limit"), buf);
     gib_image_free(&img);
     gib_image_free(&other);
