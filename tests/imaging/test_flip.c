@@ -198,8 +198,8 @@ int main(int argc, char **argv)
         ref[i] = test[i] = 0.0f;
     float s0, s1;
     m = gib_flip_hdr(ref, test, W, H, ppd, NULL, &s0, &s1, &err);
-    CHECK_TRUE("HDR-FLIP, 60% black reference: finite range", isfinite(m) && isfinite(s1) && s1 > s0,
-          "median of the positive luminances");
+    CHECK_TRUE("HDR-FLIP, 60% black reference: finite range",
+               isfinite(m) && isfinite(s1) && s1 > s0, "median of the positive luminances");
     /* A black reference has no HDR exposure range. */
     memset(ref, 0, sizeof ref);
     memset(test, 0, sizeof test);
@@ -211,7 +211,8 @@ int main(int argc, char **argv)
     gib_flip_magma(0.0f, c0);
     gib_flip_magma(1.0f, c1);
     CHECK_TRUE("magma(0) = (0,0,4)", c0[0] == 0 && c0[1] == 0 && c0[2] == 4, "dark end");
-    CHECK_TRUE("magma(1) = (252,253,191)", c1[0] == 252 && c1[1] == 253 && c1[2] == 191, "light end");
+    CHECK_TRUE("magma(1) = (252,253,191)", c1[0] == 252 && c1[1] == 253 && c1[2] == 191,
+               "light end");
 
     printf("%d failure(s)\n", failures);
     return failures > 100 ? 100 : failures;

@@ -118,7 +118,8 @@ static void test_metrics(void)
     CHECK_TRUE("size mismatch is an error", rc != 0 && strstr(err.msg, "size mismatch"), err.msg);
     gib_image_free(&small);
     float g[10 * 10] = {0};
-    CHECK_TRUE("ssim of a 10x10 image is NaN", isnan(gib_ssim_gray(g, g, 10, 10)), "no valid window");
+    CHECK_TRUE("ssim of a 10x10 image is NaN", isnan(gib_ssim_gray(g, g, 10, 10)),
+               "no valid window");
 
     gib_image_free(&ref);
     gib_image_free(&test);
@@ -207,12 +208,12 @@ static void test_exr(const char *dir)
     gib_image img;
     int rc = gib_exr_read(path, &img, NULL, NULL, &err);
     CHECK_TRUE("missing exr: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
-          err.msg);
+               err.msg);
     gib_image_alloc(&img, 4, 4, 3, &err);
     rc = gib_exr_write(path, &img, NULL, 0, &err);
     gib_image_free(&img);
     CHECK_TRUE("unwritable exr: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
-          err.msg);
+               err.msg);
 }
 
 /* Writes a 3x2 RGB half-float EXR with the core API, as another renderer would, so the half
@@ -322,16 +323,17 @@ static void test_png(const char *dir)
     if (rc == 0) {
         snprintf(buf, sizeof buf, "pixel 5 = (%g, %g, %g)", rgba[20], rgba[21], rgba[22]);
         CHECK_TRUE("error map: NaN pixel is magenta",
-              rgba[20] == 1.0f && rgba[21] == 0.0f && rgba[22] == 1.0f, buf);
+                   rgba[20] == 1.0f && rgba[21] == 0.0f && rgba[22] == 1.0f, buf);
     }
     free(rgba);
 
     snprintf(path, sizeof path, "%s/no_such_dir/x.png", dir);
     rc = gib_png_write_preview(path, &img, 1.0f, &err);
     CHECK_TRUE("unwritable png: error names the file", rc != 0 && strstr(err.msg, path) != NULL,
-          err.msg);
+               err.msg);
     rc = gib_oiio_read_rgba(path, &w, &h, &rgba, buf, (int)sizeof buf);
-    CHECK_TRUE("missing image read: error names the file", rc != 0 && strstr(buf, path) != NULL, buf);
+    CHECK_TRUE("missing image read: error names the file", rc != 0 && strstr(buf, path) != NULL,
+               buf);
 
     /* A 69-byte PNG whose header claims 60000x60000 RGBA (58 GB as floats): refused by size before
      * any pixel is allocated. The IHDR and IDAT are valid, CRCs included. */
@@ -349,7 +351,8 @@ static void test_png(const char *dir)
     }
     rc = gib_oiio_read_rgba(path, &w, &h, &rgba, buf, (int)sizeof buf);
     CHECK_TRUE("60000x60000 PNG header: refused by size, naming the file",
-          rc != 0 && strstr(buf, path) && strstr(buf, "60000x60000") && strstr(buf, "limit"), buf);
+               rc != 0 && strstr(buf, path) && strstr(buf, "60000x60000") && strstr(buf, "limit"),
+               buf);
     gib_image_free(&img);
     gib_image_free(&other);
 }
