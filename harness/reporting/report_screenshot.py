@@ -25,7 +25,7 @@ def main():
         print(f"report_screenshot: no Chromium here: {out} not refreshed", file=sys.stderr)
         return
     if not os.path.exists(page):
-        sys.exit(f"report_screenshot: {page} not found (run harness/reporting/report.py first)")
+        sys.exit(f"report_screenshot: {page} not found (run `make report` first)")
     tmp = out + ".tmp.png"
     subprocess.run([exe, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
                     "--allow-file-access-from-files", "--virtual-time-budget=10000",

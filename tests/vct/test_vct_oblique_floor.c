@@ -28,10 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "harness/gl/bindings.h"
-#include "techniques/common/shader.h"
-#include "techniques/vct/vct.h"
-#include "tests/common/gl_fixture.h"
+#include "tests/vct/vct_probe.h"
 
 #define RES 256
 #define FLOOR_Y 64
@@ -118,22 +115,8 @@ static int trace(unsigned prog, const vct_volume *v, int sample_level, const con
         memcpy(in[3 * i + 1], (float[4]){nrm[0], nrm[1], nrm[2], 1.0f}, sizeof in[0]);
         memcpy(in[3 * i + 2], (float[4]){D[0], D[1], D[2], 0}, sizeof in[0]);
     }
-    GLuint buf[2];
-    glCreateBuffers(2, buf);
-    glNamedBufferStorage(buf[0], sizeof in, in, 0);
-    glNamedBufferStorage(buf[1], (GLsizeiptr)(sizeof out[0] * MAX_CONES), NULL, 0);
-    glUseProgram(prog);
     const vct_cone_settings cones = {1.0f, 1.5f, sample_level, 1, 0};
-    vct_volume_bind_cones(v, &cones);
-    glUniform1i(10, n);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, buf[0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, buf[1]);
-    glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(sizeof out[0] * n), out);
-    glDeleteBuffers(2, buf);
-    gib_error err;
-    return gib_gl_check("vct probe", &err);
+    return vct_probe_run(prog, v, &cones, (const float(*)[4])in, n, out);
 }
 
 /* Fills the volume (solid floor or thin, with the receivers' wall or not), traces the cases of
@@ -174,15 +157,10 @@ int main(int argc, char **argv)
 {
     const char *csv_path = argc == 3 && strcmp(argv[1], "--csv") == 0 ? argv[2] : NULL;
     gib_gl_fixture fx;
-    if (gib_fixture_open(&fx, "cornell") < 0)
+    unsigned prog;
+    if (vct_probe_open(&fx, &prog) < 0)
         return 1;
     gib_error err;
-    const char *files[] = {"vct/vct_probe.comp"};
-    unsigned prog = gib_program(files, 1, NULL, &err);
-    if (!prog) {
-        printf("FAIL: %s\n", err.msg);
-        return 1;
-    }
     gib_ledger ledger;
     gib_ledger_init(&ledger);
     vct_volume v;

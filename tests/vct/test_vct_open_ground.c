@@ -23,10 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "harness/gl/bindings.h"
-#include "techniques/common/shader.h"
-#include "techniques/vct/vct.h"
-#include "tests/common/gl_fixture.h"
+#include "tests/vct/vct_probe.h"
 
 #define CONES 3 /* central, tilted toward +x, tilted toward -z */
 #define CENTRAL_MAX 0.1
@@ -75,24 +72,12 @@ static int trace(unsigned prog, const vct_volume *v, int sample_level, float occ
             in[3 * i + 2][c] = c < 3 ? dirs[i][c] : 0;
         }
     }
-    GLuint buf[2];
-    glCreateBuffers(2, buf);
-    glNamedBufferStorage(buf[0], sizeof in, in, 0);
-    glNamedBufferStorage(buf[1], sizeof out, NULL, 0);
-    glUseProgram(prog);
     const vct_cone_settings cones = {1.0f, 1.5f, sample_level, 0, 0};
-    vct_volume_bind_cones(v, &cones);
-    glUniform1i(10, CONES);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 1, buf[0]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GIB_SSBO_OWN_FIRST + 2, buf[1]);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(buf[1], 0, sizeof out, out);
-    glDeleteBuffers(2, buf);
+    if (vct_probe_run(prog, v, &cones, (const float(*)[4])in, CONES, out) < 0)
+        return -1;
     for (int i = 0; i < CONES; i++)
         occlusion[i] = out[i][3];
-    gib_error err;
-    return gib_gl_check("vct probe", &err);
+    return 0;
 }
 
 static void open_ground(unsigned prog, int res, gib_ledger *ledger)
@@ -134,15 +119,9 @@ static void open_ground(unsigned prog, int res, gib_ledger *ledger)
 int main(void)
 {
     gib_gl_fixture fx;
-    if (gib_fixture_open(&fx, "cornell") < 0)
+    unsigned prog;
+    if (vct_probe_open(&fx, &prog) < 0)
         return 1;
-    gib_error err;
-    const char *files[] = {"vct/vct_probe.comp"};
-    unsigned prog = gib_program(files, 1, NULL, &err);
-    if (!prog) {
-        printf("FAIL: %s\n", err.msg);
-        return 1;
-    }
     gib_ledger ledger;
     gib_ledger_init(&ledger);
     open_ground(prog, 64, &ledger);
