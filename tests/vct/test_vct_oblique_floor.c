@@ -67,11 +67,7 @@ static void fill(vct_volume *v, int solid, int wall)
                 nrm[i + 1] = floor ? 1.0f : 0.0f;
                 nrm[i + 3] = 1;
             }
-    glTextureSubImage3D(v->radiance, 0, 0, 0, 0, RES, RES, RES, GL_RGBA, GL_FLOAT, rad);
-    glTextureSubImage3D(v->normal, 0, 0, 0, 0, RES, RES, RES, GL_RGBA, GL_FLOAT, nrm);
-    free(rad);
-    free(nrm);
-    vct_volume_mips(v);
+    vct_probe_upload(v, RES, rad, nrm);
 }
 
 /* Whether the cap's upper edge (phi - aperture / 2 below the horizontal) meets the floor inside

@@ -49,11 +49,7 @@ static void fill(vct_volume *v, int res, int roof)
                 nrm[i + 1] = y < ground ? 1.0f : -1.0f;
                 nrm[i + 3] = 1;
             }
-    glTextureSubImage3D(v->radiance, 0, 0, 0, 0, res, res, res, GL_RGBA, GL_FLOAT, rad);
-    glTextureSubImage3D(v->normal, 0, 0, 0, 0, res, res, res, GL_RGBA, GL_FLOAT, nrm);
-    free(rad);
-    free(nrm);
-    vct_volume_mips(v);
+    vct_probe_upload(v, res, rad, nrm);
 }
 
 /* The occlusion of the CONES cones from the ground's top at the centre, at `sample_level`. */

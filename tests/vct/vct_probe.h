@@ -6,6 +6,7 @@
 
 #include <glad/gl.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "harness/gl/bindings.h"
 #include "techniques/common/shader.h"
@@ -28,6 +29,17 @@ static inline int vct_probe_open(gib_gl_fixture *fx, unsigned *prog)
         return -1;
     }
     return 0;
+}
+
+/* Writes rad and nrm (res^3 RGBA floats each, radiance + occlusion and normal) into v's base
+ * voxels, frees them, and builds the anisotropic mips. */
+static inline void vct_probe_upload(vct_volume *v, int res, float *rad, float *nrm)
+{
+    glTextureSubImage3D(v->radiance, 0, 0, 0, 0, res, res, res, GL_RGBA, GL_FLOAT, rad);
+    glTextureSubImage3D(v->normal, 0, 0, 0, 0, res, res, res, GL_RGBA, GL_FLOAT, nrm);
+    free(rad);
+    free(nrm);
+    vct_volume_mips(v);
 }
 
 /* The n cones of `in` traced through v with `cones`' settings into out. 0, or -1 on a GL error. */
