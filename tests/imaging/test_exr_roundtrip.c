@@ -14,6 +14,7 @@
  *    test's time on a busy machine), and the other heights add no layout it has not read.
  * Usage: test_exr_roundtrip [output_dir]. Prints one line per failure and a summary; the exit
  * status is the number of failed checks (capped). */
+#include "tests/common/check.h"
 #include "harness/imaging/image.h"
 #include "harness/imaging/oiio_shim.h"
 
@@ -30,15 +31,12 @@ enum { LINES = 16 }; /* scanlines per ZIP chunk */
 
 static int failures, checks;
 
-/* Counts a check; prints what failed and why. */
-static void check(int ok, const char *why, const char *what)
-{
-    ++checks;
-    if (!ok) {
-        printf("FAIL %s: %s\n", what, why);
-        ++failures;
-    }
-}
+/* Counts a check; CHECK prints what failed and why (tests/common/check.h). */
+#define check(ok, why, what)                                                                       \
+    do {                                                                                           \
+        ++checks;                                                                                  \
+        CHECK(ok, "%s: %s", (what), (why));                                                        \
+    } while (0)
 
 static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
 static uint32_t rng(void)

@@ -17,18 +17,28 @@
 #include <stdlib.h>
 
 #include "techniques/vct/vct.h"
+#include "tests/common/check.h"
 #include "tests/common/gl_fixture.h"
 
 #define RES 64
 #define TOL 2e-3
 
-static int check(const char *what, const float *got, const float want[4])
+static int failures;
+
+/* got against want channel by channel, to TOL; one PASS/FAIL line with both (check.h), at the
+ * caller's line. */
+#define check(what, got, want) check_at(__FILE__, __LINE__, what, got, want)
+static int check_at(const char *file, int line, const char *what, const float *got,
+                    const float want[4])
 {
     int good = 1;
     for (int c = 0; c < 4; c++)
         good &= fabsf(got[c] - want[c]) <= TOL;
-    printf("%s %s: (%.4f %.4f %.4f %.4f), expected (%.4f %.4f %.4f %.4f)\n", good ? "PASS" : "FAIL",
-           what, got[0], got[1], got[2], got[3], want[0], want[1], want[2], want[3]);
+    char detail[160];
+    snprintf(detail, sizeof detail, "(%.4f %.4f %.4f %.4f), expected (%.4f %.4f %.4f %.4f) tol %g "
+             "(half-float rounding)", got[0], got[1], got[2], got[3], want[0], want[1], want[2],
+             want[3], TOL);
+    failures += gib_check_report(file, line, good, what, detail);
     return good;
 }
 
