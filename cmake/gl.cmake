@@ -12,11 +12,13 @@ target_include_directories(gib_glad SYSTEM PUBLIC ${GLAD_DIR}/include)
 target_compile_options(gib_glad PRIVATE -w)
 
 # Shaders live next to their technique and are embedded as C strings (cmake/embed_shaders.cmake),
-# with the GL slots' headers they include (harness/gl/bindings.h, techniques/*/*_slots.h).
+# with the headers they share with C (harness/gl/bindings.h, techniques/*/*_slots.h for GL slots,
+# techniques/*/*_shared.h for other constants).
 file(GLOB_RECURSE GIB_SHADERS CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/techniques/*.glsl ${CMAKE_SOURCE_DIR}/techniques/*.vert
   ${CMAKE_SOURCE_DIR}/techniques/*.frag ${CMAKE_SOURCE_DIR}/techniques/*.geom
   ${CMAKE_SOURCE_DIR}/techniques/*.comp ${CMAKE_SOURCE_DIR}/techniques/*_slots.h
+  ${CMAKE_SOURCE_DIR}/techniques/*_shared.h
   ${CMAKE_SOURCE_DIR}/harness/gl/bindings.h)
 set(GIB_SHADER_C ${CMAKE_BINARY_DIR}/generated/shaders.c)
 # A CMake list would be split into several shell words: pass it '|'-separated.

@@ -157,6 +157,87 @@ int gib_params_apply_preset(const gib_technique *t, gib_params *p, const unsigne
     return n < 0 ? -1 : 0;
 }
 
+const char *gib_param_choice_name(const gib_param_spec *s, double value)
+{
+    for (int k = 0; s->choices && s->choices[k].name; k++)
+        if (s->choices[k].value == value)
+            return s->choices[k].name;
+    return NULL;
+}
+
+/* "algorithm1 = 0, planes = 1": a parameter's choices for an error message. */
+static void list_choices(const gib_param_spec *s, char *out, size_t len)
+{
+    out[0] = 0;
+    for (int k = 0; s->choices && s->choices[k].name; k++) {
+        size_t used = strlen(out);
+        snprintf(out + used, len - used, "%s%s = %g", k ? ", " : "", s->choices[k].name,
+                 s->choices[k].value);
+    }
+}
+
+/* One value against its spec: the range, the choices, the multiple. */
+static int check_value(const gib_technique *t, const gib_param_spec *s, double v, gib_error *err)
+{
+    if (!(v >= s->min && v <= s->max))
+        return gib_fail(err, "technique '%s': parameter '%s' = %g is outside [%g, %g] (%s)",
+                        t->name, s->name, v, s->min, s->max, s->help);
+    if (s->choices && !gib_param_choice_name(s, v)) {
+        char names[256];
+        list_choices(s, names, sizeof names);
+        return gib_fail(err, "technique '%s': parameter '%s' = %g is none of its values (%s)",
+                        t->name, s->name, v, names);
+    }
+    if (s->multiple_of > 1 && fmod(v, s->multiple_of) != 0)
+        return gib_fail(err, "technique '%s': parameter '%s' = %g must be a multiple of %d (%s)",
+                        t->name, s->name, v, s->multiple_of, s->help);
+    return 0;
+}
+
+/* "hits = 1 (planes), backface = 0 (cosine)": the values a rule relates. */
+static void rule_values(const gib_technique *t, const gib_params *p, const char *params, char *out,
+                        size_t len)
+{
+    char names[256];
+    snprintf(names, sizeof names, "%s", params);
+    out[0] = 0;
+    char *save = NULL;
+    for (char *n = strtok_r(names, ",", &save); n; n = strtok_r(NULL, ",", &save)) {
+        int i = gib_param_index(t, n);
+        if (i < 0)
+            continue;
+        const char *choice = gib_param_choice_name(&t->params[i], p->values[i]);
+        size_t used = strlen(out);
+        snprintf(out + used, len - used, "%s%s = %g%s%s%s", used ? ", " : "", n, p->values[i],
+                 choice ? " (" : "", choice ? choice : "", choice ? ")" : "");
+    }
+}
+
+int gib_params_check(const gib_technique *t, const gib_params *p, gib_error *err)
+{
+    for (int i = 0; t->params && t->params[i].name && i < p->count; i++)
+        if (strcmp(t->params[i].name, GIB_PRESET_PARAM) &&
+            check_value(t, &t->params[i], p->values[i], err) < 0)
+            return -1;
+    for (int r = 0; t->rules && t->rules[r].rule; r++)
+        if (!t->rules[r].holds(t, p)) {
+            char values[512];
+            rule_values(t, p, t->rules[r].params, values, sizeof values);
+            return gib_fail(err, "technique '%s': %s break a rule: %s", t->name, values,
+                            t->rules[r].rule);
+        }
+    return 0;
+}
+
+/* A choice's name, or NAN when value names none of them. */
+static double choice_value(const gib_param_spec *s, const char *value)
+{
+    for (int k = 0; s->choices && s->choices[k].name; k++)
+        if (!strcmp(s->choices[k].name, value))
+            return s->choices[k].value;
+    return NAN;
+}
+
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
                   gib_error *err)
 {
@@ -175,20 +256,25 @@ int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const
         return set_preset(t, p, i, value, err);
     char *end = NULL;
     errno = 0;
-    double v;
-    if (!strcmp(value, "inf") || !strcmp(value, "unbounded"))
+    double v = choice_value(s, value);
+    if (!isnan(v))
+        end = NULL;
+    else if (!strcmp(value, "inf") || !strcmp(value, "unbounded"))
         v = INFINITY;
     else
         v = strtod(value, &end);
-    if (end && (end == value || *end || errno))
-        return gib_fail(err, "technique '%s': parameter '%s' expects a number, got '%s'", t->name,
-                        name, value);
+    if (end && (end == value || *end || errno)) {
+        char names[256];
+        list_choices(s, names, sizeof names);
+        return gib_fail(err, "technique '%s': parameter '%s' expects %s%s%s, got '%s'", t->name,
+                        name, names[0] ? "one of its values (" : "a number", names,
+                        names[0] ? ")" : "", value);
+    }
     if (s->type == GIB_PARAM_INT && (v != floor(v) || isinf(v)))
         return gib_fail(err, "technique '%s': parameter '%s' expects an integer, got '%s'",
                         t->name, name, value);
-    if (!(v >= s->min && v <= s->max))
-        return gib_fail(err, "technique '%s': parameter '%s' = %s is outside [%g, %g] (%s)",
-                        t->name, name, value, s->min, s->max, s->help);
+    if (check_value(t, s, v, err) < 0)
+        return -1;
     p->values[i] = v;
     return 0;
 }

@@ -24,12 +24,23 @@
  * scene, so a scaled twin of a scene runs the same test. */
 enum gib_param_type { GIB_PARAM_INT = 0, GIB_PARAM_FLOAT = 1, GIB_PARAM_LENGTH = 2 };
 
+/* A named value of an enumerated parameter: `--param hits=planes` sets hits to 1. The CSVs keep
+ * the number; `gibench list` and `gibench describe` print the names. */
+typedef struct gib_param_choice {
+    const char *name;     /* "planes" */
+    double value;         /* 1 */
+} gib_param_choice;
+
+/* Fields after `help` are optional and zero by default (none); a spec lists only what it needs. */
 typedef struct gib_param_spec {
     const char *name;     /* "shadow_res" — the CLI (--param name=value), matrix and CSV name */
     int type;             /* enum gib_param_type */
     double def;           /* default */
     double min, max;      /* inclusive range; a value outside is rejected before any rendering */
     const char *help;
+    const gib_param_choice *choices; /* the only values it takes, terminated by {0}: a name or its
+                                      * number is accepted, anything else refused */
+    int multiple_of;      /* > 1: an integer's value must be a multiple of it (rsm_res even: 2) */
 } gib_param_spec;
 
 #define GIB_MAX_PARAMS 24
@@ -53,6 +64,17 @@ typedef struct gib_params {
     int count;
     double values[GIB_MAX_PARAMS];
 } gib_params;
+
+struct gib_technique;
+
+/* A rule between parameters, declared in the descriptor and checked with the values before any
+ * scene is loaded (gib_params_check): a breaking combination is refused naming the parameters,
+ * their values and the rule, never found inside create(). */
+typedef struct gib_param_rule {
+    const char *params;   /* "hits,backface,coverage": the parameters it relates */
+    const char *rule;     /* the rule in words, with its reason */
+    int (*holds)(const struct gib_technique *t, const gib_params *p);
+} gib_param_rule;
 
 /* ---- components (light-transport parts a technique outputs) ---- */
 
@@ -98,6 +120,7 @@ typedef struct gib_technique {
     const char *source;          /* "rasterised direct light with PCF shadow maps (Williams 1978)" */
     unsigned components;         /* GIB_OUT_* bits it outputs */
     const gib_param_spec *params;/* terminated by {0} */
+    const gib_param_rule *rules; /* between its parameters (terminated by {0}; NULL: none) */
     /* The passes its render() brackets with gib_timer_begin, NULL-terminated: the names of its
      * rows in <matrix>_passes.csv, which the report's tables read (a frame may run fewer). */
     const char *const *passes;
@@ -140,6 +163,11 @@ void gib_params_default(const gib_technique *t, gib_params *p);
  * parameter, the value and the valid range. */
 int gib_param_set(const gib_technique *t, gib_params *p, const char *name, const char *value,
                   gib_error *err);
+/* Checks a complete set of values against the technique's specs (range, choices, multiple) and
+ * its rules: 0, or -1 with err naming the parameter(s), the value(s) and what they break. */
+int gib_params_check(const gib_technique *t, const gib_params *p, gib_error *err);
+/* The name of parameter i's value among its choices, or NULL when it has none or matches none. */
+const char *gib_param_choice_name(const gib_param_spec *s, double value);
 /* The parameters preset ps sets and their values, parsed and range-checked: up to max pairs into
  * index[] and value[]; returns their count, or -1 with err set naming the preset and the entry. */
 int gib_preset_values(const gib_technique *t, const gib_preset *ps, int *index, double *value,

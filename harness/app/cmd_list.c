@@ -47,7 +47,14 @@ int gib_cmd_list(int argc, char **argv)
                    : p->type == GIB_PARAM_LENGTH ? "len"
                                                  : "float",
                    p->def, p->min, p->max, p->help);
+            for (int c = 0; p->choices && p->choices[c].name; c++)
+                printf("%s%s = %g%s", c ? ", " : "                       values: ",
+                       p->choices[c].name, p->choices[c].value, p->choices[c + 1].name ? "" : "\n");
+            if (p->multiple_of > 1)
+                printf("                       a multiple of %d\n", p->multiple_of);
         }
+        for (int k = 0; t->rules && t->rules[k].rule; k++)
+            printf("      rule (%s): %s\n", t->rules[k].params, t->rules[k].rule);
         for (int k = 0; t->presets && t->presets[k].name; k++)
             printf("      preset=%-9s %s\n          sets %s\n", t->presets[k].name,
                    t->presets[k].why, t->presets[k].values);

@@ -93,7 +93,8 @@ static int resolve_args(render_opts *o)
         }
         named[gib_param_index(t, kv)] = 1;
     }
-    if (gib_params_apply_preset(t, &o->p, named, &err) < 0) {
+    if (gib_params_apply_preset(t, &o->p, named, &err) < 0 ||
+        gib_params_check(t, &o->p, &err) < 0) {
         fprintf(stderr, "gibench render: %s\n", err.msg);
         return 2;
     }

@@ -432,6 +432,9 @@ static int expand_runs(gib_matrix *m, const matrix_axes *ax, const param_lists *
                 gib_params_default(t, &r->params);
                 if (set_combo(ax, pl, si, c, &r->params, path, err) < 0)
                     return -1;
+                if (gib_params_check(t, &r->params, err) < 0)
+                    return gib_error_prefix(err, "%s: [%s] on scene %s", path, pl->sec,
+                                            ax->scenes[si]);
                 gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
                 r->width = ax->ws[zi % ax->nz];
                 r->height = ax->hs[zi % ax->nz];

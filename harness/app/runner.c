@@ -295,6 +295,12 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
     memset(r, 0, sizeof *r);
     set_status(r, GIB_STATUS_OK);
     r->driver_bytes = -1;
+    /* Matrices and `render` refuse such values before loading a scene; a caller that builds its
+     * own parameters gets the same refusal here, before anything is allocated. */
+    if (gib_params_check(rq->technique, rq->params, &r->err) < 0) {
+        set_failure_status(r, GIB_STATUS_CREATE_FAILED);
+        return;
+    }
     run_state st;
     memset(&st, 0, sizeof st);
     gib_ledger_init(&st.ledger);

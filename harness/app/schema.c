@@ -252,6 +252,23 @@ static void json_strings(FILE *f, const char *const *s)
     fputc(']', f);
 }
 
+/* A parameter's own constraints beyond its range: "choices" {name: value} and "multiple_of". */
+static void json_param_rules_of_one(FILE *f, const gib_param_spec *p)
+{
+    if (p->choices) {
+        fprintf(f, ", \"choices\": {");
+        for (int k = 0; p->choices[k].name; k++) {
+            fprintf(f, "%s", k ? ", " : "");
+            json_str(f, p->choices[k].name);
+            fprintf(f, ": ");
+            json_num(f, p->choices[k].value);
+        }
+        fputc('}', f);
+    }
+    if (p->multiple_of > 1)
+        fprintf(f, ", \"multiple_of\": %d", p->multiple_of);
+}
+
 static void json_technique(FILE *f, const gib_technique *t)
 {
     static const char *const types[] = {"int", "float", "length"};
@@ -280,6 +297,15 @@ static void json_technique(FILE *f, const gib_technique *t)
         json_num(f, p->max);
         fprintf(f, ", \"help\": ");
         json_str(f, p->help);
+        json_param_rules_of_one(f, p);
+        fputc('}', f);
+    }
+    fprintf(f, "],\n     \"rules\": [");
+    for (int i = 0; t->rules && t->rules[i].rule; i++) {
+        fprintf(f, "%s{\"params\": ", i ? ", " : "");
+        json_str(f, t->rules[i].params);
+        fprintf(f, ", \"rule\": ");
+        json_str(f, t->rules[i].rule);
         fputc('}', f);
     }
     fprintf(f, "],\n     \"presets\": [");

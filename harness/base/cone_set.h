@@ -2,7 +2,7 @@
  * diffuse_cone_dir and diffuse_cone_weight), on the C side: the reference renders what one cone
  * of it sees (`gibench reference --cone`), so that a cone technique's error can be split into its
  * cones' own errors and the error of gathering the hemisphere from six cones at all.
- * tests/gl/test_voxel_cone.c checks that both sides give the same directions and weights. */
+ * tests/common/test_voxel_cone.c checks that both sides give the same directions and weights. */
 #ifndef GIB_CONE_SET_H
 #define GIB_CONE_SET_H
 

@@ -9,11 +9,8 @@
 #define GIB_SSBO_MATERIALS 0      // struct Material[] (techniques/common/scene.glsl)
 #define GIB_SSBO_LIGHTS 1         // struct Light[]
 #define GIB_SSBO_LIGHT_VIEWS 2    // the light views' table (techniques/common/light_view.glsl)
-#define GIB_SSBO_LDM_INFO 3       // the LDMs (techniques/ldm/): directions and views
-#define GIB_SSBO_LDM_HEADS 4      //   per-pixel list heads of the bound page
-#define GIB_SSBO_LDM_NODES 5      //   list nodes of the bound page
-#define GIB_SSBO_LDM_STATUS 6     //   overflow and contention flags
-#define GIB_SSBO_LDM_COUNTERS 7   //   fragment counters
+#define GIB_SSBO_FAMILY_FIRST 3   // 3..7: buffers a family of techniques shares, named in the
+                                  //   family's slots header
 #define GIB_SSBO_OWN_FIRST 8      // 8..15: a pass's own buffers
 
 // Texture units.

@@ -132,8 +132,8 @@ void gib_view_bounding_sphere(const gib_scene *s, float c[3], float *r)
         float e = s->bounds_max[i] - s->bounds_min[i];
         d2 += e * e;
     }
-    /* the margin relative to the scene's size (an absolute 1e-6 m was 0.06% of hard_tiny's
-     * radius); a point-sized scene still gets a map */
+    /* the margin relative to the scene's size (an absolute one fits no single scale: hard_tiny
+     * is millimetres across); a point-sized scene still gets a map */
     *r = 0.5f * sqrtf(d2) * 1.01f;
     if (!(*r > 0.0f))
         *r = 1e-6f;

@@ -1,7 +1,7 @@
 /* gibench — the shared G-buffer pass: world position, viewer-facing shading normal, albedo and
  * specular parameters per pixel (techniques/common/gbuffer.frag). Position, normal and albedo are
- * RGBA32F: with half floats the `direct` baseline carried a 5e-4 relative error over every lit
- * pixel (measured on the Cornell box), which is the G-buffer's error, not the technique's. */
+ * RGBA32F: half floats would put an error of their own into every lit pixel of every technique,
+ * the G-buffer's, not the technique's. */
 #ifndef GIB_GBUFFER_H
 #define GIB_GBUFFER_H
 

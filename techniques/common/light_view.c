@@ -113,7 +113,7 @@ static void set_up_views(gib_light_views *lv, const gib_scene *s)
         float *e = t + 4 + 8 * i;
         memset(e, 0, 8 * sizeof(float));
         e[0] = (float)lv->first_face[i];
-        e[1] = -1; /* not viewed */
+        e[1] = GIB_LV_KIND_NONE;
         if (!lv->faces_of[i])
             continue;
         const gib_lv_face *first = &lv->faces[lv->first_face[i]];

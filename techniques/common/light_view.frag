@@ -1,5 +1,6 @@
 #include "common/scene.glsl"
 #include "common/common_slots.h"
+#include "common/light_view_shared.h"
 // One face of a light's view (techniques/common/light_view.c): what the light sees at each texel,
 // as a reflective shadow map. Flux per texel: a point or spot light of intensity I sends
 // I(w) dw into the texel's solid angle dw = s^2 cos^3(theta) (s: the texel's side on the plane at
@@ -48,7 +49,7 @@ void main()
     vec3 to_light;
     vec3 E;       // irradiance on a surface facing the light
     float depth;
-    if (u_kind == 2) {
+    if (u_kind == GIB_LV_KIND_ORTHO) {
         depth = dot(rel, u_forward);
         to_light = -u_forward;
         E = lights[u_light].intensity_outer.rgb;

@@ -1,12 +1,13 @@
 // The light views' table (techniques/common/light_view.c): for light i, which layers of the
 // light-view arrays hold its faces and how a point projects into them.
 //   lv_data[0]             x = lights, y = faces, z = resolution
-//   lv_data[1 + 2i]        x = first face, y = kind (0 cube, 1 perspective, 2 ortho), z = texel
+//   lv_data[1 + 2i]        x = first face, y = kind (GIB_LV_KIND_*), z = texel
 //                          (side on the unit-distance plane; ortho: world units)
 //   lv_data[2 + 2i]        xyz = origin (the light; ortho: the plane behind the scene)
 //   lv_data[1 + 2L + 7f]   4 columns of face f's view-projection (of p - origin), then its axis,
 //                          right and up vectors (a texel's steps in x and y)
 #include "gl/bindings.h"
+#include "common/light_view_shared.h"
 layout(std430, binding = GIB_SSBO_LIGHT_VIEWS) readonly buffer LightViews { vec4 lv_data[]; };
 
 int lv_res() { return int(lv_data[0].z); }
@@ -28,7 +29,7 @@ mat4 lv_view_proj(int face)
 int lv_face(int i, vec3 d)
 {
     int f = lv_first_face(i);
-    if (lv_kind(i) != 0)
+    if (lv_kind(i) != GIB_LV_KIND_CUBE)
         return f;
     vec3 a = abs(d);
     if (a.x >= a.y && a.x >= a.z)

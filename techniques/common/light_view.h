@@ -11,6 +11,7 @@
 #ifndef GIB_LIGHT_VIEW_H
 #define GIB_LIGHT_VIEW_H
 
+#include "techniques/common/light_view_shared.h"
 #include "techniques/technique.h"
 
 enum gib_lv_attribute {
@@ -36,7 +37,12 @@ enum gib_lv_attribute {
  * needs is labelled "<label>_raster.zbuffer", a structure apart, which Table 2 does not list. */
 #define GIB_LV_PACKED16 (1u << 9)
 
-enum gib_lv_kind { GIB_LV_CUBE = 0, GIB_LV_PERSPECTIVE = 1, GIB_LV_ORTHO = 2 };
+/* The kinds of view; their values are light_view_shared.h's, which the shaders read. */
+enum gib_lv_kind {
+    GIB_LV_CUBE = GIB_LV_KIND_CUBE,
+    GIB_LV_PERSPECTIVE = GIB_LV_KIND_PERSPECTIVE,
+    GIB_LV_ORTHO = GIB_LV_KIND_ORTHO,
+};
 
 typedef struct gib_lv_face {
     int light, kind;

@@ -1,6 +1,6 @@
 // gibench — the GLSL mirror of scenes/scene.h: materials, lights and the light falloff.
 // gib_light_eval() and gib_spot_falloff() (scenes/camera_light.c, scenes/light_eval.h) are the
-// definitions; these functions must compute the same numbers (tests/gl checks the images agree
+// definitions; these functions must compute the same numbers (tests/direct checks the images agree
 // with the reference).
 #include "gl/bindings.h"
 

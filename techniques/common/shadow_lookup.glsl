@@ -22,7 +22,7 @@ float shadow_visibility(int i, vec3 p, vec3 n)
 {
     vec3 origin = lv_origin(i);
     float taps = 0.0, lit = 0.0;
-    if (lv_kind(i) == 2) {
+    if (lv_kind(i) == GIB_LV_KIND_ORTHO) {
         int face = lv_first_face(i);
         vec3 d = lv_axis(face);
         float texel = lv_texel(i);

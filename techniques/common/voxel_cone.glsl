@@ -28,14 +28,12 @@ float voxel_occlusion(vec3 p, float diameter)
 }
 
 // Opacity of one cone step of length step_factor x d through a sphere sample of diameter d at p.
-// u_voxel_density 0, the paper's reading (Sec. 3.1): the sample's alpha is the mip's mean
-//   occupancy, per sample diameter: 1 - (1 - occ)^step_factor. A one-voxel wall inside a sample
-//   d voxels wide reads occ ~ 1/d, so wide cones cross walls nearly unweighted.
-// u_voxel_density 1: the occupancy is a density (filled voxels per voxel of path), so the step
-//   crosses step_factor x d / voxel voxel lengths: 1 - (1 - occ)^(step_factor d / voxel). It is
-//   read one level finer (diameter d/2): a trilinear fetch at level L spans up to two texels,
-//   2^(L+1) voxels, twice the sample. A one-voxel wall then stops ~86% of the cone per sample at
-//   every level (1 - e^-2), where the paper's reading lets ~1 - 1/d through.
+// u_voxel_density 0, the paper's reading (Sec. 3.1): the mip's mean occupancy per sample diameter,
+//   1 - (1 - occ)^step_factor; a one-voxel wall in a sample d voxels wide reads occ ~ 1/d.
+// u_voxel_density 1: the occupancy is a density (filled voxels per voxel of path), over the step's
+//   step_factor d / voxel voxel lengths, read one level finer (diameter d/2) since a trilinear
+//   fetch at level L spans 2^(L+1) voxels. A one-voxel wall then stops 1 - e^-2 of the cone per
+//   sample at every level.
 float voxel_step_alpha(vec3 p, float d, float step_factor)
 {
     float occ = voxel_occlusion(p, u_voxel_density != 0 ? 0.5 * d : d);
@@ -44,12 +42,10 @@ float voxel_step_alpha(vec3 p, float d, float step_factor)
 }
 
 // The 6 diffuse cones of 60 degrees (the set of Crassin et al. 2011 and most VCT code): one along n
-// and five around it at a tilt of 60 degrees from n, every 72 degrees in azimuth. A cone of
-// half-angle a around an axis at angle t from n collects the cosine-weighted solid angle
-// cos(t) pi sin^2(a) (the integral of n.w over the cap): pi/4 for the central cone, pi/8 for each
-// tilted one. The caps cover 80% of the hemisphere; the weights are these shares normalised to sum
-// to 1 (2/7 and 1/7), i.e. the gaps between caps are given to the cones in proportion. (The
-// common 0.25 / 0.15 split normalises the central cone by pi instead, overweighting the ring.)
+// and five at 60 degrees from it, every 72 degrees in azimuth. A cone of half-angle a around an
+// axis at angle t from n collects the cosine-weighted solid angle cos(t) pi sin^2(a): pi/4 for
+// the central cone, pi/8 for each tilted one; normalised to sum to 1 (2/7 and 1/7), the gaps
+// between caps go to the cones in proportion (the common 0.25 / 0.15 split overweights the ring).
 const int DIFFUSE_CONES = 6;
 const float DIFFUSE_TILT = 1.0471976;   // 60 degrees
 int diffuse_cone_count() { return DIFFUSE_CONES; }
@@ -75,28 +71,21 @@ vec3 diffuse_cone_dir(int i, vec3 n)
 // distance dist: transmittance prod (1 - alpha_i) of Eq. 1 with L = 0. The start is offset
 // `start_offset` voxels along n (the surface's own voxels would occlude it). Samples: diameter
 // d = max(voxel, 2 t tan(aperture / 2)) at distance t, stepping by step_factor x d (1 = spheres that
-// touch, as in Fig. 4); alpha is corrected for the step, 1 - (1 - alpha)^step_factor, so that a
-// smaller step does not count the same occluder more often. Stops when visibility < 1/256 or the
-// sample leaves the grid.
+// touch, as in Fig. 4), alpha from voxel_step_alpha. Stops when visibility < 1/256 or the sample
+// leaves the grid.
 // `taper` (a point or spot light dist away): the cone narrows again toward the light,
-// d = max(voxel, 2 tan(aperture / 2) min(t, dist - t)). A point light casts its penumbra from the
-// receiver's side only; at full width the last samples reach the surfaces next to the light and
-// take them for occluders: under a light hung 1 cm below a ceiling, a 4-degree cone is 3.5 cm wide
-// after 0.5 m, and every receiver lost the part of its light that its last sample's footprint put
-// on the ceiling, in rings around the light (lrsm's Cornell box direct light at 0.86 / 0.88 / 0.99
-// of the reference's at voxel_res 64 / 128 / 256, 0.93 / 0.99 / 1.01 tapered). It stops
-// start_offset + 1.5 voxels before the light, as the last sample's trilinear data reaches 1.5
-// voxels: stopped start_offset voxels short, at voxel_res 64 it read the ceiling 1.1 voxels above
-// that light, in rings (direct rel RMSE 0.32, 0.27 now). vct's shadow cone tapers alike
-// (vct_trace.glsl).
+// d = max(voxel, 2 tan(aperture / 2) min(t, dist - t)), since a point light casts its penumbra from
+// the receiver's side only; at full width the last samples reach the surfaces next to the light
+// (a ceiling just above it) and take them for occluders, in rings around the light. It stops
+// start_offset + TAPER_STOP voxels before the light, where its last sample's trilinear data no
+// longer reaches the light's neighbours. vct's shadow cone tapers alike (vct_trace.glsl).
 // A sample's data is kept clear of the receiver's own voxels: a surface of normal n occupies voxels
 // whose centres lie within |n|_1 / 2 voxels of its plane (mips of cells c voxels wide: c |n|_1 / 2),
 // and a trilinear fetch blends the cell centres within c of the sample on each axis, c |n|_1 along
 // n; a sample whose centre is less than 1.5 c |n|_1 above the plane (c of the coarser of the two
-// levels it blends) is lifted along n until it is, keeping its width (vct's `clearance` alike). A
-// cone toward a light at grazing runs along its receiver for many samples, and without the lift
-// read it: the Cornell box's tall box, turned 17 degrees (|n|_1 1.25), showed vertical stripes
-// where the grid's columns cross its face, lit at grazing.
+// levels it blends) is lifted along n until it is, keeping its width (vct's `clearance` alike): a
+// cone toward a light at grazing runs along its receiver for many samples, and would read it in
+// stripes where the grid's columns cross the face.
 // How many voxels beyond start_offset a tapered shadow cone stops short of its light: its last
 // sample's trilinear data reaches 1.5 voxels.
 const float TAPER_STOP = 1.5;

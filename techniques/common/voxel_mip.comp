@@ -3,7 +3,8 @@
 // the level sizes do). The level below is read as an image, so the 8 values are the stored bytes
 // and the mean is rounded once, to the nearest 1/255, by the R8 store.
 #include "common/common_slots.h"
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_3D, local_size_y = GIB_GROUP_3D, local_size_z = GIB_GROUP_3D) in;
 layout(r8, binding = GIB_VOXEL_MIP_IMAGE_DST) writeonly uniform image3D u_dst;
 layout(r8, binding = GIB_VOXEL_MIP_IMAGE_SRC) readonly uniform image3D u_src;
 

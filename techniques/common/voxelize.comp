@@ -16,7 +16,8 @@
 // second pass (LARGE) with one 64-wide work group per triangle, so one invocation never walks a
 // floor's million columns alone. Every writer stores 1: no atomics on the texture (paper, Sec. 5).
 #include "common/common_slots.h"
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 
 layout(std430, binding = GIB_VOXELIZE_SSBO_POSITIONS) readonly buffer Positions {
     float positions[];

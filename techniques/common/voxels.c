@@ -8,6 +8,7 @@
 
 #include "harness/gl/context.h"
 #include "techniques/common/common_slots.h"
+#include "techniques/common/compute.h"
 #include "techniques/common/shader.h"
 
 uint64_t gib_voxels_bytes(int res)
@@ -18,14 +19,13 @@ uint64_t gib_voxels_bytes(int res)
 /* A cube centred on the scene's bounds with 1.5 + floor(res / 64) voxels of margin on each side
  * (2.5 at 64^3, 3.5 at 128^3, 5.5 at 256^3). The half voxel puts faces on the bounds along the
  * longest axis (Sponza's floor, a room's walls) in the middle of a voxel layer rather than on the
- * boundary between two, which would set both: an odd whole margin moved the Cornell box's mean by
- * up to 17% against an even one. The whole voxels keep the walls on the bounds off the grid's
- * outer cells, where the cones' trilinear fetches blend them with what lies beyond the grid
- * (vct's transparent border, or its edge repeated): with 1.5 voxels, cones leaving through an open
- * side (the Cornell box's front) read those walls there. A margin growing with res keeps the
- * coarse levels' outer cells empty as well; res/64 was the most even in voxel_res of the margins
- * measured (PERFORMANCE.md, "The voxel grid's margin"). A scene with no extent (no triangles, or
- * one point) gets a unit cube. */
+ * boundary between two, which would set both (and make the result depend on the margin's parity).
+ * The whole voxels keep the walls on the bounds off the grid's outer cells, where the cones'
+ * trilinear fetches blend them with what lies beyond the grid (vct's transparent border, or its
+ * edge repeated), so cones leaving through an open side (the Cornell box's front) do not read
+ * them there. A margin growing with res keeps the coarse levels' outer cells empty as well; res/64
+ * gives results the most even in voxel_res (PERFORMANCE.md, "The voxel grid's margin"). A scene
+ * with no extent (no triangles, or one point) gets a unit cube. */
 static void fit_grid(gib_voxels *v, const gib_scene *s)
 {
     float ext = 0, c[3];
@@ -130,7 +130,7 @@ void gib_voxels_mips(gib_voxels *v)
                            GL_R8);
         glBindImageTexture(GIB_VOXEL_MIP_IMAGE_SRC, v->texture, l - 1, GL_TRUE, 0, GL_READ_ONLY,
                            GL_R8);
-        const GLuint n = (GLuint)(((v->res >> l) + 3) / 4);
+        const GLuint n = gib_groups((unsigned)(v->res >> l), GIB_GROUP_3D);
         glDispatchCompute(n, n, n);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -175,7 +175,7 @@ void gib_voxels_build(gib_voxels *v, const gib_gpu_scene *scene, gib_timers *tim
                 glUniform1ui(GIB_VOXELIZE_LOC_TRIANGLES, v->triangle_count);
                 glUniform1i(GIB_VOXELIZE_LOC_MASK_FIRST, first);
                 if (i == 0) {
-                    glDispatchCompute((v->triangle_count + 63) / 64, 1, 1);
+                    glDispatchCompute(gib_groups(v->triangle_count, GIB_GROUP_1D), 1, 1);
                     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
                 } else {
                     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, v->work);

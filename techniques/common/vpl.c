@@ -8,6 +8,7 @@
 
 #include "harness/gl/context.h"
 #include "techniques/common/common_slots.h"
+#include "techniques/common/compute.h"
 #include "techniques/common/shader.h"
 
 /* A small deterministic generator (splitmix64): the pattern depends on the seed only. */
@@ -226,7 +227,7 @@ int gib_vpls_probe(const gib_vpls *v, float clamp_distance, const float *in, int
     glUniform1i(GIB_VPL_PROBE_LOC_COUNT, n);
     glUniform1i(GIB_VPL_PROBE_LOC_VPLS, v->count);
     glUniform1f(GIB_VPL_PROBE_LOC_EPS, clamp_distance);
-    glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
+    glDispatchCompute(gib_groups((unsigned)n, GIB_GROUP_1D), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(16ull * n), out);
     glDeleteBuffers(2, buf);

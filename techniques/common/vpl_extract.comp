@@ -2,7 +2,8 @@
 // VPL extraction (common/vpl.h): one work group per VPL sums the reflected flux of its region of
 // light-view texels and takes position and normal from the texel under its sample point, or from
 // the region's texel nearest to it that holds a surface (ties: the lower texel index).
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 struct Vpl {
     vec4 position;
     vec4 normal;
@@ -16,9 +17,9 @@ layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
 layout(location = GIB_VPL_LOC_RES) uniform int u_res;
 layout(location = GIB_VPL_LOC_COUNT) uniform int u_count;
-shared vec3 s_flux[64];
-shared int s_d2[64];
-shared int s_texel[64];
+shared vec3 s_flux[GIB_GROUP_1D];
+shared int s_d2[GIB_GROUP_1D];
+shared int s_texel[GIB_GROUP_1D];
 void main()
 {
     int id = int(gl_WorkGroupID.x);
@@ -27,7 +28,7 @@ void main()
     ivec2 sp = ivec2(c.y % u_res, c.y / u_res);
     vec3 sum = vec3(0.0);
     int best = 0x7fffffff, best_texel = -1;
-    for (int k = c.z + t; k < c.z + c.w; k += 64) {
+    for (int k = c.z + t; k < c.z + c.w; k += GIB_GROUP_1D) {
         int idx = texels[k];
         ivec3 q = ivec3(idx % u_res, idx / u_res, c.x);
         sum += texelFetch(lv_flux, q, 0).rgb;
@@ -44,7 +45,7 @@ void main()
     s_d2[t] = best;
     s_texel[t] = best_texel;
     barrier();
-    for (int s = 32; s > 0; s >>= 1) {
+    for (int s = GIB_GROUP_1D / 2; s > 0; s >>= 1) {
         if (t < s) {
             s_flux[t] += s_flux[t + s];
             int d2 = s_d2[t + s], tx = s_texel[t + s];

@@ -1,6 +1,7 @@
 #include "common/vpl_gather.glsl"
 // Test hook (common/vpl.h, gib_vpls_probe): vpl_irradiance() at given points and normals.
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 layout(std430, binding = GIB_VPL_PROBE_SSBO_IN) readonly buffer ProbeIn { vec4 probe_in[]; };
 layout(std430, binding = GIB_VPL_PROBE_SSBO_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
 layout(location = GIB_VPL_PROBE_LOC_COUNT) uniform int u_count;

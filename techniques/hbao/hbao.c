@@ -39,13 +39,13 @@ typedef struct hbao {
  * gets a weight below exp(-4). */
 #define HBAO_BLUR_TOLERANCE 0.01f
 
-/* Defaults. directions = steps = 8 is a mid-range setting (16 and 16 lower the Cornell rel_rmse
- * from 0.113 to 0.099 at about 4x the cost); the falloff W(r) = 1 - r^2/R^2 is Bavoil et al.'s.
+/* Defaults. directions = steps = 8 is a mid-range setting: more of each lowers the error at a
+ * cost that grows with their product. The falloff W(r) = 1 - r^2/R^2 is Bavoil et al.'s.
  * The angle bias of 10 degrees is the value public ports of NVIDIA's HBAO samples set
  * (TanAngleBias = tan(10 deg)); NVIDIA's 2008 DX10 sample shipped with 30, which hides more of the
  * low-tessellation creases the bias is for but also more real contact occlusion. The blur radius 2
- * gave the lowest error on the Cornell box at 256x256 (rel_rmse 0.113 against 0.114, 0.115, 0.121
- * for r = 0, 4, 8); on Sponza the blur costs a little detail (SSIM 0.71 against 0.74 unblurred). */
+ * gives the lowest error on the Cornell box, at the price of a little detail on Sponza
+ * (PERFORMANCE.md, "Measurements moved out of the sources"). */
 static const gib_param_spec hbao_params[] = {
     {"dmax", GIB_PARAM_LENGTH, 1.0, 1e-6, 1e9,
      "occlusion radius R = d_max in scene units (Crytek Sponza is in cm); must be finite: "

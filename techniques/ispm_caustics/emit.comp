@@ -10,7 +10,8 @@
 #include "common/scene.glsl"
 #include "common/light_view.glsl"
 #include "ispm_caustics/caustics.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_2D, local_size_y = GIB_GROUP_2D) in;
 layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
@@ -36,7 +37,7 @@ int light_of_face(int face)
 {
     int lights = int(lv_data[0].x);
     for (int i = 0; i < lights; i++) {
-        int first = lv_first_face(i), count = lv_kind(i) == 0 ? 6 : 1;
+        int first = lv_first_face(i), count = lv_kind(i) == GIB_LV_KIND_CUBE ? 6 : 1;
         if (face >= first && face < first + count)
             return i;
     }
@@ -67,7 +68,7 @@ void main()
     float s = lv_texel(li);
     vec3 flux_in, win;
     float dist0 = 0.0, footprint;
-    if (lv_kind(li) == 2) {
+    if (lv_kind(li) == GIB_LV_KIND_ORTHO) {
         win = L.direction_exponent.xyz;
         flux_in = L.intensity_outer.rgb * (s * s);
         footprint = -s * s * float(block * block);

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "harness/gl/context.h"
+#include "techniques/common/compute.h"
 #include "techniques/common/fullscreen.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
@@ -74,8 +75,9 @@ static const gib_param_spec caustics_params[] = {
      "C: splat radius h = C sqrt(area the photon stands for on the receiver)"},
     {"splat_res_divisor", GIB_PARAM_INT, 1, 1, 8,
      "splats at 1/k of the image side; k > 1 upsampled bilaterally (Sec. 3.3.2.4: 2)"},
-    {"layers", GIB_PARAM_INT, 0, 0, 4,
-     "0: per-pixel linked lists; 4: 4 depth-peeled layers (the thesis' comparison, Fig. 4.2(b))"},
+    {"layers", GIB_PARAM_INT, 0, 0, ISPM_LAYERS,
+     "0: per-pixel linked lists; 4: 4 depth-peeled layers (the thesis' comparison, Fig. 4.2(b))",
+     .choices = (const gib_param_choice[]){{"lists", 0}, {"peeled", ISPM_LAYERS}, {0}}},
     {"kernel_delta", GIB_PARAM_FLOAT, 0.25, 0.01, 10,
      "delta of the Gaussian splat kernel exp(-(r/h)^2 / (2 delta)), cut at r = h"},
     {"hit_slack", GIB_PARAM_FLOAT, 0.5, 0, 4,
@@ -87,6 +89,18 @@ static const gib_param_spec caustics_params[] = {
     {"redraw", GIB_PARAM_INT, 0, 0, 1,
      "0: the pre-generated random numbers reused every frame (thesis, Ch. 4: temporal coherence); "
      "1: drawn anew every frame (the same stream, continued)"},
+    {0},
+};
+
+/* Photons are emitted from mip mask_level of the rsm_res^2 specular mask, which must exist. */
+static int mask_level_exists(const gib_technique *t, const gib_params *p)
+{
+    return (gib_param_int(t, p, "rsm_res") >> gib_param_int(t, p, "mask_level")) >= 1;
+}
+
+static const gib_param_rule caustics_rules[] = {
+    {"rsm_res,mask_level",
+     "mask_level must be a mip of the light view: rsm_res >> mask_level >= 1", mask_level_exists},
     {0},
 };
 
@@ -149,8 +163,9 @@ static uint32_t pcg32(uint64_t *s)
  * 0}, N = 0. Written at create and before every frame's emission. */
 static const uint32_t COMMAND_RESET[8] = {2, 0, 0, 0, 0, 1, 0, 0};
 
-/* The parameters, checked, and the sizes that follow from them. */
-static int read_params(caustics *c, const gib_params *p, int *rsm_res, gib_error *err)
+/* The parameters (checked against the descriptor's rules before any scene is loaded) and the
+ * sizes that follow from them. */
+static void read_params(caustics *c, const gib_params *p, int *rsm_res)
 {
     const gib_technique *t = &gib_technique_ispm_caustics;
     *rsm_res = gib_param_int(t, p, "rsm_res");
@@ -162,12 +177,6 @@ static int read_params(caustics *c, const gib_params *p, int *rsm_res, gib_error
     c->slack = (float)gib_param_float(t, p, "hit_slack");
     c->hit_depth = (float)gib_param_float(t, p, "hit_depth");
     c->layers = gib_param_int(t, p, "layers");
-    if (c->layers != 0 && c->layers != ISPM_LAYERS)
-        return gib_fail(err, "ispm_caustics: parameter 'layers' = %d: 0 (linked lists) or 4 (the "
-                             "thesis' 4 depth layers)", c->layers);
-    if ((*rsm_res >> c->level) < 1)
-        return gib_fail(err, "ispm_caustics: mask_level %d is past the last mip of a %d^2 light "
-                             "view", c->level, *rsm_res);
     c->res_l = *rsm_res >> c->level;
     const gib_scene *s = c->scene->scene;
     c->diag = 0;
@@ -176,7 +185,6 @@ static int read_params(caustics *c, const gib_params *p, int *rsm_res, gib_error
     c->diag = sqrtf(c->diag);
     c->splat_w = (c->width + c->divisor - 1) / c->divisor;
     c->splat_h = (c->height + c->divisor - 1) / c->divisor;
-    return 0;
 }
 
 /* The G-buffers, the light views and every program. */
@@ -331,8 +339,8 @@ static void *caustics_create(const gib_gpu_scene *scene, const gib_params *p, in
     c->width = w;
     c->height = h;
     int rsm_res = 0;
-    if (read_params(c, p, &rsm_res, err) < 0 || create_passes(c, rsm_res, err) < 0 ||
-        size_pool(c, p, err) < 0)
+    read_params(c, p, &rsm_res);
+    if (create_passes(c, rsm_res, err) < 0 || size_pool(c, p, err) < 0)
         goto fail;
     int faces = c->views.face_count > 0 ? c->views.face_count : 1;
     c->photon_capacity = (uint32_t)((uint64_t)faces * c->res_l * c->res_l);
@@ -417,7 +425,8 @@ static void build_layers(caustics *c, const gib_view *view, const float fwd[3])
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_HEADS, c->heads);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_NODES, c->nodes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_STATUS, c->status_buf);
-    glDispatchCompute((unsigned)(c->ray_res + 7) / 8, (unsigned)(c->ray_res + 7) / 8, 1);
+    glDispatchCompute(gib_groups((unsigned)c->ray_res, GIB_GROUP_2D),
+                      gib_groups((unsigned)c->ray_res, GIB_GROUP_2D), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -433,7 +442,8 @@ static void build_mask(caustics *c)
                            GL_READ_ONLY, GL_R32F);
         glUniform1i(ISPM_MIP_LOC_LEVEL, l);
         glUniform1i(ISPM_MIP_LOC_RES, res);
-        glDispatchCompute((unsigned)(res + 7) / 8, (unsigned)(res + 7) / 8, (unsigned)faces);
+        glDispatchCompute(gib_groups((unsigned)res, GIB_GROUP_2D),
+                          gib_groups((unsigned)res, GIB_GROUP_2D), (unsigned)faces);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
 }
@@ -460,7 +470,8 @@ static void emit_photons(caustics *c, const gib_view *view, const float fwd[3])
     glUniform1f(ISPM_EMIT_LOC_PIXEL_SCALE, 2.0f / ((float)c->ray_res * view->proj[5]));
     glUniform1f(ISPM_EMIT_LOC_TMIN_FLOOR, 1e-4f * c->diag);
     if (c->views.face_count > 0)
-        glDispatchCompute((unsigned)(c->res_l + 7) / 8, (unsigned)(c->res_l + 7) / 8,
+        glDispatchCompute(gib_groups((unsigned)c->res_l, GIB_GROUP_2D),
+                          gib_groups((unsigned)c->res_l, GIB_GROUP_2D),
                           (unsigned)c->views.face_count);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
@@ -494,7 +505,7 @@ static void trace_photons(caustics *c, const gib_view *view)
     glUniform1f(ISPM_RESOLVE_LOC_SPLAT_SCALE, c->splat_scale);
     glUniform1f(ISPM_RESOLVE_LOC_HMAX, 0.1f * c->diag);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ISPM_SSBO_COMMAND, c->command);
-    glDispatchCompute((c->photon_capacity + 63) / 64, 1, 1);
+    glDispatchCompute(gib_groups(c->photon_capacity, GIB_GROUP_1D), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -628,6 +639,7 @@ const gib_technique gib_technique_ispm_caustics = {
               "through per-pixel linked lists)",
     .components = GIB_OUT_CAUSTIC,
     .params = caustics_params,
+    .rules = caustics_rules,
     .passes = caustics_passes,
     .scene_needs_any = GIB_FEAT_SPECULAR | GIB_FEAT_MIRROR,
     .create = caustics_create,

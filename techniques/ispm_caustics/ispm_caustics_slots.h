@@ -63,7 +63,7 @@
 #define ISPM_SHADE_LOC_DIVISOR 2      // int: splat_res_divisor
 #define ISPM_SHADE_LOC_EYE 3          // vec3
 
-// The Phong lobe sampler's probe (phong_probe.comp, tests/caustics).
+// The Phong lobe sampler's probe (phong_probe.comp, tests/ispm_caustics/test_caustics_probes.c).
 #define ISPM_PROBE_SSBO_IN (GIB_SSBO_OWN_FIRST + 0)  // vec4[]: xy xi1 xi2
 #define ISPM_PROBE_SSBO_OUT (GIB_SSBO_OWN_FIRST + 1) // vec4[]: xyz d, w accepted
 #define ISPM_PROBE_LOC_R 2            // vec3: the mirror direction

@@ -1,7 +1,8 @@
 // The 4 peeled layers (peel.frag) as lists of at most 4 nodes, nearest first, so the trace
 // (trace.frag, resolve.comp) reads them as it reads Algorithm 3.4's lists.
 #include "ispm_caustics/caustics.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_2D, local_size_y = GIB_GROUP_2D) in;
 layout(std430, binding = ISPM_SSBO_HEADS) writeonly buffer Heads { uint heads[]; };
 layout(std430, binding = ISPM_SSBO_NODES) writeonly buffer Nodes { Node nodes[]; };
 layout(std430, binding = ISPM_SSBO_STATUS) buffer Status {

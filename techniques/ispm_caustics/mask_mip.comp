@@ -3,7 +3,8 @@
 // Level k: the box mean of its 4 texels at level k - 1 (computed here: GL leaves
 // glGenerateMipmap's filter to the driver), so a texel is exactly 1 iff all 4^k texels below are.
 #include "ispm_caustics/ispm_caustics_slots.h"
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_2D, local_size_y = GIB_GROUP_2D) in;
 layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_SPECULAR) uniform sampler2DArray lv_specular;

@@ -1,6 +1,7 @@
-// Test probe (tests/caustics): the Phong sampler of caustics.glsl on given lobe axes and normals.
+// Test probe (tests/ispm_caustics): the Phong sampler of caustics.glsl on given lobe axes and normals.
 #include "ispm_caustics/caustics.glsl"
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 layout(std430, binding = ISPM_PROBE_SSBO_IN) readonly buffer In { vec4 xi[]; };       // xy xi1 xi2
 // xyz d, w accepted
 layout(std430, binding = ISPM_PROBE_SSBO_OUT) buffer Out { vec4 dirs[]; };

@@ -9,7 +9,8 @@
 // diagonal; both in the scene's units through the footprint.
 #include "ispm_caustics/caustics.glsl"
 #include "ispm_caustics/list_lookup.glsl"
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 layout(std430, binding = ISPM_SSBO_PHOTONS) buffer Photons { Photon photons[]; };
 layout(std430, binding = ISPM_SSBO_FIRST_HIT) readonly buffer FirstHit { uint first_t[]; };
 layout(std430, binding = ISPM_SSBO_COMMAND) readonly buffer Command { uint cmd[8]; };

@@ -8,12 +8,10 @@
 //   units of the pixel's own width at that depth). A node stands for its surface over one pixel,
 //   and the plane alone stands for it over the whole pixel frustum: a face seen nearly edge-on
 //   (the sides of Sponza's arcades, along the view) spans that frustum over metres of depth, and
-//   photons passing far from the face stopped there. The bound takes a face to reach at most
+//   photons passing far from the face would stop there. The bound takes a face to reach at most
 //   u_depth footprints from its node: 4 holds a face up to ~83 degrees from the view over its
 //   whole pixel (ring_occluded's slab, ~8 degrees above the camera's rays, needs 3.5, and leaks
-//   its caustic with 1 or 2). Sponza's pools: 0.42 of the reference's caustic with the plane
-//   alone, 0.69 at 4, 0.91 at 1 (edge-on faces are the loss); water_room, ring and bunnies_ring
-//   gain 0.005-0.01;
+//   its caustic below that); smaller values lose more of the edge-on faces' photons;
 // - it lies beyond the self-intersection distance t_min.
 // The first hit is kept: atomicMin over the photon's t (positive floats order as their bits), in
 // place of the thesis' row of hits per line.

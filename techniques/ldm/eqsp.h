@@ -4,8 +4,8 @@
  * EQSP of S^2 into 2N regions, so that the 2N directions +-v_i each stand for 2 pi / N sr (Eq. 2
  * with weight 2/N). ldm_directions_axis() maps the toolbox pole (+z) to a scene's up axis by a
  * cyclic permutation. Deterministic (plain double arithmetic, no allocation) and O(N). The
- * partition step by step, the hemisphere sample set and its measured convergence (worst |AO - 1|
- * 0.74/N to 0.85/N): techniques/ldm/EQSP.md. */
+ * partition step by step, the hemisphere sample set and its measured convergence:
+ * techniques/ldm/EQSP.md. */
 #ifndef GIB_LDM_EQSP_H
 #define GIB_LDM_EQSP_H
 

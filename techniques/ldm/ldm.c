@@ -8,6 +8,7 @@
 
 #include "harness/gl/context.h"
 #include "harness/gl/ledger.h"
+#include "techniques/common/compute.h"
 #include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "harness/gl/view.h"
@@ -385,7 +386,7 @@ int ldm_probe(ldm_set *l, const float *rays, int n, float eps, float *dist, gib_
         ldm_bind_page(l, p);
         glUniform1i(LDM_PROBE_LOC_FIRST, l->pages[p].first);
         glUniform1i(LDM_PROBE_LOC_PAGE_COUNT, l->pages[p].count);
-        glDispatchCompute((n + 63) / 64, 1, 1);
+        glDispatchCompute(gib_groups((unsigned)n, GIB_GROUP_1D), 1, 1);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(hb, 0, 4 * (GLsizeiptr)n, dist);

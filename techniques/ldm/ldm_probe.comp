@@ -1,7 +1,8 @@
 // Validation kernel (tests/ldm): traces arbitrary rays along LDM directions, so the trace of Sec. 3.1
 // can be checked against Embree on the same rays. ray.w = +-(i + 1): LDM i, direction sign.
 #include "ldm/ldm_trace.glsl"
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 layout(std430, binding = LDM_PROBE_SSBO_RAYS) readonly buffer Rays { vec4 rays[]; };
 layout(std430, binding = LDM_PROBE_SSBO_HITS) writeonly buffer Hits { float hits[]; };
 layout(location = LDM_PROBE_LOC_COUNT) uniform int u_count;

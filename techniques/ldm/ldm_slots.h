@@ -1,10 +1,17 @@
 // gibench - the GL slots of the layered depth maps (techniques/ldm/), for C and GLSL alike: only
-// #define lines and // comments. The LDMs' buffers are shared (GIB_SSBO_LDM_*, bindings.h): every
-// technique that traces them binds a page with ldm_bind_page.
+// #define lines and // comments. The LDMs' buffers are shared by the LDM techniques (bindings.h's
+// family range): every technique that traces them binds a page with ldm_bind_page.
 #ifndef LDM_SLOTS_H
 #define LDM_SLOTS_H
 
 #include "harness/gl/bindings.h"
+
+// The LDMs' shared buffers, in bindings.h's family range (3..7).
+#define GIB_SSBO_LDM_INFO (GIB_SSBO_FAMILY_FIRST + 0)     // directions and views
+#define GIB_SSBO_LDM_HEADS (GIB_SSBO_FAMILY_FIRST + 1)    // per-pixel list heads of the bound page
+#define GIB_SSBO_LDM_NODES (GIB_SSBO_FAMILY_FIRST + 2)    // list nodes of the bound page
+#define GIB_SSBO_LDM_STATUS (GIB_SSBO_FAMILY_FIRST + 3)   // overflow and contention flags
+#define GIB_SSBO_LDM_COUNTERS (GIB_SSBO_FAMILY_FIRST + 4) // fragment counters
 
 // Counting and building (ldm_count.frag, ldm_build.vert/.frag): instanced scene draws, one
 // instance an LDM, with GIB_LOC_MATERIAL and the alpha mask on GIB_UNIT_ALPHA_TEX.

@@ -41,6 +41,20 @@ static const gib_param_spec ldm_ao_params[] = {
     {0},
 };
 
+/* Obscurance weighs an occluder at distance d by rho(d) = min(d/dmax, 1), defined for a finite
+ * dmax > 0 only. */
+static int obscurance_range(const gib_technique *t, const gib_params *p)
+{
+    const double dmax = gib_param_float(t, p, "dmax");
+    return !gib_param_int(t, p, "obscurance") || (isfinite(dmax) && dmax > 0);
+}
+
+static const gib_param_rule ldm_ao_rules[] = {
+    {"obscurance,dmax", "obscurance = 1 needs a finite dmax > 0 (rho(d) = min(d/dmax, 1))",
+     obscurance_range},
+    {0},
+};
+
 static void ldm_ao_destroy(void *self)
 {
     ldm_ao *a = self;
@@ -66,11 +80,6 @@ static void *ldm_ao_create(const gib_gpu_scene *scene, const gib_params *p, int 
     a->dmax = (float)gib_param_float(t, p, "dmax");
     a->obscurance = gib_param_int(t, p, "obscurance");
     a->offset = (float)gib_param_float(t, p, "normal_offset");
-    if (a->obscurance && !(isfinite(a->dmax) && a->dmax > 0)) {
-        gib_fail(err, "ldm_ao: obscurance=1 needs a finite dmax > 0 (rho(d) = min(d/dmax, 1))");
-        free(a);
-        return NULL;
-    }
     /* The LDMs first: a plan over the budget fails before anything else is allocated. */
     const uint64_t budget = (uint64_t)(gib_param_float(t, p, "memory_budget_mb") * 1e6);
     if (ldm_create(&a->ldms, scene, gib_param_int(t, p, "directions"),
@@ -129,6 +138,7 @@ const gib_technique gib_technique_ldm_ao = {
     .source = "Aalund, Frisvad, Baerentzen 2015, Sec. 3.1-3.3, 4.1 (layered depth maps)",
     .components = GIB_OUT_AO,
     .params = ldm_ao_params,
+    .rules = ldm_ao_rules,
     .passes = ldm_ao_passes,
     .reference = ldm_ao_reference,
     .create = ldm_ao_create,

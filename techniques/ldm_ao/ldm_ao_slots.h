@@ -1,6 +1,6 @@
 // gibench - the GL slots of technique `ldm_ao` (ldm_ao.frag; ldm_env draws the same shader with
 // LDM_SKY), for C and GLSL alike: only #define lines and // comments. Full screen over the
-// G-buffer (GIB_UNIT_GBUF_*), the LDM page bound by ldm_bind_page (GIB_SSBO_LDM_*).
+// G-buffer (GIB_UNIT_GBUF_*), the LDM page bound by ldm_bind_page (GIB_SSBO_LDM_*, ldm_slots.h).
 #ifndef LDM_AO_SLOTS_H
 #define LDM_AO_SLOTS_H
 

@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "harness/gl/context.h"
+#include "techniques/common/compute.h"
 #include "techniques/common/gbuffer.h"
 #include "techniques/common/light_view.h"
 #include "techniques/common/pass_state.h"
@@ -174,7 +175,8 @@ static void *ldm_indirect_create(const gib_gpu_scene *scene, const gib_params *p
         !(a->splat_program = gib_program(splat, 3, NULL, err)))
         goto fail;
     if (a->audit) {
-        a->audit_groups = (uint32_t)((a->photon_res + 7) / 8) * (uint32_t)((a->photon_res + 7) / 8);
+        a->audit_groups = gib_groups((unsigned)a->photon_res, GIB_GROUP_2D) *
+                          gib_groups((unsigned)a->photon_res, GIB_GROUP_2D);
         if (!(a->audit_buffer = gib_gpu_buffer(ledger, "ldm_indirect.audit",
                                                16ull * AUDIT_SHADER_FATES * a->audit_groups, NULL,
                                                GL_DYNAMIC_STORAGE_BIT, err)) ||
@@ -280,7 +282,7 @@ static void trace_batch(ldm_indirect *a, int first, int count, int primaries, un
     glUniform1i(LDMI_TRACE_LOC_COUNT, count);
     if (a->audit)
         glUniform1i(LDMI_TRACE_LOC_FIRST_PAGE, primaries);
-    int groups = (a->photon_res + 7) / 8;
+    GLuint groups = gib_groups((unsigned)a->photon_res, GIB_GROUP_2D);
     glDispatchCompute(groups, groups, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     gib_timer_end(timers);

@@ -1,6 +1,6 @@
 // gibench - the GL slots of technique `ldm_indirect` (photon_trace.comp, splat.*), for C and GLSL
 // alike: only #define lines and // comments. The tracing reads the light views (GIB_UNIT_LV_*),
-// the G-buffer (GIB_UNIT_GBUF_*) and the bound LDM page (GIB_SSBO_LDM_*).
+// the G-buffer (GIB_UNIT_GBUF_*) and the bound LDM page (GIB_SSBO_LDM_*, ldm_slots.h).
 #ifndef LDM_INDIRECT_SLOTS_H
 #define LDM_INDIRECT_SLOTS_H
 

@@ -10,7 +10,8 @@
 #include "common/light_view.glsl"
 #include "ldm/ldm_trace.glsl"
 #include "ldm_indirect/photon.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_2D, local_size_y = GIB_GROUP_2D) in;
 layout(binding = GIB_UNIT_LV_POSITION) uniform sampler2DArray lv_position;
 layout(binding = GIB_UNIT_LV_NORMAL) uniform sampler2DArray lv_normal;
 layout(binding = GIB_UNIT_LV_FLUX) uniform sampler2DArray lv_flux;
@@ -33,7 +34,7 @@ layout(location = LDMI_TRACE_LOC_OFFSET) uniform float u_offset_texels;
 layout(location = LDMI_TRACE_LOC_CAPACITY) uniform uint u_capacity;
 
 // Flux audit (built with AUDIT defined, ldm_indirect.h): every invocation sums the flux of each
-// fate below, the work group adds its 64 sums, and work group g adds them to audit[g] (one slot
+// fate below, the work group adds its sums, and work group g adds them to audit[g] (one slot
 // per work group, accumulated over faces, lights and pages; the host clears and reads it).
 #ifdef AUDIT
 #include "ldm_indirect/audit.glsl"
@@ -41,7 +42,7 @@ layout(std430, binding = LDMI_SSBO_AUDIT) buffer Audit { vec4 audit[]; };
 // 1 for the first LDM page: count the primary photon
 layout(location = LDMI_TRACE_LOC_FIRST_PAGE) uniform int u_first_page;
 vec3 acc[AUDIT_COUNT];
-shared vec3 group_acc[AUDIT_COUNT][64];
+shared vec3 group_acc[AUDIT_COUNT][GIB_GROUP_2D * GIB_GROUP_2D];
 #define TALLY(k, v) acc[k] += (v)
 #else
 #define TALLY(k, v)
@@ -122,9 +123,9 @@ float trace_from_surface(int i, vec3 x1, vec3 n1, float sgn, float texel)
 // Deviation from Sec. 3.4, for numerical stability: the rotated directional differential can point
 // against the positional one, and then the footprint focuses to a line at t2 = t1 and its irradiance
 // (Eq. 4) diverges: a point light at height h over a floor focuses every photon that bounces
-// straight up onto a ceiling at height 2h (measured on the Cornell box: single-pixel splats 40x
-// the reference). A diffuse bounce spreads light and never focuses it, so each rotated differential
-// takes the sign that makes it add to the transferred positional differential.
+// straight up onto a ceiling at height 2h, in single-pixel splats far too bright. A diffuse bounce
+// spreads light and never focuses it, so each rotated differential takes the sign that makes it
+// add to the transferred positional differential.
 vec3 diverging(vec3 dx, vec3 dd, vec3 d, float t, vec3 n)
 {
     vec3 p = transfer(dx, vec3(0.0), d, t, n);
@@ -245,7 +246,7 @@ void trace_texel(ivec2 px)
         vec3 du2 = transfer(dxu, diverging(dxu, rotate(q, ddu), d2, t2, n2), d2, t2, n2);
         vec3 dv2 = transfer(dxv, diverging(dxv, rotate(q, ddv), d2, t2, n2), d2, t2, n2);
         // A footprint that is not finite or has (nearly) no area has no irradiance to splat (Eq. 4):
-        // E_p = Phi / A_p overflowed to inf and NaN splats (Sponza, ldm_res = 64 and 256).
+        // E_p = Phi / A_p would overflow to inf and splat NaN.
         float l2 = length(du2) * length(dv2);
         float area2 = length(cross(du2, dv2));
         if (isinf(l2) || isnan(l2) || !(area2 > 1e-6 * l2)) {
@@ -280,7 +281,7 @@ void main()
     barrier();
     if (li < uint(AUDIT_COUNT)) {
         vec3 sum = vec3(0.0);
-        for (int j = 0; j < 64; j++)
+        for (int j = 0; j < GIB_GROUP_2D * GIB_GROUP_2D; j++)
             sum += group_acc[li][j];
         uint g = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
         audit[g * uint(AUDIT_COUNT) + li].rgb += sum;

@@ -58,16 +58,20 @@ static const gib_param_spec lrsm_params[] = {
     {"step_factor", GIB_PARAM_FLOAT, 1, 0.1, 4, "cone step = step_factor x the sample's diameter"},
     {"start_offset", GIB_PARAM_FLOAT, 1.5, 0, 8, "cone start along the normal, voxels"},
     {"max_distance", GIB_PARAM_FLOAT, 1, 0.05, 2, "cone length, fraction of the voxel grid's side"},
-    {"rsm_res", GIB_PARAM_INT, 512, 64, 2048, "light view side, texels (layers at half); even"},
+    {"rsm_res", GIB_PARAM_INT, 512, 64, 2048,
+     "light view side, texels (even: the layers are at half its side, one texel per 2x2 block)",
+     .multiple_of = 2},
     {"layers_depth", GIB_PARAM_INT, 2, 1, 4, "depth partitions D"},
     {"layers_normal", GIB_PARAM_INT, 2, 1, 4, "<n.l> partitions N"},
     {"overlap", GIB_PARAM_FLOAT, 0.1, 0, 0.5, "depth layers' overlap delta, fraction of a partition"},
     {"mip_clamp", GIB_PARAM_FLOAT, 0, 0, 12, "lowest LRSM mip level a cone sample reads"},
     {"opacity", GIB_PARAM_INT, 1, 0, 1,
-     "voxel alpha: 0 mean occupancy per sample (paper), 1 occupancy as a density over the step"},
+     "voxel alpha: 0 mean occupancy per sample (paper), 1 occupancy as a density over the step",
+     .choices = (const gib_param_choice[]){{"mean", 0}, {"density", 1}, {0}}},
     {"backface", GIB_PARAM_INT, 2, 0, 2,
      "Eq. 8: 0 the cosine <n.v> (paper); 1 a backface test only; 2 the cosine weighting each "
-     "layer's radiance in the sample's mean, which keeps the lit coverage (lrsm_sample.glsl)"},
+     "layer's radiance in the sample's mean, which keeps the lit coverage (lrsm_sample.glsl)",
+     .choices = (const gib_param_choice[]){{"cosine", 0}, {"test", 1}, {"weighted", 2}, {0}}},
     {"coverage", GIB_PARAM_INT, 1, 0, 1,
      "1: a cone sample's radiance is the LRSM's over the coverage of the lit surfaces inside it "
      "(at least the voxels' alpha); 0: Eq. 5's R V N as it is, its coverage V counted again by "
@@ -76,7 +80,8 @@ static const gib_param_spec lrsm_params[] = {
      "1: a cone sample's light and opacity are the share of its rays that meet each lit layer's "
      "plane within its step, Eq. 8 averaged over the cone's cap, and the voxels' alpha beyond the "
      "lit coverage blocks as the plane of its occupancy would (lrsm_hits.glsl); 0: Algorithm 1's "
-     "R V N with Eq. 1's alpha, as `backface` and `coverage` read them"},
+     "R V N with Eq. 1's alpha, as `backface` and `coverage` read them",
+     .choices = (const gib_param_choice[]){{"algorithm1", 0}, {"planes", 1}, {0}}},
     {"seams", GIB_PARAM_INT, 1, 0, 1,
      "1: a sample reads every light-view face its footprint overlaps, weighted by the overlap; 0: "
      "the face of its centre only (the paper's one view per light; facets at a cube's seams)"},
@@ -109,26 +114,29 @@ static const gib_preset lrsm_presets[] = {
     {0},
 };
 
+/* With hits = planes a sample's light is the share of its rays that meet the lit planes (Eq. 8
+ * averaged over the cone's cap): `backface` and `coverage` choose among Algorithm 1's readings and
+ * have nothing to act on, so they must keep their defaults. */
+static int planes_alone(const gib_technique *t, const gib_params *p)
+{
+    return !gib_param_int(t, p, "hits") ||
+           (gib_param_int(t, p, "backface") == 2 && gib_param_int(t, p, "coverage") == 1);
+}
+
+static const gib_param_rule lrsm_rules[] = {
+    {"hits,backface,coverage",
+     "backface and coverage act only with hits = algorithm1 (with hits = planes a sample's light "
+     "is the share of its rays meeting the lit planes, Eq. 8 averaged over the cone's cap)",
+     planes_alone},
+    {0},
+};
+
 static void lrsm_destroy(void *self);
 
 static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int width, int height,
                          gib_ledger *ledger, gib_error *err)
 {
     const gib_technique *t = &gib_technique_lrsm;
-    int rsm_res = gib_param_int(t, p, "rsm_res");
-    if (rsm_res % 2) {
-        gib_fail(err, "technique 'lrsm': parameter 'rsm_res' = %d must be even (the layers are at "
-                 "half its side, one texel per 2x2 block)", rsm_res);
-        return NULL;
-    }
-    if (gib_param_int(t, p, "hits") && (gib_param_int(t, p, "backface") != 2 ||
-                                         gib_param_int(t, p, "coverage") != 1)) {
-        gib_fail(err, "technique 'lrsm': parameters 'backface' and 'coverage' (%d, %d) act only with "
-                 "'hits' = 0: with hits = 1 a sample's light is the share of its rays meeting the lit "
-                 "planes, Eq. 8 averaged over the cone's cap", gib_param_int(t, p, "backface"),
-                 gib_param_int(t, p, "coverage"));
-        return NULL;
-    }
     lrsm *s = calloc(1, sizeof *s);
     if (!s) {
         gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
@@ -160,7 +168,8 @@ static void *lrsm_create(const gib_gpu_scene *scene, const gib_params *p, int wi
                           err) < 0)
         goto fail;
     s->voxels_up = 1;
-    if (gib_light_views_create(&s->views, scene, rsm_res, GIB_LV_PACKED16, "rsm", ledger, err) < 0)
+    if (gib_light_views_create(&s->views, scene, gib_param_int(t, p, "rsm_res"), GIB_LV_PACKED16,
+                               "rsm", ledger, err) < 0)
         goto fail;
     if (lrsm_layers_create(&s->layers, &s->views, gib_param_int(t, p, "layers_depth"),
                            gib_param_int(t, p, "layers_normal"),
@@ -260,6 +269,7 @@ const gib_technique gib_technique_lrsm = {
               "2014, Sec. 3-6, Eq. 1, 5-15, Alg. 1)",
     .components = GIB_OUT_DIRECT | GIB_OUT_INDIRECT | GIB_OUT_GLOSSY,
     .params = lrsm_params,
+    .rules = lrsm_rules,
     .passes = lrsm_passes,
     .presets = lrsm_presets,
     .reference = NULL,

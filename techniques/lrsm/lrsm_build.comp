@@ -16,7 +16,8 @@
 //
 // The light view is the paper's RSM (light_view.h, GIB_LV_PACKED16): each texel's reflected
 // radiance (Table 1: rho L_d <n.l> / pi) and depth, its normal and <n.l>.
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_2D, local_size_y = GIB_GROUP_2D) in;
 layout(binding = GIB_UNIT_LV_PACKED0) uniform sampler2DArray u_lv_radiance_depth;
 layout(binding = GIB_UNIT_LV_PACKED1) uniform sampler2DArray u_lv_normal_nl;
 layout(binding = LRSM_IMAGE_RADIANCE, rgba16f) writeonly uniform image2DArray o_radiance;

@@ -2,6 +2,8 @@
 // line for line the CPU mirror techniques/lrsm/lrsm_math.c (the unit tests check that one), and the
 // per-light partition table both the construction pass and the cone passes read.
 #include "lrsm/lrsm_slots.h"
+#include "lrsm/lrsm_shared.h"
+#include "common/light_view_shared.h"
 
 // Per light i: lrsm_table[i] = (z0, z1, delta, 0): the light view's depth range over the scene
 // bounds and the overlap band's width (lrsm_math.h, "Static depth partitions").
@@ -107,11 +109,10 @@ float lrsm_decay(int light, int d, float zc)
     return 1.0;
 }
 
-const float LRSM_JACOBIAN_COS = 0.1;
 float lrsm_area_weight(int kind, float z, float zfar, float cos_face, float cosnl)
 {
     float tilt = cosnl > LRSM_JACOBIAN_COS ? LRSM_JACOBIAN_COS / cosnl : 1.0;
-    if (kind == 2)
+    if (kind == GIB_LV_KIND_ORTHO)
         return tilt;
     float r = z / zfar;
     return r * r * cos_face * cos_face * cos_face * tilt;

@@ -7,54 +7,33 @@
 #include "lrsm/lrsm_march.glsl"
 // The three cone passes of `lrsm` on the G-buffer (Sec. 3.1, 5, 6), one program each by define:
 //  DIFFUSE:  6 cones over the hemisphere (voxel_cone.glsl's set), Eq. 1 front to back with alpha
-//            from the occlusion voxels and L from the LRSM. L_o = rho/pi int L_in cos dw, and a
-//            cone's integral of cos dw is pi times its cosine-weighted share w_i, so the pixel's
-//            indirect radiance is rho sum_i w_i I_i.
-//  SPECULAR: one cone along the mirror direction r, on pixels with a specular lobe only: a mirror
-//            reflects rho_s I; a normalised Phong lobe rho_s (n+2)/(2 pi) cos^n integrates to
-//            rho_s <n.r> over a narrow lobe, so rho_s <n.r> I. The Phong exponent does not set
-//            the aperture (the paper's 10-degree cone for every specular pixel, Sec. 6).
-//  SHADOW:   direct light of every light (the BRDF and falloff of scene.glsl), each times its
-//            shadow cone's visibility (voxel_cone.glsl's shadow_cone_ex, tapering toward a point
-//            or spot light) instead of a shadow map. Its alpha follows `opacity` as the other
-//            cones': with the paper's mean occupancy a box's one-voxel shell reads alpha ~ 1/d in a
-//            sample d voxels wide, and the Cornell box's tall box let 0.19 of the light through to
-//            its umbra (0.01 with the density).
-// Cone marching (Eq. 1), as voxel_cone.glsl's shadow_cone: the samples of lrsm_march.glsl, alpha
-// corrected for the step as 1 - (1 - alpha)^step_factor, until the cone is opaque (A > 255/256).
-// A sample is a sphere of radius d/2 at its centre; its light comes from the LRSM (lrsm_hits, or
-// lrsm_sample with hits 0) and its alpha from voxel_cone.glsl's voxel_step_alpha. Parameter `opacity` 0 is the paper's reading (the
-// mips' mean occupancy as the sample's alpha: a wall one voxel thick inside a sample d voxels wide
-// reads alpha ~ 1/d, so wide cones pass thin walls nearly unweighted and the indirect level falls
-// as 1/voxel_res in closed scenes); 1 (default) reads the occupancy as a density over the step.
-// Three departures from the literal reading, each with its reason:
-//  - A sample stays in front of the receiver's plane: its diameter at most its centre's height
-//    above that plane. A 60-degree cone tilted 60 degrees from n grazes the plane, and its samples
-//    (2 t tan 30 wide) and their trilinear footprints reach the receiver's own surface from ~20
-//    voxels on; read as a density, the little occupancy they find there is multiplied by the
-//    sample's width in voxels, so open ground blocks its own tilted cones more the finer the
-//    voxels, and the indirect light falls with voxel_res (PERFORMANCE.md, "Quality behind the
-//    voxel techniques' defaults"). At twice the height (only the trilinear footprint's centre
-//    kept clear) the Cornell box's indirect light falls from 0.92 to 0.76 of the reference's
-//    between 64^3 and 256^3.
+//            from the occlusion voxels and L from the LRSM: a cone's integral of cos dw is pi
+//            times its share w_i, so the pixel's indirect radiance is rho sum_i w_i I_i.
+//  SPECULAR: one cone along the mirror direction r, on pixels with a specular lobe only: rho_s I
+//            for a mirror, rho_s <n.r> I for a narrow normalised Phong lobe. The Phong exponent
+//            does not set the aperture (Sec. 6: a 10-degree cone for every specular pixel).
+//  SHADOW:   direct light of every light (scene.glsl's BRDF and falloff) times its shadow cone's
+//            visibility (voxel_cone.glsl's shadow_cone_ex, tapered toward a point or spot light)
+//            instead of a shadow map; its alpha follows `opacity` as the other cones'.
+// Cone marching (Eq. 1), as shadow_cone: the samples of lrsm_march.glsl until the cone is opaque
+// (A > 255/256), light from the LRSM (lrsm_hits, or lrsm_sample with hits 0), alpha from
+// voxel_step_alpha. `opacity` 0 is the paper's reading (the mips' mean occupancy: a one-voxel wall
+// in a sample d voxels wide reads ~1/d, so wide cones pass thin walls); 1 (default) reads it as a
+// density over the step. Departures from the literal reading, each with its reason:
+//  - A sample stays in front of the receiver's plane, its diameter at most its centre's height
+//    above it: a tilted cone's samples otherwise reach the receiver's own voxels, and read as a
+//    density that occupancy blocks open ground's own cones more the finer the voxels.
 //  - `hits` 1 (default): a sample's light and alpha are the share of its rays that meet the lit
-//    surfaces inside it (lrsm_hits.glsl: each LRSM layer a plane, Eq. 8 averaged over the cone's
-//    cap), and what is left of the voxels' alpha beyond the lit coverage blocks as unlit surface,
-//    by the share of rays its own plane stops (occupancy_plane_hits). Eq. 1 with an isotropic
-//    alpha lets a surface block a cone by its full coverage whatever the angle it is seen at, and
-//    Eq. 8 on the axis culled the surfaces a cone runs along: in a box lit from above a wall's
-//    central cone runs parallel to the lit floor, read exactly 0 where the path tracer's cone
-//    reads 3-8% of the light, and was blocked whole by the unlit ceiling it grazes; the light came
-//    in dark blotches with straight borders (PERFORMANCE.md, "lrsm: a cone sample as the share of
-//    its rays that meet the lit planes", has the measurements). hits 0 keeps Algorithm 1's sample
-//    with Eq. 1's alpha:
-//  - `coverage` 1 (default with hits 0): a sample's radiance is the LRSM's over the coverage of the lit
-//    surfaces inside it, L = sum A R V N / max(sum A V, alpha). Eq. 5's L = R V N already carries
-//    the lit surfaces' share V of the footprint, and Eq. 1 multiplies it by the voxels' alpha, the
-//    same surfaces' coverage counted a second time (the paper's reading, coverage 0, loses a
-//    quarter of the Cornell box's indirect light and half the furnace's). The floor alpha
-//    keeps a lit surface glimpsed by a Gaussian tail (V of a few percent behind an unlit
-//    occluder) from lending the occluder its whole radiance.
+//    surfaces inside it (lrsm_hits.glsl: each layer a plane, Eq. 8 averaged over the cone's cap),
+//    and the voxels' alpha beyond the lit coverage blocks as unlit surface by the share of rays
+//    its own plane stops (occupancy_plane_hits). Eq. 1's isotropic alpha blocks a cone by a
+//    surface's full coverage at any angle, and Eq. 8 on the axis culls the surfaces a cone runs
+//    along (a wall's central cone beside a floor lit from above). hits 0 keeps Algorithm 1:
+//  - `coverage` 1 (default with hits 0): L = sum A R V N / max(sum A V, alpha), since Eq. 5's
+//    R V N already carries the lit share V and Eq. 1 multiplies it by the same coverage again
+//    (coverage 0, the paper's reading). The floor alpha keeps a lit surface glimpsed by a Gaussian
+//    tail from lending an unlit occluder its whole radiance.
+// PERFORMANCE.md, "Quality behind the voxel techniques' defaults", has the measurements.
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = GIB_UNIT_GBUF_ALBEDO) uniform sampler2D g_albedo;

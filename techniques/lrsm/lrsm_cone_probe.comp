@@ -2,7 +2,8 @@
 #include "lrsm/lrsm_march.glsl"
 // Test hook: the occlusion an lrsm diffuse cone gathers (lrsm_cone.frag's trace_cone without the
 // radiance), for given cones. Per cone, in: (x, aperture in radians), (n, 0), (dir, 0); out: A.
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 layout(std430, binding = LRSM_CONE_PROBE_SSBO_IN) readonly buffer In { vec4 cones[]; };
 layout(std430, binding = LRSM_CONE_PROBE_SSBO_OUT) writeonly buffer Out { float occlusion[]; };
 layout(location = LRSM_CONE_PROBE_LOC_COUNT) uniform int u_count;

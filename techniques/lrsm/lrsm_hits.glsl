@@ -8,7 +8,7 @@
 //    what the plane's own tilt to the light spreads over the footprint (lrsm_plane_spread).
 //  - Eq. 8's <n.v> becomes the mean of the clamped cosine over the cone's cap (lrsm_cap_cosine): a
 //    60-degree cone along a lit floor still meets it with its lower rays, which the axis's cosine
-//    (exactly 0) culled, so a wall's central cone in a box lit from above read no light at all.
+//    (exactly 0) would cull: a wall's central cone in a box lit from above would read no light.
 //  - The plane's share of the sample's rays is the share that crosses it within the sample's step
 //    (lrsm_plane_hits), times its coverage A of the footprint: successive touching spheres meet a
 //    plane facing the axis once, and a plane along the axis a little in each sample, the less the
@@ -17,7 +17,7 @@
 //    sample, which lrsm_cone.frag takes out of the voxels' alpha before the rest blocks as unlit.
 //  - The footprint is read as 2 x 2 taps, each a quarter of it, half a mip level finer: a coarse
 //    texel mixes the floor and a box's top into one plane at their mean depth, and finer taps keep
-//    more of them apart; a whole level finer scores Sibenik worse (rel RMSE 0.50, not 0.38).
+//    more of them apart; half a level (LRSM_TAP_FINER), not a whole one, which loses on Sibenik.
 struct LrsmHits {
     vec3 light;  // sum f A R H: the light of the lit planes' hits
     float hit;   // sum f A H: the share of the sample's rays they stop
@@ -74,7 +74,7 @@ LrsmHits lrsm_hits(vec3 xc, float rc, vec3 dir, float sin_half, float step)
     LrsmHits h = LrsmHits(vec3(0.0), 0.0, 0.0);
     for (int i = 0; i < u_lrsm_lights; i++) {
         LrsmLightSample ls = lrsm_light_sample(i, xc);
-        if (ls.kind < 0)
+        if (ls.kind == GIB_LV_KIND_NONE)
             continue;
         LrsmHits li = LrsmHits(vec3(0.0), 0.0, 0.0);   // light i's, before the cube's weights
         float wsum = 0.0;
@@ -95,7 +95,7 @@ LrsmHits lrsm_hits(vec3 xc, float rc, vec3 dir, float sin_half, float step)
             }
             wsum += w;
         }
-        float norm = ls.kind == 0 && u_seams != 0 && wsum > 0.0 ? 1.0 / wsum : 1.0;
+        float norm = ls.kind == GIB_LV_KIND_CUBE && u_seams != 0 && wsum > 0.0 ? 1.0 / wsum : 1.0;
         h.light += norm * li.light;
         h.hit = max(h.hit, norm * li.hit);
         h.lit = max(h.lit, norm * li.lit);

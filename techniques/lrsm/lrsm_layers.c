@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "techniques/common/compute.h"
 #include "techniques/common/shader.h"
 #include "techniques/lrsm/lrsm_slots.h"
 
@@ -138,7 +139,7 @@ void lrsm_layers_build(lrsm_layers *L, const gib_light_views *views)
     glBindImageTexture(LRSM_IMAGE_RADIANCE, L->radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(LRSM_IMAGE_NORMAL, L->normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(LRSM_IMAGE_DEPTH, L->depth, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16);
-    GLuint groups = (GLuint)(L->half + 7) / 8;
+    GLuint groups = gib_groups((unsigned)L->half, GIB_GROUP_2D);
     for (int f = 0; f < L->faces; f++) {
         glUniform1i(LRSM_BUILD_LOC_FACE, f);
         glUniform1i(LRSM_BUILD_LOC_LIGHT, views->faces[f].light);
@@ -189,7 +190,7 @@ int lrsm_layers_probe(const lrsm_layers *L, const gib_light_views *views, float 
     glUniform1i(LRSM_LOC_LIGHTS, L->lights);
     glUniform1i(LRSM_PROBE_LOC_COUNT, n);
     glUniform1i(LRSM_LOC_SEAMS, seams);
-    glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
+    glDispatchCompute(gib_groups((unsigned)n, GIB_GROUP_1D), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(buf[1], 0, (GLsizeiptr)(sizeof(float) * 4 * (size_t)n), out);
     glDeleteBuffers(2, buf);

@@ -116,7 +116,7 @@ void lrsm_build_block(const lrsm_partition *p, int normal_parts, const lrsm_texe
 double lrsm_area_weight(int kind, double z, double zfar, double cos_face, double cosnl)
 {
     double tilt = cosnl > LRSM_JACOBIAN_COS ? LRSM_JACOBIAN_COS / cosnl : 1;
-    if (kind == 2)
+    if (kind == GIB_LV_KIND_ORTHO)
         return tilt;
     double r = z / zfar;
     return r * r * cos_face * cos_face * cos_face * tilt;

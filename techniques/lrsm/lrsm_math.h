@@ -4,6 +4,9 @@
 #ifndef GIB_LRSM_MATH_H
 #define GIB_LRSM_MATH_H
 
+#include "techniques/common/light_view_shared.h"
+#include "techniques/lrsm/lrsm_shared.h"
+
 /* erf(x) by Abramowitz and Stegun 7.1.26: |error| < 1.5e-7 for every x (GLSL has no erf). */
 double lrsm_erf(double x);
 /* Standard normal CDF Phi(x) = (1 + erf(x / sqrt 2)) / 2 through lrsm_erf. */
@@ -47,10 +50,10 @@ int lrsm_normal_part(double cosnl, int parts);
 
 /* The weight of an RSM texel in the filtered radiance: the area of surface it sees, Eq. 3's
  * Jacobian dx = (r^2 / <n.l>) dw, in units that keep it in (0, 1]: (z / zfar)^2 cos_face^3 (the
- * texel's solid angle on a perspective or cube face, times r^2; 1 for an orthographic view, kind 2)
- * times min(LRSM_JACOBIAN_COS / <n.l>, 1) (surfaces lit at grazing counted up to 1 / 0.1 times a
- * face-on one, not without bound). lrsm_common.glsl has the GLSL twin. */
-#define LRSM_JACOBIAN_COS 0.1
+ * texel's solid angle on a perspective or cube face, times r^2; 1 for an orthographic view, kind
+ * GIB_LV_KIND_ORTHO) times min(LRSM_JACOBIAN_COS / <n.l>, 1) (lrsm_shared.h: surfaces lit at
+ * grazing counted up to 1 / 0.1 times a face-on one, not without bound). lrsm_common.glsl has the
+ * GLSL twin. */
 double lrsm_area_weight(int kind, double z, double zfar, double cos_face, double cosnl);
 
 /* One RSM texel as the construction pass sees it, and one layer texel it writes (Table 1, each

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "techniques/common/compute.h"
 #include "techniques/common/shader.h"
 #include "techniques/multires_ir/multires_ir_slots.h"
 
@@ -137,7 +138,8 @@ void multires_split(multires *m, unsigned position_tex, unsigned normal_tex, con
         int r[4];
         multires_rect(m, k, r);
         glUniform1i(MULTIRES_LOC_LEVEL, k);
-        glDispatchCompute((GLuint)(r[2] + 7) / 8, (GLuint)(r[3] + 7) / 8, 1);
+        glDispatchCompute(gib_groups((unsigned)r[2], GIB_GROUP_2D),
+                          gib_groups((unsigned)r[3], GIB_GROUP_2D), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     /* Marking: texels of invalid regions are discarded, the rest write stencil 1 (colour writes

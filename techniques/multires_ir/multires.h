@@ -6,7 +6,7 @@
  * stacked): min-max mips of depth and normal plus the regions' mean position and normal (four
  * RGBA32F images, "mips.*"), a depth-stencil buffer whose stencil marks the valid regions, and the
  * irradiance of every level ("mips.irradiance"). The marking of the valid regions, two ways that
- * give the same regions (one function decides, mr_valid; tests/ir compares both):
+ * give the same regions (one function decides, mr_valid; tests/multires_ir compares both):
  *  stencil = 1, the thesis': a full-screen pass over the flattened image discards the texels of
  *    invalid regions, the rest set stencil 1 ("mips.stencil"); the gathering pass runs with the
  *    stencil test;

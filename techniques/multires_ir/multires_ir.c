@@ -45,7 +45,8 @@ static const gib_param_spec multires_ir_params[] = {
      "a region splits where a normal component's range exceeds the chord of this angle, degrees"},
     {"stencil", GIB_PARAM_INT, 0, 0, 1,
      "valid regions marked in: 1 the stencil (the thesis), 0 a mask image (same regions; "
-     "llvmpipe's timers under-count stencil-buffer passes)"},
+     "llvmpipe's timers under-count stencil-buffer passes)",
+     .choices = (const gib_param_choice[]){{"mask", 0}, {"stencil", 1}, {0}}},
     {0},
 };
 

@@ -1,7 +1,8 @@
 #include "multires_ir/multires_common.glsl"
 // The min-max mips (Sec. 3.2.2.1) in the flattened image: level 0 from the G-buffer, level k from
 // the up to 2 x 2 regions of level k - 1 it holds (regions past the image's edge are skipped).
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_2D, local_size_y = GIB_GROUP_2D) in;
 layout(binding = GIB_UNIT_GBUF_POSITION) uniform sampler2D g_position;
 layout(binding = GIB_UNIT_GBUF_NORMAL) uniform sampler2D g_normal;
 layout(binding = MULTIRES_IMAGE_LO, rgba32f) uniform image2D o_lo;

@@ -89,11 +89,6 @@ void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, uns
     gib_timer_end(timers);
 }
 
-gib_vpls *rsm_gather_vpls(void *self)
-{
-    return &((rsm_gather *)self)->frame.vpls;
-}
-
 static int rsm_gather_render(void *self, const gib_view *view, gib_timers *timers,
                              const gib_image_target *targets, int target_count, gib_error *err)
 {

@@ -1,5 +1,4 @@
-/* gibench technique `rsm_gather` — hooks for tests: the frame split in its two halves, and the
- * VPLs (to read them back or put one by hand between the halves). */
+/* gibench technique `rsm_gather` — the frame split in its two halves. */
 #ifndef GIB_RSM_GATHER_H
 #define GIB_RSM_GATHER_H
 
@@ -9,6 +8,5 @@
 void rsm_gather_render_vpls(void *self, const gib_view *view, gib_timers *timers);
 /* The gathering pass into `fbo` (view->width x view->height). */
 void rsm_gather_gather(void *self, const gib_view *view, gib_timers *timers, unsigned fbo);
-gib_vpls *rsm_gather_vpls(void *self);
 
 #endif

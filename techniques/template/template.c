@@ -17,7 +17,7 @@
  * furnace (scenes/furnace.scene: R = 1 m, rho = 0.5, I = 1 W/sr) gives E = 0.5 x 4 pi I / 4 pi R^2
  * and L = 0.25 / pi = 0.079577 (its facets: x 1.0003). tests/techniques/test_closed_form.c checks
  * that, with every other technique that outputs a component the furnace has a closed form for;
- * tests/techniques/test_template.c checks its counter, its parameter and its status.
+ * tests/template/test_template.c checks its counter, its parameter and its status.
  *
  * The pieces every technique has, in the order a newcomer meets them below:
  *  1. its state: what create() allocates, render() uses and destroy() frees;

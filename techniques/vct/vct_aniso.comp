@@ -8,18 +8,16 @@
 // a direction's texture when its surface faces away from every direction that texture stands for:
 // the D^2 weights of vct_trace.glsl make a texture dominant within 45 degrees of its axis, and all
 // of those meet the surface from behind when its normal is within 45 degrees of the axis, dot(n,
-// axis) > cos 45. The hidden voxel still occludes. Hiding at dot > 0 instead (every surface tilted
-// the least away) blacked out, in the texture of one axis, surfaces that a cone between two axes
-// sees from the front: inside a sphere (the furnace) a far wall with n = (0.5, -0.87, 0) is seen
-// from the front by D = (0.7, 0.7, 0) but was black in +x, half its weight, and the furnace's
-// indirect was 0.64 / 0.60 / 0.52 of the reference's at voxel_res 64 / 128 / 256 (0.79 / 0.74 /
-// 0.65 with this test). A surface seen edge-on (dot = 0) is shown: voxelised, it is a voxel thick,
-// its line along the axis is opaque, and a cone crossing a wall obliquely reads it through that
-// sideways texture too; hiding it turns walls into black occluders (the Cornell box's indirect mean
-// halves). This keeps the light of one side of a wall from its other side when the two sides are in
-// different voxels; a wall thinner than a voxel lit on both sides has one averaged normal and leaks
-// (stated in vct.h).
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// axis) > cos 45. The hidden voxel still occludes. The threshold is cos 45, not 0: a cone between
+// two axes sees from the front surfaces that face slightly away from one axis (a wall with n =
+// (0.5, -0.87, 0) and D = (0.7, 0.7, 0)), and that axis's texture carries half the cone's weight.
+// A surface seen edge-on (dot = 0) is shown: voxelised, it is a voxel thick, its line along the
+// axis is opaque, and a cone crossing a wall obliquely reads it through that sideways texture too;
+// hidden, walls would be black occluders. This keeps the light of one side of a wall from its
+// other side when the two sides are in different voxels; a wall thinner than a voxel lit on both
+// sides has one averaged normal and leaks (stated in vct.h).
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_3D, local_size_y = GIB_GROUP_3D, local_size_z = GIB_GROUP_3D) in;
 layout(location = VCT_ANISO_LOC_LEVEL) uniform int u_level; // level written
 #ifdef FROM_BASE
 layout(binding = VCT_ANISO_UNIT_RADIANCE) uniform sampler3D u_radiance;

@@ -15,7 +15,8 @@
 // from level k. Plain averages, not composited along a direction: the lobes only say from which
 // side of which plane a cell's light leaves; what a cone sees, and its occlusion, stay in the
 // anisotropic mips (vct_aniso.comp).
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_3D, local_size_y = GIB_GROUP_3D, local_size_z = GIB_GROUP_3D) in;
 layout(location = VCT_ANISO_LOC_LEVEL) uniform int u_level; // level written
 #ifdef FROM_BASE
 layout(binding = VCT_ANISO_UNIT_RADIANCE) uniform sampler3D u_radiance;

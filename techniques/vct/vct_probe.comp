@@ -2,7 +2,8 @@
 // Test hook (tests/vct): vct_cone() from given points, so that tests check what a cone reads from
 // the anisotropic mips apart from the G-buffer. In: (p, tan_half), (n, max_dist), (D, 0) per
 // cone; out: vct_cone's (radiance, occlusion).
-layout(local_size_x = 64) in;
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_1D) in;
 layout(std430, binding = VCT_PROBE_SSBO_IN) readonly buffer ProbeIn { vec4 probe_in[]; };
 layout(std430, binding = VCT_PROBE_SSBO_OUT) writeonly buffer ProbeOut { vec4 probe_out[]; };
 layout(location = VCT_PROBE_LOC_COUNT) uniform int u_count;

@@ -11,12 +11,11 @@
 // voxel: within 1.5 voxels of the centre along the light's ray, and its plane through the voxel's
 // box (|(c - p).n| <= h (|n.x| + |n.y| + |n.z|) / 2 for a box of side h). The occupancy is
 // conservative (any overlap) while texels are points: a surface crossing a voxel's corner occupies
-// it but seldom sends it a texel, the more seldom the finer the grid for the same light views
-// (7.6 texels a voxel face on the furnace's sphere at 256^3 and inject_res 512, 120 at 64^3).
-// Such voxels were black occluders inside lit surfaces: in the furnace (closed form) the cones'
-// radiance over their occlusion fell to 0.90 / 0.85 / 0.78 of the wall's at voxel_res 64 / 128 /
-// 256. A voxel in shadow projects to its occluder, farther than 1.5 voxels, and stays black.
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// it but seldom sends it a texel, the more seldom the finer the grid for the same light views.
+// Without the fill such voxels are black occluders inside lit surfaces. A voxel in shadow
+// projects to its occluder, farther than 1.5 voxels, and stays black.
+#include "common/groups_shared.h"
+layout(local_size_x = GIB_GROUP_3D, local_size_y = GIB_GROUP_3D, local_size_z = GIB_GROUP_3D) in;
 layout(location = GIB_LOC_VOXEL_ORIGIN) uniform vec3 u_origin;
 layout(location = GIB_LOC_VOXEL_SIZE) uniform float u_size;
 layout(location = GIB_LOC_VOXEL_RES) uniform int u_res;

@@ -11,7 +11,7 @@ float lv_texel_area(int light, int face, vec3 p, vec3 n)
     float s = lv_texel(light);
     vec3 rel = p - lv_origin(light);
     float a_perp, cos_phi;
-    if (lv_kind(light) == 2) {
+    if (lv_kind(light) == GIB_LV_KIND_ORTHO) {
         a_perp = s * s;
         cos_phi = dot(n, -lv_axis(face));
     } else {

@@ -10,35 +10,23 @@
 // the step, a' = 1 - (1 - a)^(step_factor d / c), and its premultiplied radiance scaled alike;
 // then Eq. 1 front to back.
 //
-// The level read: u_level_bias levels finer than the paper's log2(d) (vct's `sample_level`).
-// At the paper's level (bias 0) the cells are as wide as the sample, so the trilinear footprint
-// spans up to two cells, 2d: the first samples reach behind the cone's start into the receiver's
-// own cells, pre-integrated as seen from outside (opaque along +n), and an upward cone over open
-// ground reads most of its opacity from the ground it leaves (0.8-0.99 at 64^3-256^3), which
-// darkens every diffuse bounce by half and more as the voxels get finer. One level finer
-// (bias 1, the default) the footprint is the sample's own width, and the step crosses 2 cells.
-// A sample's data is also kept in front of the receiver's plane; with `clearance` 0, by its
-// diameter at most its centre's height h above it. A 60-degree cone tilted 60 degrees from n grazes that plane, and samples of
-// diameter 2 t tan(30) would otherwise reach, from ~20 voxels on, the receiver's own surface, the
-// lit ground around it (a floor lighting itself, seen edge-on in the sideways textures) and,
-// through a wall, the other side's light. The bound is on what the fetch reads, not on the sphere:
-// at level log2(d) - 1 the cells are c = d/2 wide, the trilinear fetch blends the two cell centres
-// within c of the sample on each axis, and each cell holds its whole width, so the data reaches
-// 1.5 c = 0.75 d from the centre: d <= h keeps it h/4 clear of the plane. (d <= 2 h, the sphere
-// alone kept clear, lets it reach h/2 behind: darker and leakier; PERFORMANCE.md, "Quality behind
-// the voxel techniques' defaults", has the numbers.) Shrinking narrows a tilted cone to half its
-// width, so it reads the light around its axis, not its whole cap, which its weight stands for:
-// vct's `clearance` 1 (the default) keeps the width and lifts the sample along n until its data
-// clears the plane, bending the sample toward n instead: with the grid's margin the Cornell boxes'
-// error falls by a quarter against shrinking (PERFORMANCE.md). The two levels a fractional level
-// blends are fetched apart, each lifted until its own cells (2^level wide, 1.5 of them above the
-// plane) clear it, and mixed by the level's fraction. Lifted by the level's own width (0.75 d)
-// only, the coarser level's share still read a lit floor's own cells along every grazing sample,
-// and an open plane lit itself to 3.4-4.9x the reference (plane_box). Lifted both by the coarser
-// level's cells, the lift doubled as the level crossed an integer, for every pixel at once: the
-// gather jumped by up to 40% between apertures half a degree apart, and its error with them
-// (PERFORMANCE.md, "The lift of each level"). The shrink of `clearance` 0 has the same blind spot
-// (plane_box 1.5-1.9x).
+// The level read: u_level_bias levels finer than the paper's log2(d) (vct's `sample_level`). At
+// the paper's level the trilinear footprint spans up to two cells, 2d, and the first samples reach
+// into the receiver's own cells (pre-integrated as seen from outside, opaque along +n): a cone over
+// open ground reads its opacity from the ground it leaves. One level finer (bias 1, the default)
+// the footprint is the sample's own width, and the step crosses 2 cells.
+// A sample's data is also kept in front of the receiver's plane: a cone tilted toward the plane
+// would otherwise read the receiver, the lit ground around it and, through a wall, the other
+// side's light. At level log2(d) - 1 the cells are c = d/2 wide and the fetch's data reaches
+// 1.5 c = 0.75 d from the centre. `clearance` 0 shrinks the sample to d <= h, its centre's height
+// above the plane (h/4 clear; d <= 2 h, the sphere alone clear, reads behind it). That narrows a
+// tilted cone to half its width, so it reads the light around its axis, not the cap its weight
+// stands for: `clearance` 1 (the default) keeps the width and lifts the sample along n. The two
+// levels a fractional level blends are fetched apart, each lifted until 1.5 of its own cells
+// (2^level wide) clear the plane, and mixed by the level's fraction: one lift for both either lets
+// the coarser level read a lit floor's own cells (the level's width) or jumps as the level crosses
+// an integer (the coarser level's cells). PERFORMANCE.md, "Quality behind the voxel techniques'
+// defaults" and "The lift of each level", has the measurements.
 #include "common/voxel_cone.glsl"
 #include "vct/vct_slots.h"
 layout(location = VCT_LOC_STEP_FACTOR) uniform float u_step_factor;
@@ -65,17 +53,12 @@ vec4 vct_sample(vec3 uvw, vec3 D, float mip)
 
 // The share of a sample's light that leaves its surfaces on the side of the cone's apex (vct's
 // `front_faces` 1, the default), from the emission lobes (vct_lobes.comp). The anisotropic mips
-// cannot tell the sides of a surface apart: in their textures along a wall, its lit face is seen
-// edge-on from either side, so a cone on the dark side of a wall thinner than a cell read the lit
-// side's light (thick_wall_leak: the dark room 0.11 of the lit room's); a lit box top, seen
-// edge-on, lit the ground around the box from below its plane. Per lobe, its luminance counts in
-// full while the apex is in front of the lobe's back-most plane b, and fades to nothing within
-// 1/FRONT_GAIN of the direction to the sample behind it (an angle of about 1/8 radian: no seam
-// where the apex crosses a face's plane), s (apex - b) / |sample - apex| >= -1/FRONT_GAIN. Each
-// lobe is weighted by the share of the sample's D^2 blend that shows it: not the texture of its
-// own axis when the cone travels the way it faces (vct_aniso.comp hides it there), lest a lobe
-// the blend hardly shows decide the share. A sample's light is the mips' times this share; 1
-// where no lit surface is there.
+// cannot tell the sides of a surface apart (a wall's lit face is seen edge-on from either side),
+// so a cone on the dark side of a wall thinner than a cell would read the lit side's light
+// (thick_wall_leak). A lobe counts in full while the apex is in front of its back-most plane b and
+// fades out within 1/FRONT_GAIN (about 1/8 radian, no seam at the plane); each lobe is weighted by
+// the share of the D^2 blend that shows it (not its own axis's texture when the cone travels the
+// way it faces: vct_aniso.comp hides it there). 1 where no lit surface is there.
 const float FRONT_GAIN = 8.0;
 float vct_front_share(vec3 uvw, float lod, vec3 apex_uvw, vec3 D)
 {
@@ -121,25 +104,15 @@ vec4 vct_lifted_sample(vec3 at, vec3 n, float h, float level, vec3 D, vec3 apex_
 }
 
 // Radiance gathered (rgb) and occlusion (a) along the cone from p (offset start_offset voxels
-// along n) in direction D, with sample centres up to max_dist (world units) away; the first
-// sample is one voxel out, as in shadow_cone. The cone stops once its sphere has left the grid
-// (its centre a radius beyond it). Beyond the grid the scene is empty, and the textures say so:
-// they clamp to a transparent border, so a sample partly outside reads the part inside. Clamped
-// to their edge instead, they repeated the grid's outer cells beyond it: through the Cornell box's
-// open front the floor's and walls' edges read as lit half-planes, and stopping at the centre to
-// avoid them cut the floor in front of the short box out of its downward cones (its front face
-// black, a straight band across it; PERFORMANCE.md, "The voxel grid's margin"). The grid's margin
-// (common/voxels.c) keeps walls on the scene's bounds off the outer cells, which the border would
-// dilute. A shadow cone toward a point light (taper) narrows again toward it,
-// d = 2 tan(a/2) min(t, t_light - t): a point light casts its penumbra from the receiver's side
-// only, and a full-width sample at the light would take the surfaces next to it (a light under a
-// ceiling) for occluders; it also stops start_offset + TAPER_STOP voxels before the light (as
-// common/voxel_cone.glsl's shadow_cone_ex: Cornell box direct rel RMSE 0.32 -> 0.27 at voxel_res
-// 64, the rings of the ceiling above the light gone). Its lift clears the receiver's voxel layer
-// as well, |n|_1 times the reach (common/voxel_cone.glsl's shadow_cone_ex says why): a cone toward
-// a light at grazing runs along its receiver, and the Cornell box's turned tall box showed
-// vertical stripes where the grid's columns cross its face. The diffuse cones lift by the reach
-// alone (with |n|_1 their rel RMSE rose 0.02-0.03 on both Cornell boxes).
+// along n) in direction D, sample centres up to max_dist (world units) away, the first one voxel
+// out, as in shadow_cone. The cone stops once its sphere has left the grid. Beyond the grid the
+// scene is empty: the textures clamp to a transparent border, so a sample partly outside reads the
+// part inside (edge-clamped, they would repeat the outer cells as lit half-planes; PERFORMANCE.md,
+// "The voxel grid's margin"); the grid's margin (common/voxels.c) keeps walls off the outer cells.
+// A shadow cone toward a point light (taper) narrows again toward it and stops start_offset +
+// TAPER_STOP voxels before it, and its lift clears the receiver's voxel layer, |n|_1 times the
+// reach, both as shadow_cone_ex (voxel_cone.glsl says why). The diffuse cones lift by the reach
+// alone, which scores better for them.
 vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool taper)
 {
     float vs = voxel_size_world();
@@ -150,9 +123,8 @@ vec4 vct_cone_ex(vec3 p, vec3 n, vec3 D, float tan_half, float max_dist, bool ta
     float A = 0.0;
     float t = 1.0, t_prev = 0.0;
     for (int i = 0; i < 1024 && A < 0.995; i++) {
-        // The share of this sample's step inside the cone's length: 1 before its end; past it,
-        // a diffuse or specular cone takes the sample with the part of the step still inside,
-        // so that the last sample fades out as the steps move rather than drops whole.
+        // The share of this sample's step inside the cone's length: the last sample fades out
+        // as the steps move rather than drops whole.
         float part = t <= tmax ? 1.0 : taper ? 0.0 : (tmax - t_prev) / (t - t_prev);
         if (part <= 0.0)
             break;

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "harness/gl/context.h"
+#include "techniques/common/compute.h"
 #include "techniques/common/pass_state.h"
 #include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
@@ -197,7 +198,7 @@ static void inject_lights_apart(vct_volume *v, int lv_res, const int *first_face
                                 const int *faces_of, int lights)
 {
     const float zero[4] = {0, 0, 0, 0};
-    int g = (v->res + 3) / 4;
+    int g = (int)gib_groups((unsigned)v->res, GIB_GROUP_3D);
     for (int l = 0; l < lights; l++) {
         glClearTexImage(v->normal, 0, GL_RGBA, GL_FLOAT, zero);
         inject_points(v, v->scratch_fbo, lv_res, first_face, faces_of, l, l + 1, false);
@@ -230,7 +231,7 @@ void vct_volume_inject(vct_volume *v, unsigned occupancy, int lv_res, const int 
 
     /* Resolve: sums to area-weighted averages; alpha = occupancy (the occlusion voxels', or
      * where light landed); with `fill`, occupied voxels no texel reached from the light views. */
-    int g = (v->res + 3) / 4;
+    int g = (int)gib_groups((unsigned)v->res, GIB_GROUP_3D);
     glUseProgram(v->resolve_program);
     grid_uniforms(v);
     glUniform1i(VCT_RESOLVE_LOC_LIGHTS, fill ? lights : 0);
@@ -264,7 +265,7 @@ static void build_levels(const vct_volume *v, unsigned base_program, unsigned pr
         for (int i = 0; i < count; i++)
             glBindImageTexture(dst_first + (GLuint)i, tex[i], level, GL_TRUE, 0, GL_WRITE_ONLY,
                                GL_RGBA16F);
-        int g = (side + 3) / 4;
+        int g = (int)gib_groups((unsigned)side, GIB_GROUP_3D);
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }

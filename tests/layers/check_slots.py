@@ -8,8 +8,9 @@ Fails, naming file:line, on
     and their multi-bind and sampler forms);
   - a GLSL layout(location = N) or layout(binding = N) with a literal N on a uniform, a sampler, an
     image or a buffer block (the locations of vertex inputs and fragment outputs are not slots);
-  - a slots header (techniques/<name>/<name>_slots.h) with a line that is not a #define, a //
-    comment, its include guard or an #include: the headers are read by C and GLSL alike.
+  - a slots header (techniques/<name>/<name>_slots.h) or a shared-constants header (*_shared.h)
+    with a line that is not a #define, a // comment, its include guard or an #include: the headers
+    are read by C and GLSL alike.
 The names live in harness/gl/bindings.h (shared slots) and the slots headers.
 
 Usage: check_slots.py TECHNIQUES_DIR      check the tree
@@ -22,6 +23,7 @@ import tempfile
 
 C_EXT = (".c", ".h")
 GLSL_EXT = (".glsl", ".vert", ".frag", ".geom", ".comp")
+HEADER_SUFFIXES = ("_slots.h", "_shared.h")  # headers C and GLSL both include
 
 # Call name -> index of the slot argument.
 SLOT_ARG = [
@@ -110,7 +112,7 @@ def check_glsl(path, text):
 
 
 def check_header(path, text):
-    return [(n, "slots header line is not a #define or // comment: %s" % line.strip())
+    return [(n, "C/GLSL header line is not a #define or // comment: %s" % line.strip())
             for n, line in enumerate(text.split("\n"), 1) if not HEADER_LINE.match(line)]
 
 
@@ -120,7 +122,7 @@ def check_tree(root):
         for name in sorted(names):
             path = os.path.join(dirpath, name)
             if name.endswith(C_EXT):
-                checks = [check_c] + ([check_header] if name.endswith("_slots.h") else [])
+                checks = [check_c] + ([check_header] if name.endswith(HEADER_SUFFIXES) else [])
             elif name.endswith(GLSL_EXT):
                 checks = [check_glsl]
             else:
@@ -158,9 +160,10 @@ PLANTED = {
         "layout(r8, binding = 1) writeonly uniform image3D img;",
     ],
     "t/t_slots.h": ["// ok", "#ifndef T", "#define T", "#define T_UNIT 10", "int x;", "#endif"],
+    "t/t_shared.h": ["#define T_SIZE 64 // ok", "const int t = 1;"],
 }
 EXPECTED = {("t.c", 3), ("t.c", 4), ("t.c", 7), ("t.c", 8), ("t.c", 10), ("t.frag", 3),
-            ("t.frag", 4), ("t.frag", 6), ("t_slots.h", 5)}
+            ("t.frag", 4), ("t.frag", 6), ("t_slots.h", 5), ("t_shared.h", 2)}
 
 
 def self_test():

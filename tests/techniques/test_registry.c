@@ -3,8 +3,8 @@
  * gib_param_int/float stopping the process on an undeclared name in every build (this test is
  * compiled with NDEBUG in the release build, where the old assert did nothing). The test-only
  * techniques (the template) are held to the same rules, and stay out of what gibench runs: not
- * in gib_techniques(), not found by name. Presets set what they say and are named back. lrsm
- * refuses parameters its sample does not read. No GL needed. */
+ * in gib_techniques(), not found by name. Presets set what they say and are named back. Choices,
+ * multiples and rules between parameters are refused before any GL. No GL needed. */
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -194,26 +194,100 @@ static void check_presets(const gib_technique *t)
     }
 }
 
-/* lrsm refuses, before it touches GL, a parameter that acts only with hits 0 set to a
- * non-default value while hits is 1: the error names the parameter (it was not ignored). */
-static void check_lrsm_refuses_inert_parameters(void)
+/* A technique's own constraints: every choice a distinct, in-range value accepted by its name and
+ * its number; the defaults and every preset satisfy every rule (a rule the defaults break would
+ * refuse every run), and each rule names parameters the technique declares. */
+static void check_constraints(const gib_technique *t)
 {
-    const gib_technique *t = gib_technique_find("lrsm");
-    CHECK(t != NULL, "lrsm not registered");
-    if (!t)
-        return;
-    static const char *const inert[][2] = {{"backface", "0"}, {"coverage", "0"}};
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; t->params && t->params[i].name; i++) {
+        const gib_param_spec *s = &t->params[i];
+        for (int k = 0; s->choices && s->choices[k].name; k++) {
+            gib_params p;
+            gib_error err = {0};
+            gib_params_default(t, &p);
+            CHECK(gib_param_set(t, &p, s->name, s->choices[k].name, &err) == 0 &&
+                      p.values[i] == s->choices[k].value,
+                  "%s: %s = %s not accepted as %g: %s", t->name, s->name, s->choices[k].name,
+                  s->choices[k].value, err.msg);
+            for (int j = 0; j < k; j++)
+                CHECK(s->choices[j].value != s->choices[k].value &&
+                          strcmp(s->choices[j].name, s->choices[k].name),
+                      "%s: %s has two choices alike", t->name, s->name);
+        }
+        CHECK(!s->choices || gib_param_choice_name(s, s->def), "%s: %s's default is no choice",
+              t->name, s->name);
+        CHECK(s->multiple_of <= 1 || (s->type == GIB_PARAM_INT && fmod(s->def, s->multiple_of) == 0),
+              "%s: %s's default %g is no multiple of %d", t->name, s->name, s->def, s->multiple_of);
+    }
+    for (int r = 0; t->rules && t->rules[r].rule; r++) {
+        char names[256];
+        snprintf(names, sizeof names, "%s", t->rules[r].params);
+        char *save = NULL;
+        for (char *n = strtok_r(names, ",", &save); n; n = strtok_r(NULL, ",", &save))
+            CHECK(gib_param_index(t, n) >= 0, "%s: rule '%s' names '%s', no parameter of it",
+                  t->name, t->rules[r].rule, n);
+        CHECK(t->rules[r].holds != NULL, "%s: rule '%s' has no test", t->name, t->rules[r].rule);
+    }
+    for (int k = 0; k <= 0 || (t->presets && t->presets[k - 1].name); k++) {
         gib_params p;
         gib_error err = {0};
         gib_params_default(t, &p);
-        CHECK(gib_param_set(t, &p, inert[i][0], inert[i][1], &err) == 0, "lrsm: %s settable",
-              inert[i][0]);
-        void *self = t->create(NULL, &p, 8, 8, NULL, &err);
-        CHECK(!self && strstr(err.msg, inert[i][0]) && strstr(err.msg, "hits"),
-              "lrsm with hits 1 and %s = %s: created, or an error not naming both (%s)",
-              inert[i][0], inert[i][1], err.msg);
+        if (k > 0) {
+            gib_param_set(t, &p, GIB_PRESET_PARAM, t->presets[k - 1].name, &err);
+            gib_params_apply_preset(t, &p, NULL, &err);
+        }
+        CHECK(gib_params_check(t, &p, &err) == 0, "%s: preset '%s' breaks its own rules: %s",
+              t->name, k ? t->presets[k - 1].name : GIB_PRESET_DEFAULT, err.msg);
     }
+}
+
+/* The three kinds of constraint, each refused with no GL and no scene, the error naming the
+ * parameter(s), the value(s) and what they break: a value outside an enumeration, an integer no
+ * multiple of its step, a combination a rule forbids. */
+static void refused(const char *tech, const char *const *kv, const char *want1, const char *want2)
+{
+    const gib_technique *t = gib_technique_find(tech);
+    CHECK_TRUE("technique registered", t != NULL, tech);
+    if (!t)
+        return;
+    gib_params p;
+    gib_error err = {0};
+    gib_params_default(t, &p);
+    int rc = 0;
+    for (int i = 0; kv[i] && rc == 0; i += 2)
+        rc = gib_param_set(t, &p, kv[i], kv[i + 1], &err);
+    if (rc == 0)
+        rc = gib_params_check(t, &p, &err);
+    char what[96];
+    snprintf(what, sizeof what, "%s %s=%s refused", tech, kv[0], kv[1]);
+    CHECK_TRUE(what, rc < 0 && strstr(err.msg, want1) && strstr(err.msg, want2), err.msg);
+}
+
+static void check_refusals(void)
+{
+    refused("ispm_caustics", (const char *const[]){"layers", "2", NULL}, "'layers' = 2",
+            "lists = 0, peeled = 4");
+    refused("lrsm", (const char *const[]){"hits", "rays", NULL}, "'hits'", "algorithm1 = 0");
+    refused("lrsm", (const char *const[]){"rsm_res", "513", NULL}, "'rsm_res' = 513",
+            "multiple of 2");
+    refused("lrsm", (const char *const[]){"hits", "planes", "backface", "cosine", NULL},
+            "backface = 0 (cosine)", "act only with hits = algorithm1");
+    refused("lrsm", (const char *const[]){"coverage", "0", NULL}, "coverage = 0",
+            "act only with hits = algorithm1");
+    refused("ispm_caustics", (const char *const[]){"rsm_res", "16", "mask_level", "5", NULL},
+            "mask_level = 5", "rsm_res >> mask_level >= 1");
+    refused("ldm_ao", (const char *const[]){"obscurance", "1", NULL}, "dmax = inf",
+            "finite dmax > 0");
+    /* the same values the rule forbids with hits = planes are fine with hits = algorithm1 */
+    const gib_technique *t = gib_technique_find("lrsm");
+    gib_params p;
+    gib_error err = {0};
+    gib_params_default(t, &p);
+    CHECK_TRUE("lrsm hits=algorithm1 backface=cosine accepted",
+               gib_param_set(t, &p, "hits", "algorithm1", &err) == 0 &&
+                   gib_param_set(t, &p, "backface", "cosine", &err) == 0 &&
+                   gib_params_check(t, &p, &err) == 0 && p.values[gib_param_index(t, "hits")] == 0,
+               err.msg);
 }
 
 int main(void)
@@ -239,9 +313,10 @@ int main(void)
         check_passes(t);
         check_reference(t);
         check_presets(t);
+        check_constraints(t);
     }
     check_test_only();
-    check_lrsm_refuses_inert_parameters();
+    check_refusals();
     /* An undeclared name stops the process (the release build has NDEBUG: no assert). */
     const gib_technique *t = all[0];
     CHECK(aborts_naming(t, 0, "no_such_parameter"), "gib_param_int on an unknown name went on");
