@@ -259,8 +259,8 @@ def at_common_cost(rows):
 
 # ---- the papers' claims (claims.csv, harness/reporting/claims.py) --------------------------------------------
 
-from reporting.claims import (ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED,  # noqa: E402,F401
-                    REPRODUCED, TIME_ORDER)
+from reporting.claim import (ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, NOT_REPRODUCED,  # noqa: E402,F401
+                             REPRODUCED, TIME_ORDER)
 
 
 def claim_kind(c):

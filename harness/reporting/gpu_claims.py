@@ -8,15 +8,16 @@
 - Absolute times (the papers' tables) stay `not measurable here` (another GPU, and one whose raster
   work runs on a part of its chip), but show the GPU's number instead of llvmpipe's.
 
-claims.py lays these over its rows: a claim the GPU judged takes the GPU's verdict, and llvmpipe's
-verdict moves into the reason; an order claim no GPU row answers says it stands on llvmpipe's time
-alone."""
+claims.py lays these over the papers' Claims: a claim the GPU judged takes the GPU's verdict (a
+claim.py verdict), and llvmpipe's verdict moves into the reason; an order claim no GPU row answers
+says it stands on llvmpipe's time alone."""
 import os
 
 from reporting import gpu_rows  # noqa: E402
 from reporting import ldm_tables  # noqa: E402
 from reporting import lrsm_tables  # noqa: E402
 from reporting import thesis_tables  # noqa: E402
+from reporting.claim import NOT_MEASURABLE, verdict  # noqa: E402
 from reporting.gpu_summary import PAPER_VALUES, RASTER_LIMITS, param  # noqa: E402
 from reporting.uncertainty import fnum  # noqa: E402
 
@@ -68,7 +69,7 @@ def table3_orders(folder, passes):
     specs = [("Table 3: " + text, a, b) for text, a, b in lrsm_tables.TABLE3_CLAIMS]
     out = {}
     for text, (ta, pa), (tb, pb) in specs:
-        parts, verdict = [], None
+        parts, judged = [], None
         for preset in ("paper", "default"):
             a, b = by.get((ta, preset, pa)), by.get((tb, preset, pb))
             if not a or not b:
@@ -76,11 +77,11 @@ def table3_orders(folder, passes):
             am, bm = float(a["ms_median"]), float(b["ms_median"])
             o = order(am, bm)
             if preset == "paper":
-                verdict = "yes" if o == ">" else "no"
+                judged = verdict(o == ">")
             parts.append(f"preset {preset}: {ta} {pa} {am:.2f} ms {o} {tb} {pb} {bm:.2f} ms; "
                          + counts_text(pa, a, pb, b))
         if parts:
-            out[text] = {"verdict": verdict, "our_value": parts[0].split(";")[0],
+            out[text] = {"verdict": judged, "our_value": parts[0].split(";")[0],
                          "evidence": "judged on the paper's reading (preset paper), 1280x720; " + " | ".join(parts)}
     return out
 
@@ -109,7 +110,7 @@ def ldm_orders(passes):
         return {}
     am, bm = float(a["ms_median"]), float(b["ms_median"])
     return {"Figure 10: Sec. 5.2: the LDM (photon) tracing relatively cheap next to splatting":
-            {"verdict": "yes" if order(am, bm) == "<" else "no",
+            {"verdict": verdict(order(am, bm) == "<"),
              "our_value": f"photon_trace {am:.2f} ms vs splat {bm:.2f} ms",
              "evidence": f"sponza {a['width']}x{a['height']}: photon_trace {am:.2f} ms vs splat {bm:.2f} ms; "
                          + counts_text("photon_trace", a, "splat", b)}}
@@ -157,7 +158,7 @@ def gather_speedup(results, passes):
     if not ratios:
         return {}
     fast = all(x >= thesis_tables.SPEEDUP_MIN for x in ratios)
-    return {GATHER_CLAIM: {"verdict": "yes" if fast and good and all(good) else "no",
+    return {GATHER_CLAIM: {"verdict": verdict(bool(fast and good and all(good))),
                            "our_value": f"{min(ratios):.2f}-{max(ratios):.2f}x at {top}^2",
                            "evidence": "; ".join(parts)}}
 
@@ -171,8 +172,8 @@ def thesis_claims(folder, valid_runs):
     recs, matched, _ = thesis_tables.rows_for(folder, paper)
     out = {}
     c = thesis_tables.claim_ray_doubling(matched, paper)
-    if c.get("reproduced") in ("yes", "no"):
-        out[c["claim"]] = {"verdict": c["reproduced"], "our_value": "", "evidence": c["evidence"]}
+    if c.verdict != NOT_MEASURABLE:
+        out[c.claim] = {"verdict": c.verdict, "our_value": "", "evidence": c.reason}
     for r in recs:
         if r.get("status") == "ok" and r.get("our_frame_ms"):
             what = (f"Table {r['table']} {r['paper_scene']}: {r['resolution']}^2 image, "
@@ -194,7 +195,8 @@ def ldm_times(folder):
 
 
 def judged(results):
-    """{claim text: {verdict (yes/no, for an order), our_value, evidence}} with the run's renderer
+    """{claim text: {verdict (claim.py's, for an order; None where the paper's preset did not run),
+    our_value, evidence}} with the run's renderer
     and raster limit in every entry; {} without a valid device run."""
     run = gpu_rows.newest_run(results)
     if not run:

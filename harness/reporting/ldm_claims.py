@@ -1,6 +1,7 @@
-"""The LDM paper's (Aalund et al. 2015) machine-independent claims, judged on our rows: the rows of
-RESULTS/ldm_claims.csv, which ldm_tables.py writes and claims.py gathers. Each row says the claim,
-the paper's value and ours, `reproduced` yes / no (or why it cannot be judged) and the evidence.
+"""The LDM paper's (Aalund et al. 2015) claims, judged on our rows: `claims(results, paper)` returns
+them as claim.Claim objects (the claim, the paper's value and ours, the verdict and the evidence as
+its reason), which claims.py gathers into claims.csv. The orders of times (Figs. 9 and 10) are of
+kind time_order, the rest machine-independent; the paper's absolute times are ldm_tables.py's.
 
 The rules (the choices this file makes, stated once):
 - Fig. 8, accuracy: at every dmax of ours >= the figure's 1280 (large dmax), LDM AO is closer to the
@@ -17,27 +18,29 @@ The rules (the choices this file makes, stated once):
   per-pass shares cannot be formed: its frame totals were in the figure's image, not its text.
 - Figs. 8-10, memory at the paper's own settings (512 LDMs of 200^2 and 50^2): the LDMs' plan
   (matrix ldm_memory, structure "ldm" of mem_planned_by_structure) against the paper's MB
-  (decimal), reproduced within MEMORY_TOL: a list node per fragment, so memory follows the depth
+  (decimal), reproduced within claim.MEMORY_TOLERANCE: a list node per fragment, so memory follows the depth
   complexity of the scene as modelled and framed, which differs between their Sponza and ours
   (and our hairball is a procedural stand-in).
 """
 import re
 
+from reporting.claim import (LDM, MACHINE_INDEPENDENT, MEMORY_TOLERANCE, NOT_MEASURABLE, TIME_ORDER,  # noqa: E402
+                             Claim, verdict)
 from reporting.schema import params, passes_of, run_key, runs, runs_table  # noqa: E402
 from reporting.uncertainty import compare_times, error_interval, fnum, overlap, time_resolution  # noqa: E402
-from reporting.uncertainty import MEMORY_TOLERANCE as MEMORY_TOL  # noqa: E402
 
 LARGE_DMAX = 1280.0  # the figure's dmax (Sponza is in cm: "1280 m" is 1280 units)
-MI = "machine_independent"
 SCENE = {"Crytek Sponza": "sponza", "Hairball": "hairball"}
-CLAIM_COLUMNS = ["figure", "claim", "kind", "paper_value", "our_value", "reproduced", "evidence",
-                 "our_settings", "renderer"]
 
 
-def claim(figure, text, paper_value, our_value, reproduced, evidence, settings="", renderer=""):
-    return {"figure": figure, "claim": text, "kind": MI, "paper_value": paper_value,
-            "our_value": our_value, "reproduced": reproduced, "evidence": evidence,
-            "our_settings": settings, "renderer": renderer}
+def claim(source, figure, text, paper_value, our_value, holds, evidence, renderer="", kind=MACHINE_INDEPENDENT):
+    """A claim of Figure `figure`, judged on the runs table `source`; holds True / False, or a text:
+    why it is not measurable here (the evidence, where there is some, after it)."""
+    if isinstance(holds, str):
+        return Claim(LDM, source, f"Figure {figure}: {text}", kind, paper_value, our_value, renderer,
+                     verdict=NOT_MEASURABLE, reason=holds + ("; " + evidence if evidence else ""))
+    return Claim(LDM, source, f"Figure {figure}: {text}", kind, paper_value, our_value, renderer,
+                 verdict=verdict(holds), reason=evidence)
 
 
 def interval_text(iv):
@@ -52,10 +55,6 @@ def closest(rows):
     return max(rows, key=key) if rows else None
 
 
-def settings(r):
-    return f"{r['scene']} {r['technique']} {r['params']} {r['width']}x{r['height']} profile={r['profile']}"
-
-
 # ---- Figure 8: accuracy at large dmax -----------------------------------------------------------
 
 def fig8_accuracy(results):
@@ -67,7 +66,7 @@ def fig8_accuracy(results):
     large = sorted(d for t, d in by if t == "ldm_ao" and d is not None and d >= LARGE_DMAX
                    and ("hbao", d) in by)
     if not large:
-        return [claim("8", "LDM AO closer to the reference than HBAO at large dmax", "LDM closer", "",
+        return [claim("ldm_fig8.csv", "8", "LDM AO closer to the reference than HBAO at large dmax", "LDM closer", "",
                       "no run of ours has both at dmax >= 1280 (ldm_fig8 not run)", "")]
     return [fig8_at(by[("ldm_ao", d)], by[("hbao", d)], d) for d in large]
 
@@ -78,11 +77,11 @@ def fig8_at(ldm, hbao, d):
     win = not tie and a[1] < b[1]
     why = ("the intervals overlap: a tie, not a win" if tie else
            "LDM's interval lies wholly below HBAO's" if win else "HBAO's interval lies below LDM's")
-    return claim("8", f"LDM AO closer to the reference than HBAO at large dmax (dmax={d:g}, the figure's "
+    return claim("ldm_fig8.csv", "8", f"LDM AO closer to the reference than HBAO at large dmax (dmax={d:g}, the figure's "
                  f"{LARGE_DMAX:g} or more)", "LDM resembles the reference, HBAO fails (Fig. 8, Sec. 5.1)",
-                 f"RMSE LDM {a[1]:.4g}, HBAO {b[1]:.4g}", "yes" if win else "no",
+                 f"RMSE LDM {a[1]:.4g}, HBAO {b[1]:.4g}", win,
                  f"RMSE with the reference's noise taken out: LDM {interval_text(a)} vs HBAO "
-                 f"{interval_text(b)}: {why}", settings(ldm) + "; " + settings(hbao), ldm["renderer"])
+                 f"{interval_text(b)}: {why}", ldm["renderer"])
 
 
 # ---- Figure 9: fewer, low-resolution LDMs trade quality for time --------------------------------
@@ -127,15 +126,14 @@ def fig9_trade(results):
                 continue
             judged = [pair_trades(lo, hi, res) for lo, hi in pairs]
             n = sum(ok for ok, _ in judged)
-            out.append(claim("9", f"{word} LDMs are faster and less accurate ({scene})",
+            out.append(claim("ldm_fig9.csv", "9", f"{word} LDMs are faster and less accurate ({scene})",
                              "quality traded for time with fewer low-resolution LDMs (Sec. 5.1)",
-                             f"{n} of {len(judged)} pairs trade", "yes" if n == len(judged) else "no",
+                             f"{n} of {len(judged)} pairs trade", n == len(judged),
                              "; ".join(e for _, e in judged) + (f"; times tie within {100 * res:.0f}% "
                              "(the machine's resolution)" if res else "; no timing resolution measured: "
-                             "no time called a tie"), f"ldm_fig9 {scene} profile={mine[0]['profile']}",
-                             mine[0]["renderer"]))
-    return out or [claim("9", "fewer low-resolution LDMs trade quality for time", "", "",
-                         "no pair of runs of ours (ldm_fig9 not run)", "")]
+                             "no time called a tie"), mine[0]["renderer"], TIME_ORDER))
+    return out or [claim("ldm_fig9.csv", "9", "fewer low-resolution LDMs trade quality for time", "", "",
+                         "no pair of runs of ours (ldm_fig9 not run)", "", kind=TIME_ORDER)]
 
 
 # ---- Figure 10: the passes' shares of the frame -------------------------------------------------
@@ -145,8 +143,8 @@ def fig10_passes(results, paper):
     passes = passes_of(results, "ldm_fig10")
     best = closest([r for r in rows if passes.get(run_key(r))])
     if not best:
-        return [claim("10", "splatting a majority of the render time, LDM tracing cheap", "", "",
-                      "no Sponza run of ours with pass times (ldm_fig10 not run)", "")]
+        return [claim("ldm_fig10.csv", "10", "splatting a majority of the render time, LDM tracing cheap", "", "",
+                      "no Sponza run of ours with pass times (ldm_fig10 not run)", "", kind=TIME_ORDER)]
     ms = passes[run_key(best)]
     total = sum(ms.values())
     share = {k: v / total for k, v in ms.items()}
@@ -167,18 +165,17 @@ def fig10_passes(results, paper):
         "no timing resolution measured: no time called a tie"
     traced = "; ".join(f"{r['note'].split(';')[0]} {r['ms']} ms" for r in paper if r["figure"] == "10")
     return [
-        claim("10", "Sec. 5.2: splatting is the bottleneck, a majority of the render time",
+        claim("ldm_fig10.csv", "10", "Sec. 5.2: splatting is the bottleneck, a majority of the render time",
               "splat > half the frame", f"splat {100 * share.get('splat', 0):.1f}% of the frame",
-              "yes" if majority else "no", f"shares of the frame: {split}{where}; {note}",
-              settings(best), best["renderer"]),
-        claim("10", "Sec. 5.2: the LDM (photon) tracing relatively cheap next to splatting",
+              majority, f"shares of the frame: {split}{where}; {note}", best["renderer"], TIME_ORDER),
+        claim("ldm_fig10.csv", "10", "Sec. 5.2: the LDM (photon) tracing relatively cheap next to splatting",
               "photon_trace < splat", f"photon_trace {trace:.4g} ms vs splat {splat:.4g} ms",
-              "yes" if cheap else "no", f"{split}; {note}", settings(best), best["renderer"]),
-        claim("10", "caption: photon tracing's share of the frame",
+              cheap, f"{split}; {note}", best["renderer"], TIME_ORDER),
+        claim("ldm_fig10.csv", "10", "caption: photon tracing's share of the frame",
               f"photon tracing {traced}; frame totals not in the text", f"photon_trace "
               f"{100 * share.get('photon_trace', 0):.1f}% of the frame",
               "the paper's frame totals were in the figure's image, lost with it: no share of the "
-              "paper's to compare with", f"shares of the frame: {split}", settings(best), best["renderer"])]
+              "paper's to compare with", f"shares of the frame: {split}", best["renderer"])]
 
 
 # ---- Figures 8-10: memory at the paper's settings -----------------------------------------------
@@ -212,12 +209,12 @@ def memory_claim(pr, fig, plan, ratio_note):
     n, res, mb = int(pr["ldm_count"]), int(pr["ldm_res"]), float(pr["mb"])
     what = f"{pr['scene']}: {n} LDMs of {res}^2 take {pr['mb']} MB"
     if not plan:
-        return claim(fig, what, f"{pr['mb']} MB", "", "no plan of ours at these settings (matrix "
+        return claim("ldm_memory.csv", fig, what, f"{pr['mb']} MB", "", "no plan of ours at these settings (matrix "
                      "ldm_memory not run, or its row planned nothing)", "")
     ours = plan["bytes"] / 1e6
-    ok = abs(ours / mb - 1) <= MEMORY_TOL
+    ok = abs(ours / mb - 1) <= MEMORY_TOLERANCE
     heads = 4 * n * res * res
-    ev = [f"ours {ours:.1f} MB = {ours / mb:.2f}x the paper's (tolerance {100 * MEMORY_TOL:.0f}%)"]
+    ev = [f"ours {ours:.1f} MB = {ours / mb:.2f}x the paper's (tolerance {100 * MEMORY_TOLERANCE:.0f}%)"]
     if plan["fragments"]:
         ev.append(f"{plan['fragments']} fragments, {plan['fragments'] / (n * res * res):.2f} a map pixel, "
                   f"8 B a node + 4 B a head (heads {heads / 1e6:.2f} MB)")
@@ -229,8 +226,7 @@ def memory_claim(pr, fig, plan, ratio_note):
     if pr["scene"] == "Hairball":
         ev.append("our hairball is a procedural stand-in (288k triangles, theirs 2.88M)")
     ev.append("planned, not allocated (memory_budget_mb)")
-    return claim(fig, what, f"{pr['mb']} MB", f"{ours:.1f} MB", "yes" if ok else "no", "; ".join(ev),
-                 settings(plan["row"]), plan["row"]["renderer"])
+    return claim("ldm_memory.csv", fig, what, f"{pr['mb']} MB", f"{ours:.1f} MB", ok, "; ".join(ev), plan["row"]["renderer"])
 
 
 def memory_claims(results, paper):
@@ -265,7 +261,7 @@ def scaling_note(pr, plan, all_plans):
     return ""
 
 
-def ldm_claims(results, paper):
-    """Every judged claim of the LDM paper, in the order of its figures."""
+def judged(results, paper):
+    """Every judged claim of the LDM paper, in the order of its figures (Claims)."""
     return fig8_accuracy(results) + fig9_trade(results) + fig10_passes(results, paper) + \
         memory_claims(results, paper)

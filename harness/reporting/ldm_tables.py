@@ -5,12 +5,15 @@ paper_tables.py. "Best match" is the run with the paper's settings when the prof
 and resolution that ran): the `our_settings` column says which. `our_planned_mb` is the LDMs'
 memory at the paper's own settings, planned (matrix ldm_memory) though not allocated.
 
-The paper's machine-independent claims, judged: RESULTS/ldm_claims.csv (ldm_claims.py's rules,
-below), one row per claim, which claims.py gathers.
+`claims(results, paper_dir)` returns the paper's claims as claim.Claim objects, which claims.py
+gathers into claims.csv: those ldm_claims.py judges (its rules), then the figures' absolute times, a
+claim per row of ldm_figures_vs_ours.csv (not measurable here: the paper timed its own GPU).
 """
 import os
 
-from reporting.ldm_claims import CLAIM_COLUMNS, ldm_claims, planned_ldm  # noqa: E402
+from reporting import ldm_claims  # noqa: E402
+from reporting.claim import ABSOLUTE_TIME, LDM, NOT_MEASURABLE, Claim  # noqa: E402
+from reporting.ldm_claims import planned_ldm  # noqa: E402
 from reporting.schema import papers_rows, params, passes_of, read_csv, run_key, runs_table, write_csv  # noqa: E402
 
 
@@ -80,6 +83,29 @@ LDM_COLUMNS = ["figure", "scene", "method", "paper_settings", "paper_ms", "paper
                "our_rel_rmse", "our_ssim", "our_ref_spp", "our_renderer"]
 
 
+def time_claim(r):
+    """A figure's caption time (a row of ldm_rows): absolute, on the paper's GPU."""
+    what = f"Figure {r['figure']} {r['scene']} {r['method']} ({r['paper_settings']}): time"
+    pv = f"{r['paper_ms']} ms on {r['paper_gpu']}" + (f", {r['paper_mb']} MB" if r["paper_mb"] else "")
+    ours = r.get("our_ms", "")
+    ov = f"{ours} ms, {r['our_mb']} MB, rel RMSE {r['our_rel_rmse']}" if ours else ""
+    if not ours:
+        why = r["our_settings"]
+    else:
+        why = (f"absolute time on the paper's {r['paper_gpu']}; ours on {r['our_renderer']}"
+               + ("; and not at the paper's settings (quick profile)" if "NOT" in r["our_settings"] else ""))
+    return Claim(LDM, "ldm_figures_vs_ours.csv", what, ABSOLUTE_TIME, pv, ov, r.get("our_renderer", ""),
+                 verdict=NOT_MEASURABLE, reason=why)
+
+
+def claims(results, paper_dir):
+    """The LDM paper's claims (Claims): the judged ones (ldm_claims.py), then the figures' times;
+    [] without the paper's values (paper_dir/ldm_figures.csv)."""
+    ldm = os.path.join(paper_dir, "ldm_figures.csv")
+    if not os.path.exists(ldm):
+        return []
+    return ldm_claims.judged(results, read_csv(ldm)) + [time_claim(r) for r in ldm_rows(results, ldm)]
+
 
 def ldm_table(results, paper_dir, source):
     """The LDM paper's figures beside ours: RESULTS/ldm_figures_vs_ours.csv."""
@@ -89,5 +115,3 @@ def ldm_table(results, paper_dir, source):
         return
     print("paper_tables.py: wrote", write_csv(os.path.join(results, "ldm_figures_vs_ours.csv"),
                                              ldm_rows(results, ldm), LDM_COLUMNS))
-    print("paper_tables.py: wrote", write_csv(os.path.join(results, "ldm_claims.csv"),
-                                             ldm_claims(results, read_csv(ldm)), CLAIM_COLUMNS))

@@ -1,13 +1,18 @@
 """The LRSM paper (Sugihara et al. 2014) beside ours, written by paper_tables.py:
 RESULTS/lrsm_table2.csv (memory per structure: ours, the formulas', the paper's Table 2, and dense
 VCT's), lrsm_table3.csv (stage times), lrsm_fig7.csv (error per scene, technique and component) and
-lrsm_dynamic.csv (SPONZA DRAGON at two instants), each with a row per claim saying whether it
-reproduced here. The paper's figures come from paper-values/lrsm_table2.csv and lrsm_table3.csv."""
+lrsm_dynamic.csv (SPONZA DRAGON at two instants): the evidence. The paper's claims are `claims(results)`,
+claim.Claim objects judged from the same rows (Table 2's memory under the one memory tolerance, Table
+3's stage orders, Figure 7's thin-wall leak, SPONZA DRAGON interactive, and the paper's absolute
+times, not measurable here), which claims.py writes into claims.csv. The paper's figures come from
+paper-values/lrsm_table2.csv and lrsm_table3.csv."""
 import os
 import re
 
 from reporting.schema import (fmt, fnum, papers_rows, params, pass_name, passes_of, preset, read_csv,  # noqa: E402
                     run_key, runs, runs_table, status, write_csv)
+from reporting.claim import (ABSOLUTE_TIME, LRSM, MACHINE_INDEPENDENT, NOT_MEASURABLE, TIME_ORDER, Claim,  # noqa: E402
+                             memory_verdict, paper_number, verdict)
 from reporting.uncertainty import compare_times, time_resolution  # noqa: E402
 
 from reporting.schema import ROOT  # noqa: E402
@@ -178,13 +183,16 @@ def table2_lrsm(pr, lrsm):
                 "note": "; ".join(x for x in [note, "besides: " + ", ".join(
                     f"{k} {v / MB:.2f} MB" for k, v in sorted(others.items())) if others else ""] if x)})
     same = row and row["scene"] == scene
+    paper_time = f"GTX770 {pr['gtx770_ms']} ms, Iris Pro {pr['iris_pro_ms']} ms"
+    measured = same and row["gpu_ms_median"]
+    our_time = (f"{float(row['gpu_ms_median']):.4g} ms GPU median on {row['renderer']} at "
+                f"{row['width']}x{row['height']}" if measured else "not measured on this scene")
     out.append({"paper_scene": pr["scene"], "technique": "lrsm", "structure": "frame_ms",
                 "setting": "1280x720 in the paper", "paper_mb": "",
-                "note": f"paper: GTX770 {pr['gtx770_ms']} ms, Iris Pro {pr['iris_pro_ms']} ms; ours "
-                        + (f"{float(row['gpu_ms_median']):.4g} ms GPU median on {row['renderer']} at "
-                           f"{row['width']}x{row['height']}" if same and row["gpu_ms_median"] else
-                           "not measured on this scene"),
-                "status": row["status"] if same else MISSING, "measured": where if same else ""})
+                "note": f"paper: {paper_time}; ours {our_time}",
+                "status": row["status"] if same else MISSING, "measured": where if same else "",
+                # not columns: the two times apart, for its claim (table2_claim)
+                "_paper_time": paper_time, "_our_time": our_time if measured else ""})
     return out
 
 
@@ -243,6 +251,34 @@ def table2(results, paper_dir):
     return out + [table2_vct(vct, vres) for vres in (256, 512)]
 
 
+def table2_claim(r):
+    """A row of Table 2 as a claim: a structure's memory (within the one memory tolerance; the
+    formula beside it in the reason), or the frame time on the paper's GPUs (absolute)."""
+    if r["structure"] == "frame_ms":
+        ours = r["_our_time"]
+        return Claim(LRSM, "lrsm_table2.csv", f"Table 2 {r['paper_scene']}: frame time ({r['setting']})",
+                     ABSOLUTE_TIME, r["_paper_time"], ours, verdict=NOT_MEASURABLE,
+                     reason="absolute frame time on the paper's GPUs; ours: " + (ours or "not measured on this scene"))
+    what = f"Table 2 {r['paper_scene']} {r['technique']} {r['structure']} memory ({r['setting']})"
+    planned = r["status"] == status("out_of_memory") and r["ours_mb"]
+    if r["status"] == "missing" or not r["ours_mb"]:
+        v, why = NOT_MEASURABLE, "no run of ours measured this structure"
+    elif r["status"] != "ok" and not planned:
+        v, why = NOT_MEASURABLE, f"our run ended {r['status']} on this machine ({r['note']})".rstrip(" ()")
+    else:
+        v, why = memory_verdict(float(r["ours_mb"]), paper_number(r["paper_mb"]))
+        why += (f"; against the formula: ours {r['ours_vs_formula']}, the paper's {r['paper_vs_formula']}"
+                + ("; ours planned, not allocated (over memory_budget_mb)" if planned else ""))
+    return Claim(LRSM, "lrsm_table2.csv", what, MACHINE_INDEPENDENT, f"{r['paper_mb']} MB",
+                 f"{r['ours_mb']} MB" if r["ours_mb"] else "", verdict=v, reason=why)
+
+
+def table2_claims(rows):
+    """Table 2's claims: every row with a figure of the paper's (a formula's figure with no number
+    of the paper's beside it claims nothing)."""
+    return [table2_claim(r) for r in rows if r["structure"] == "frame_ms" or r["paper_mb"]]
+
+
 # Table 3's stages: the paper's stage names (paper-values/lrsm_table3.csv) as our passes, which lrsm
 # declares (gibench describe); vct's stages are lrsm's but lrsm_construction.
 TABLE3_STAGE = {"diffuse_cones_6": pass_name("lrsm", "diffuse_cones"),
@@ -281,6 +317,15 @@ def table3_runs(results, paper_dir, passes):
     return chosen
 
 
+def stage_claim(r):
+    """A stage row of Table 3 with a time of the paper's as a claim: absolute, on its GPUs."""
+    return Claim(LRSM, "lrsm_table3.csv", f"Table 3: {r['method']} {r['stage']} time", ABSOLUTE_TIME,
+                 f"{r['paper_gtx770_ms']} ms (GTX 770), {r['paper_iris_pro_ms']} ms (Iris Pro)",
+                 r["our_ms"] + " ms" if r["our_ms"] else "", r["our_renderer"], verdict=NOT_MEASURABLE,
+                 reason="absolute stage time on the paper's GPUs; ours on " + (r["our_renderer"] or "no run")
+                        + " (the stage-order claims compare ratios)")
+
+
 def table3_stages(chosen, passes, paper, ours_ms):
     """A row per method and stage: the paper's times and ours (ours_ms gets ours)."""
     out = []
@@ -304,26 +349,28 @@ def table3_stages(chosen, passes, paper, ours_ms):
 
 
 def table3_claims(results, chosen, paper, ours_ms):
-    """The stage-order claims. A difference below the machine's run-to-run resolution for a pass is
-    a tie: not reproduced."""
+    """The stage-order claims (time_order). A difference below the machine's run-to-run resolution
+    for a pass is a tie: not measurable here (closer than this machine resolves)."""
     out = []
     resolution = time_resolution(results, "pass")
     for text, a, b in TABLE3_CLAIMS:
         pa, pb = paper.get((a[0], "GTX770", a[1])), paper.get((b[0], "GTX770", b[1]))
         oa, ob = ours_ms.get(a), ours_ms.get(b)
         order = None if oa is None or ob is None else compare_times(oa, ob, resolution)
-        rep = MISSING if order is None else "yes" if order == ">" else \
-            f"tie: closer than this machine resolves ({100 * (resolution or 0):.0f}%)" if order == "tie" else "no"
-        out.append({"kind": "claim", "method": "", "stage": text,
-                    "paper_gtx770_ms": f"{fmt(pa)} vs {fmt(pb)}" if pa and pb else "",
-                    "our_ms": f"{fmt(oa, 5)} vs {fmt(ob, 5)}" if rep != MISSING else MISSING,
-                    "reproduced": rep,
-                    "our_renderer": (chosen[a[0]] or chosen[b[0]] or {}).get("renderer", "")})
+        why = MISSING if order is None else \
+            f"tie: closer than this machine resolves ({100 * (resolution or 0):.0f}%)" if order == "tie" else ""
+        out.append(Claim(LRSM, "lrsm_table3.csv", "Table 3: " + text, TIME_ORDER,
+                         (f"{fmt(pa)} vs {fmt(pb)}" if pa and pb else "") + " ms",
+                         f"{fmt(oa, 5)} vs {fmt(ob, 5)} ms" if order is not None else f"{MISSING} ms",
+                         (chosen[a[0]] or chosen[b[0]] or {}).get("renderer", ""),
+                         verdict=NOT_MEASURABLE if why else verdict(order == ">"),
+                         reason=why or "the order of the two stage times, compared on this renderer"))
     return out
 
 
-def table3(results, paper_dir):
-    """The LRSM paper's Table 3 (per-stage times) beside ours, and its stage-order claims."""
+def table3_all(results, paper_dir):
+    """The LRSM paper's Table 3 (per-stage times) beside ours, and its stage-order claims: (stage
+    rows, Claims)."""
     passes = passes_of(results, "lrsm_stages")
     chosen = table3_runs(results, paper_dir, passes)
     paper = {}
@@ -331,7 +378,12 @@ def table3(results, paper_dir):
         paper[(pr["method"].lower(), pr["gpu"], TABLE3_STAGE.get(pr["stage"], pr["stage"]))] = float(pr["ms"])
     ours_ms = {}
     out = table3_stages(chosen, passes, paper, ours_ms)
-    return out + table3_claims(results, chosen, paper, ours_ms)
+    return out, table3_claims(results, chosen, paper, ours_ms)
+
+
+def table3(results, paper_dir):
+    """The LRSM paper's Table 3 (per-stage times) beside ours."""
+    return table3_all(results, paper_dir)[0]
 
 
 def scene_exposure(scene):
@@ -378,13 +430,14 @@ def fig7(results, paper_dir):
                                 "gpu_ms": r["gpu_ms_median"],
                                 "mem_mb": fmt(fnum(r["mem_bytes"]) / MB) if fnum(r["mem_bytes"]) else "",
                                 "status": r["status"], "renderer": r["renderer"]})
-    return out + fig7_leak_claims(results, rows)
+    return out
 
 
-def fig7_leak_claims(results, rows):
-    """The thin-wall claim, per wall scene (1 mm: inside one voxel; 12 cm: whole voxels, thinner
+def fig7_leak_claims(results):
+    """Figure 7's thin-wall claim (Claims), per wall scene (1 mm: inside one voxel; 12 cm: whole voxels, thinner
     than the coarse mips) and voxel resolution that both techniques ran at (lrsm_quality's rows;
     lrsm_sweeps runs the wall scenes over voxel_res too)."""
+    rows = papers_rows(runs_table(results, "lrsm_quality"))
     out = []
     for scene in ("thin_wall_leak", "thick_wall_leak"):
         expo = scene_exposure(scene)
@@ -395,21 +448,23 @@ def fig7_leak_claims(results, rows):
                 tw.setdefault(k, {}).setdefault(r["technique"], []).append(r)
         text = f"LRSM leaks light through a thin wall, VCT does not ({scene}, indirect)"
         pairs = [v for v in sorted(k for k in tw if k[0] is not None) if "lrsm" in tw[v] and "vct" in tw[v]]
+        paper_value = "LRSM leaks, VCT does not"
         if not pairs:
-            out.append({"kind": "claim", "scene": scene, "component": "indirect", "claim": text,
-                        "reproduced": MISSING, "evidence": "needs ok lrsm and vct rows at one voxel_res"})
+            why = "needs ok lrsm and vct rows at one voxel_res"
+            out.append(Claim(LRSM, "lrsm_fig7.csv", f"Figure 7: {text} ( )", MACHINE_INDEPENDENT, paper_value,
+                             why, verdict=NOT_MEASURABLE, reason=f"{MISSING}; {why}"))
         for v in pairs:
             lr = max(float(r["rmse"]) for r in tw[v]["lrsm"])
             vc = max(float(r["rmse"]) for r in tw[v]["vct"])
             leaks_l, leaks_v = lr * expo >= LEAK_VISIBLE, vc * expo >= LEAK_VISIBLE
-            out.append({"kind": "claim", "scene": scene, "technique": "lrsm vs vct",
-                        "component": "indirect", "params": f"voxel_res={v[0]:g}", "size": v[1],
-                        "claim": text + f" [{v[2]}" + (f", preset {v[3]}" if v[3] != "default" else "") + "]",
-                        "reproduced": "yes" if leaks_l and not leaks_v else "no",
-                        "evidence": f"leaked RMS x exposure {expo:g}: lrsm {lr * expo:.4g} "
-                                    f"({'leaks' if leaks_l else 'no visible leak'}), vct {vc * expo:.4g} "
-                                    f"({'leaks' if leaks_v else 'no visible leak'}); visible from "
-                                    f"{LEAK_VISIBLE} (1% of display white); the correct image is black"})
+            setting = text + f" [{v[2]}" + (f", preset {v[3]}" if v[3] != "default" else "") + "]"
+            ours = (f"leaked RMS x exposure {expo:g}: lrsm {lr * expo:.4g} "
+                    f"({'leaks' if leaks_l else 'no visible leak'}), vct {vc * expo:.4g} "
+                    f"({'leaks' if leaks_v else 'no visible leak'})")
+            out.append(Claim(LRSM, "lrsm_fig7.csv", f"Figure 7: {setting} (voxel_res={v[0]:g} {v[1]})",
+                             MACHINE_INDEPENDENT, paper_value, ours, verdict=verdict(leaks_l and not leaks_v),
+                             reason=f"{ours}; visible from {LEAK_VISIBLE} (1% of display white); the correct "
+                                    "image is black"))
     return out
 
 
@@ -433,26 +488,37 @@ def dynamic(results, paper_dir):
                     "paper_iris_pro_ms": paper["iris_pro_ms"] if paper and r["technique"] == "lrsm" else "",
                     "rmse": r["rmse"], "rel_rmse": r["rel_rmse"], "ssim": r["ssim"], "ref_spp": r["ref_spp"],
                     "status": r["status"], "renderer": r["renderer"]})
-    return out + [dynamic_interactive_claim(rows, paper_dir)]
+    return out
 
 
-def dynamic_interactive_claim(rows, paper_dir):
+def dynamic_interactive_claim(results, paper_dir):
     """Sec. 6: "We achieved interactive rates on all scenes (Table 2) with data structure
-    construction time included": the paper's slowest such figure (Iris Pro, 258.3 ms) as the bar."""
+    construction time included": the paper's slowest such figure (Iris Pro, 258.3 ms) as the bar; a
+    time on the paper's GPUs, so judged only at the paper's 1280x720."""
+    rows = runs_table(results, "lrsm_dragon")
     lr = [r for r in rows if r["technique"] == "lrsm" and r["status"] == "ok" and fnum(r["gpu_ms_median"])]
     bar = max((float(p["iris_pro_ms"]) for p in paper_values(paper_dir, "lrsm_table2.csv")), default=None)
     if lr and bar:
         worst = max(float(r["gpu_ms_median"]) for r in lr)
         paper_size = all((r["width"], r["height"]) == ("1280", "720") for r in lr)
-        return {"kind": "claim", "technique": "lrsm",
-                "claim": f"interactive with every structure rebuilt each frame (at most {bar:g} ms, the "
-                         "paper's slowest Table 2 figure, at 1280x720)",
-                "reproduced": ("yes" if worst <= bar else "no") if paper_size else
-                              "not comparable (not 1280x720: run the paper profile)",
-                "note": f"ours at most {worst:.4g} ms on {lr[0]['renderer']} at {lr[0]['width']}x"
-                        f"{lr[0]['height']}"}
-    return {"kind": "claim", "technique": "lrsm", "claim": "interactive with structures rebuilt",
-            "reproduced": MISSING}
+        ours = f"ours at most {worst:.4g} ms on {lr[0]['renderer']} at {lr[0]['width']}x{lr[0]['height']}"
+        why = "" if paper_size else "not comparable (not 1280x720: run the paper profile)"
+        return Claim(LRSM, "lrsm_dynamic.csv", f"SPONZA DRAGON: interactive with every structure rebuilt each "
+                     f"frame (at most {bar:g} ms, the paper's slowest Table 2 figure, at 1280x720)", ABSOLUTE_TIME,
+                     "", ours, verdict=NOT_MEASURABLE if why else verdict(worst <= bar), reason=why or ours)
+    return Claim(LRSM, "lrsm_dynamic.csv", "SPONZA DRAGON: interactive with structures rebuilt", ABSOLUTE_TIME,
+                 verdict=NOT_MEASURABLE, reason=MISSING)
+
+
+def claims(results, paper_dir=None):
+    """The LRSM paper's claims (Claims) in the order of its tables: Table 2 (memory, frame times),
+    Table 3 (the stage times, then the stage orders), Figure 7's leak, SPONZA DRAGON interactive.
+    paper_dir: the paper's values (default RESULTS/paper)."""
+    paper_dir = paper_dir or os.path.join(results, "paper")
+    stages, orders = table3_all(results, paper_dir)
+    return (table2_claims(table2(results, paper_dir))
+            + [stage_claim(r) for r in stages if r["paper_gtx770_ms"] or r["paper_iris_pro_ms"]]
+            + orders + fig7_leak_claims(results) + [dynamic_interactive_claim(results, paper_dir)])
 
 
 def write_table(path, rows, cols):
@@ -465,14 +531,12 @@ def lrsm_tables(results, paper_dir):
                  "matches", "ours_vs_formula", "paper_vs_formula", "ours_bytes", "formula_bytes", "status",
                  "measured", "note"])
     write_table(os.path.join(results, "lrsm_table3.csv"), table3(results, paper_dir),
-                ["kind", "method", "stage", "paper_gtx770_ms", "paper_iris_pro_ms", "our_ms", "reproduced",
-                 "our_settings", "our_renderer", "note"])
+                ["kind", "method", "stage", "paper_gtx770_ms", "paper_iris_pro_ms", "our_ms", "our_settings",
+                 "our_renderer", "note"])
     write_table(os.path.join(results, "lrsm_fig7.csv"), fig7(results, paper_dir),
                 ["kind", "scene", "paper_scene", "technique", "component", "params", "size", "paper_setting",
-                 "rmse", "rel_rmse", "ssim", "ref_spp", "ref_noisy", "gpu_ms", "mem_mb", "status", "claim",
-                 "reproduced", "evidence", "renderer"])
+                 "rmse", "rel_rmse", "ssim", "ref_spp", "ref_noisy", "gpu_ms", "mem_mb", "status", "renderer"])
     write_table(os.path.join(results, "lrsm_dynamic.csv"), dynamic(results, paper_dir),
                 ["kind", "technique", "params", "size", "time_s", "component", "gpu_ms", "cpu_ms",
                  "voxelization_ms", "lrsm_construction_ms", "scene_update_ms", "paper_gtx770_ms",
-                 "paper_iris_pro_ms", "rmse", "rel_rmse", "ssim", "ref_spp", "status", "claim", "reproduced",
-                 "renderer", "note"])
+                 "paper_iris_pro_ms", "rmse", "rel_rmse", "ssim", "ref_spp", "status", "renderer", "note"])

@@ -36,6 +36,7 @@ from reporting import cone_report  # noqa: E402
 from reporting import energy_audit  # noqa: E402
 from reporting import pass_work  # noqa: E402
 from reporting import temporal_tables  # noqa: E402
+from reporting import report_model as M  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 VERDICT_CLASS = {"reproduced": "yes", "not reproduced": "no", "not measurable here": "na"}
@@ -214,11 +215,12 @@ def front_parts(ans, memory=False):
             for k, (t, cands) in enumerate(segs)]
 
 
-def front_plain(ans, memory=False):
+def front_nodes(ans, memory=False):
+    """A front as inline nodes: each step its text, its settings its title on the page."""
     parts = front_parts(ans, memory)
     if not parts:
-        return "none better than a black image" if ans["black"] else ""
-    return "".join(j + t for j, t, _ in parts)
+        return [M.Em("none better than a black image")] if ans["black"] else []
+    return [x for j, t, p in parts for x in (j, M.Span(t, cls="step", title=p))]
 
 
 def beaten_list(ans):
@@ -383,7 +385,7 @@ def gallery_cells(results, group_rows):
     return cells
 
 
-# ---- HTML -----------------------------------------------------------------------------------------
+# ---- the page's scripts and widget -----------------------------------------------------------------------------------------
 
 CHECK_SCRIPT = """
 function openTarget() {  /* a link to #m-<matrix> opens that matrix */
@@ -463,32 +465,6 @@ def esc(x):
     return html.escape(str(x), quote=True)
 
 
-def long_text(text, keep=180):
-    """A long reason shows its start; the rest opens on a click (the table stays readable)."""
-    if len(text) <= keep + 40:
-        return esc(text)
-    return f"<details class=\"more\"><summary>{esc(text[:keep])}…</summary>{esc(text[keep:])}</details>"
-
-
-def claim_rows_html(claims, headers=True):
-    out, paper = [], None
-    for c in claims:
-        if headers and c["paper"] != paper:
-            paper = c["paper"]
-            mine = [x for x in claims if x["paper"] == paper]
-            out.append(f'<tr class="paper"><th colspan="7">{esc(paper)} '
-                       f'<span class="counts">({esc(summary_counts(mine))})</span></th></tr>')
-        v = c["verdict"]
-        out.append(f'<tr class="claim {VERDICT_CLASS.get(v, "na")}"><td>{esc(c["claim"])}</td>'
-                   f'<td>{esc(c["paper_value"])}</td><td>{esc(c["our_value"])}</td><td>{esc(c["renderer"])}</td>'
-                   f'<td>{esc(c["cores"])}</td><td class="verdict">{esc(v)}</td><td>{long_text(c["reason"])}</td></tr>')
-    return out
-
-
-CLAIM_HEAD = ('<thead><tr><th>claim</th><th>paper</th><th>ours</th><th>renderer</th><th>cores</th>'
-              '<th>verdict</th><th>reason</th></tr></thead>')
-
-
 def split_claims(claims):
     """(error and memory claims, orders of times, {paper: its absolute GPU times}), by
     answers.claim_kind: what each depends on."""
@@ -517,124 +493,6 @@ TOLERANCE_NOTE = ("One tolerance per kind of claim: memory holds within 25% of t
 ORDERS_NOTE = ("An order or a ratio of two times carries over between machines only as far as their "
                "pipelines agree: each is judged on the renderer its row names (a GPU where a valid device "
                "run answers it, else llvmpipe, a CPU rasterizer).")
-
-
-def claims_html(claims):
-    """The claims that do not depend on the machine (memory, error, leaks) in one table, the orders
-    of times (judged on the renderer named) in another, then each paper's absolute GPU times in a
-    table of their own, collapsed."""
-    mi, orders, absolute = split_claims(claims)
-    out = [f'<p class="policy">{esc(TOLERANCE_NOTE)}</p>',
-           f'<h3 id="claims-mi">Claims that do not depend on the machine ({len(mi)}: {esc(summary_counts(mi))})</h3>',
-           f'<table id="claims">{CLAIM_HEAD}<tbody>'] + claim_rows_html(mi) + ["</tbody></table>"]
-    out += [f'<h3 id="claims-orders">Orders of times, on the renderer named ({len(orders)}: '
-            f'{esc(summary_counts(orders))})</h3><p>{esc(ORDERS_NOTE)}</p>',
-            f'<table id="claims-orders-table">{CLAIM_HEAD}<tbody>'] + claim_rows_html(orders) + ["</tbody></table>"]
-    n = sum(len(v) for v in absolute.values())
-    out.append(f'<h3 id="claims-abs">The papers\' absolute GPU times ({n}), per paper</h3>')
-    for paper, cs in absolute.items():
-        out.append(f'<details class="absolute"><summary><b>{esc(paper)}</b>: {len(cs)} times. '
-                   f'{esc(why_not_comparable(cs))}</summary><table class="claims-abs">{CLAIM_HEAD}<tbody>')
-        out += claim_rows_html(cs, headers=False) + ["</tbody></table></details>"]
-    return "\n".join(out)
-
-
-def figure(src, caption, page_dir, cls=""):
-    return (f'<figure class="{cls}"><img src="{esc(rel(src, page_dir))}" alt="{esc(caption)}" '
-            f'loading="lazy"><figcaption>{esc(caption)}</figcaption></figure>')
-
-
-def front_html(ans, memory=False):
-    parts = front_parts(ans, memory)
-    if not parts:
-        return "<i>none better than a black image</i>" if ans["black"] else ""
-    return "".join(f'{esc(j)}<span class="step" title="{esc(p)}">{esc(t)}</span>' for j, t, p in parts)
-
-
-def answer_table_html(entries, page_dir, results, cls):
-    """One row per group: component (once per run of rows), scene and size with the links to its plot
-    and gallery, the front by time with the rows worse than black beneath, the front by memory."""
-    out = [f'<table class="{cls}"><thead><tr><th></th><th>scene, size</th>'
-           f'<th>least error for its time: Pareto front, cheapest first (ms, {esc(ERROR_WORDS)})</th>'
-           f'<th>for its memory (MB, the same)</th></tr></thead><tbody>']
-    prev, many = None, len({e["key"][5] for e in entries}) > 1
-    for e in entries:
-        key, t = e["key"], e["time"]
-        size = size_label(key, t, many)
-        links = [f'<a href="{esc(rel(os.path.join(results, e["plot"]), page_dir))}">plot</a>'] if e["plot"] else []
-        if cls == "answers":
-            links.append(f'<a href="#{esc(e["anchor"])}">images</a>')
-        also = (f'<div class="also">also {esc(", ".join(other_text(k, key) for k in e["others"]))}</div>'
-                if e["others"] else "")
-        black = black_list(t)
-        out.append(f'<tr class="answer{" first" if key[0] != prev else ""}" data-component="{esc(key[0])}" '
-                   f'data-scene="{esc(key[1])}" data-size="{esc(size_text(key))}"><th>{esc(key[0]) if key[0] != prev else ""}</th>'
-                   f'<td>{esc(key[1])} <span class="size">{esc(size)}</span> {" ".join(links)}{also}</td>'
-                   f'<td title="compared: {esc(", ".join(t["techniques"]))}">{front_html(t)}'
-                   + (f'<div class="beaten">beaten: {esc(beaten_list(t))}</div>' if beaten_list(t) else "")
-                   + (f'<div class="black">worse than black: {esc(black)}</div>' if black else "")
-                   + f'</td><td>{front_html(e["memory"], memory=True)}</td></tr>')
-        prev = key[0]
-    out.append("</tbody></table>")
-    return "\n".join(out)
-
-
-def answer_html(results, page_dir, heads, lone, claims):
-    """The first screen: which technique for which effect, beside what each paper's claims came to."""
-    left = ['<h2 id="answer">Which technique for which effect</h2>',
-            "<p>" + esc(" ".join(renderer_sentences(heads))) + " A step → has clearly less error than the "
-            "one before it; ≈ is a tie (error intervals overlap): either will do. Hover a step for its "
-            "settings.</p>",
-            answer_table_html(heads, page_dir, results, "answers")]
-    if lone:
-        left.append("<p>" + esc("Estimated by one technique only, so no comparison: " + "; ".join(
-            f"{c} ({', '.join(t)})" for c, t in sorted(lone.items()))) + ".</p>")
-    right = ['<h2 id="findings">Findings per paper</h2>']
-    for f in answers.findings(claims):
-        title, sentences = findings_text(f)
-        right.append(f'<p class="finding"><b>{esc(title)}</b>. ' + " ".join(esc(x) for x in sentences) + "</p>")
-    return ('<div class="first-screen"><div class="answer-col">' + "\n".join(left) + '</div><div class="findings-col">'
-            + "\n".join(right) + "</div></div>")
-
-
-def media_html(path, page_dir, caption, results):
-    """An image, or a labelled placeholder (not a broken link) where its file is absent."""
-    if path and os.path.exists(path):
-        return f'<img src="{esc(rel(path, page_dir))}" alt="{esc(caption)}" loading="lazy">'
-    where = rel(path, results) if path else "no file named"
-    return f'<div class="placeholder" data-missing="{esc(where)}">{esc(caption)}: not written here<br><small>{esc(where)}</small></div>'
-
-
-def gallery_html(results, page_dir, mats, heads):
-    """Per headline group, the reference and each technique's row at a common cost side by side (at
-    the scene's one exposure), their numbers beneath, then their error maps: the LRSM paper's Fig. 7."""
-    rows = [r for rs in mats.values() for r in rs]
-    out = ['<h2 id="gallery">Gallery: each technique at a common cost</h2>',
-           "<p>Per component and scene, the reference and each technique's setting whose time is nearest "
-           "the group's median time, at the scene's one exposure; their error maps beneath (FLIP maps "
-           "share one scale, 0–1; an RMS error map is scaled to its own 99th percentile).</p>"]
-    if not any(os.path.isdir(os.path.join(results, d)) for d in ("images", shipped_images.FOLDER)):
-        out.append(f"<p><b>This folder holds no images</b> ({esc(os.path.basename(os.path.abspath(results)))}/images/"
-                   "is written by a run, not committed): each cell names the file it would show.</p>")
-    for e in heads:
-        grp = e["time"]["rows"]  # a GPU-timed group's rows are the timed copies of llvmpipe's
-        cells = gallery_cells(results, grp)
-        key = e["key"]
-        out.append(f'<section class="gallery" id="{esc(e["anchor"])}"><h3>{esc(key[0])}, {esc(key[1])} '
-                   f'{esc(size_text(key))}</h3><table class="gallery"><tr>')
-        out += [f'<th>{esc(c[0])}</th>' for c in cells]
-        out.append("</tr><tr>")
-        out += [f'<td>{media_html(c[2], page_dir, c[0], results)}</td>' for c in cells]
-        out.append("</tr><tr>")
-        out += [f'<td class="nums">{esc(c[1])}' + (f'<details class="more"><summary>settings</summary>'
-                f'<div class="params">{esc(c[5])}</div></details>' if c[5] else "") + '</td>' for c in cells]
-        out.append("</tr><tr>")
-        out += [f'<td>{media_html(c[3], page_dir, "error map", results) if c[3] else ""}'
-                f'<div class="scale">{esc(c[4])}</div></td>' for c in cells]
-        out.append("</tr></table>")
-        out.append(compare_html(cells, page_dir))
-        out.append("</section>")
-    return "\n".join(out)
 
 
 def compare_html(cells, page_dir):
@@ -689,239 +547,11 @@ def sequences_intro():
             "technique | error map (one scale for the sequence), 4 frames a second.")
 
 
-def sequences_html(results, page_dir, seq_rows):
-    if not seq_rows:
-        return ""
-    out = ['<h2 id="sequences">Sequences: error over time</h2>', f"<p>{esc(sequences_intro())}</p>",
-           '<table id="sequences-table"><tr>' + "".join(f"<th>{esc(h)}</th>" for h in SEQ_HEAD)
-           + "<th>animation</th></tr>"]
-    for r in seq_rows:
-        anim = os.path.join(results, "animations", r["animation"]) if r["animation"] else ""
-        cap = f"{r['scene']} {r['technique']} {r['component']}: reference | technique | error"
-        media = media_html(anim, page_dir, cap, results).replace(
-            "<img ", f'<img class="animation" data-frames="{esc(r["sequence"])}" '
-            f'data-width="{3 * 2 * int(r["width"])}" data-height="{2 * int(r["height"])}" ', 1)
-        out.append("<tr>" + "".join(f"<td>{esc(x)}</td>" for x in (r["scene"], r["technique"],
-                                                                      r["component"]))
-                   + f'<td class="params">{long_text(r["params"], 60)}</td>'
-                   + "".join(f"<td>{esc(x)}</td>" for x in sequence_cells(r)) + f"<td>{media}</td></tr>")
-    out.append("</table>")
-    return "\n".join(out)
-
-
-def sequences_md(seq_rows):
-    if not seq_rows:
-        return []
-    lines = ["## Sequences: error over time", "", sequences_intro(), "",
-             "| " + " | ".join(SEQ_HEAD) + " | animation |", "|" + "---|" * (len(SEQ_HEAD) + 1)]
-    for r in seq_rows:
-        anim = f"[webp](animations/{r['animation']})" if r["animation"] else ""
-        lines.append("| " + " | ".join(md(x) for x in (
-            r["scene"], r["technique"], r["component"], r["params"]) + sequence_cells(r))
-            + f" | {anim} |")
-    return lines + [""]
-
-
-def matrix_html(results, page_dir, name, rows, plots, resolution):
-    img_dir = os.path.join(results, "images", name)
-    rank = group_ranks(rows, resolution)
-    ok = sum(1 for r in rows if r["status"] == "ok")
-    renderers = sorted({r.get("renderer", "") for r in rows if r.get("renderer")})
-    out = [f'<details class="matrix" id="m-{esc(name)}"><summary><b>{esc(name)}</b> — {len(rows)} rows, '
-           f'{ok} ok; {esc(", ".join(renderers))}</summary>']
-    if plots:
-        out.append('<div class="plots">')
-        out += [figure(os.path.join(results, "plots", p), p[:-4], page_dir, "plot") for p in plots]
-        out.append("</div>")
-    for r in rows:
-        title = (f'{r["scene"]} · {r["technique"]} · {r["component"]} · {r["width"]}x{r["height"]} · {r.get("profile", "")} profile'
-                 + (f' · t={r["time"]}' if r.get("time") not in ("", "0", None) else ""))
-        out.append(f'<div class="row status-{esc(r["status"])}"><h4>{esc(title)} '
-                   f'<span class="status">{esc(r["status"])}</span></h4>'
-                   f'<div class="params">{esc(r["params"])}</div>')
-        if r.get("message"):
-            out.append(f'<div class="message">{esc(r["message"])}</div>')
-        out.append('<dl>' + "".join(f"<dt>{esc(k)}</dt><dd>{esc(v)}</dd>" for k, v in row_numbers(r, rank.get(id(r), ("", ""))))
-                   + '</dl><div class="images">')
-        ref, n = reference_png(img_dir, r)
-        if ref:
-            out.append(figure(ref, "reference", page_dir))
-        base = os.path.join(img_dir, r.get("image") or image_name(r))
-        if not os.path.exists(base + ".png"):
-            out.append(f'<div class="noimg">no images of this row in images/{esc(name)}/ (run with images)</div>')
-        elif not ref:
-            out.append(f'<div class="noimg">reference: {n} candidate images (the CSV does not name which)</div>')
-        for suffix, caption in (("", "technique"), ("_error", "error map"), ("_flip", "FLIP map")):
-            if os.path.exists(base + suffix + ".png"):
-                out.append(figure(base + suffix + ".png", caption, page_dir))
-        out.append("</div></div>")
-    out.append("</details>")
-    return "\n".join(out)
-
-
 def summary_counts(claims):
     counts = {}
     for c in claims:
         counts[c["verdict"]] = counts.get(c["verdict"], 0) + 1
     return ", ".join(f"{n} {v}" for v, n in sorted(counts.items()))
-
-
-def write_html(results, claims, mats, plots, seq_rows=(), energy=()):
-    page_dir = os.path.join(results, "report")
-    os.makedirs(page_dir, exist_ok=True)
-    shutil.copyfile(os.path.join(HERE, "report_style.css"), os.path.join(page_dir, "style.css"))
-    revs = sorted({r.get("git_revision", "") for rows in mats.values() for r in rows if r.get("git_revision")})
-    every, heads = answer_rows(results, mats)
-    parts = ['<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">',
-             '<title>gibench reproduction report</title><link rel="stylesheet" href="style.css"></head><body>',
-             '<h1>gibench reproduction report</h1>',
-             answer_html(results, page_dir, heads, lone_components(mats, heads), claims),
-             f'<p class="source">Generated from the CSVs in <code>{esc(os.path.basename(os.path.abspath(results)))}/</code>: '
-             f'{len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions '
-             f'{esc(", ".join(revs) or "unknown")}.</p>',
-             '<pre id="image-check"></pre><pre id="animation-check"></pre><pre id="compare-check"></pre>',
-             '<nav><a href="#answer">Answer</a> · <a href="#claims-h">Claims</a> · '
-             + ('<a href="#energy">Energy audit</a> · ' if energy else '') + '<a href="#gallery">Gallery</a> · '
-             + ('<a href="#sequences">Sequences</a> · ' if seq_rows else '') +
-             '<a href="#reading">Reading the numbers</a> · <a href="#all-answers">Every group</a> · '
-             + " · ".join(f'<a href="#m-{esc(m)}">{esc(m)}</a>' for m in mats) + '</nav>',
-             f'<h2 id="claims-h">Claims ({len(claims)}: {esc(summary_counts(claims))})</h2>',
-             '<p>A verdict is <i>not measurable here</i> where the paper measured absolute times on its '
-             'GPU (ours ran on the renderer shown), where our run did not run or ran out of memory, or '
-             'where our settings differ from the paper\'s (quick profile).</p>',
-             claims_html(claims),
-             energy_audit.section_html(energy), pass_work.section_html(results),
-             gpu_runs_html(results, page_dir),
-             gallery_html(results, page_dir, mats, heads),
-             sequences_html(results, page_dir, seq_rows),
-             cone_report.section_html(results),
-             '<h2 id="reading">How to read the numbers</h2><ul>'
-             + "".join(f"<li>{esc(x)}</li>" for x in reading_guide(results, mats)) + '</ul>',
-             '<h2 id="all-answers">The answer for every group: each size, camera, instant and reference setting</h2>',
-             '<details class="all-answers"><summary>every group two or more techniques estimate '
-             f'({len(every)})</summary>' + answer_table_html(every, page_dir, results, "answers-all") + '</details>',
-             '<h2>Matrices</h2>',
-             '<p>Each row: reference, technique and false-colour error map side by side; the RMSE with the '
-             'reference\'s own noise beside it (an error near that noise cannot rank techniques).</p>']
-    parts += [matrix_html(results, page_dir, m, rows, plots[m], time_resolution(results))
-              for m, rows in mats.items()]
-    with open(os.path.join(HERE, "report_compare.js")) as f:
-        compare_js = f.read()
-    parts.append(f"<script>{CHECK_SCRIPT}</script><script>{compare_js}</script></body></html>")
-    path = os.path.join(page_dir, "index.html")
-    with open(path, "w") as f:
-        f.write("\n".join(parts) + "\n")
-    return path
-
-
-# ---- Markdown -------------------------------------------------------------------------------------
-
-def md(text):
-    return str(text).replace("|", "\\|").replace("\n", " ")
-
-
-def answer_table_md(entries, cls="answers"):
-    lines = ["| component | scene | size | least error for its time: the Pareto front, cheapest first (ms, "
-             f"{ERROR_WORDS}) | for its memory (MB, the same) | worse than black | |",
-             "|---|---|---|---|---|---|---|"]
-    many = len({e["key"][5] for e in entries}) > 1
-    for e in entries:
-        key, t = e["key"], e["time"]
-        size = (size_label(key, t, many)
-                + (f" (also {', '.join(other_text(k, key) for k in e['others'])})" if e["others"] else ""))
-        links = ([f"[plot]({e['plot']})"] if e["plot"] else []) + (["[images](#gallery)"] if cls == "answers" else [])
-        beaten = beaten_list(t)
-        lines.append("| " + " | ".join(md(x) for x in (key[0], key[1], size,
-                                                          front_plain(t) + (f" (beaten: {beaten})" if beaten else ""),
-                                                          front_plain(e["memory"], memory=True), black_list(t),
-                                                          " ".join(links))) + " |")
-    return lines
-
-
-def claims_md(claims, with_renderer=True):
-    lines, paper = [], None
-    for c in claims:
-        if c["paper"] != paper:
-            paper = c["paper"]
-            lines += ["", f"#### {paper}", "", "| claim | paper | ours | renderer | verdict | reason |",
-                      "|---|---|---|---|---|---|"]
-        lines.append("| " + " | ".join(md(c[k]) for k in ("claim", "paper_value", "our_value", "renderer",
-                                                              "verdict", "reason")) + " |")
-    return lines
-
-
-def gallery_md(results, mats, heads):
-    lines = ["## Gallery: each technique at a common cost", "",
-             "Per component and scene, the reference and each technique's setting whose time is nearest the "
-             "group's median time, at the scene's one exposure, error maps beneath (FLIP maps share one scale, "
-             "0–1; an RMS error map is scaled to its own 99th percentile). An image this folder does not hold "
-             "reads *not written here*.", ""]
-
-    def cell(path, what):
-        if path and os.path.exists(path):
-            return f"![{what}]({rel(path, results)})"
-        return f"*{what}: not written here*"
-    for e in heads:
-        cells = gallery_cells(results, e["time"]["rows"])
-        lines += [f"### {e['key'][0]}, {e['key'][1]} {size_text(e['key'])}", "",
-                  "| " + " | ".join(md(c[0]) for c in cells) + " |", "|" + "---|" * len(cells),
-                  "| " + " | ".join(cell(c[2], c[0]) for c in cells) + " |",
-                  "| " + " | ".join(md(c[1]) for c in cells) + " |",
-                  "| " + " | ".join(cell(c[3], "error map") if c[3] else "" for c in cells) + " |", ""]
-    return lines
-
-
-def first_screen_md(results, mats, claims, heads):
-    lines = ["# gibench reproduction report", "", "## Which technique for which effect", "",
-             " ".join(renderer_sentences(heads)) + " A step → has clearly less error than the one before "
-             "it; ≈ is a tie (error intervals overlap): either will do.", ""]
-    lines += answer_table_md(heads)
-    lone = lone_components(mats, heads)
-    if lone:
-        lines += ["", "Estimated by one technique only, so no comparison: " + "; ".join(
-            f"{c} ({', '.join(t)})" for c, t in sorted(lone.items())) + "."]
-    lines += ["", "## Findings per paper", ""]
-    for f in answers.findings(claims):
-        title, sentences = findings_text(f)
-        lines += [f"**{title}**. " + " ".join(sentences), ""]
-    return lines
-
-
-def write_md(results, claims, mats, plots, seq_rows=(), energy=()):
-    every, heads = answer_rows(results, mats)
-    mi, orders, absolute = split_claims(claims)
-    lines = first_screen_md(results, mats, claims, heads)
-    lines += ["Generated from the CSVs in this folder; the page with every row's images is "
-              "[report/index.html](report/index.html). Below: the claims, the gallery, how to read the "
-              "numbers, the answer for every group, every matrix, and at the end the papers' "
-              "absolute GPU times.", "",
-              f"## Claims ({len(claims)}: {summary_counts(claims)})", "", TOLERANCE_NOTE, "",
-              f"### Claims that do not depend on the machine ({len(mi)}: {summary_counts(mi)})"]
-    lines += claims_md(mi)
-    lines += ["", f"### Orders of times, on the renderer named ({len(orders)}: {summary_counts(orders)})", "",
-              ORDERS_NOTE]
-    lines += claims_md(orders)
-    lines += ["", f"The papers' {sum(len(v) for v in absolute.values())} absolute GPU times are at the end "
-              "([The papers' absolute GPU times](#the-papers-absolute-gpu-times)).", ""]
-    lines += energy_audit.section_md(energy)
-    lines += pass_work.section_md(results)
-    lines += gallery_md(results, mats, heads)
-    lines += sequences_md(seq_rows)
-    lines += cone_report.section_md(results)
-    lines += ["## How to read the numbers", ""] + [f"- {x}" for x in reading_guide(results, mats)]
-    lines += ["", "## The answer for every group: each size, camera, instant and reference setting", ""] + answer_table_md(every, "answers-all")
-    lines += ["", "## Matrices", ""]
-    resolution = time_resolution(results)
-    for m, rows in mats.items():
-        lines += matrix_md(results, m, rows, plots[m], resolution)
-    lines += ["## The papers' absolute GPU times", ""]
-    for paper, cs in absolute.items():
-        lines += [f"### {paper}", "", why_not_comparable(cs), ""] + claims_md(cs)[3:] + [""]
-    lines += gpu_runs_md(results)
-    path = os.path.join(results, "REPORT.md")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
 
 
 GPU_RUNS_TEXT = ("Matrices run on a GPU (harness/device/run_on_nvidia.sh), each summary beside the "
@@ -934,43 +564,268 @@ def gpu_runs(results):
     return [(os.path.basename(os.path.dirname(p)), p) for p in paths]
 
 
-def gpu_runs_md(results):
+# ---- the document: built once, rendered to REPORT.md and to the page (report_model.py) ------------
+
+ANSWER_HEAD = ("component", "scene", "size", "least error for its time: the Pareto front, cheapest first (ms, "
+               f"{ERROR_WORDS})", "for its memory (MB, the same)")
+
+
+def answer_table(entries, cls):
+    """One row per group: component and scene (on the page each once per run of rows), the size with
+    the links to its plot and gallery, the front by time with the techniques it beats and the rows
+    worse than black beneath, the front by memory."""
+    rows, prev, many = [], None, len({e["key"][5] for e in entries}) > 1
+    for e in entries:
+        key, t = e["key"], e["time"]
+        links = ([M.Link("plot", e["plot"])] if e["plot"] else []) + \
+            ([M.Link("images", "#" + e["anchor"], md_href="#gallery")] if cls == "answers" else [])
+        also = ([M.Span("also " + ", ".join(other_text(k, key) for k in e["others"]), cls="also", block=True)]
+                if e["others"] else [])
+        beaten, black = beaten_list(t), black_list(t)
+        front = (front_nodes(t) + ([M.Span(f"beaten: {beaten}", cls="beaten", block=True)] if beaten else [])
+                 + ([M.Span(f"worse than black: {black}", cls="black", block=True)] if black else []))
+        rows.append(M.Row([M.Cell(key[0], header=True), key[1],
+                           [M.Span(size_label(key, t, many), cls="size")] + [x for l in links for x in (" ", l)] + also,
+                           M.Cell(front, title="compared: " + ", ".join(t["techniques"])),
+                           front_nodes(e["memory"], memory=True)],
+                          cls="answer" + (" first" if key[0] != prev else ""),
+                          attrs={"data-component": key[0], "data-scene": key[1], "data-size": size_text(key)}))
+        prev = key[0]
+    return M.Table(ANSWER_HEAD, rows, cls=cls, merge=[0, 1])
+
+
+def matrix_section(results, name, rows, plots, resolution):
+    """A matrix: its plots (speed against error first), then per row its names, status, settings,
+    numbers (row_numbers) and images: reference, technique, error map, FLIP map. The page shows each
+    row as a block with its images, collapsed under the matrix's counts; Markdown a table row per row,
+    the images linked."""
+    img_dir = os.path.join(results, "images", name)
+    rank = group_ranks(rows, resolution)
+    ok = sum(1 for r in rows if r["status"] == "ok")
+    renderers = sorted({r.get("renderer", "") for r in rows if r.get("renderer")})
+    cards = []
+    for r in rows:
+        figures = []
+        ref, n = reference_png(img_dir, r)
+        if ref:
+            figures.append(M.Figure(rel(ref, results), "reference"))
+        base = os.path.join(img_dir, r.get("image") or image_name(r))
+        if not os.path.exists(base + ".png"):
+            figures.append(M.Span(f"no images of this row in images/{name}/ (run with images)", cls="noimg", block=True))
+        elif not ref:
+            figures.append(M.Span(f"reference: {n} candidate images (the CSV does not name which)", cls="noimg",
+                                  block=True))
+        figures += [M.Figure(rel(base + suffix + ".png", results), caption)
+                    for suffix, caption in (("", "technique"), ("_error", "error map"), ("_flip", "FLIP map"))
+                    if os.path.exists(base + suffix + ".png")]
+        cards.append(M.Card(
+            [r["scene"], r["technique"], r["component"], f'{r["width"]}x{r["height"]}', f'{r.get("profile", "")} profile',
+             f't={r["time"]}' if r.get("time") not in ("", "0", None) else ""],
+            r["status"],
+            [M.Span(r["params"], cls="params", block=True)]
+            + ([M.Span(r["message"], cls="message", block=True)] if r.get("message") else []),
+            row_numbers(r, rank.get(id(r), ("", ""))), figures, cls=f'row status-{r["status"]}'))
+    plot_box = [M.Box([M.Figure(f"plots/{p}", p[:-4], cls="plot") for p in plots], cls="plots")] if plots else []
+    return M.Details([M.Strong(name), f" — {len(rows)} rows, {ok} ok; {', '.join(renderers)}"],
+                     plot_box + [M.Cards(cards, ("scene", "technique", "component", "size", "profile", "instant"),
+                                         "settings", "images")],
+                     cls="matrix", id=f"m-{name}", md_title=name, md_level=3)
+
+
+CLAIM_HEAD = ("claim", "paper", "ours", "renderer", "cores", "verdict", "reason")
+
+
+def claim_rows(claims, by_paper=True):
+    """A table row per claim, each paper's rows after a row naming it with its counts."""
+    out, paper = [], None
+    for c in claims:
+        if by_paper and c["paper"] != paper:
+            paper = c["paper"]
+            mine = [x for x in claims if x["paper"] == paper]
+            out.append(M.GroupRow([paper, " ", M.Span(f"({summary_counts(mine)})", cls="counts")], cls="paper"))
+        cells = [c["claim"], c["paper_value"], c["our_value"], c["renderer"], c["cores"],
+                 M.Cell(c["verdict"], cls="verdict"), M.Cell(M.More(c["reason"]))]
+        out.append(M.Row(cells, cls=f'claim {VERDICT_CLASS.get(c["verdict"], "na")}'))
+    return out
+
+
+def absolute_claims(absolute):
+    """Each paper's absolute GPU times, collapsed on the page (Markdown: a heading per paper)."""
+    return [M.Details([M.Strong(paper), f": {len(cs)} times. {why_not_comparable(cs)}"],
+                      [M.Only(M.MD, M.Para(why_not_comparable(cs))),
+                       M.Table(CLAIM_HEAD, claim_rows(cs, by_paper=False), cls="claims-abs")],
+                      cls="absolute", md_title=paper, md_level=3) for paper, cs in absolute.items()]
+
+
+def claims_section(claims):
+    """The claims that do not depend on the machine (memory, error, leaks) in one table, the orders
+    of times (judged on the renderer named) in another; each paper's absolute GPU times follow on
+    the page, collapsed, and in Markdown at the end (absolute_claims)."""
+    mi, orders, absolute = split_claims(claims)
+    n = sum(len(v) for v in absolute.values())
+    return [M.Heading(2, f"Claims ({len(claims)}: {summary_counts(claims)})", id="claims-h"),
+            M.Para(["A verdict is ", M.Em("not measurable here"), " where the paper measured absolute "
+                    "times on its GPU (ours ran on the renderer shown), where our run did not run or ran out "
+                    "of memory, or where our settings differ from the paper's (quick profile)."]),
+            M.Para(TOLERANCE_NOTE, cls="policy"),
+            M.Heading(3, f"Claims that do not depend on the machine ({len(mi)}: {summary_counts(mi)})", id="claims-mi"),
+            M.Table(CLAIM_HEAD, claim_rows(mi), id="claims"),
+            M.Heading(3, f"Orders of times, on the renderer named ({len(orders)}: {summary_counts(orders)})",
+                      id="claims-orders"),
+            M.Para(ORDERS_NOTE),
+            M.Table(CLAIM_HEAD, claim_rows(orders), id="claims-orders-table"),
+            M.Only(M.HTML, [M.Heading(3, f"The papers' absolute GPU times ({n}), per paper", id="claims-abs")]
+                   + absolute_claims(absolute)),
+            M.Only(M.MD, M.Para([f"The papers' {n} absolute GPU times are at the end (",
+                                 M.Link("The papers' absolute GPU times", "#the-papers-absolute-gpu-times"), ")."]))]
+
+
+def first_screen(mats, claims, heads):
+    """Which technique for which effect, beside what each paper's claims came to."""
+    lone = lone_components(mats, heads)
+    answer = [M.Heading(2, "Which technique for which effect", id="answer"),
+              M.Para([" ".join(renderer_sentences(heads)) + " A step → has clearly less error than the one "
+                      "before it; ≈ is a tie (error intervals overlap): either will do.",
+                      M.Raw(" Hover a step for its settings.", [])]),
+              answer_table(heads, "answers")]
+    if lone:
+        answer.append(M.Para("Estimated by one technique only, so no comparison: " + "; ".join(
+            f"{c} ({', '.join(t)})" for c, t in sorted(lone.items())) + "."))
+    findings = [M.Heading(2, "Findings per paper", id="findings")]
+    for f in answers.findings(claims):
+        title, sentences = findings_text(f)
+        findings.append(M.Para([M.Strong(title), ". " + " ".join(sentences)], cls="finding"))
+    return M.Box([M.Box(answer, cls="answer-col"), M.Box(findings, cls="findings-col")], cls="first-screen")
+
+
+def gallery_table(results, cells):
+    """One group's cells: captions, images, their numbers and settings, error maps and their scale."""
+    def media(path, caption):
+        return M.Media(rel(path, results) if path else None, caption, bool(path and os.path.exists(path)))
+    return M.Table([M.Cell(c[0], header=True) for c in cells], [
+        M.Row([media(c[2], c[0]) for c in cells]),
+        M.Row([M.Cell([c[1]] + ([M.More(c[5], summary="settings")] if c[5] else []), cls="nums") for c in cells]),
+        M.Row([[media(c[3], "error map") if c[3] else "", M.Span(c[4], cls="scale", block=True)] for c in cells])],
+        cls="gallery")
+
+
+def gallery_section(results, page_dir, heads):
+    """Per headline group, the reference and each technique's row at a common cost side by side (at
+    the scene's one exposure), their numbers beneath, then their error maps: the LRSM paper's Fig. 7;
+    on the page each group's comparison widget beneath."""
+    out = [M.Heading(2, "Gallery: each technique at a common cost", id="gallery"),
+           M.Para(["Per component and scene, the reference and each technique's setting whose time is nearest "
+                  "the group's median time, at the scene's one exposure, error maps beneath (FLIP maps share one "
+                  "scale, 0–1; an RMS error map is scaled to its own 99th percentile). An image this folder "
+                  "does not hold reads ", M.Em("not written here"), "."])]
+    if not any(os.path.isdir(os.path.join(results, d)) for d in ("images", shipped_images.FOLDER)):
+        out.append(M.Para([M.Strong("This folder holds no images"), f" ({os.path.basename(os.path.abspath(results))}"
+                           "/images/ is written by a run, not committed): each cell names the file it would show."]))
+    for e in heads:
+        cells = gallery_cells(results, e["time"]["rows"])  # a GPU-timed group's rows: timed copies of llvmpipe's
+        key = e["key"]
+        out.append(M.Box([M.Heading(3, f"{key[0]}, {key[1]} {size_text(key)}"), gallery_table(results, cells),
+                          M.Raw(compare_html(cells, page_dir), [])], cls="gallery", id=e["anchor"], tag="section"))
+    return out
+
+
+def sequences_section(results, seq_rows):
+    """Each sequence's numbers and its animation (on the page: checked by ?check; Markdown: linked)."""
+    if not seq_rows:
+        return []
+    rows = []
+    for r in seq_rows:
+        anim = os.path.join(results, "animations", r["animation"]) if r["animation"] else ""
+        cap = f"{r['scene']} {r['technique']} {r['component']}: reference | technique | error"
+        media = M.Media(rel(anim, results) if anim else None, cap, bool(anim and os.path.exists(anim)),
+                        attrs={"class": "animation", "data-frames": r["sequence"],
+                               "data-width": 3 * 2 * int(r["width"]), "data-height": 2 * int(r["height"])},
+                        md_link="webp")
+        rows.append(M.Row([r["scene"], r["technique"], r["component"],
+                           M.Cell(M.More(r["params"], keep=60), cls="params")] + list(sequence_cells(r)) + [media]))
+    return [M.Heading(2, "Sequences: error over time", id="sequences"), M.Para(sequences_intro()),
+            M.Table(list(SEQ_HEAD) + ["animation"], rows, id="sequences-table")]
+
+
+def gpu_runs_section(results):
+    """The runs on a GPU, each linking its summary."""
     runs = gpu_runs(results)
     if not runs:
         return []
-    return (["## On a GPU", "", GPU_RUNS_TEXT + ":", ""]
-            + [f"- [{name}](gpu/{name}/SUMMARY.md)" for name, _ in runs] + [""])
+    links = [x for name, p in runs for x in (", ", M.Link(name, rel(p, results)))][1:]
+    return [M.Heading(2, "On a GPU", id="gpu-runs"), M.Para([GPU_RUNS_TEXT + ": "] + links + ["."])]
 
 
-def gpu_runs_html(results, page_dir):
-    runs = gpu_runs(results)
-    if not runs:
-        return ""
-    links = ", ".join(f'<a href="{esc(rel(p, page_dir))}">{esc(name)}</a>' for name, p in runs)
-    return f'<h3 id="gpu-runs">On a GPU</h3><p>{esc(GPU_RUNS_TEXT)}: {links}.</p>'
+def navigation(mats, seq_rows, energy):
+    """The page's links to its sections and to each matrix."""
+    names = ["Answer", "Claims"] + (["Energy audit"] if energy else []) + ["Gallery"] + \
+        (["Sequences"] if seq_rows else []) + ["Reading the numbers", "Every group"]
+    hrefs = ["#answer", "#claims-h"] + (["#energy"] if energy else []) + ["#gallery"] + \
+        (["#sequences"] if seq_rows else []) + ["#reading", "#all-answers"]
+    links = [(n, h) for n, h in zip(names, hrefs)] + [(m, f"#m-{m}") for m in mats]
+    return M.Raw("<nav>" + " · ".join(f'<a href="{esc(h)}">{esc(n)}</a>' for n, h in links) + "</nav>", [])
 
 
-def matrix_md(results, m, rows, plots, resolution):
-    rank = group_ranks(rows, resolution)
-    lines = [f"### {m}", ""]
-    lines += [f"![{p[:-4]}](plots/{p})" for p in plots if "_memory" not in p and "_sweep_" not in p]
-    lines += ["", "| scene | technique | component | size | params | GPU ms (IQR) | first frame ms "
-              "| RMSE (ref noise) | RMSE without noise [95%] | / black | rank: error, time | rel RMSE "
-              "| SSIM | status | images |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        rk = rank.get(id(r), ("", ""))
-        name = image_name(r)
-        imgs = ""
-        if os.path.exists(os.path.join(results, "images", m, name + ".png")):
-            imgs = f"[image](images/{m}/{name}.png) [error](images/{m}/{name}_error.png)"
-        lines.append("| " + " | ".join(md(x) for x in (
-            r["scene"], r["technique"], r["component"], f"{r['width']}x{r['height']} {r.get('profile', '')}", r["params"],
-            time_text(r), fmt(r.get("first_frame_ms")),
-            f"{fmt(r.get('rmse'))} ({fmt(r.get('ref_noise_rmse'))})", error_text(r), black_text(r),
-            f"{rk[0]}, {rk[1]}" if rk[0] or rk[1] else "",
-            fmt(r.get("rel_rmse")), fmt(r.get("ssim")), r["status"], imgs)) + " |")
-    lines.append("")
-    return lines
+def preamble(results, mats, seq_rows, energy):
+    """Where the numbers come from: on the page with the checks' outputs and the navigation, in
+    Markdown with the way to the page."""
+    revs = sorted({r.get("git_revision", "") for rows in mats.values() for r in rows if r.get("git_revision")})
+    return [M.Only(M.HTML, [
+                M.Para(["Generated from the CSVs in ", M.Code(os.path.basename(os.path.abspath(results)) + "/"),
+                        f": {len(mats)} matrices, {sum(len(v) for v in mats.values())} rows; revisions "
+                        f"{', '.join(revs) or 'unknown'}."], cls="source"),
+                M.Raw('<pre id="image-check"></pre><pre id="animation-check"></pre><pre id="compare-check"></pre>', []),
+                navigation(mats, seq_rows, energy)]),
+            M.Only(M.MD, M.Para(["Generated from the CSVs in this folder; the page with every row's images is ",
+                                 M.Link("report/index.html", "report/index.html"), ". Below: the claims, the "
+                                 "gallery, how to read the numbers, the answer for every group, every matrix, and "
+                                 "at the end the papers' absolute GPU times."]))]
+
+
+def document(results, claims, mats, plots, seq_rows=(), energy=()):
+    """The whole report as model nodes, for both formats."""
+    page_dir = os.path.join(results, "report")
+    every, heads = answer_rows(results, mats)
+    resolution = time_resolution(results)
+    _, _, absolute = split_claims(claims)
+    return ([M.Heading(1, "gibench reproduction report"), first_screen(mats, claims, heads)]
+            + preamble(results, mats, seq_rows, energy) + claims_section(claims)
+            + [M.Raw(energy_audit.section_html(energy), energy_audit.section_md(energy)),
+               M.Raw(pass_work.section_html(results), pass_work.section_md(results)),
+               M.Only(M.HTML, gpu_runs_section(results))]
+            + gallery_section(results, page_dir, heads) + sequences_section(results, seq_rows)
+            + [M.Raw(cone_report.section_html(results), cone_report.section_md(results)),
+               M.Heading(2, "How to read the numbers", id="reading"), M.Bullets(reading_guide(results, mats)),
+               M.Heading(2, "The answer for every group: each size, camera, instant and reference setting",
+                         id="all-answers"),
+               M.Details(f"every group two or more techniques estimate ({len(every)})",
+                         [answer_table(every, "answers-all")], cls="all-answers", md_level=0),
+               M.Heading(2, "Matrices"),
+               M.Para("Each row: reference, technique and false-colour error map side by side; the RMSE with the "
+                      "reference's own noise beside it (an error near that noise cannot rank techniques).")]
+            + [matrix_section(results, m, rows, plots[m], resolution) for m, rows in mats.items()]
+            + [M.Only(M.MD, [M.Heading(2, "The papers' absolute GPU times")] + absolute_claims(absolute)
+                      + gpu_runs_section(results))])
+
+
+def write_report(results, claims, mats, plots, seq_rows=(), energy=()):
+    """REPORT.md and report/index.html (with its style sheet beside it) from one document."""
+    nodes = document(results, claims, mats, plots, seq_rows, energy)
+    md_path = os.path.join(results, "REPORT.md")
+    with open(md_path, "w") as f:
+        f.write(M.to_markdown(nodes))
+    page_dir = os.path.join(results, "report")
+    os.makedirs(page_dir, exist_ok=True)
+    shutil.copyfile(os.path.join(HERE, "report_style.css"), os.path.join(page_dir, "style.css"))
+    with open(os.path.join(HERE, "report_compare.js")) as f:
+        compare_js = f.read()
+    page = ['<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">',
+            '<title>gibench reproduction report</title><link rel="stylesheet" href="style.css"></head><body>',
+            M.to_html(nodes), f"<script>{CHECK_SCRIPT}</script><script>{compare_js}</script></body></html>"]
+    html_path = os.path.join(page_dir, "index.html")
+    with open(html_path, "w") as f:
+        f.write("\n".join(page) + "\n")
+    return md_path, html_path
 
 
 def reading_guide(results, mats):
@@ -1029,8 +884,8 @@ def main():
                 print(f"report.py: no animation {name}: {why}", file=sys.stderr)
     energy_path, energy = energy_audit.write(results)
     print(energy_path)
-    print(write_md(results, claims, mats, plots, seq_rows, energy))
-    print(write_html(results, claims, mats, plots, seq_rows, energy))
+    for path in write_report(results, claims, mats, plots, seq_rows, energy):
+        print(path)
     shipped_images.prune(results)
 
 

@@ -7,7 +7,8 @@ usage: python3 -m reporting.temporal_tables RESULTS_DIR
 Reads every runs table with the sequence columns (a matrix with `sequence` above 1: the
 harness/matrices/temporal_*.matrix) and writes RESULTS_DIR/temporal_sequences.csv, a row per run and
 component: the per-frame error's mean and worst frame, the temporal error and its two scales.
-`claims(results)` returns the two papers' temporal claims in claims.csv's columns (plus `kind`);
+`claims(results)` returns the two papers' temporal claims as claim.Claim objects (claims.py writes
+them into claims.csv);
 `animations(results)` writes an animated WebP per sequence (reference | technique | error map, side
 by side) from the frame images `gibench run` wrote, with Debian's ffmpeg.
 
@@ -41,12 +42,9 @@ import subprocess
 import sys
 import tempfile
 
+from reporting.claim import LRSM, NOT_MEASURABLE, NOT_REPRODUCED, REPRODUCED, THESIS, Claim  # noqa: E402
 from reporting.schema import fnum, fmt, matrices, param, write_csv  # noqa: E402
 
-LRSM = "Sugihara et al. 2014: Layered Reflective Shadow Maps (LRSM)"
-THESIS = "Le 2014 (thesis): interactive caustics and multi-resolution indirect illumination"
-REPRODUCED, NOT_REPRODUCED, NOT_MEASURABLE = "reproduced", "not reproduced", "not measurable here"
-MACHINE_INDEPENDENT = "machine_independent"
 FLICKER_MAX, OVER_FROZEN_MAX = 0.5, 1.0
 
 COLUMNS = ["matrix", "scene", "technique", "component", "params", "width", "height", "time", "dt",
@@ -114,9 +112,9 @@ def table(results):
 
 
 def claim(paper, source, text, paper_value, our_value, renderer, verdict, reason):
-    return {"paper": paper, "source": source, "claim": text, "paper_value": paper_value,
-            "our_value": our_value, "renderer": renderer, "cores": "", "verdict": verdict,
-            "reason": reason, "kind": MACHINE_INDEPENDENT}
+    """A temporal claim: machine-independent (errors, judged by the thresholds above)."""
+    return Claim(paper, source, text, paper_value=paper_value, our_value=our_value, renderer=renderer,
+                 verdict=verdict, reason=reason)
 
 
 def describe(r):
@@ -212,7 +210,7 @@ def thesis_claim(results):
 
 
 def claims(results):
-    """The papers' temporal claims, in claims.csv's columns plus `kind`."""
+    """The papers' temporal claims (Claims)."""
     return lrsm_claim(results) + thesis_claim(results)
 
 
@@ -289,7 +287,7 @@ def main():
         if why:
             print(f"temporal_tables.py: no animation {name}: {why}", file=sys.stderr)
     for c in claims(sys.argv[1]):
-        print(f"{c['verdict']}: {c['claim']}\n  ours: {c['our_value']}\n  {c['reason']}")
+        print(f"{c.verdict}: {c.claim}\n  ours: {c.our_value}\n  {c.reason}")
 
 
 if __name__ == "__main__":

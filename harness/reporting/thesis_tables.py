@@ -6,8 +6,11 @@ One `row` per thesis row: its values (fps, splitting, gathering, photon tracing,
 and ours from the matrices thesis_t4*: the median GPU ms of the passes of those names (multires_ir:
 "splitting", "gathering"; ispm_caustics: "photon_tracing", "splatting"), each technique's frame
 (gpu_ms_median) and their sum, and each output's error against its reference (rel RMSE, SSIM), which
-the thesis does not give. Then one `claim` per claim the thesis makes, saying whether it reproduced
-here (yes / no / missing), and one `flag` per place the thesis disagrees with itself (not claims).
+the thesis does not give. Then one `flag` per place the thesis disagrees with itself (not claims).
+The thesis' claims are `claims(results)`: claim.Claim objects, judged from the same matched rows
+(reproduced, not reproduced, or not measurable here where no run of ours answers one), and a claim
+per `row`, its absolute frame time (not measurable here: the thesis timed its own GPU); claims.py
+writes them into claims.csv.
 
 Matching: a thesis table's rows come from its matrix (TABLES below). The image resolution is matched
 by rank among the sizes that ran (the quick profile's 64^2 and 128^2 stand for 512^2 and 1024^2; the
@@ -24,6 +27,8 @@ import os
 import re
 
 from reporting import schema  # noqa: E402
+from reporting.claim import ABSOLUTE_TIME, MACHINE_INDEPENDENT, NOT_MEASURABLE, THESIS, TIME_ORDER  # noqa: E402
+from reporting.claim import Claim, verdict  # noqa: E402
 from reporting.schema import fnum, params, read_csv, run_key, runs_table  # noqa: E402
 
 MISSING = "missing"
@@ -231,6 +236,8 @@ def rows_for(results, paper):
                 "caustic_rmse_over_black": cr.get("rmse_over_black", MISSING) if cr else MISSING,
                 "status": "ok" if (mr and cr) else "count_mismatch" if nearest is not None else MISSING,
                 "renderer": (cr or mr or {}).get("renderer", ""),
+                # not a column: the image size its frame time was measured at (time_claim)
+                "our_size": f"{(cr or mr)['width']}x{(cr or mr)['height']}" if (cr or mr) else "",
                 "note": "" if (mr and cr) else
                         "; ".join(w for w, ok in (("multires_ir row absent", mr),
                                                   (no_count_note(nearest, thesis_n), cr)) if not ok)})
@@ -239,8 +246,11 @@ def rows_for(results, paper):
     return out, matched, mats
 
 
-def claim(text, reproduced, evidence):
-    return {"kind": "claim", "claim": text, "reproduced": reproduced, "evidence": evidence}
+def claim(text, holds, evidence, kind=MACHINE_INDEPENDENT, paper_value="", our_value=""):
+    """A claim of the thesis judged True (holds) / False; None: no run of ours answers it (missing),
+    the evidence saying what is absent. Its renderer is the table's (claims sets it)."""
+    return Claim(THESIS, "thesis_tables.csv", text, kind, paper_value, our_value, verdict=verdict(holds),
+                 reason=evidence if holds is not None else f"{MISSING}; {evidence}")
 
 
 def claim_linear_tracing(matched):
@@ -275,9 +285,9 @@ def claim_linear_tracing(matched):
         if rel_used:
             ev += " (N: our runs report no photon count, so N = 4^-mask_level, the thesis' ~4x per level)"
         return claim("photon tracing time roughly linear in the photon count (R^2 >= 0.9 per sweep)",
-                     "yes" if ok else "no", ev + "; " + thesis_r2)
-    return claim("photon tracing time roughly linear in the photon count", MISSING,
-                 "no sweep of 3 or more photon counts with a photon_tracing pass ran; " + thesis_r2)
+                     ok, ev + "; " + thesis_r2, TIME_ORDER)
+    return claim("photon tracing time roughly linear in the photon count", None,
+                 "no sweep of 3 or more photon counts with a photon_tracing pass ran; " + thesis_r2, TIME_ORDER)
 
 
 def claim_ray_doubling(matched, paper):
@@ -308,10 +318,10 @@ def claim_ray_doubling(matched, paper):
         ratios = [x for x, _ in pairs2]
         return claim("photon tracing about doubles from 128^2 to 256^2 rays (median ratio in [1.5, 2.7] "
                      f"at the thesis' photon counts, N >= {n_min})",
-                     "yes" if RATIO_LO <= med <= RATIO_HI else "no",
+                     RATIO_LO <= med <= RATIO_HI,
                      ev + f"all our 256^2/128^2 ratios: median {median(ratios):.2f}, "
-                     f"{min(ratios):.2f}-{max(ratios):.2f} over {len(ratios)} pairs; {tev}")
-    return claim("photon tracing about doubles from 128^2 to 256^2 rays", MISSING, "no pair ran; " + tev)
+                     f"{min(ratios):.2f}-{max(ratios):.2f} over {len(ratios)} pairs; {tev}", TIME_ORDER)
+    return claim("photon tracing about doubles from 128^2 to 256^2 rays", None, "no pair ran; " + tev, TIME_ORDER)
 
 
 def claim_gather_speedup(results, matched):
@@ -355,10 +365,10 @@ def claim_gather_speedup(results, matched):
             f"{w}^2 {min(x for x, _ in v):.2f}-{max(x for x, _ in v):.2f}x" for w, v in sorted(by_size.items()))
             + (f" (judged at {top}^2)" if top else ""))
         return claim("multi-resolution gathering much cheaper than rsm_gather (>= 2x at the largest image "
-                     "size run) at a small error cost (rel RMSE <= +0.05 or +25%)", "yes" if ok else "no",
-                     "; ".join(ev))
-    return claim("multi-resolution gathering much cheaper than rsm_gather at a small error cost", MISSING,
-                 "no matrix ran both multires_ir and rsm_gather")
+                     "size run) at a small error cost (rel RMSE <= +0.05 or +25%)", ok,
+                     "; ".join(ev), TIME_ORDER)
+    return claim("multi-resolution gathering much cheaper than rsm_gather at a small error cost", None,
+                 "no matrix ran both multires_ir and rsm_gather", TIME_ORDER)
 
 
 def claim_leak(mats):
@@ -386,8 +396,8 @@ def claim_leak(mats):
             ev += ("; identical images at every setting: the photons 4 layers miss (their receiver lies "
                    "5+ surfaces deep) land, in this view, only on surfaces the camera does not see")
         return claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not "
-                     "(layers=4 RMSE >= 1.1x lists')", "yes" if ok else "no", ev)
-    return claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not", MISSING,
+                     "(layers=4 RMSE >= 1.1x lists')", ok, ev)
+    return claim("4 depth layers leak light on the occluded ring, per-pixel linked lists do not", None,
                  "thesis_t42_occluded has no layers=0 / layers=4 pair")
 
 
@@ -413,9 +423,8 @@ def claim_list_pool(results):
                    f"{LIST_NODE_BYTES}-byte nodes) at 128^2 and 256^2 list resolution")
     measured = [(r, b) for r, b in rows if b is not None]
     if not measured:
-        c = claim("the per-pixel linked lists fit the thesis' 20 MB pool at 128^2 and 256^2", MISSING,
-                  "no caustics run of ours with linked lists at those resolutions")
-        return dict(c, paper_value=paper_value)
+        return claim("the per-pixel linked lists fit the thesis' 20 MB pool at 128^2 and 256^2", None,
+                     "no caustics run of ours with linked lists at those resolutions", paper_value=paper_value)
     bad = [r for r, _ in rows if r["status"] != "ok"]
     by_res = {}
     for r, b in measured:
@@ -427,16 +436,47 @@ def claim_list_pool(results):
           + " (heads, counts and a pool of list_capacity 12-byte nodes a pixel, the thesis' node); "
           + (f"{len(bad)} ended not ok: " + ", ".join(sorted({r['status'] for r in bad})) if bad else
              "none overflowed (an overflow is the row's status)"))
-    c = claim("the per-pixel linked lists fit the thesis' 20 MB pool at 128^2 and 256^2 list resolution",
-              "yes" if ok else "no", ev)
-    return dict(c, paper_value=paper_value, our_value=f"at most {most / 1e6:.2f} MB, no overflow" if ok else
-                f"at most {most / 1e6:.2f} MB")
+    return claim("the per-pixel linked lists fit the thesis' 20 MB pool at 128^2 and 256^2 list resolution",
+                 ok, ev, paper_value=paper_value,
+                 our_value=f"at most {most / 1e6:.2f} MB, no overflow" if ok else f"at most {most / 1e6:.2f} MB")
 
 
-def claims(results, matched, mats, paper):
-    """The thesis' claims, in the order of its text."""
+def judged(results, matched, mats, paper):
+    """The thesis' judged claims, in the order of its text."""
     return [claim_linear_tracing(matched), claim_ray_doubling(matched, paper),
             claim_gather_speedup(results, matched), claim_leak(mats), claim_list_pool(results)]
+
+
+def time_claim(r):
+    """A `row` of the table (rows_for) as a claim: its absolute frame time, on the thesis' GPU."""
+    what = (f"Table {r['table']} {r['paper_scene']}: {r['resolution']}^2 image, {r['caustic_photons']} photons, "
+            f"{r['ray_resolution']}^2 rays, t={r.get('time_s', '')}: frame time")
+    if r["status"] != "ok":
+        reason = "not run here: " + (r["note"] or r["status"])
+    else:
+        reason = ("the thesis timed its GPU; ours ran on " + (r["renderer"] or "another renderer") + " at "
+                  + r["our_size"] + ": absolute times are not comparable (the linear-tracing and speed-up "
+                  "claims compare ratios instead)")
+    ours = r.get("our_frame_ms", "")
+    return Claim(THESIS, "thesis_tables.csv", what, ABSOLUTE_TIME,
+                 f"{r['paper_frame_ms']} ms ({r['paper_fps']} fps)" if r["paper_frame_ms"] else "",
+                 f"{ours} ms" if ours else "", r.get("renderer", ""), verdict=NOT_MEASURABLE, reason=reason)
+
+
+def claims(results, paper_dir=None):
+    """The thesis' claims (Claims): each row's absolute frame time, then the judged claims, which
+    name the renderers the table's rows ran on; [] without the thesis' values (paper_dir, default
+    RESULTS/paper, thesis_tables.csv)."""
+    paper_csv = os.path.join(paper_dir or os.path.join(results, "paper"), "thesis_tables.csv")
+    if not os.path.exists(paper_csv):
+        return []
+    paper = thesis_rows(paper_csv)
+    recs, matched, mats = rows_for(results, paper)
+    renderers = "; ".join(sorted({r["renderer"] for r in recs if r.get("renderer")}))
+    out = judged(results, matched, mats, paper)
+    for c in out:
+        c.renderer = renderers
+    return [time_claim(r) for r in recs] + out
 
 
 def flags(paper):
@@ -487,7 +527,7 @@ COLUMNS = ["kind", "table", "figure", "paper_scene", "matrix", "our_scene", "res
            "our_gather_ms", "our_tracing_ms", "our_splat_ms", "our_multires_ms", "our_caustics_ms",
            "our_frame_ms", "rsm_gather_ms", "indirect_rel_rmse", "indirect_ssim", "rsm_gather_rel_rmse",
            "caustic_rmse", "caustic_rel_rmse", "caustic_ssim", "caustic_black_rmse", "caustic_rmse_over_black",
-           "status", "claim", "reproduced", "evidence", "paper_value", "our_value", "renderer", "note"]
+           "status", "renderer", "note"]
 
 
 def thesis_table(results, paper_dir):
@@ -498,7 +538,7 @@ def thesis_table(results, paper_dir):
         return None
     paper = thesis_rows(paper_csv)
     rows, matched, mats = rows_for(results, paper)
-    rows += claims(results, matched, mats, paper) + flags(paper)
+    rows += flags(paper)
     path = schema.write_csv(os.path.join(results, "thesis_tables.csv"), rows, COLUMNS)
     print("paper_tables.py: wrote", path)
     return path

@@ -9,13 +9,14 @@
   from RESULTS_DIR/timing_resolution.csv (harness/reporting/bench_timing.py: the 95th percentile of the
   run-to-run difference of the same runs); two times closer than it are a tie;
 - a memory figure: bytes do not depend on the machine, but a paper's figure may count what ours
-  does not, or round: ours agrees with it within MEMORY_TOLERANCE, for every paper alike.
+  does not, or round: ours agrees with it within MEMORY_TOLERANCE, for every paper alike (claim.py
+  states the tolerance of every kind of claim).
 """
 import os
 
 from reporting.schema import fnum, read_csv  # noqa: E402,F401  (fnum: a finite float or None)
 
-MEMORY_TOLERANCE = 0.25  # a memory figure agrees within 25% of the paper's
+from reporting.claim import MEMORY_TOLERANCE  # noqa: E402,F401  (a memory figure agrees within 25%)
 
 
 def error_interval(r, relative=False):

@@ -20,6 +20,10 @@
 #include "harness/gl/gpu_scene.h"
 #include "harness/gl/view.h"
 #include "techniques/common/gbuffer.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 int main(void)
 {
@@ -38,7 +42,7 @@ int main(void)
     gib_timers timers;
     gib_timers_init(&timers);
     if (gib_gbuffer_create(&g, W, H, &ledger, &err) < 0) {
-        fprintf(stderr, "FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return 1;
     }
     gib_view view;
@@ -84,13 +88,15 @@ int main(void)
     printf("pixels %d, both hit %d, hit/miss disagree %d, farther than 1e-4 diag %d, max error of "
            "the rest %.3g diag\n", n, both, hitmiss_disagree, far_off, max_close);
     int ok = both > n / 2 && hitmiss_disagree <= n / 100 && far_off <= n / 50;
-    printf("%s: GL G-buffer positions vs Embree primary hits (expect <=1%% hit/miss and <=2%% "
-           "silhouette disagreements)\n", ok ? "PASS" : "FAIL");
+    snprintf(check_msg, sizeof check_msg,
+             "GL G-buffer positions vs Embree primary hits (expect <=1%% hit/miss and <=2%% "
+             "silhouette disagreements)");
+    CHECK_TRUE(check_msg, ok, "");
     rtcReleaseScene(rs);
     rtcReleaseDevice(dev);
     free(pos);
     gib_gbuffer_destroy(&g, &ledger);
     gib_timers_destroy(&timers);
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

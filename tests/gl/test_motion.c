@@ -7,7 +7,7 @@
  *     within 1e-4 x the scene diagonal except on silhouettes (at most 2% of the pixels), hit/miss
  *     agreeing on 99%.
  *  2. `direct` run over two frames, at 0 then at T (dt = T), its image against the reference
- *     `direct` at T: relative RMSE below 0.08 (the bound of tests/gl/test_direct_cornell.c, same
+ *     `direct` at T: relative RMSE below 0.08 (the bound of tests/direct/test_direct_cornell.c, same
  *     technique and light: shadow-map edges are what is left) and the median per-pixel relative
  *     error over lit pixels below 1e-3 (same visible point, same falloff: G-buffer rounding).
  * And that the test can tell the instants apart: the scene must move enough that the hits at T
@@ -28,6 +28,10 @@
 #include "reference/reference.h"
 #include "techniques/common/gbuffer.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 96
 #define H 64
@@ -41,7 +45,7 @@ static int reference(const gib_scene *s, int comp, double t, gib_image *out)
     gib_error err;
     gib_ref_stats st;
     if (gib_reference_render(s, &rp, out, NULL, &st, &err) < 0) {
-        fprintf(stderr, "FAIL: reference at t = %g: %s\n", t, err.msg);
+        CHECK(0, "reference at t = %g: %s", t, err.msg);
         return -1;
     }
     return 0;
@@ -58,7 +62,7 @@ static int gl_depth(gib_gl_fixture *fx, double t, float *depth)
     gib_timers_init(&timers);
     if (gib_gpu_scene_set_time(&fx->gpu, t, &err) < 0 ||
         gib_gbuffer_create(&g, W, H, &ledger, &err) < 0) {
-        fprintf(stderr, "FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     /* The GL side works in the scene's frame (scene.h, gib_scene_frame): its camera there. */
@@ -147,9 +151,8 @@ int main(int argc, char **argv)
     if (gib_fixture_open(&fx, argv[1]) < 0)
         return 1;
     gib_scene *s = &fx.scene;
-    int ok = 1;
     if (!s->motion_count) {
-        printf("FAIL: scene '%s' does not move\n", s->name);
+        CHECK(0, "scene '%s' does not move", s->name);
         gib_fixture_close(&fx);
         return 1;
     }
@@ -170,19 +173,22 @@ int main(int argc, char **argv)
         }
         hit_cmp c = compare_hits(gl, &ref_depth[i], tol);
         const int pass = c.both > n / 4 && c.hitmiss <= n / 100 && c.far_off <= n / 50;
-        printf("%s: %s t = %g: GL hits vs the reference's: both hit %d of %d, hit/miss disagree "
-               "%d (%.2f%%, max 1%%), farther than 1e-4 diag %d (%.2f%%, max 2%%)\n",
-               pass ? "PASS" : "FAIL", s->name, times[i], c.both, n, c.hitmiss,
-               100.0 * c.hitmiss / n, c.far_off, 100.0 * c.far_off / n);
-        ok &= pass;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s t = %g: GL hits vs the reference's: both hit %d of %d, hit/miss disagree %d "
+                 "(%.2f%%, max 1%%), farther than 1e-4 diag %d (%.2f%%, max 2%%)",
+                 s->name, times[i], c.both, n, c.hitmiss, 100.0 * c.hitmiss / n, c.far_off,
+                 100.0 * c.far_off / n);
+        CHECK_TRUE(check_msg, pass, "");
         if (i == 1) {
             for (int k = 0; k < n; k++) /* the reference's hits at T, as the GL array */
                 gl[k] = ref_depth[1].px[3 * k] > 0.0f ? ref_depth[1].px[3 * k] : -1.0f;
             hit_cmp st = compare_hits(gl, &ref_depth[0], tol);
             const double moved = (double)(st.hitmiss + st.far_off) / n;
-            printf("%s: the reference's hits at t = %g and at t = 0 differ on %.2f%% of the "
-                   "pixels (must be > 2%%: the scene moves enough to tell the instants apart)\n",
-                   moved > 0.02 ? "PASS" : "FAIL", T, 100.0 * moved);
+            snprintf(check_msg, sizeof check_msg,
+                     "the reference's hits at t = %g and at t = 0 differ on %.2f%% of the pixels "
+                     "(must be > 2%%: the scene moves enough to tell the instants apart)",
+                     T, 100.0 * moved);
+            CHECK_TRUE(check_msg, moved > 0.02, "");
             setup_ok &= moved > 0.02;
         }
     }
@@ -199,26 +205,29 @@ int main(int argc, char **argv)
                                    .height = H, .warmup = 1, .frames = 1, .time = T, .dt = T},
                 &r);
         if (!r.ok) {
-            printf("FAIL: direct: %s: %s\n", r.status, r.err.msg);
+            CHECK(0, "direct: %s: %s", r.status, r.err.msg);
             setup_ok = 0;
         }
         for (int i = 0; i < 2 && setup_ok; i++)
             setup_ok = reference(s, GIB_COMP_DIRECT, times[i], &ref_direct[i]) == 0;
     }
-    ok &= setup_ok;
+    failures += !setup_ok;
     if (setup_ok) {
         double rel[2], med[2];
         for (int i = 0; i < 2; i++)
             image_errors(s, &ref_direct[i], &r.images[0], &rel[i], &med[i]);
         const int pass = rel[1] < REL_RMSE_MAX && med[1] < MEDIAN_MAX;
-        printf("%s: direct at t = %g (frames at 0 and %g) vs the reference at t = %g: rel_rmse "
-               "%.4g (max %.2g), median per-pixel rel error %.3g (max %.0e)\n",
-               pass ? "PASS" : "FAIL", T, T, T, rel[1], REL_RMSE_MAX, med[1], MEDIAN_MAX);
+        snprintf(check_msg, sizeof check_msg,
+                 "direct at t = %g (frames at 0 and %g) vs the reference at t = %g: rel_rmse %.4g "
+                 "(max %.2g), median per-pixel rel error %.3g (max %.0e)",
+                 T, T, T, rel[1], REL_RMSE_MAX, med[1], MEDIAN_MAX);
+        CHECK_TRUE(check_msg, pass, "");
         const int differs = !(rel[0] < REL_RMSE_MAX && med[0] < MEDIAN_MAX);
-        printf("%s: the same image vs the reference at t = 0: rel_rmse %.4g, median %.3g (must "
-               "fail a bound: an image of t = 0 would be told apart)\n",
-               differs ? "PASS" : "FAIL", rel[0], med[0]);
-        ok &= pass && differs;
+        snprintf(check_msg, sizeof check_msg,
+                 "the same image vs the reference at t = 0: rel_rmse %.4g, median %.3g (must fail "
+                 "a bound: an image of t = 0 would be told apart)",
+                 rel[0], med[0]);
+        CHECK_TRUE(check_msg, differs, "");
         if (getenv("GIB_TEST_OUT")) {
             char path[1024];
             gib_error err;
@@ -237,6 +246,6 @@ int main(int argc, char **argv)
     }
     free(gl);
     gib_fixture_close(&fx);
-    printf("%s\n", ok ? "PASS" : "FAIL");
-    return ok ? 0 : 1;
+    printf("%s\n", failures ? "FAIL" : "PASS");
+    return failures != 0;
 }

@@ -34,7 +34,7 @@ static void alloc_all(void)
         gib_error err = {0};
         if (gib_image_alloc(&ref[k], W, H, 3, &err) < 0 ||
             gib_image_alloc(&test[k], W, H, 3, &err) < 0) {
-            printf("FAIL: %s\n", err.msg);
+            CHECK(0, "%s", err.msg);
             exit(1);
         }
     }
@@ -75,10 +75,8 @@ static gib_temporal run(int ref_moving, double ref_noise, int test_moving, doubl
     }
     gib_temporal t;
     gib_error err = {0};
-    if (gib_temporal_compute(ref, test, N, noise_rmse, 1.0f, want_flip, &t, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
-        failures++;
-    }
+    CHECK(!(gib_temporal_compute(ref, test, N, noise_rmse, 1.0f, want_flip, &t, &err) < 0),
+          "%s", err.msg);
     return t;
 }
 

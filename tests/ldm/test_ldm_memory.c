@@ -16,6 +16,10 @@
 #include "harness/app/runner.h"
 #include "techniques/ldm/ldm.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 /* The bytes of structure `name` in a "name=bytes;name=bytes" summary, 0 when absent. */
 static uint64_t structure_bytes(const char *summary, const char *name)
@@ -46,7 +50,7 @@ static int check_paging(void)
     const uint64_t empty[3] = {0, 0, 0};
     ldm_plan_bytes(&l, empty, 1 << 20, &p); /* one page, no node: one node all the same */
     ok &= p.nodes == 8 && p.heads == 192;
-    printf("%s: the plan's paging (heads, nodes, info, counters, status)\n", ok ? "PASS" : "FAIL");
+    CHECK_TRUE("the plan's paging (heads, nodes, info, counters, status)", ok, "");
     return ok;
 }
 
@@ -60,7 +64,7 @@ static int run(gib_gl_fixture *fx, const char *tech, const char *budget, gib_run
         gib_param_set(t, &p, "ldm_res", "32", &err) < 0 ||
         gib_param_set(t, &p, "memory_budget_mb", budget, &err) < 0 ||
         (!strcmp(tech, "ldm_indirect") && gib_param_set(t, &p, "photon_res", "8", &err) < 0)) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     gib_run_technique(&fx->gpu, t, &p, 0, 16, 16, 0, 1, r);
@@ -76,9 +80,10 @@ static int check_technique(gib_gl_fixture *fx, const char *tech)
     uint64_t planned = structure_bytes(r.planned_structures, "ldm"),
              counted = structure_bytes(r.memory_by_structure, "ldm");
     int ok = r.ok && planned && planned == counted;
-    printf("%s %s at 8 x 32^2: status %s, planned ldm %" PRIu64
-           " bytes, the ledger counted %" PRIu64 "\n",
-           ok ? "PASS" : "FAIL", tech, r.status, planned, counted);
+    snprintf(check_msg, sizeof check_msg,
+             "%s at 8 x 32^2: status %s, planned ldm %" PRIu64 " bytes, the ledger counted %" PRIu64,
+             tech, r.status, planned, counted);
+    CHECK_TRUE(check_msg, ok, "");
     gib_run_result_free(&r);
 
     if (run(fx, tech, "0.01", &r) < 0)
@@ -89,10 +94,12 @@ static int check_technique(gib_gl_fixture *fx, const char *tech)
     int good = !strcmp(r.status, "out_of_memory") && r.err.code == GIB_ERR_OUT_OF_MEMORY &&
                r.memory_by_label[0] == 0 && r.technique_bytes <= counting &&
                !strcmp(r.planned_structures, want);
-    printf("%s %s, memory_budget_mb 0.01: status %s, plan '%s' (want '%s'), peak %" PRIu64
-           " bytes (the counting pass's %" PRIu64 "), still allocated '%s': %s\n",
-           good ? "PASS" : "FAIL", tech, r.status, r.planned_structures, want, r.technique_bytes,
-           counting, r.memory_by_label, r.err.msg);
+    snprintf(check_msg, sizeof check_msg,
+             "%s, memory_budget_mb 0.01: status %s, plan '%.64s' (want '%s'), peak %" PRIu64
+             " bytes (the counting pass's %" PRIu64 "), still allocated '%.64s': %.160s",
+             tech, r.status, r.planned_structures, want, r.technique_bytes, counting,
+             r.memory_by_label, r.err.msg);
+    CHECK_TRUE(check_msg, good, "");
     gib_run_result_free(&r);
     return ok && good;
 }
@@ -105,7 +112,9 @@ int main(void)
         return 1;
     ok &= check_technique(&fx, "ldm_ao");
     ok &= check_technique(&fx, "ldm_indirect");
-    printf("%s: ldm memory plan and out_of_memory\n", ok ? "PASS" : "FAIL");
+    snprintf(check_msg, sizeof check_msg,
+             "ldm memory plan and out_of_memory");
+    CHECK_TRUE(check_msg, ok, "");
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

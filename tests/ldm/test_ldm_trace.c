@@ -18,6 +18,10 @@
 #include "tests/common/gl_fixture.h"
 #include "harness/gl/gpu_scene.h"
 #include "techniques/ldm/ldm.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 static uint32_t rng_state = 12345;
 static float rnd(void)
@@ -42,7 +46,7 @@ int main(void)
     ldm_set l;
     const int N = 32, RES = 256, PER = 200;
     if (ldm_create(&l, gpu_p, N, RES, 1.0, 0, &ledger, &err) < 0) {
-        fprintf(stderr, "FAIL: ldm_create: %s\n", err.msg);
+        CHECK(0, "ldm_create: %s", err.msg);
         return 1;
     }
     gib_timers_frame_begin(&timers, 0);
@@ -73,7 +77,7 @@ int main(void)
                 m++;
             }
     if (ldm_probe(&l, rays, m, 0.0f, dist, &ledger, &err) < 0) {
-        fprintf(stderr, "FAIL: probe: %s\n", err.msg);
+        CHECK(0, "probe: %s", err.msg);
         return 1;
     }
     int agree = 0, hits = 0, lateral_close = 0;
@@ -97,8 +101,9 @@ int main(void)
            "2 texels (%.4g)\n", m, hits, agree, 100 * frac, worst, worst / diag,
            100.0 * lateral_close / m, 2 * texel);
     int pass = frac >= 0.995 && hits > m / 2 && ldm_status(&l) == GIB_STATUS_OK;
-    printf("%s: LDM trace vs Embree (expect >= 99.5%% agreement to 1e-4 of the diagonal)\n",
-           pass ? "PASS" : "FAIL");
+    snprintf(check_msg, sizeof check_msg,
+             "LDM trace vs Embree (expect >= 99.5%% agreement to 1e-4 of the diagonal)");
+    CHECK_TRUE(check_msg, pass, "");
     free(rays);
     free(dist);
     free(snapped);
@@ -107,5 +112,5 @@ int main(void)
     ldm_destroy(&l, &ledger);
     gib_timers_destroy(&timers);
     gib_fixture_close(&fx);
-    return pass ? 0 : 1;
+    return failures != 0;
 }

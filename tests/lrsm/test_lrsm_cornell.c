@@ -27,6 +27,10 @@
 #include "harness/app/runner.h"
 #include "reference/reference.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 64
@@ -103,10 +107,9 @@ int main(void)
     gib_run_result r;
     gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: lrsm: %s: %s\n", r.status, r.err.msg);
+        CHECK(0, "lrsm: %s: %s", r.status, r.err.msg);
         return 1;
     }
-    int failures = 0;
     static const char *const channel[3] = {"red", "green", "blue"};
     for (int o = 0; o < r.output_count; o++) {
         unsigned comp = r.output_components[o];
@@ -119,43 +122,47 @@ int main(void)
         const gib_image *im = &r.images[o];
         long nonfinite = gib_image_count_nonfinite(im);
         double e = rel_rmse(&ref, im);
-        if (nonfinite) {
-            printf("FAIL: %ld non-finite pixels\n", nonfinite);
-            failures++;
-        }
+        CHECK(!nonfinite, "%ld non-finite pixels", nonfinite);
         if (comp == GIB_OUT_DIRECT) {
             for (int c = 0; c < 3; c++) {
                 double ratio = mean(im, c, 0, W) / mean(&ref, c, 0, W);
                 int ok = fabs(ratio - 1) <= DIRECT_MEAN_TOL;
-                printf("%s direct %s: mean %.4f of the reference's (tolerance %.2f)\n", ok ? "PASS" : "FAIL",
-                       channel[c], ratio, DIRECT_MEAN_TOL);
-                failures += !ok;
+                snprintf(check_msg, sizeof check_msg,
+                         "direct %s: mean %.4f of the reference's (tolerance %.2f)",
+                         channel[c], ratio, DIRECT_MEAN_TOL);
+                CHECK_TRUE(check_msg, ok, "");
             }
             int ok = e <= DIRECT_RMSE;
-            printf("%s direct: relative RMSE %.4f (bound %.2f)\n", ok ? "PASS" : "FAIL", e, DIRECT_RMSE);
-            failures += !ok;
+            snprintf(check_msg, sizeof check_msg,
+                     "direct: relative RMSE %.4f (bound %.2f)",
+                     e, DIRECT_RMSE);
+            CHECK_TRUE(check_msg, ok, "");
         } else {
             for (int c = 0; c < 3; c++) {
                 double ratio = mean(im, c, 0, W) / mean(&ref, c, 0, W);
                 int ok = ratio >= INDIRECT_MIN && ratio <= 1;
-                printf("%s indirect %s: mean %.4f of the reference's (must be in [%.2f, 1])\n",
-                       ok ? "PASS" : "FAIL", channel[c], ratio, INDIRECT_MIN);
-                failures += !ok;
+                snprintf(check_msg, sizeof check_msg,
+                         "indirect %s: mean %.4f of the reference's (must be in [%.2f, 1])",
+                         channel[c], ratio, INDIRECT_MIN);
+                CHECK_TRUE(check_msg, ok, "");
             }
             double bleed_ref = (mean(&ref, 0, 0, W / 4) / mean(&ref, 1, 0, W / 4)) /
                                (mean(&ref, 0, 3 * W / 4, W) / mean(&ref, 1, 3 * W / 4, W));
             double bleed = (mean(im, 0, 0, W / 4) / mean(im, 1, 0, W / 4)) /
                            (mean(im, 0, 3 * W / 4, W) / mean(im, 1, 3 * W / 4, W));
             int ok = bleed > 1 && bleed_ref > 1;
-            printf("%s indirect colour bleeding: (R/G left quarter) / (R/G right quarter) %.3f "
-                   "(reference %.3f; both must exceed 1)\n", ok ? "PASS" : "FAIL", bleed, bleed_ref);
-            failures += !ok;
+            snprintf(check_msg, sizeof check_msg,
+                     "indirect colour bleeding: (R/G left quarter) / (R/G right quarter) %.3f "
+                     "(reference %.3f; both must exceed 1)",
+                     bleed, bleed_ref);
+            CHECK_TRUE(check_msg, ok, "");
             double corr = block_corr(&ref, im);
             ok = corr >= CORR_MIN;
-            printf("%s indirect: %dx%d-block correlation with the reference %.3f (at least %.2f); "
-                   "relative RMSE %.4f (reported, not bounded)\n", ok ? "PASS" : "FAIL", BLOCK, BLOCK,
-                   corr, CORR_MIN, e);
-            failures += !ok;
+            snprintf(check_msg, sizeof check_msg,
+                     "indirect: %dx%d-block correlation with the reference %.3f (at least %.2f); "
+                     "relative RMSE %.4f (reported, not bounded)",
+                     BLOCK, BLOCK, corr, CORR_MIN, e);
+            CHECK_TRUE(check_msg, ok, "");
         }
         gib_image_free(&ref);
     }

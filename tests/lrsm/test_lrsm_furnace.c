@@ -28,6 +28,10 @@
 
 #include "harness/app/runner.h"
 #include "tests/lrsm/lrsm_setup.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define LOOKUP_TOL 0.01
 #define DIRECT_TOL 0.002
@@ -48,11 +52,10 @@ int main(int argc, char **argv)
         return 1;
     if (spot && (fx.scene.light_count != 1 ||
                  gib_light_view_kind(&fx.scene.lights[0]) != GIB_LV_PERSPECTIVE)) {
-        printf("FAIL: %s: expected one spot light with a perspective view\n", argv[1]);
+        CHECK(0, "%s: expected one spot light with a perspective view", argv[1]);
         return 1;
     }
     const double wall = 0.5 / M_PI, indirect = 0.25 / M_PI;
-    int failures = 0;
 
     /* 1. */
     lrsm_setup s;
@@ -84,7 +87,7 @@ int main(int argc, char **argv)
         in[8 * i + 7] = 0;
     }
     if (lrsm_layers_probe(&s.L, &s.lv, 0, 1, in, PROBES, out, &err) < 0) {
-        printf("FAIL: probe: %s\n", err.msg);
+        CHECK(0, "probe: %s", err.msg);
         return 1;
     }
     double worst = 0, mean = 0;
@@ -94,10 +97,11 @@ int main(int argc, char **argv)
             mean += out[4 * i + c] / (3.0 * PROBES);
         }
     int ok = worst <= LOOKUP_TOL;
-    printf("%s LRSM lookup (%s light view) at %d wall points: mean %.6f, largest deviation %.3f%% from a I / (pi R^2) "
-           "= %.6f (tolerance %.0f%%)\n", ok ? "PASS" : "FAIL", spot ? "perspective" : "cube", PROBES, mean, 100 * worst, wall,
-           100 * LOOKUP_TOL);
-    failures += !ok;
+    snprintf(check_msg, sizeof check_msg,
+             "LRSM lookup (%s light view) at %d wall points: mean %.6f, largest deviation %.3f%% "
+             "from a I / (pi R^2) = %.6f (tolerance %.0f%%)",
+             spot ? "perspective" : "cube", PROBES, mean, 100 * worst, wall, 100 * LOOKUP_TOL);
+    CHECK_TRUE(check_msg, ok, "");
     lrsm_setup_destroy(&s);
     if (spot) {
         gib_fixture_close(&fx);
@@ -112,7 +116,7 @@ int main(int argc, char **argv)
     gib_run_result r;
     gib_run_technique(&fx.gpu, t, &p, 0, 64, 48, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: lrsm: %s: %s\n", r.status, r.err.msg);
+        CHECK(0, "lrsm: %s: %s", r.status, r.err.msg);
         return 1;
     }
     for (int o = 0; o < r.output_count; o++) {
@@ -128,18 +132,24 @@ int main(int argc, char **argv)
             }
         if (r.output_components[o] == GIB_OUT_DIRECT) {
             ok = !nonfinite && dev <= DIRECT_TOL;
-            printf("%s direct: mean %.6f, largest deviation %.4f%% from %.6f (tolerance %.1f%%)\n",
-                   ok ? "PASS" : "FAIL", sum, 100 * dev, wall, 100 * DIRECT_TOL);
+            snprintf(check_msg, sizeof check_msg,
+                     "direct: mean %.6f, largest deviation %.4f%% from %.6f (tolerance %.1f%%)",
+                     sum, 100 * dev, wall, 100 * DIRECT_TOL);
+            CHECK_TRUE(check_msg, ok, "");
         } else if (r.output_components[o] == GIB_OUT_INDIRECT) {
             ok = !nonfinite && sum >= INDIRECT_MIN * indirect && sum <= INDIRECT_MAX * indirect;
-            printf("%s indirect: mean %.6f = %.4f of the one-bounce answer %.6f (must be in [%.2f, %.2f]: "
-                   "the isotropic voxels' alpha keeps it below, see above)\n", ok ? "PASS" : "FAIL",
-                   sum, sum / indirect, indirect, INDIRECT_MIN, INDIRECT_MAX);
+            snprintf(check_msg, sizeof check_msg,
+                     "indirect: mean %.6f = %.4f of the one-bounce answer %.6f (must be in [%.2f, "
+                     "%.2f]: the isotropic voxels' alpha keeps it below, see above)",
+                     sum, sum / indirect, indirect, INDIRECT_MIN, INDIRECT_MAX);
+            CHECK_TRUE(check_msg, ok, "");
         } else {
             ok = !nonfinite && sum == 0;
-            printf("%s glossy: mean %g (no specular lobe in the furnace)\n", ok ? "PASS" : "FAIL", sum);
+            snprintf(check_msg, sizeof check_msg,
+                     "glossy: mean %g (no specular lobe in the furnace)",
+                     sum);
+            CHECK_TRUE(check_msg, ok, "");
         }
-        failures += !ok;
     }
     gib_run_result_free(&r);
     gib_fixture_close(&fx);

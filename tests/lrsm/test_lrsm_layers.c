@@ -27,6 +27,7 @@
 #include "techniques/lrsm/lrsm.h"
 #include "techniques/lrsm/lrsm_math.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
 
 #define RES 64
 #define HALF (RES / 2)
@@ -35,6 +36,7 @@
 #define PROBE_TOL 0.01
 
 static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 /* The light view in the paper's packed format (light_view.h, GIB_LV_PACKED16). */
 typedef struct synth {
@@ -109,15 +111,16 @@ static void probe_check(const lrsm_layers *L, const gib_light_views *lv, const f
     float out[4 * 8];
     gib_error err;
     if (lrsm_layers_probe(L, lv, 0, 1, in, n, out, &err) < 0) {
-        printf("FAIL: probe: %s\n", err.msg);
-        failures++;
+        CHECK(0, "probe: %s", err.msg);
         return;
     }
     for (int i = 0; i < n; i++) {
         double got = out[4 * i + 1];  /* green */
         int ok = want[i] == 0 ? fabs(got) < 1e-6 : fabs(got / want[i] - 1) <= PROBE_TOL;
-        printf("%s probe %s: L %.6g, expected %.6g\n", ok ? "PASS" : "FAIL", what[i], got, want[i]);
-        failures += !ok;
+        snprintf(check_msg, sizeof check_msg,
+                 "probe %s: L %.6g, expected %.6g",
+                 what[i], got, want[i]);
+        CHECK_TRUE(check_msg, ok, "");
     }
 }
 
@@ -133,7 +136,7 @@ int main(void)
     lrsm_layers L;
     if (gib_light_views_create(&lv, &fx.gpu, RES, GIB_LV_PACKED16, "rsm", &ledger, &err) < 0 ||
         lrsm_layers_create(&L, &lv, 2, 2, 0.2f, &ledger, &err) < 0) {
-        printf("FAIL: set-up: %s\n", err.msg);
+        CHECK(0, "set-up: %s", err.msg);
         return 1;
     }
     const gib_lv_face *face = &lv.faces[0];
@@ -195,10 +198,11 @@ int main(void)
             }
         }
     int ok1 = wr <= RAD_TOL && wn <= RAD_TOL && wd <= DEPTH_TOL;
-    printf("%s random texels against lrsm_build_block: radiance %.3g (relative, tolerance %.0e), "
-           "normal %.3g (tolerance %.0e), depth %.3g (tolerance %.0e)\n", ok1 ? "PASS" : "FAIL", wr,
-           RAD_TOL, wn, RAD_TOL, wd, DEPTH_TOL);
-    failures += !ok1;
+    snprintf(check_msg, sizeof check_msg,
+             "random texels against lrsm_build_block: radiance %.3g (relative, tolerance %.0e), "
+             "normal %.3g (tolerance %.0e), depth %.3g (tolerance %.0e)",
+             wr, RAD_TOL, wn, RAD_TOL, wd, DEPTH_TOL);
+    CHECK_TRUE(check_msg, ok1, "");
 
     /* 2. A depth discontinuity, z = 2 left of column 37 and 8 from there (not on a block boundary
      * of any level, so that the blocks of every level across it mix both sides), <n.l> = 0.9. */
@@ -216,15 +220,16 @@ int main(void)
         lrsm_layers one;
         lrsm_partition p1 = {.z0 = 0, .z1 = 10, .parts = 1, .overlap = 0.2};
         if (lrsm_layers_create(&one, &lv, 1, 2, 0.2f, &ledger, &err) < 0) {
-            printf("FAIL: set-up: %s\n", err.msg);
+            CHECK(0, "set-up: %s", err.msg);
             return 1;
         }
         lrsm_layers_set_range(&one, 0, 0, 10);
         lrsm_layers_build(&one, &lv);
         int b1 = straddling(&one, &p1, 0);
-        printf("%s the check finds %d straddling texels with one depth layer (it must find some)\n",
-               b1 ? "PASS" : "FAIL", b1);
-        failures += b1 == 0;
+        snprintf(check_msg, sizeof check_msg,
+                 "the check finds %d straddling texels with one depth layer (it must find some)",
+                 b1);
+        CHECK_TRUE(check_msg, b1, "");
         lrsm_layers_destroy(&one, &ledger);
     }
     /* Probes (3.): the discontinuity in the middle of the view, world points at (u, v) of the view

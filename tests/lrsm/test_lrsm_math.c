@@ -19,6 +19,7 @@
 #include <stdio.h>
 
 #include "techniques/lrsm/lrsm_math.h"
+#include "tests/common/check.h"
 
 #define ERF_TOL 1.5e-7
 #define VIS_TOL 2e-7
@@ -28,13 +29,9 @@
 
 static int failures;
 
-static void check(int ok, const char *what, double got, double want)
-{
-    if (!ok) {
-        printf("FAIL: %s: got %.10g, expected %.10g\n", what, got, want);
-        failures++;
-    }
-}
+/* CHECK with the values compared, at the caller's file:line. */
+#define CHECK_GOT(ok, what, got, want)                                                             \
+    CHECK(ok, "%s: got %.10g, expected %.10g", what, (double)(got), (double)(want))
 
 /* Simpson's rule of the N(mu, sigma2) density over [a, b] (restricted to mu +- 8 sigma). */
 static double gauss_integral(double a, double b, double mu, double sigma2)
@@ -79,7 +76,7 @@ static void check_plane_hits(void)
             double got = lrsm_cap_cosine(cos(t), sin(t), sh), want = cap_cosine_grid(cos(t), sh * sin(t));
             char what[80];
             snprintf(what, sizeof what, "cap cosine, tilt %g, sin_half %g", tilts[i], sh);
-            check(fabs(got - want) <= CAP_TOL, what, got, want);
+            CHECK_GOT(fabs(got - want) <= CAP_TOL, what, got, want);
         }
     /* A touching-sphere sequence of a 60-degree cone (r = t tan 30, next centre one diameter on)
      * against a plane facing the axis at depth D. */
@@ -94,8 +91,8 @@ static void check_plane_hits(void)
             }
             worst = fmin(worst, 1 - pass);
         }
-        check(worst >= TILE_MIN, spread > 0 ? "a facing plane met, spread 2 cm" : "a facing plane met",
-              worst, TILE_MIN);
+        CHECK_GOT(worst >= TILE_MIN, spread > 0 ? "a facing plane met, spread 2 cm" : "a facing plane met",
+                  worst, TILE_MIN);
     }
     double worst = 0;
     for (double E = 0.01; E < 1; E += 0.01) {
@@ -103,13 +100,13 @@ static void check_plane_hits(void)
         double exact = (2 / M_PI) * (asin(c) + c * sqrt(1 - c * c));
         worst = fmax(worst, fabs(lrsm_plane_hits(0, E, 1, 1, 0) - exact));
     }
-    check(worst <= HITS_TOL, "a plane through the centre against the disk's exact share", worst, 0);
-    check(lrsm_plane_hits(5, 0.5, 1, 1, 0) < 1e-6 && lrsm_plane_hits(-5, 0.5, 1, 1, 0) < 1e-6,
-          "a plane far from the sample", lrsm_plane_hits(5, 0.5, 1, 1, 0), 0);
+    CHECK_GOT(worst <= HITS_TOL, "a plane through the centre against the disk's exact share", worst, 0);
+    CHECK_GOT(lrsm_plane_hits(5, 0.5, 1, 1, 0) < 1e-6 && lrsm_plane_hits(-5, 0.5, 1, 1, 0) < 1e-6,
+              "a plane far from the sample", lrsm_plane_hits(5, 0.5, 1, 1, 0), 0);
     double r = 0.1, th = M_PI / 3;
-    check(lrsm_plane_spread(pow(r * tan(th), 2) / 3, cos(th), r) < 1e-12 &&
-          fabs(lrsm_plane_spread(0.01, 1, r) - 0.01) < 1e-12, "plane spread: tilt removed",
-          lrsm_plane_spread(pow(r * tan(th), 2) / 3, cos(th), r), 0);
+    CHECK_GOT(lrsm_plane_spread(pow(r * tan(th), 2) / 3, cos(th), r) < 1e-12 &&
+              fabs(lrsm_plane_spread(0.01, 1, r) - 0.01) < 1e-12, "plane spread: tilt removed",
+              lrsm_plane_spread(pow(r * tan(th), 2) / 3, cos(th), r), 0);
 }
 
 int main(void)
@@ -117,7 +114,7 @@ int main(void)
     double worst = 0;
     for (double x = -6; x <= 6; x += 1e-3)
         worst = fmax(worst, fabs(lrsm_erf(x) - erf(x)));
-    check(worst < ERF_TOL, "erf approximation, largest error on [-6, 6]", worst, ERF_TOL);
+    CHECK_GOT(worst < ERF_TOL, "erf approximation, largest error on [-6, 6]", worst, ERF_TOL);
     printf("erf (A&S 7.1.26): largest |error| %.3g on [-6, 6] (bound %.2g)\n", worst, ERF_TOL);
 
     /* Eq. 12: (zc, rc, mu, sigma2). */
@@ -134,42 +131,42 @@ int main(void)
         double want = gauss_integral(c[0] - c[1], c[0] + c[1], c[2], c[3]);
         char what[128];
         snprintf(what, sizeof what, "Eq. 12 at zc %g rc %g mu %g sigma^2 %g", c[0], c[1], c[2], c[3]);
-        check(fabs(got - want) <= VIS_TOL && got >= -VIS_TOL && got <= 1 + VIS_TOL, what, got, want);
+        CHECK_GOT(fabs(got - want) <= VIS_TOL && got >= -VIS_TOL && got <= 1 + VIS_TOL, what, got, want);
         vworst = fmax(vworst, fabs(got - want));
     }
     printf("Eq. 12 against Simpson: largest |difference| %.3g over %u cases (tolerance %.1g)\n", vworst,
            (unsigned)(sizeof cases / sizeof cases[0]), VIS_TOL);
     /* sigma -> 0: the indicator of |mu - zc| < rc, away from the edges by a few floored sigmas. */
     double smin = sqrt(LRSM_MIN_VARIANCE);
-    check(fabs(lrsm_visibility(0.5, 0.05, 0.5 + 0.05 - 6 * smin, 0) - 1) < 1e-6, "sigma 0 inside", 
-          lrsm_visibility(0.5, 0.05, 0.5 + 0.05 - 6 * smin, 0), 1);
-    check(lrsm_visibility(0.5, 0.05, 0.5 + 0.05 + 6 * smin, 0) < 1e-6, "sigma 0 outside",
-          lrsm_visibility(0.5, 0.05, 0.5 + 0.05 + 6 * smin, 0), 0);
-    check(lrsm_visibility(100.0, 0.5, 0.5, 0.01) == 0.0, "far outside the depth range",
-          lrsm_visibility(100.0, 0.5, 0.5, 0.01), 0);
-    check(isfinite(lrsm_visibility(0.5, 0.05, 0.5, -1e-5)), "negative variance (cancellation)",
-          lrsm_visibility(0.5, 0.05, 0.5, -1e-5), 1);
+    CHECK_GOT(fabs(lrsm_visibility(0.5, 0.05, 0.5 + 0.05 - 6 * smin, 0) - 1) < 1e-6, "sigma 0 inside", 
+              lrsm_visibility(0.5, 0.05, 0.5 + 0.05 - 6 * smin, 0), 1);
+    CHECK_GOT(lrsm_visibility(0.5, 0.05, 0.5 + 0.05 + 6 * smin, 0) < 1e-6, "sigma 0 outside",
+              lrsm_visibility(0.5, 0.05, 0.5 + 0.05 + 6 * smin, 0), 0);
+    CHECK_GOT(lrsm_visibility(100.0, 0.5, 0.5, 0.01) == 0.0, "far outside the depth range",
+              lrsm_visibility(100.0, 0.5, 0.5, 0.01), 0);
+    CHECK_GOT(isfinite(lrsm_visibility(0.5, 0.05, 0.5, -1e-5)), "negative variance (cancellation)",
+              lrsm_visibility(0.5, 0.05, 0.5, -1e-5), 1);
 
     /* Partitions: [0, 10] in 2, overlap 0.2: w = 5, delta = 1, layers [-0.5, 5.5] and [4.5, 10.5]. */
     lrsm_partition p = {.z0 = 0, .z1 = 10, .parts = 2, .overlap = 0.2};
     double lo, hi;
     lrsm_layer_range(&p, 1, &lo, &hi);
-    check(fabs(lo - 4.5) < 1e-12 && fabs(hi - 10.5) < 1e-12, "layer 1 range", lo, 4.5);
-    check(lrsm_in_depth_layer(&p, 0, 4.4) && !lrsm_in_depth_layer(&p, 1, 4.4), "4.4 in layer 0 only", 0, 0);
-    check(lrsm_in_depth_layer(&p, 0, 5.0) && lrsm_in_depth_layer(&p, 1, 5.0), "5.0 in both", 0, 0);
-    check(!lrsm_in_depth_layer(&p, 0, 5.6) && lrsm_in_depth_layer(&p, 1, 5.6), "5.6 in layer 1 only", 0, 0);
-    check(lrsm_in_depth_layer(&p, 0, -3) && lrsm_in_depth_layer(&p, 1, 30), "open outer ends", 0, 0);
-    check(lrsm_layer_overlaps(&p, 1, 3.0, 4.6) && !lrsm_layer_overlaps(&p, 1, 3.0, 4.4) &&
-          lrsm_layer_overlaps(&p, 0, 5.4, 9) && !lrsm_layer_overlaps(&p, 0, 5.6, 9),
-          "layers met by a sample's depth interval", 0, 0);
+    CHECK_GOT(fabs(lo - 4.5) < 1e-12 && fabs(hi - 10.5) < 1e-12, "layer 1 range", lo, 4.5);
+    CHECK_GOT(lrsm_in_depth_layer(&p, 0, 4.4) && !lrsm_in_depth_layer(&p, 1, 4.4), "4.4 in layer 0 only", 0, 0);
+    CHECK_GOT(lrsm_in_depth_layer(&p, 0, 5.0) && lrsm_in_depth_layer(&p, 1, 5.0), "5.0 in both", 0, 0);
+    CHECK_GOT(!lrsm_in_depth_layer(&p, 0, 5.6) && lrsm_in_depth_layer(&p, 1, 5.6), "5.6 in layer 1 only", 0, 0);
+    CHECK_GOT(lrsm_in_depth_layer(&p, 0, -3) && lrsm_in_depth_layer(&p, 1, 30), "open outer ends", 0, 0);
+    CHECK_GOT(lrsm_layer_overlaps(&p, 1, 3.0, 4.6) && !lrsm_layer_overlaps(&p, 1, 3.0, 4.4) &&
+              lrsm_layer_overlaps(&p, 0, 5.4, 9) && !lrsm_layer_overlaps(&p, 0, 5.6, 9),
+              "layers met by a sample's depth interval", 0, 0);
     double dworst = 0;
     for (double z = -1; z <= 11; z += 0.01)
         dworst = fmax(dworst, fabs(lrsm_decay(&p, 0, z) + lrsm_decay(&p, 1, z) - 1));
-    check(dworst < 1e-12, "Eq. 15 decays add to 1", dworst, 0);
-    check(lrsm_decay(&p, 0, 4.5) == 1.0 && fabs(lrsm_decay(&p, 0, 5.0) - 0.5) < 1e-12 &&
-          lrsm_decay(&p, 0, 5.5) == 0.0, "Eq. 15 across the band", lrsm_decay(&p, 0, 5.0), 0.5);
-    check(lrsm_normal_part(0.0, 2) == -1 && lrsm_normal_part(0.3, 2) == 0 &&
-          lrsm_normal_part(0.7, 2) == 1 && lrsm_normal_part(1.0, 2) == 1, "<n.l> partitions", 0, 0);
+    CHECK_GOT(dworst < 1e-12, "Eq. 15 decays add to 1", dworst, 0);
+    CHECK_GOT(lrsm_decay(&p, 0, 4.5) == 1.0 && fabs(lrsm_decay(&p, 0, 5.0) - 0.5) < 1e-12 &&
+              lrsm_decay(&p, 0, 5.5) == 0.0, "Eq. 15 across the band", lrsm_decay(&p, 0, 5.0), 0.5);
+    CHECK_GOT(lrsm_normal_part(0.0, 2) == -1 && lrsm_normal_part(0.3, 2) == 0 &&
+              lrsm_normal_part(0.7, 2) == 1 && lrsm_normal_part(1.0, 2) == 1, "<n.l> partitions", 0, 0);
 
     /* A block straddling a discontinuity: z = 2 (left column) and z = 8 (right column). */
     lrsm_texel block[4];
@@ -185,9 +182,9 @@ int main(void)
         lrsm_layer_range(&p, d, &lo, &hi);
         double a = o->depth[2], mu = o->depth[0] / a, var = o->depth[1] / a - mu * mu;
         double want = ((d ? 8.0 : 2.0) - lo) / (hi - lo);
-        check(fabs(a - 0.5) < 1e-12 && fabs(mu - want) < 1e-12 && fabs(var) < 1e-12 &&
-              fabs(o->radiance[1] - 1.0) < 1e-12 && fabs(o->normal[2] - 0.5) < 1e-12 &&
-              out[d * 2].depth[2] == 0, "block across a discontinuity", mu, want);
+        CHECK_GOT(fabs(a - 0.5) < 1e-12 && fabs(mu - want) < 1e-12 && fabs(var) < 1e-12 &&
+                  fabs(o->radiance[1] - 1.0) < 1e-12 && fabs(o->normal[2] - 0.5) < 1e-12 &&
+                  out[d * 2].depth[2] == 0, "block across a discontinuity", mu, want);
     }
     /* Area weights (Eq. 3's Jacobian): a texel three times the area of its neighbour counts three
      * times in the filtered radiance; the weight's factors. */
@@ -197,16 +194,16 @@ int main(void)
                          .area = 3}};
     lrsm_build_block(&p, 2, w2, out);
     double mean = out[1].radiance[0] / out[1].radiance[3];
-    check(fabs(mean - 4.0) < 1e-12 && fabs(out[1].normal[3] - 0.5) < 1e-12,
-          "area-weighted radiance of a block", mean, 4.0);
-    check(fabs(lrsm_area_weight(2, 3, 10, 1, 0.5) - 0.2) < 1e-12 &&
-          fabs(lrsm_area_weight(0, 5, 10, 1, 1) - 0.025) < 1e-12 &&
-          fabs(lrsm_area_weight(0, 5, 10, 0.5, 0.01) - 0.25 * 0.125) < 1e-12,
-          "area weight: tilt 0.1 / <n.l> up to 1, (z / zfar)^2 cos^3", lrsm_area_weight(0, 5, 10, 1, 1),
-          0.025);
+    CHECK_GOT(fabs(mean - 4.0) < 1e-12 && fabs(out[1].normal[3] - 0.5) < 1e-12,
+              "area-weighted radiance of a block", mean, 4.0);
+    CHECK_GOT(fabs(lrsm_area_weight(2, 3, 10, 1, 0.5) - 0.2) < 1e-12 &&
+              fabs(lrsm_area_weight(0, 5, 10, 1, 1) - 0.025) < 1e-12 &&
+              fabs(lrsm_area_weight(0, 5, 10, 0.5, 0.01) - 0.25 * 0.125) < 1e-12,
+              "area weight: tilt 0.1 / <n.l> up to 1, (z / zfar)^2 cos^3", lrsm_area_weight(0, 5, 10, 1, 1),
+              0.025);
     check_plane_hits();
     if (failures) {
-        printf("FAIL: %d check(s)\n", failures);
+        CHECK(0, "%d check(s)", failures);
         return 1;
     }
     printf("PASS: lrsm math\n");

@@ -15,6 +15,7 @@
 #include "techniques/common/voxels.h"
 #include "techniques/lrsm/lrsm.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
 
 static uint64_t structure_bytes(const gib_ledger *l, const char *structure)
 {
@@ -60,13 +61,15 @@ static uint64_t layer_formula(int side, int layers)
 }
 
 static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 static void expect(const char *what, uint64_t got, uint64_t want)
 {
     int ok = got == want;
-    printf("%s %s: %llu B (%.2f MB), formula %llu B\n", ok ? "PASS" : "FAIL", what,
-           (unsigned long long)got, got / 1e6, (unsigned long long)want);
-    failures += !ok;
+    snprintf(check_msg, sizeof check_msg,
+             "%s: %llu B (%.2f MB), formula %llu B",
+             what, (unsigned long long)got, got / 1e6, (unsigned long long)want);
+    CHECK_TRUE(check_msg, ok, "");
 }
 
 int main(void)
@@ -76,7 +79,7 @@ int main(void)
         return 1;
     const gib_technique *t = gib_technique_find("lrsm");
     if (!t) {
-        printf("FAIL: no technique lrsm\n");
+        CHECK(0, "no technique lrsm");
         return 1;
     }
     static const int normal_parts[2] = {2, 2}, depth_parts[2] = {2, 3};
@@ -89,14 +92,14 @@ int main(void)
         if (gib_param_set(t, &p, "voxel_res", "256", &err) < 0 ||
             gib_param_set(t, &p, "rsm_res", "1024", &err) < 0 ||
             gib_param_set(t, &p, "layers_depth", dp, &err) < 0) {
-            printf("FAIL: %s\n", err.msg);
+            CHECK(0, "%s", err.msg);
             return 1;
         }
         gib_ledger ledger;
         gib_ledger_init(&ledger);
         void *self = t->create(&fx.gpu, &p, 32, 32, &ledger, &err);
         if (!self) {
-            printf("FAIL: create: %s\n", err.msg);
+            CHECK(0, "create: %s", err.msg);
             return 1;
         }
         int layers = depth_parts[c] * normal_parts[c];

@@ -22,6 +22,7 @@
 #include "techniques/common/voxels.h"
 #include "techniques/lrsm/lrsm_slots.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
 
 #define CONES 5 /* central, three tilted, the roof's central */
 #define CENTRAL_MAX 0.1
@@ -36,6 +37,7 @@ static const char *scene_text =
     "[light.l]\ntype = point\nposition = 0 3 0\nintensity = 1 1 1\n";
 
 static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 /* The occlusion of the CONES cones at voxel_res `res`; 0 on success. */
 static int trace(gib_gl_fixture *fx, unsigned prog, int res, float occlusion[CONES])
@@ -59,7 +61,7 @@ static int trace(gib_gl_fixture *fx, unsigned prog, int res, float occlusion[CON
     gib_voxels v;
     gib_error err;
     if (gib_voxels_create(&v, &fx->gpu, res, "voxels", &ledger, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     gib_voxels_build(&v, &fx->gpu, NULL, "voxelization");
@@ -84,18 +86,19 @@ static int trace(gib_gl_fixture *fx, unsigned prog, int res, float occlusion[CON
     return gib_gl_check("lrsm cone probe", &err);
 }
 
-static void check(int ok, const char *what, int res, float got, double bound)
-{
-    failures += !ok;
-    printf("%s %s, voxel_res %d: occlusion %.3f (bound %s %.2f)\n", ok ? "PASS" : "FAIL", what,
-           res, got, strstr(what, "roof") ? ">" : "<", bound);
-}
+/* CHECK_TRUE with the occlusion and its bound, at the caller's file:line. */
+#define CHECK_OCCLUSION(ok, what, res, got, bound)                                                 \
+    do {                                                                                           \
+        snprintf(check_msg, sizeof check_msg, "%s, voxel_res %d: occlusion %.3f (bound %s %.2f)",  \
+                 what, res, (double)(got), strstr(what, "roof") ? ">" : "<", (double)(bound));    \
+        CHECK_TRUE(check_msg, ok, "");                                                            \
+    } while (0)
 
 int main(void)
 {
     char dir[] = "/tmp/gib_lrsm_open_ground_XXXXXX";
     if (!mkdtemp(dir)) {
-        printf("FAIL: cannot make a temporary folder\n");
+        CHECK(0, "cannot make a temporary folder");
         return 1;
     }
     gib_gl_fixture fx;
@@ -105,7 +108,7 @@ int main(void)
     const char *files[] = {"lrsm/lrsm_cone_probe.comp"};
     unsigned prog = gib_program(files, 1, NULL, &err);
     if (!prog) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return 1;
     }
     const int resolutions[] = {64, 128, 256};
@@ -115,12 +118,12 @@ int main(void)
             failures++;
             continue;
         }
-        check(occ[0] < CENTRAL_MAX, "open ground, central cone", resolutions[r], occ[0],
-              CENTRAL_MAX);
+        CHECK_OCCLUSION(occ[0] < CENTRAL_MAX, "open ground, central cone", resolutions[r], occ[0],
+                        CENTRAL_MAX);
         for (int i = 1; i < 4; i++)
-            check(occ[i] < TILTED_MAX, "open ground, tilted cone", resolutions[r], occ[i],
-                  TILTED_MAX);
-        check(occ[4] > ROOF_MIN, "under the roof, central cone", resolutions[r], occ[4], ROOF_MIN);
+            CHECK_OCCLUSION(occ[i] < TILTED_MAX, "open ground, tilted cone", resolutions[r], occ[i],
+                            TILTED_MAX);
+        CHECK_OCCLUSION(occ[4] > ROOF_MIN, "under the roof, central cone", resolutions[r], occ[4], ROOF_MIN);
     }
     glDeleteProgram(prog);
     gib_fixture_close(&fx);

@@ -22,6 +22,10 @@
 #include <unistd.h>
 
 #include "tests/lrsm/lrsm_setup.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define PROBES 161
 #define X0 0.6
@@ -56,7 +60,7 @@ int main(void)
     gib_error err;
     char dir[] = "/tmp/gib_lrsm_seams_XXXXXX";
     if (!mkdtemp(dir)) {
-        printf("FAIL: cannot make a temporary folder\n");
+        CHECK(0, "cannot make a temporary folder");
         return 1;
     }
     if (gib_fixture_open_text(&fx, dir, "seams", scene_text) < 0)
@@ -70,19 +74,19 @@ int main(void)
         for (int k = 0; k < 8; k++)
             in[8 * i + k] = p[k];
     }
-    int failures = 0;
     for (int seams = 0; seams <= 1; seams++)
         if (lrsm_layers_probe(&s.L, &s.lv, 0, seams, in, PROBES, out[seams], &err) < 0) {
-            printf("FAIL: probe: %s\n", err.msg);
+            CHECK(0, "probe: %s", err.msg);
             return 1;
         }
     double near = largest_step(out[1], 1), far = largest_step(out[1], 0);
     int good = near <= STEP_RATIO * far;
-    failures += !good;
-    printf("%s seam: largest step between neighbouring probes %.2f%% within 0.15 m of the seam, "
-           "%.2f%% elsewhere (bound %.1fx); the centre's face only: %.2f%% and %.2f%%\n",
-           good ? "PASS" : "FAIL", 100 * near, 100 * far, STEP_RATIO,
-           100 * largest_step(out[0], 1), 100 * largest_step(out[0], 0));
+    snprintf(check_msg, sizeof check_msg,
+             "seam: largest step between neighbouring probes %.2f%% within 0.15 m of the seam, "
+             "%.2f%% elsewhere (bound %.1fx); the centre's face only: %.2f%% and %.2f%%",
+             100 * near, 100 * far, STEP_RATIO, 100 * largest_step(out[0], 1),
+             100 * largest_step(out[0], 0));
+    CHECK_TRUE(check_msg, good, "");
     double away = 0, dip = 0;
     int lo = (int)((0.85 - X0) / DX), hi = (int)((1.15 - X0) / DX + 0.5);
     for (int i = 0; i < PROBES; i++) {
@@ -96,10 +100,12 @@ int main(void)
         }
     }
     good = away <= AWAY_TOL;
-    failures += !good;
-    printf("%s away from the seam: the blend against the centre's face, largest difference %.2g "
-           "(tolerance %.0e); within the seam band the lookups dip %.1f%% below the line between "
-           "its ends\n", good ? "PASS" : "FAIL", away, AWAY_TOL, 100 * dip);
+    snprintf(check_msg, sizeof check_msg,
+             "away from the seam: the blend against the centre's face, largest difference %.2g "
+             "(tolerance %.0e); within the seam band the lookups dip %.1f%% below the line between "
+             "its ends",
+             away, AWAY_TOL, 100 * dip);
+    CHECK_TRUE(check_msg, good, "");
     lrsm_setup_destroy(&s);
     gib_fixture_close(&fx);
     char path[600];

@@ -38,11 +38,11 @@ int main(void)
                 hits += hit;
                 misses += !hit;
             }
-        RT_CHECK(hits > 100 && misses > 100, "test geometry: %d hits, %d misses", hits, misses);
-        RT_CHECK(bad == 0, "dmax %g: %d values differ from 1 (plane) / 0 (sky)", dmaxes[k], bad);
-        RT_CHECK(st.noise_rmse == 0.0, "noise_rmse %g, expected 0", st.noise_rmse);
-        RT_CHECK(st.rays == (long long)W * H + (long long)hits * spp, "rays %lld, expected %lld",
-                 st.rays, (long long)W * H + (long long)hits * spp);
+        CHECK(hits > 100 && misses > 100, "test geometry: %d hits, %d misses", hits, misses);
+        CHECK(bad == 0, "dmax %g: %d values differ from 1 (plane) / 0 (sky)", dmaxes[k], bad);
+        CHECK(st.noise_rmse == 0.0, "noise_rmse %g, expected 0", st.noise_rmse);
+        CHECK(st.rays == (long long)W * H + (long long)hits * spp, "rays %lld, expected %lld",
+              st.rays, (long long)W * H + (long long)hits * spp);
         printf("dmax %s: %d plane pixels all exactly 1 (expected 1, stderr 0), %d sky pixels all "
                "exactly 0; rays %lld\n",
                k ? "0.5" : "inf", hits, misses, st.rays);
@@ -50,5 +50,5 @@ int main(void)
         gib_image_free(&sd);
     }
     rt_scene_free(&s);
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -117,13 +117,13 @@ int main(void)
                            "stderr %.5f\n",
                            names[k], a, expect, got, se);
             }
-        RT_CHECK(z.n > 100, "too few pixels with a non-trivial expected value: %d", z.n);
+        CHECK(z.n > 100, "too few pixels with a non-trivial expected value: %d", z.n);
         char what[64];
         snprintf(what, sizeof what, "%s, %s", names[k], sobol ? "sobol" : "random");
         rt_zstats_check(&z, what);
-        RT_CHECK(exact_bad == 0, "%s: %d of %d pixels beyond dmax are not exactly 1/0",
-                 names[k], exact_bad, exact_ones);
-        RT_CHECK(!k || exact_ones > 50, "test geometry: only %d pixels beyond dmax", exact_ones);
+        CHECK(exact_bad == 0, "%s: %d of %d pixels beyond dmax are not exactly 1/0",
+              names[k], exact_bad, exact_ones);
+        CHECK(!k || exact_ones > 50, "test geometry: only %d pixels beyond dmax", exact_ones);
         printf("%s, %d pixels: mean expected %.6f measured %.6f, stderr of the mean %.6f "
                "(deviation %.2f sigma, max 3); worst pixel %.2f sigma; variance ratio %.4f; "
                "%d pixels beyond dmax exactly 1; noise_rmse %.5f\n",
@@ -134,5 +134,5 @@ int main(void)
     }
     printf("(infinite wall limit 0.5; eps %.5f)\n", eps);
     rt_scene_free(&s);
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

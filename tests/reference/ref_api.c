@@ -17,19 +17,19 @@ static const char *rt_get(const gib_kv *kv, int n, const char *key)
 int main(void)
 {
     /* names */
-    RT_CHECK(strcmp(gib_component_name(GIB_COMP_AO), "ao") == 0, "name of ao");
-    RT_CHECK(strcmp(gib_component_name(GIB_COMP_DIRECT), "direct") == 0, "name of direct");
-    RT_CHECK(gib_component_parse("ao") == GIB_COMP_AO, "parse ao");
-    RT_CHECK(gib_component_parse("direct") == GIB_COMP_DIRECT, "parse direct");
+    CHECK(strcmp(gib_component_name(GIB_COMP_AO), "ao") == 0, "name of ao");
+    CHECK(strcmp(gib_component_name(GIB_COMP_DIRECT), "direct") == 0, "name of direct");
+    CHECK(gib_component_parse("ao") == GIB_COMP_AO, "parse ao");
+    CHECK(gib_component_parse("direct") == GIB_COMP_DIRECT, "parse direct");
     static const char *const names[GIB_COMP_COUNT] = {
         "ao", "direct", "indirect", "glossy", "caustic", "full", "higher", "albedo", "normal",
         "depth"};
     for (int i = 0; i < GIB_COMP_COUNT; i++)
-        RT_CHECK(gib_component_parse(names[i]) == i && !strcmp(gib_component_name(i), names[i]),
-                 "component %d round trip '%s'", i, names[i]);
-    RT_CHECK(gib_component_parse("bogus") == -1 && gib_component_parse(NULL) == -1,
-             "unknown names parse to -1");
-    RT_CHECK(strcmp(gib_component_name(99), "unknown") == 0, "out-of-range name");
+        CHECK(gib_component_parse(names[i]) == i && !strcmp(gib_component_name(i), names[i]),
+              "component %d round trip '%s'", i, names[i]);
+    CHECK(gib_component_parse("bogus") == -1 && gib_component_parse(NULL) == -1,
+          "unknown names parse to -1");
+    CHECK(strcmp(gib_component_name(99), "unknown") == 0, "out-of-range name");
 
     /* an empty scene: every pixel misses, so everything is 0 */
     gib_scene s;
@@ -43,10 +43,10 @@ int main(void)
     int nonzero = 0;
     for (int i = 0; i < 8 * 6 * 3; i++)
         nonzero += img.px[i] != 0.0f || sd.px[i] != 0.0f;
-    RT_CHECK(nonzero == 0 && st.mean == 0.0 && st.rays == 48, "empty scene: %d nonzero, rays %lld",
-             nonzero, st.rays);
-    RT_CHECK(img.width == 8 && img.height == 6 && img.channels == 3, "image shape %dx%dx%d",
-             img.width, img.height, img.channels);
+    CHECK(nonzero == 0 && st.mean == 0.0 && st.rays == 48, "empty scene: %d nonzero, rays %lld",
+          nonzero, st.rays);
+    CHECK(img.width == 8 && img.height == 6 && img.channels == 3, "image shape %dx%dx%d",
+          img.width, img.height, img.channels);
     gib_image_free(&img);
     gib_image_free(&sd);
 
@@ -60,8 +60,8 @@ int main(void)
     int n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT + 4);
     /* Every attribute but `time`, which only a moving scene's header carries, and `cone`, which
      * only one diffuse cone's indirect carries. */
-    RT_CHECK(n == GIB_REF_ATTR_COUNT - 2, "attribute count %d, expected %d", n,
-             GIB_REF_ATTR_COUNT - 2);
+    CHECK(n == GIB_REF_ATTR_COUNT - 2, "attribute count %d, expected %d", n,
+          GIB_REF_ATTR_COUNT - 2);
     struct {
         const char *key, *value;
     } want[] = {{"component", "ao"},      {"spp", "4"},
@@ -76,39 +76,39 @@ int main(void)
                 {"sky", "0 0 0"},         {"stop", "spp"}};
     for (unsigned i = 0; i < sizeof want / sizeof want[0]; i++) {
         const char *v = rt_get(kv, n, want[i].key);
-        RT_CHECK(v && strcmp(v, want[i].value) == 0, "attribute %s = '%s', expected '%s'",
-                 want[i].key, v ? v : "(missing)", want[i].value);
+        CHECK(v && strcmp(v, want[i].value) == 0, "attribute %s = '%s', expected '%s'",
+              want[i].key, v ? v : "(missing)", want[i].value);
     }
     p.dmax = INFINITY;
     n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT);
-    RT_CHECK(strcmp(rt_get(kv, n, "dmax"), "inf") == 0, "dmax inf is written 'inf'");
+    CHECK(strcmp(rt_get(kv, n, "dmax"), "inf") == 0, "dmax inf is written 'inf'");
     p.dmax = 0.25f;
     n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT);
-    RT_CHECK(strcmp(rt_get(kv, n, "dmax"), "0.25") == 0, "dmax 0.25 is written '0.25'");
-    RT_CHECK(gib_reference_attrs(&s, &p, &st, kv, 3) == 3, "max_attrs bounds the count");
+    CHECK(strcmp(rt_get(kv, n, "dmax"), "0.25") == 0, "dmax 0.25 is written '0.25'");
+    CHECK(gib_reference_attrs(&s, &p, &st, kv, 3) == 3, "max_attrs bounds the count");
 
     /* normalisation and the cache key: parameters a component ignores do not change its key,
      * parameters it uses do, and defaults hash like their explicit values */
     {
         gib_ref_params a = rt_params(GIB_COMP_DIRECT, 8, 6, 1), b = a;
         b.dmax = 3.0f, b.max_depth = 5, b.spp = 64, b.threads = 3, b.obscurance = 1;
-        RT_CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &b),
-                 "direct: dmax, max_depth, spp (deterministic), threads must not change the key");
+        CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &b),
+              "direct: dmax, max_depth, spp (deterministic), threads must not change the key");
         a = rt_params(GIB_COMP_AO, 8, 6, 4), b = a;
         b.dmax = 0.0f;
         a.dmax = INFINITY;
-        RT_CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &b),
-                 "ao: dmax 0 and inf are the same image");
+        CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &b),
+              "ao: dmax 0 and inf are the same image");
         b.dmax = 2.0f;
-        RT_CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &b),
-                 "ao: dmax changes the key");
+        CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &b),
+              "ao: dmax changes the key");
         a.dmax = 2.0f, a.obscurance = 1;
-        RT_CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &b),
-                 "ao: obscurance changes the key");
+        CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &b),
+              "ao: obscurance changes the key");
         a = rt_params(GIB_COMP_FULL, 8, 6, 4), b = a;
         b.max_depth = GIB_REF_DEFAULT_MAX_DEPTH, b.min_depth = GIB_REF_DEFAULT_MIN_DEPTH;
-        RT_CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &b),
-                 "full: defaults hash like their explicit values");
+        CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &b),
+              "full: defaults hash like their explicit values");
         const int fields = 6;
         for (int f = 0; f < fields; f++) {
             gib_ref_params c = a;
@@ -118,30 +118,30 @@ int main(void)
             if (f == 3) c.seed = 2;
             if (f == 4) c.target_noise = 0.01;
             if (f == 5) c.width = 9;
-            RT_CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &c),
-                     "full: field %d must change the key", f);
+            CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &c),
+                  "full: field %d must change the key", f);
         }
         gib_ref_params c = a;
         c.max_specular = 4; /* full ignores it; higher and caustic use it */
-        RT_CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &c),
-                 "full: max_specular must not change the key");
+        CHECK(gib_reference_cache_key(&s, &a) == gib_reference_cache_key(&s, &c),
+              "full: max_specular must not change the key");
         a.component = c.component = GIB_COMP_HIGHER;
-        RT_CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &c),
-                 "higher: max_specular changes the key");
+        CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s, &c),
+              "higher: max_specular changes the key");
         gib_scene s2 = s;
         s2.content_hash ^= 1;
-        RT_CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s2, &a),
-                 "the scene's content hash changes the key");
+        CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s2, &a),
+              "the scene's content hash changes the key");
         s2.content_hash = s.content_hash;
         gib_camera cam2 = s.cameras[0];
         cam2.vfov_deg += 1.0f;
         s2.cameras = &cam2;
-        RT_CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s2, &a),
-                 "the camera changes the key");
-        RT_CHECK(gib_component_deterministic(&s, GIB_COMP_DIRECT) &&
-                     gib_component_deterministic(&s, GIB_COMP_GLOSSY) &&
-                     !gib_component_deterministic(&s, GIB_COMP_INDIRECT),
-                 "deterministic: direct and (no specular) glossy, not indirect");
+        CHECK(gib_reference_cache_key(&s, &a) != gib_reference_cache_key(&s2, &a),
+              "the camera changes the key");
+        CHECK(gib_component_deterministic(&s, GIB_COMP_DIRECT) &&
+                  gib_component_deterministic(&s, GIB_COMP_GLOSSY) &&
+                  !gib_component_deterministic(&s, GIB_COMP_INDIRECT),
+              "deterministic: direct and (no specular) glossy, not indirect");
     }
 
     /* parameter errors name the parameter */
@@ -162,8 +162,8 @@ int main(void)
     for (int i = 0; i < 7; i++) {
         gib_error err = {0};
         int rc = gib_reference_render(&s, &bad[i].p, &img, NULL, NULL, &err);
-        RT_CHECK(rc < 0 && strstr(err.msg, bad[i].needle), "bad %s: rc %d, message '%s'",
-                 bad[i].needle, rc, err.msg);
+        CHECK(rc < 0 && strstr(err.msg, bad[i].needle), "bad %s: rc %d, message '%s'",
+              bad[i].needle, rc, err.msg);
     }
 
     /* a triangle indexing a vertex that does not exist is refused, not traced */
@@ -174,12 +174,12 @@ int main(void)
         gib_error err = {0};
         gib_ref_params q = rt_params(GIB_COMP_AO, 8, 8, 2);
         int rc = gib_reference_render(&s, &q, &img, NULL, NULL, &err);
-        RT_CHECK(rc < 0 && strstr(err.msg, "vertex 99"), "bad index: rc %d, message '%s'", rc,
-                 err.msg);
+        CHECK(rc < 0 && strstr(err.msg, "vertex 99"), "bad index: rc %d, message '%s'", rc,
+              err.msg);
         printf("bad index refused: %s\n", err.msg);
     }
     rt_scene_free(&s);
     printf("names, attributes, parameter errors and the empty scene: %s\n",
-           rt_failures ? "FAILED" : "ok");
-    return rt_failures ? 1 : 0;
+           failures ? "FAILED" : "ok");
+    return failures ? 1 : 0;
 }

@@ -5,6 +5,7 @@
  * one that can change a pixel on its way to the file, as a writer that corrupts a chunk would.
  * Usage: ref_cache_verify WORKDIR. */
 #include "harness/app/app.h"
+#include "tests/common/check.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,15 +13,6 @@
 #include <sys/stat.h>
 
 static int failures;
-#define CHECK(cond, ...)                                                                           \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                            \
-            printf(__VA_ARGS__);                                                                   \
-            printf("\n");                                                                          \
-            failures++;                                                                            \
-        }                                                                                          \
-    } while (0)
 
 static int corrupt_writes; /* 1: the next writes change pixel 0 */
 
@@ -56,7 +48,7 @@ int main(int argc, char **argv)
     gib_scene scene;
     gib_error err;
     if (gib_scene_load("cornell", &scene, &err) < 0) {
-        printf("FAIL: cannot load cornell: %s\n", err.msg);
+        CHECK(0, "cannot load cornell: %s", err.msg);
         return 1;
     }
     gib_ref_request rq = {.scene = &scene, .width = 16, .height = 12, .component = GIB_COMP_AO,

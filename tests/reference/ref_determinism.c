@@ -54,13 +54,13 @@ static void test_threads(const gib_scene *s)
                 base_st = st;
                 continue;
             }
-            RT_CHECK(same(&img, &base), "%s: %d threads: image differs from 1",
-                     gib_component_name(comp), threads[i]);
-            RT_CHECK(same(&sd, &base_sd), "%s: %d threads: stderr differs from 1",
-                     gib_component_name(comp), threads[i]);
-            RT_CHECK(st.mean == base_st.mean && st.noise_rmse == base_st.noise_rmse &&
-                         st.rays == base_st.rays,
-                     "%s: %d threads: statistics differ", gib_component_name(comp), threads[i]);
+            CHECK(same(&img, &base), "%s: %d threads: image differs from 1",
+                  gib_component_name(comp), threads[i]);
+            CHECK(same(&sd, &base_sd), "%s: %d threads: stderr differs from 1",
+                  gib_component_name(comp), threads[i]);
+            CHECK(st.mean == base_st.mean && st.noise_rmse == base_st.noise_rmse &&
+                      st.rays == base_st.rays,
+                  "%s: %d threads: statistics differ", gib_component_name(comp), threads[i]);
             gib_image_free(&img);
             gib_image_free(&sd);
         }
@@ -68,8 +68,8 @@ static void test_threads(const gib_scene *s)
             gib_image img;
             p.seed = 2;
             rt_render(s, &p, &img, NULL, NULL);
-            RT_CHECK(!same(&img, &base), "%s: seed 2 gives the seed-1 image",
-                     gib_component_name(comp));
+            CHECK(!same(&img, &base), "%s: seed 2 gives the seed-1 image",
+                  gib_component_name(comp));
             gib_image_free(&img);
         }
         printf("%-8s threads 1, 2, 3, 7 bit-identical (image, stderr, stats); mean %.6f "
@@ -117,22 +117,22 @@ static void test_target(const gib_scene *s, int comp, double target, int max_spp
     rt_render(s, &p, &img, &sd, &st);
     double rel = st.noise_rmse / st.mean;
     if (reach) {
-        RT_CHECK(st.target_reached && rel <= target && st.rounds > 1 && st.spp <= max_spp,
-                 "%s: target %.3g: reached %d, noise/mean %.4g, %d rounds, %d spp",
-                 gib_component_name(comp), target, st.target_reached, rel, st.rounds, st.spp);
+        CHECK(st.target_reached && rel <= target && st.rounds > 1 && st.spp <= max_spp,
+              "%s: target %.3g: reached %d, noise/mean %.4g, %d rounds, %d spp",
+              gib_component_name(comp), target, st.target_reached, rel, st.rounds, st.spp);
     } else {
-        RT_CHECK(!st.target_reached && st.spp == max_spp && rel > target,
-                 "%s: unreachable target %.3g: reached %d, %d spp (max %d)",
-                 gib_component_name(comp), target, st.target_reached, st.spp, max_spp);
+        CHECK(!st.target_reached && st.spp == max_spp && rel > target,
+              "%s: unreachable target %.3g: reached %d, %d spp (max %d)",
+              gib_component_name(comp), target, st.target_reached, st.spp, max_spp);
     }
     /* the header says why sampling stopped */
     gib_kv kv[GIB_REF_ATTR_COUNT];
     const char *stop = header_stop(s, &p, &st, kv);
-    RT_CHECK(!strcmp(stop, reach ? "target" : "max_spp"), "%s: header stop '%s', want %s",
-             gib_component_name(comp), stop, reach ? "target" : "max_spp");
-    RT_CHECK(same_as_plain(s, comp, &img, &sd, &st),
-             "%s: the %d-round run (%d spp) differs from a plain %d spp render",
-             gib_component_name(comp), st.rounds, st.spp, st.spp);
+    CHECK(!strcmp(stop, reach ? "target" : "max_spp"), "%s: header stop '%s', want %s",
+          gib_component_name(comp), stop, reach ? "target" : "max_spp");
+    CHECK(same_as_plain(s, comp, &img, &sd, &st),
+          "%s: the %d-round run (%d spp) differs from a plain %d spp render",
+          gib_component_name(comp), st.rounds, st.spp, st.spp);
     printf("%-8s target %.3g%s: %d rounds, %d spp, noise/mean %.4f, %s; bit-identical to a "
            "plain %d spp render\n",
            gib_component_name(comp), target, reach ? "" : " (max_spp too low)", st.rounds,
@@ -155,15 +155,15 @@ static void test_interrupt(const gib_scene *s)
     gib_image img, sd;
     gib_ref_stats st;
     rt_render(s, &p, &img, &sd, &st);
-    RT_CHECK(st.interrupted && !st.target_reached && st.rounds == 1 && st.spp == 4 &&
-                 atomic_load(&stop.rounds_done) == 1,
-             "interrupt: interrupted %d, reached %d, %d rounds, %d spp, rounds_done %d",
-             st.interrupted, st.target_reached, st.rounds, st.spp, atomic_load(&stop.rounds_done));
+    CHECK(st.interrupted && !st.target_reached && st.rounds == 1 && st.spp == 4 &&
+              atomic_load(&stop.rounds_done) == 1,
+          "interrupt: interrupted %d, reached %d, %d rounds, %d spp, rounds_done %d",
+          st.interrupted, st.target_reached, st.rounds, st.spp, atomic_load(&stop.rounds_done));
     gib_kv kv[GIB_REF_ATTR_COUNT];
     const char *why = header_stop(s, &p, &st, kv);
-    RT_CHECK(!strcmp(why, "interrupted"), "interrupt: header stop '%s'", why);
-    RT_CHECK(same_as_plain(s, GIB_COMP_FULL, &img, &sd, &st),
-             "interrupt: the round kept differs from a plain 4 spp render");
+    CHECK(!strcmp(why, "interrupted"), "interrupt: header stop '%s'", why);
+    CHECK(same_as_plain(s, GIB_COMP_FULL, &img, &sd, &st),
+          "interrupt: the round kept differs from a plain 4 spp render");
     printf("interrupted before round 1 ended: 1 round, 4 spp, bit-identical to a plain render\n");
     gib_image_free(&img);
     gib_image_free(&sd);
@@ -194,16 +194,16 @@ static void test_interrupt_mid_round(const gib_scene *s)
     atomic_init(&stop.rounds_done, 0);
     p.interrupt = &stop;
     pthread_t th;
-    RT_CHECK(pthread_create(&th, NULL, interrupt_after_round_1, &stop) == 0, "pthread_create");
+    CHECK(pthread_create(&th, NULL, interrupt_after_round_1, &stop) == 0, "pthread_create");
     gib_image img, sd;
     gib_ref_stats st;
     rt_render(s, &p, &img, &sd, &st);
     pthread_join(th, NULL);
-    RT_CHECK(st.interrupted && ((st.spp == 4 && st.rounds == 1) || (st.spp == 16 && st.rounds == 2)),
-             "interrupt in round 2: interrupted %d, %d rounds, %d spp (want 1 round of 4 or 2 "
-             "rounds, 16)", st.interrupted, st.rounds, st.spp);
-    RT_CHECK(same_as_plain(s, GIB_COMP_FULL, &img, &sd, &st),
-             "interrupt in round 2: the %d spp kept differ from a plain render", st.spp);
+    CHECK(st.interrupted && ((st.spp == 4 && st.rounds == 1) || (st.spp == 16 && st.rounds == 2)),
+          "interrupt in round 2: interrupted %d, %d rounds, %d spp (want 1 round of 4 or 2 "
+          "rounds, 16)", st.interrupted, st.rounds, st.spp);
+    CHECK(same_as_plain(s, GIB_COMP_FULL, &img, &sd, &st),
+          "interrupt in round 2: the %d spp kept differ from a plain render", st.spp);
     printf("interrupted in round 2: %s, %d spp kept, bit-identical to a plain render\n",
            st.rounds == 1 ? "round 2 abandoned" : "round 2 had finished", st.spp);
     gib_image_free(&img);
@@ -223,9 +223,9 @@ int main(void)
     /* the same scene under a sky: direct is random then, and every estimator samples the sky */
     printf("with a sky:\n");
     rt_sky(&s, 0.3f, 0.35f, 0.4f);
-    RT_CHECK(!gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct with a sky is random");
+    CHECK(!gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct with a sky is random");
     test_threads(&s);
     test_target(&s, GIB_COMP_DIRECT, 0.02, 4096, 1);
     rt_scene_free(&s);
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -54,9 +54,9 @@ int main(void)
             }
             checked++;
         }
-    RT_CHECK(checked == W * H, "every pixel should see the plane, %d did", checked);
-    RT_CHECK(worst <= 1e-4, "max relative error %.3g at pixel (%d, %d) exceeds 1e-4", worst, wx,
-             wy);
+    CHECK(checked == W * H, "every pixel should see the plane, %d did", checked);
+    CHECK(worst <= 1e-4, "max relative error %.3g at pixel (%d, %d) exceeds 1e-4", worst, wx,
+          wy);
     /* Three sample pixels for the log: expected vs measured. */
     const int probe[3][2] = {{16, 16}, {3, 5}, {29, 30}};
     for (int i = 0; i < 3; i++) {
@@ -73,16 +73,16 @@ int main(void)
            worst);
 
     size_t bytes = (size_t)W * H * 3 * sizeof(float);
-    RT_CHECK(memcmp(img.px, img4.px, bytes) == 0, "spp 4 differs from spp 1");
+    CHECK(memcmp(img.px, img4.px, bytes) == 0, "spp 4 differs from spp 1");
     int sd_zero = 1;
     for (int i = 0; i < W * H * 3; i++)
         sd_zero &= sd.px[i] == 0.0f && sd4.px[i] == 0.0f;
-    RT_CHECK(sd_zero, "a deterministic estimator must have zero standard error");
-    RT_CHECK(st.noise_rmse == 0.0 && st4.noise_rmse == 0.0, "noise_rmse %g / %g, expected 0",
-             st.noise_rmse, st4.noise_rmse);
-    RT_CHECK(st.rays == 2LL * W * H, "rays %lld, expected %d", st.rays, 2 * W * H);
-    RT_CHECK(st4.rays == 2LL * W * H && st4.spp == 1 && st4.deterministic,
-             "spp 4: rays %lld (expected %d), spp %d (expected 1)", st4.rays, 2 * W * H, st4.spp);
+    CHECK(sd_zero, "a deterministic estimator must have zero standard error");
+    CHECK(st.noise_rmse == 0.0 && st4.noise_rmse == 0.0, "noise_rmse %g / %g, expected 0",
+          st.noise_rmse, st4.noise_rmse);
+    CHECK(st.rays == 2LL * W * H, "rays %lld, expected %d", st.rays, 2 * W * H);
+    CHECK(st4.rays == 2LL * W * H && st4.spp == 1 && st4.deterministic,
+          "spp 4: rays %lld (expected %d), spp %d (expected 1)", st4.rays, 2 * W * H, st4.spp);
     printf("stats: mean %.6f noise_rmse %g rays %lld (spp 4: %lld)\n", st.mean, st.noise_rmse,
            st.rays, st4.rays);
 
@@ -91,5 +91,5 @@ int main(void)
     gib_image_free(&img4);
     gib_image_free(&sd4);
     rt_scene_free(&s);
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

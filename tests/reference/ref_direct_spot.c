@@ -68,15 +68,15 @@ int main(void)
                     outside_bad++;
             }
         }
-    RT_CHECK(inside > 50 && outside > 50, "test geometry: %d pixels inside, %d outside", inside,
-             outside);
-    RT_CHECK(worst <= 1e-4, "inside the cone: max relative error %.3g exceeds 1e-4", worst);
-    RT_CHECK(outside_bad == 0, "%d pixels outside the cone are not exactly 0", outside_bad);
+    CHECK(inside > 50 && outside > 50, "test geometry: %d pixels inside, %d outside", inside,
+          outside);
+    CHECK(worst <= 1e-4, "inside the cone: max relative error %.3g exceeds 1e-4", worst);
+    CHECK(outside_bad == 0, "%d pixels outside the cone are not exactly 0", outside_bad);
 
     double ratio = (v_off / g_off) / (v_axis / g_axis);
     double expect_ratio = pow(c_off, e) / pow(c_axis, e);
-    RT_CHECK(fabs(ratio - expect_ratio) <= 1e-4 * expect_ratio,
-             "falloff ratio %.7f, expected cos^e ratio %.7f", ratio, expect_ratio);
+    CHECK(fabs(ratio - expect_ratio) <= 1e-4 * expect_ratio,
+          "falloff ratio %.7f, expected cos^e ratio %.7f", ratio, expect_ratio);
     printf("inside: %d pixels, max relative error %.3g (tolerance 1e-4); outside: %d pixels, all "
            "exactly 0\n",
            inside, worst, outside);
@@ -86,5 +86,5 @@ int main(void)
 
     gib_image_free(&img);
     rt_scene_free(&s);
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -38,9 +38,9 @@ static void test_sampler(void)
         float out[4];
         ref_tex_sample(&t, cases[i].u, cases[i].v, out);
         for (int c = 0; c < 4; c++)
-            RT_CHECK(fabsf(out[c] - cases[i].expect[c]) <= 1e-6f,
-                     "sampler %s: channel %d = %g, expected %g", cases[i].why, c, out[c],
-                     cases[i].expect[c]);
+            CHECK(fabsf(out[c] - cases[i].expect[c]) <= 1e-6f,
+                  "sampler %s: channel %d = %g, expected %g", cases[i].why, c, out[c],
+                  cases[i].expect[c]);
     }
     printf("sampler: %u bilinear/wrap cases exact to 1e-6\n",
            (unsigned)(sizeof cases / sizeof cases[0]));
@@ -142,7 +142,7 @@ int main(void)
     s.materials[m].albedo_tex = rt_texture(&s, 1, 1, tex);
     g_albedo[0] = 0.8 * 0.5, g_albedo[1] = 0.8 * 0.25, g_albedo[2] = 0.8;
     worst = rt_check_floor(&s, expect_diffuse, 0.0, &zb);
-    RT_CHECK(worst <= 1e-4, "albedo texture: max relative error %.3g", worst);
+    CHECK(worst <= 1e-4, "albedo texture: max relative error %.3g", worst);
     printf("albedo texture: max relative error %.3g vs albedo*texel/pi E cos (tol 1e-4)\n", worst);
     rt_scene_free(&s);
 
@@ -162,8 +162,8 @@ int main(void)
          * shadows those within 0.8 of (-0.3, 0.2), the light's mirror image through its centre
          * (light at height 2, occluder at 1): skip |x|, |z| < 1.3. */
         worst = rt_check_floor(&s, expect_diffuse, opaque ? 1.3 : 0.0, &zb);
-        RT_CHECK(worst <= 1e-4, "mask %s: max relative error %.3g", opaque ? "opaque" : "clear",
-                 worst);
+        CHECK(worst <= 1e-4, "mask %s: max relative error %.3g", opaque ? "opaque" : "clear",
+              worst);
         /* Floor points in the occluder's shadow (within 0.8 of (-0.3, 0.2), 0.05 margin) but not
          * hidden by it (beyond 0.54 + 0.05) are exactly 0 when opaque, lit when clear. */
         gib_ref_params p = rt_params(GIB_COMP_DIRECT, 32, 32, 1);
@@ -180,9 +180,9 @@ int main(void)
                     dark += img.px[(y * 32 + x) * 3] == 0.0f;
                 }
             }
-        RT_CHECK(in_shadow >= 10, "test geometry: %d pixels in the visible shadow", in_shadow);
-        RT_CHECK(dark == (opaque ? in_shadow : 0), "mask %s: %d of %d shadow pixels are 0",
-                 opaque ? "opaque" : "clear", dark, in_shadow);
+        CHECK(in_shadow >= 10, "test geometry: %d pixels in the visible shadow", in_shadow);
+        CHECK(dark == (opaque ? in_shadow : 0), "mask %s: %d of %d shadow pixels are 0",
+              opaque ? "opaque" : "clear", dark, in_shadow);
         gib_image_free(&img);
         printf("alpha mask %s: %d of %d pixels in the occluder's shadow exactly 0\n",
                opaque ? "opaque" : "clear", dark, in_shadow);
@@ -202,7 +202,7 @@ int main(void)
     g_spec = 0.5;
     g_n = 20.0;
     worst = rt_check_floor(&s, expect_phong, 0.0, &zb);
-    RT_CHECK(worst <= 2e-4, "phong: max relative error %.3g", worst);
+    CHECK(worst <= 2e-4, "phong: max relative error %.3g", worst);
     printf("phong n=20: max relative error %.3g vs analytic BRDF (tol 2e-4)\n", worst);
 
     /* 5. Mirror: its delta lobe cannot see a delta light, so only rho_d is lit; with rho_d = 0
@@ -210,11 +210,11 @@ int main(void)
     s.materials[m].spec_type = GIB_SPEC_MIRROR;
     g_albedo[0] = g_albedo[1] = g_albedo[2] = 0.3;
     worst = rt_check_floor(&s, expect_diffuse, 0.0, &zb);
-    RT_CHECK(worst <= 1e-4, "mirror: max relative error %.3g", worst);
+    CHECK(worst <= 1e-4, "mirror: max relative error %.3g", worst);
     s.materials[m].albedo[0] = s.materials[m].albedo[1] = s.materials[m].albedo[2] = 0.0f;
     g_albedo[0] = g_albedo[1] = g_albedo[2] = 0.0;
     rt_check_floor(&s, expect_diffuse, 0.0, &zb);
-    RT_CHECK(zb == 0, "pure mirror: %d values are not exactly 0", zb);
+    CHECK(zb == 0, "pure mirror: %d values are not exactly 0", zb);
     printf("mirror: diffuse part only (max rel. error %.3g), pure mirror exactly 0\n", worst);
     rt_scene_free(&s);
 
@@ -251,12 +251,12 @@ int main(void)
                 w2 = rel > w2 ? rel : w2;
             }
         if (!two) {
-            RT_CHECK(nonzero == 0, "one-sided back: %d pixels are not 0", nonzero);
-            RT_CHECK(ones == 0, "one-sided back: %d ao pixels are not 0", ones);
+            CHECK(nonzero == 0, "one-sided back: %d pixels are not 0", nonzero);
+            CHECK(ones == 0, "one-sided back: %d ao pixels are not 0", ones);
             printf("one-sided seen from behind: direct and ao exactly 0 at all 1024 pixels\n");
         } else {
-            RT_CHECK(w2 <= 1e-4, "two-sided back: max relative error %.3g", w2);
-            RT_CHECK(ones == 32 * 32, "two-sided back: only %d ao pixels are 1", ones);
+            CHECK(w2 <= 1e-4, "two-sided back: max relative error %.3g", w2);
+            CHECK(ones == 32 * 32, "two-sided back: only %d ao pixels are 1", ones);
             printf("two-sided seen from behind: max relative error %.3g (tol 1e-4), ao 1 "
                    "everywhere\n",
                    w2);
@@ -265,5 +265,5 @@ int main(void)
         gib_image_free(&ao);
         rt_scene_free(&s);
     }
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -86,8 +86,8 @@ static void test_unscrambled(void)
         ref_sobol2(i, &x0, &x1);
         same &= x1 == sobol1_by_directions(i) && x0 == ref_reverse_bits(i);
     }
-    RT_CHECK(same, "sobol dimension 1: the shift-and-mask transform differs from the direction "
-                   "numbers' xor");
+    CHECK(same, "sobol dimension 1: the shift-and-mask transform differs from the direction "
+                "numbers' xor");
     enum { M = 12 };
     static uint32_t pts[1 << M][2];
     for (int m = 0; m <= M; m++)
@@ -95,9 +95,9 @@ static void test_unscrambled(void)
             uint32_t first = block << m;
             for (uint32_t k = 0; k < (1u << m); k++)
                 ref_sobol2(first + k, &pts[k][0], &pts[k][1]);
-            RT_CHECK(is_net((const uint32_t(*)[2])pts, m),
-                     "sobol: indices %u .. %u are not a (0,%d,2)-net", first, first + (1u << m) - 1,
-                     m);
+            CHECK(is_net((const uint32_t(*)[2])pts, m),
+                  "sobol: indices %u .. %u are not a (0,%d,2)-net", first, first + (1u << m) - 1,
+                  m);
         }
     printf("unscrambled Sobol dimensions 0 and 1: aligned blocks of 2^0 .. 2^%d are (0,m,2)-nets\n",
            M);
@@ -117,8 +117,8 @@ static void test_renderer_sets(void)
                         ref_rng r;
                         ref_rng_seed_sample(&r, GIB_REF_SAMPLER_SOBOL, 1000 + pix * 77,
                                             (uint64_t)k * B + (uint64_t)batch, 1, GIB_COMP_FULL);
-                        RT_CHECK(r.index == (uint32_t)k, "sample %d of batch %d has index %u",
-                                 k * B + batch, batch, r.index);
+                        CHECK(r.index == (uint32_t)k, "sample %d of batch %d has index %u",
+                              k * B + batch, batch, r.index);
                         for (uint32_t s = 0; s < set; s++)
                             (void)ref_rng_1d(&r); /* sets before this one */
                         float u1, u2;
@@ -134,10 +134,10 @@ static void test_renderer_sets(void)
                         one[k][0] = (uint32_t)(ref_rng_1d(&r) * 0x1p24f) << 8;
                         one[k][1] = 0;
                     }
-                    RT_CHECK(is_net((const uint32_t(*)[2])pts, m),
-                             "pixel %llu batch %d set %u: the first 2^%d samples are not a "
-                             "(0,%d,2)-net",
-                             (unsigned long long)pix, batch, set, m, m);
+                    CHECK(is_net((const uint32_t(*)[2])pts, m),
+                          "pixel %llu batch %d set %u: the first 2^%d samples are not a "
+                          "(0,%d,2)-net",
+                          (unsigned long long)pix, batch, set, m, m);
                     /* 1D: 2^m intervals of [0,1), one point each (a 2D net's first coordinate) */
                     int ok = 1;
                     char *seen = calloc((size_t)1 << m, 1);
@@ -147,8 +147,8 @@ static void test_renderer_sets(void)
                         seen[a] = 1;
                     }
                     free(seen);
-                    RT_CHECK(ok, "pixel %llu batch %d set %u: 1D numbers of 2^%d samples not "
-                                 "stratified", (unsigned long long)pix, batch, set, m);
+                    CHECK(ok, "pixel %llu batch %d set %u: 1D numbers of 2^%d samples not "
+                              "stratified", (unsigned long long)pix, batch, set, m);
                     checked++;
                 }
     printf("renderer's Sobol sets: %d prefixes of 2^1 .. 2^%d batch samples are (0,m,2)-nets, "
@@ -178,8 +178,8 @@ static void test_discrepancy(void)
     }
     printf("2D star discrepancy of %d points, mean of %d pixels: sobol %.4f, random %.4f\n", N,
            PIXELS, ds, dr);
-    RT_CHECK(ds * 2.0 < dr, "sobol's star discrepancy %.4f is not below half of random's %.4f", ds,
-             dr);
+    CHECK(ds * 2.0 < dr, "sobol's star discrepancy %.4f is not below half of random's %.4f", ds,
+          dr);
 }
 
 static void test_determinism(void)
@@ -191,7 +191,7 @@ static void test_determinism(void)
     for (int s = 0; s < 20; s++) {
         ref_rng_2d(&a, &x1, &y1);
         ref_rng_2d(&b, &x2, &y2);
-        RT_CHECK(x1 == x2 && y1 == y2, "set %d: the same sample gives other numbers", s);
+        CHECK(x1 == x2 && y1 == y2, "set %d: the same sample gives other numbers", s);
     }
     const uint64_t other[3][3] = {{43, 13, 1}, {42, 13, 2}, {42, 14, 1}}; /* pixel, sample, seed */
     ref_rng_seed_sample(&a, GIB_REF_SAMPLER_SOBOL, 42, 13, 1, GIB_COMP_AO);
@@ -200,7 +200,7 @@ static void test_determinism(void)
         ref_rng_seed_sample(&b, GIB_REF_SAMPLER_SOBOL, other[i][0], other[i][1], other[i][2],
                             GIB_COMP_AO);
         ref_rng_2d(&b, &x2, &y2);
-        RT_CHECK(x1 != x2 || y1 != y2, "pixel/sample/seed change %d gives the same numbers", i);
+        CHECK(x1 != x2 || y1 != y2, "pixel/sample/seed change %d gives the same numbers", i);
     }
     printf("numbers depend on (pixel, sample, set, seed) and nothing else\n");
 }
@@ -211,5 +211,5 @@ int main(void)
     test_renderer_sets();
     test_discrepancy();
     test_determinism();
-    return rt_failures != 0;
+    return failures != 0;
 }

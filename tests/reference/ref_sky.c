@@ -100,9 +100,9 @@ static void test_plane(void)
                     bad += img.px[(y * W + x) * 3 + c] != want || sd.px[(y * W + x) * 3 + c] != 0;
                 }
             }
-        RT_CHECK(hits > 100 && hits < W * H - 100, "test geometry: %d plane pixels", hits);
-        RT_CHECK(bad == 0, "open plane, %s: %d values differ from the exact answer",
-                 gib_component_name(comp), bad);
+        CHECK(hits > 100 && hits < W * H - 100, "test geometry: %d plane pixels", hits);
+        CHECK(bad == 0, "open plane, %s: %d values differ from the exact answer",
+              gib_component_name(comp), bad);
         printf("open plane, %-8s: %d plane pixels exactly %s, stderr 0; %d sky pixels exactly "
                "0%s\n",
                gib_component_name(comp), hits,
@@ -168,12 +168,12 @@ static void test_plane(void)
             double z = dsum / sqrt(var);
             worst_sum = fabs(z) > fabs(worst_sum) ? z : worst_sum;
         }
-        RT_CHECK(fabs(worst_sum) <= 3.0, "Phong plane: image-wide deviation %.2f sigma (max 3)",
-                 worst_sum);
-        RT_CHECK(worst_px <= px_max, "Phong plane, %s: a pixel deviates %.2f sigma (max %.0f)",
-                 sobol ? "sobol" : "random", worst_px, px_max);
-        RT_CHECK(st.noise_rmse > 0.0 && st.spp == spp, "Phong plane: noise %g, spp %d",
-                 st.noise_rmse, st.spp);
+        CHECK(fabs(worst_sum) <= 3.0, "Phong plane: image-wide deviation %.2f sigma (max 3)",
+              worst_sum);
+        CHECK(worst_px <= px_max, "Phong plane, %s: a pixel deviates %.2f sigma (max %.0f)",
+              sobol ? "sobol" : "random", worst_px, px_max);
+        CHECK(st.noise_rmse > 0.0 && st.spp == spp, "Phong plane: noise %g, spp %d",
+              st.noise_rmse, st.spp);
         printf("Phong plane (rho_d 0.3, rho_s 0.4, n 20), direct, %d spp, %d pixels: red mean "
                "expected %.6f measured %.6f (lobe albedo A %.4f .. %.4f); image-wide deviation "
                "%.2f sigma (max 3, worst channel), worst pixel %.2f sigma (max %.0f); noise_rmse %.2g (%s)\n",
@@ -223,7 +223,7 @@ static void test_wall_component(const gib_scene *s, int comp, const char *what, 
                 if (x == W / 2 && y == H / 2)
                     cexp = expect, cgot = got, cse = se;
             }
-        RT_CHECK(z.n == W * H, "test geometry: %d of %d pixels on the floor", z.n, W * H);
+        CHECK(z.n == W * H, "test geometry: %d of %d pixels on the floor", z.n, W * H);
         char name[160];
         snprintf(name, sizeof name, "%s, %s", what, sobol ? "sobol" : "random");
         rt_zstats_check(&z, name);
@@ -276,31 +276,31 @@ static void test_api(void)
     rt_camera(&s, eye, tgt, up, 45.0f);
     gib_ref_params p = rt_params(GIB_COMP_DIRECT, 8, 8, 1);
     uint64_t key0 = gib_reference_cache_key(&s, &p);
-    RT_CHECK(gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct without sky: exact");
+    CHECK(gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct without sky: exact");
     rt_sky(&s, 0.2f, 0.22f, 0.25f);
-    RT_CHECK(!gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct with a sky is random");
+    CHECK(!gib_component_deterministic(&s, GIB_COMP_DIRECT), "direct with a sky is random");
     gib_image img;
     gib_error err = {0};
     int rc = gib_reference_render(&s, &p, &img, NULL, NULL, &err);
-    RT_CHECK(rc < 0 && strstr(err.msg, "at least 2"), "direct with a sky at 1 spp: rc %d '%s'", rc,
-             err.msg);
+    CHECK(rc < 0 && strstr(err.msg, "at least 2"), "direct with a sky at 1 spp: rc %d '%s'", rc,
+          err.msg);
     p.spp = 2;
     uint64_t key1 = gib_reference_cache_key(&s, &p);
     s.sky[2] = 0.3f;
     uint64_t key2 = gib_reference_cache_key(&s, &p);
-    RT_CHECK(key0 != key1 && key1 != key2, "the sky must change the cache key");
+    CHECK(key0 != key1 && key1 != key2, "the sky must change the cache key");
     gib_ref_params f = rt_params(GIB_COMP_FULL, 8, 8, 2), h = rt_params(GIB_COMP_HIGHER, 8, 8, 2);
     f.max_depth = h.max_depth = 1;
     gib_ref_stats st;
     gib_ref_stats sh;
     gib_image hi;
     rt_render(&s, &h, &hi, NULL, &sh);
-    RT_CHECK(sh.deterministic && sh.spp == 1 && sh.mean == 0.0,
-             "higher, max_depth 1, with a sky: deterministic 0 (got det %d spp %d mean %g)",
-             sh.deterministic, sh.spp, sh.mean);
+    CHECK(sh.deterministic && sh.spp == 1 && sh.mean == 0.0,
+          "higher, max_depth 1, with a sky: deterministic 0 (got det %d spp %d mean %g)",
+          sh.deterministic, sh.spp, sh.mean);
     gib_image_free(&hi);
     rt_render(&s, &f, &img, NULL, &st);
-    RT_CHECK(!st.deterministic && st.spp == 2, "full, max_depth 1, with a sky: random");
+    CHECK(!st.deterministic && st.spp == 2, "full, max_depth 1, with a sky: random");
     gib_kv kv[GIB_REF_ATTR_COUNT];
     int n = gib_reference_attrs(&s, &p, &st, kv, GIB_REF_ATTR_COUNT);
     const char *sky = NULL, *est = NULL;
@@ -310,9 +310,9 @@ static void test_api(void)
         if (!strcmp(kv[i].key, "estimator"))
             est = kv[i].value;
     }
-    RT_CHECK(sky && !strcmp(sky, "0.200000003 0.219999999 0.300000012"), "sky attribute '%s'",
-             sky ? sky : "(missing)");
-    RT_CHECK(est && !strcmp(est, "random"), "estimator attribute '%s'", est ? est : "(missing)");
+    CHECK(sky && !strcmp(sky, "0.200000003 0.219999999 0.300000012"), "sky attribute '%s'",
+          sky ? sky : "(missing)");
+    CHECK(est && !strcmp(est, "random"), "estimator attribute '%s'", est ? est : "(missing)");
     printf("interface: direct with a sky random (spp 1 refused: %s); full depth 1 random, higher "
            "depth 1 deterministic 0; the sky changes the cache key; header sky = '%s'\n",
            err.msg, sky ? sky : "");
@@ -325,5 +325,5 @@ int main(void)
     test_plane();
     test_wall();
     test_api();
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -220,11 +220,11 @@ static void rt_spot_sphere(void)
     rt_render(&s, &p, &img, &sd, &st);
     result r = rt_compare(&img, &sd, expect, 1.0 - allow, 1.0 + allow);
     double dev = fmax(0.0, fabs(r.mean - expect) - allow * expect);
-    RT_CHECK(dev <= 3.0 * r.se_mean, "spot, textured, full: mean %.6f is %.2f standard errors "
-             "(%.3g) outside %.6f +- %.1e relative", r.mean, dev / r.se_mean, r.se_mean, expect,
-             allow);
-    RT_CHECK(r.worst_z <= 4.0, "spot, textured, full: a 4x4 block lies %.2f standard errors "
-             "outside the allowance", r.worst_z);
+    CHECK(dev <= 3.0 * r.se_mean, "spot, textured, full: mean %.6f is %.2f standard errors "
+          "(%.3g) outside %.6f +- %.1e relative", r.mean, dev / r.se_mean, r.se_mean, expect,
+          allow);
+    CHECK(r.worst_z <= 4.0, "spot, textured, full: a 4x4 block lies %.2f standard errors "
+          "outside the allowance", r.worst_z);
     printf("spot, textured (a = %.6f), full, unlit wall: expected %.6f (+-%.0e relative for the "
            "tessellation), measured mean %.6f, stderr of the mean %.2g (%.2f sigma outside, max "
            "3); worst 4x4 block %.2f sigma (max 4); %d spp, max_depth %d, %lld rays\n",
@@ -262,8 +262,8 @@ int main(void)
         r.mean += v / (W * H);
         r.worst_z += v < direct * (lo - 1e-5) || v > direct * (hi + 1e-5);
     }
-    RT_CHECK(r.worst_z == 0.0, "direct: %g pixels lie outside [%.6f, %.6f] x %.6f", r.worst_z, lo,
-             hi, direct);
+    CHECK(r.worst_z == 0.0, "direct: %g pixels lie outside [%.6f, %.6f] x %.6f", r.worst_z, lo,
+          hi, direct);
     printf("direct:   expected %.6f (interval [%.6f, %.6f]), measured mean %.6f, stderr 0 "
            "(deterministic); all pixels inside: %s\n",
            direct, direct * lo, direct * hi, r.mean, r.worst_z == 0.0 ? "yes" : "NO");
@@ -282,11 +282,11 @@ int main(void)
         r = rt_compare(&img, &sd, cases[c].expect, lo, hi);
         double e = cases[c].expect;
         double dev = r.mean < e * lo ? e * lo - r.mean : r.mean > e * hi ? r.mean - e * hi : 0.0;
-        RT_CHECK(dev <= 3.0 * r.se_mean, "%s: mean %.6f is %.2f standard errors (%.3g) outside "
-                 "[%.6f, %.6f]", gib_component_name(cases[c].comp), r.mean, dev / r.se_mean,
-                 r.se_mean, e * lo, e * hi);
-        RT_CHECK(r.worst_z <= 4.0, "%s: a 4x4 block lies %.2f standard errors outside the interval",
-                 gib_component_name(cases[c].comp), r.worst_z);
+        CHECK(dev <= 3.0 * r.se_mean, "%s: mean %.6f is %.2f standard errors (%.3g) outside "
+              "[%.6f, %.6f]", gib_component_name(cases[c].comp), r.mean, dev / r.se_mean,
+              r.se_mean, e * lo, e * hi);
+        CHECK(r.worst_z <= 4.0, "%s: a 4x4 block lies %.2f standard errors outside the interval",
+              gib_component_name(cases[c].comp), r.worst_z);
         printf("%-8s: expected %.6f (interval [%.6f, %.6f]), measured mean %.6f, stderr of the "
                "mean %.2g (%.2f sigma outside the interval, max 3); worst 4x4 block %.2f sigma "
                "(max 4); %d spp%s\n",
@@ -309,10 +309,10 @@ int main(void)
         const double e = a * direct;
         r = rt_compare(&img, &sd, e, lo, hi);
         double dev = r.mean < e * lo ? e * lo - r.mean : r.mean > e * hi ? r.mean - e * hi : 0.0;
-        RT_CHECK(dev <= 3.0 * r.se_mean && r.worst_z <= 4.0, "indirect, cone %d of aperture %.0f: "
-                 "mean %.6f is %.2f standard errors outside [%.6f, %.6f], worst 4x4 block %.2f",
-                 p.cone - 1, (double)apertures[k], r.mean, dev / r.se_mean, e * lo, e * hi,
-                 r.worst_z);
+        CHECK(dev <= 3.0 * r.se_mean && r.worst_z <= 4.0, "indirect, cone %d of aperture %.0f: "
+              "mean %.6f is %.2f standard errors outside [%.6f, %.6f], worst 4x4 block %.2f",
+              p.cone - 1, (double)apertures[k], r.mean, dev / r.se_mean, e * lo, e * hi,
+              r.worst_z);
         printf("indirect, cone %d (aperture %.0f): measured mean %.6f (%.2f sigma outside the "
                "interval), worst block %.2f sigma\n", p.cone - 1, (double)apertures[k], r.mean,
                dev / r.se_mean, r.worst_z);
@@ -324,5 +324,5 @@ int main(void)
            direct, a * direct, direct / (1.0 - a));
     rt_scene_free(&s);
     rt_spot_sphere();
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -127,7 +127,7 @@ static void rt_add(const gib_scene *s, int comp, int spp, sums *acc, sums *acc2,
             }
             *mean += v / (3 * W * H);
         }
-    RT_CHECK(bad == 0, "%s: %d non-finite pixels", gib_component_name(comp), bad);
+    CHECK(bad == 0, "%s: %d non-finite pixels", gib_component_name(comp), bad);
     printf("  %-8s %5d spp: mean %.6f  noise_rmse %.3g  %.2f s\n", gib_component_name(comp),
            spp, *mean, st.noise_rmse, st.seconds);
     gib_image_free(&img);
@@ -181,7 +181,7 @@ static void rt_sum(int sky)
                &means[i]);
     rt_add(&s, GIB_COMP_FULL, 1024, full, NULL, &mfull);
     for (int i = 0; i < 5; i++)
-        RT_CHECK(means[i] > 0.0, "%s is 0: the scene lacks its paths", gib_component_name(comps[i]));
+        CHECK(means[i] > 0.0, "%s is 0: the scene lacks its paths", gib_component_name(comps[i]));
     double zm, zb, zm0, zb0;
     rt_diff(parts, full, &zm, &zb);
     rt_diff(nohigher, full, &zm0, &zb0);
@@ -193,10 +193,10 @@ static void rt_sum(int sky)
            sum, mfull, zm, zb);
     printf("negative control, higher left out: %.2f sigma, worst block %.2f sigma (must fail)\n",
            zm0, zb0);
-    RT_CHECK(fabs(zm) <= 3.0, "sum vs full: image means differ by %.2f standard errors", zm);
-    RT_CHECK(zb <= 4.0, "sum vs full: a 4x4 block differs by %.2f standard errors", zb);
-    RT_CHECK(fabs(zm0) > 3.0 || zb0 > 4.0, "without higher the sum still matches full: the check "
-             "cannot see a missing path class");
+    CHECK(fabs(zm) <= 3.0, "sum vs full: image means differ by %.2f standard errors", zm);
+    CHECK(zb <= 4.0, "sum vs full: a 4x4 block differs by %.2f standard errors", zb);
+    CHECK(fabs(zm0) > 3.0 || zb0 > 4.0, "without higher the sum still matches full: the check "
+          "cannot see a missing path class");
     free(parts);
     free(full);
     free(nohigher);
@@ -207,5 +207,5 @@ int main(void)
 {
     rt_sum(0);
     rt_sum(1);
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

@@ -3,8 +3,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "tests/common/check.h"
 
-int rt_failures = 0;
+
+int failures = 0;
 
 static void *rt_grow(void *p, size_t n, size_t size)
 {
@@ -180,7 +182,7 @@ void rt_render(const gib_scene *s, const gib_ref_params *p, gib_image *img, gib_
 {
     gib_error err = {0};
     if (gib_reference_render(s, p, img, sd, st, &err) < 0) {
-        fprintf(stderr, "FAIL: render of '%s' failed: %s\n", s->name, err.msg);
+        CHECK(0, "render of '%s' failed: %s", s->name, err.msg);
         exit(1);
     }
 }
@@ -276,16 +278,16 @@ void rt_zstats_add(rt_zstats *z, double got, double se, double expect, double va
 void rt_zstats_check(rt_zstats *z, const char *what)
 {
     z->zsum = z->dsum / sqrt(z->var_r);
-    RT_CHECK(fabs(z->zsum) <= 3.0, "%s: image-wide deviation %.2f standard errors (max 3)", what,
-             z->zsum);
-    RT_CHECK(z->worst_z <= 5.0, "%s: a pixel deviates %.2f analytic standard errors (max 5)",
-             what, z->worst_z);
+    CHECK(fabs(z->zsum) <= 3.0, "%s: image-wide deviation %.2f standard errors (max 3)", what,
+          z->zsum);
+    CHECK(z->worst_z <= 5.0, "%s: a pixel deviates %.2f analytic standard errors (max 5)",
+          what, z->worst_z);
     if (z->sobol)
-        RT_CHECK(z->var_r / z->var_a <= 1.05,
-                 "%s: sobol: renderer variance %.4g vs independent samples' %.4g (ratio must be "
-                 "at most 1.05)", what, z->var_r, z->var_a);
+        CHECK(z->var_r / z->var_a <= 1.05,
+              "%s: sobol: renderer variance %.4g vs independent samples' %.4g (ratio must be "
+              "at most 1.05)", what, z->var_r, z->var_a);
     else
-        RT_CHECK(fabs(z->var_r / z->var_a - 1.0) <= 0.05,
-                 "%s: renderer variance %.4g vs analytic %.4g (ratio must be within 5%%)", what,
-                 z->var_r, z->var_a);
+        CHECK(fabs(z->var_r / z->var_a - 1.0) <= 0.05,
+              "%s: renderer variance %.4g vs analytic %.4g (ratio must be within 5%%)", what,
+              z->var_r, z->var_a);
 }

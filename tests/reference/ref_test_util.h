@@ -6,18 +6,11 @@
 #include <stdio.h>
 
 #include "reference/reference.h"
+#include "tests/common/check.h"
 
-/* Test bookkeeping: a failed check prints and counts; main returns rt_failures != 0. */
-extern int rt_failures;
-#define RT_CHECK(cond, ...)                                                                        \
-    do {                                                                                           \
-        if (!(cond)) {                                                                             \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                   \
-            fprintf(stderr, __VA_ARGS__);                                                          \
-            fprintf(stderr, "\n");                                                                 \
-            rt_failures++;                                                                         \
-        }                                                                                          \
-    } while (0)
+/* Test bookkeeping: checks through tests/common/check.h (CHECK and the others), counted in
+ * `failures` (defined in ref_test_util.c); main returns failures != 0. */
+extern int failures;
 
 void rt_scene_init(gib_scene *s, const char *name);
 void rt_scene_free(gib_scene *s);

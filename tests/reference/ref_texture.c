@@ -10,6 +10,8 @@
 
 #include "reference/ref_internal.h"
 #include "ref_test_util.h"
+#include "tests/common/check.h"
+
 
 static int close_to(float a, float b, float tol)
 {
@@ -29,34 +31,34 @@ static void test_pyramid(void)
     t.rgba = rgba;
     ref_mip m;
     gib_error err;
-    RT_CHECK(ref_mip_build(&m, &t, &err) == 0, "pyramid build");
-    RT_CHECK(m.levels == 3 && m.w[1] == 2 && m.h[2] == 1, "4x4 gives 3 levels: %d", m.levels);
+    CHECK(ref_mip_build(&m, &t, &err) == 0, "pyramid build");
+    CHECK(m.levels == 3 && m.w[1] == 2 && m.h[2] == 1, "4x4 gives 3 levels: %d", m.levels);
     /* level 1 texel (0,0) averages texels 1, 2, 5, 6 (values i + 1): 3.5; level 2 the mean 8.5 */
-    RT_CHECK(close_to(m.lv[1][0], 3.5f, 1e-6f) && close_to(m.lv[1][4 * 3 + 3], 4.0f * 13.5f, 1e-5f),
-             "level 1: %g %g", m.lv[1][0], m.lv[1][15]);
-    RT_CHECK(close_to(m.lv[2][0], 8.5f, 1e-6f), "level 2: %g, expected 8.5", m.lv[2][0]);
+    CHECK(close_to(m.lv[1][0], 3.5f, 1e-6f) && close_to(m.lv[1][4 * 3 + 3], 4.0f * 13.5f, 1e-5f),
+          "level 1: %g %g", m.lv[1][0], m.lv[1][15]);
+    CHECK(close_to(m.lv[2][0], 8.5f, 1e-6f), "level 2: %g, expected 8.5", m.lv[2][0]);
 
     /* 2. Trilinear at LOD 0.5 on the centre of texel 0 (u = 1/8, v = 7/8 since t = 1 - v):
      * half level 0 there (exactly texel 0: 1) and half level 1 bilinear at that point (a quarter
      * texel from level-1 texel (0,0) toward both wrapped neighbours: 0.75^2 * 3.5 + 0.75 * 0.25 *
      * (5.5 + 11.5) + 0.25^2 * 13.5 = 6.0). duv gives rho = sqrt(2): du/dx = sqrt(2)/4. */
     float duv[4] = {sqrtf(2.0f) / 4.0f, 0.0f, 0.0f, 0.0f}, out[4];
-    RT_CHECK(close_to(ref_mip_lod(&m, duv), 0.5f, 1e-6f), "lod %g, expected 0.5",
-             ref_mip_lod(&m, duv));
+    CHECK(close_to(ref_mip_lod(&m, duv), 0.5f, 1e-6f), "lod %g, expected 0.5",
+          ref_mip_lod(&m, duv));
     ref_mip_sample(&m, 0.125f, 0.875f, duv, out);
     float l1 = 0.5625f * 3.5f + 0.1875f * (5.5f + 11.5f) + 0.0625f * 13.5f;
-    RT_CHECK(close_to(out[0], 0.5f * 1.0f + 0.5f * l1, 1e-5f), "trilinear %g, expected %g", out[0],
-             0.5f * 1.0f + 0.5f * l1);
+    CHECK(close_to(out[0], 0.5f * 1.0f + 0.5f * l1, 1e-5f), "trilinear %g, expected %g", out[0],
+          0.5f * 1.0f + 0.5f * l1);
     /* magnification (LOD < 0) and no derivatives: level 0 bilinear, the texel itself */
     duv[0] = 0.01f;
     ref_mip_sample(&m, 0.125f, 0.875f, duv, out);
-    RT_CHECK(close_to(out[0], 1.0f, 1e-6f), "magnified: %g, expected 1", out[0]);
+    CHECK(close_to(out[0], 1.0f, 1e-6f), "magnified: %g, expected 1", out[0]);
     ref_mip_sample(&m, 0.125f, 0.875f, NULL, out);
-    RT_CHECK(close_to(out[0], 1.0f, 1e-6f), "no derivatives: %g, expected 1", out[0]);
+    CHECK(close_to(out[0], 1.0f, 1e-6f), "no derivatives: %g, expected 1", out[0]);
     /* beyond the last level: the 1x1 level */
     duv[0] = 100.0f;
     ref_mip_sample(&m, 0.3f, 0.6f, duv, out);
-    RT_CHECK(close_to(out[0], 8.5f, 1e-5f), "LOD past the top: %g, expected 8.5", out[0]);
+    CHECK(close_to(out[0], 8.5f, 1e-5f), "LOD past the top: %g, expected 8.5", out[0]);
     ref_mip_free(&m);
 
     /* odd size: 3x3 -> one 1x1 level, the mean of all 9 */
@@ -66,9 +68,9 @@ static void test_pyramid(void)
             odd[4 * i + c] = (float)i;
     t.width = t.height = 3;
     t.rgba = odd;
-    RT_CHECK(ref_mip_build(&m, &t, &err) == 0 && m.levels == 2, "3x3 pyramid");
-    RT_CHECK(close_to(m.lv[1][0], 4.0f, 1e-6f), "3x3 top level %g, expected the mean 4",
-             m.lv[1][0]);
+    CHECK(ref_mip_build(&m, &t, &err) == 0 && m.levels == 2, "3x3 pyramid");
+    CHECK(close_to(m.lv[1][0], 4.0f, 1e-6f), "3x3 top level %g, expected the mean 4",
+          m.lv[1][0]);
     ref_mip_free(&m);
 
     /* 8-bit textures (every colour the decode of some k/255, as loaded from files) are kept as GL
@@ -77,14 +79,14 @@ static void test_pyramid(void)
     float bw[16] = {0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 1};
     t.width = t.height = 2;
     t.rgba = bw;
-    RT_CHECK(ref_mip_build(&m, &t, &err) == 0 && m.srgb8 && m.levels == 2, "8-bit texture kept "
-             "as sRGB8 (srgb8 %d, levels %d)", m.srgb8, m.levels);
+    CHECK(ref_mip_build(&m, &t, &err) == 0 && m.srgb8 && m.levels == 2, "8-bit texture kept "
+          "as sRGB8 (srgb8 %d, levels %d)", m.srgb8, m.levels);
     ref_mip_sample(&m, 0.75f, 0.75f, NULL, out); /* texel (1, 0): white, exactly */
-    RT_CHECK(out[0] == 1.0f && out[3] == 1.0f, "sRGB8 level 0 texel: %g, expected 1", out[0]);
+    CHECK(out[0] == 1.0f && out[3] == 1.0f, "sRGB8 level 0 texel: %g, expected 1", out[0]);
     duv[0] = 10.0f;
     ref_mip_sample(&m, 0.3f, 0.6f, duv, out);
     double c = 188.0 / 255.0, want = pow((c + 0.055) / 1.055, 2.4);
-    RT_CHECK(fabs(out[0] - want) <= 1e-6, "sRGB8 level 1: %.7f, expected %.7f", out[0], want);
+    CHECK(fabs(out[0] - want) <= 1e-6, "sRGB8 level 1: %.7f, expected %.7f", out[0], want);
     ref_mip_free(&m);
     printf("pyramid, trilinear blend, magnification, odd sizes, sRGB8 levels (0.5 stored as "
            "%.6f, as GL rounds it): exact\n", want);
@@ -118,8 +120,8 @@ static void test_floor(void)
     ref_world w;
     gib_error err;
     if (ref_world_build(&w, &s, &err) < 0) {
-        fprintf(stderr, "FAIL: %s\n", err.msg);
-        rt_failures++;
+        CHECK(0, "%s", err.msg);
+        failures++;
         return;
     }
     double worst = 0.0, lod_min = INFINITY, lod_max = -INFINITY;
@@ -129,7 +131,7 @@ static void test_floor(void)
             gib_camera_ray(&s.cameras[0], W, H, x + 0.5f, y + 0.5f, o, d);
             ref_hit hit;
             if (!ref_trace(&w, o, d, &hit)) {
-                rt_failures++;
+                failures++;
                 continue;
             }
             ref_hit_differentials(&w, &s.cameras[0], W, H, x, y, &hit);
@@ -141,9 +143,9 @@ static void test_floor(void)
             lod_max = fmax(lod_max, lod);
         }
     double lod_want = log2(T * fp / S);
-    RT_CHECK(worst <= 1e-4, "differentials: max error %.3g of du/dx", worst);
-    RT_CHECK(fabs(lod_min - lod_want) <= 1e-3 && fabs(lod_max - lod_want) <= 1e-3,
-             "LOD in [%.5f, %.5f], expected %.5f", lod_min, lod_max, lod_want);
+    CHECK(worst <= 1e-4, "differentials: max error %.3g of du/dx", worst);
+    CHECK(fabs(lod_min - lod_want) <= 1e-3 && fabs(lod_max - lod_want) <= 1e-3,
+          "LOD in [%.5f, %.5f], expected %.5f", lod_min, lod_max, lod_want);
     printf("differentials: du/dx = %.6f expected, max error %.2g of it (tol 1e-4); LOD %.4f "
            "expected, measured %.4f .. %.4f\n",
            fp / S, worst, lod_want, lod_min, lod_max);
@@ -156,7 +158,7 @@ static void test_floor(void)
     const double grey = pow((188.0 / 255.0 + 0.055) / 1.055, 2.4), want = 0.8 * grey;
     for (int i = 0; i < W * H * 3; i++)
         bad += fabs(img.px[i] - want) > 1e-6;
-    RT_CHECK(bad == 0, "albedo: %d values differ from %.6f", bad, want);
+    CHECK(bad == 0, "albedo: %d values differ from %.6f", bad, want);
     printf("albedo of a minified 1-texel checkerboard (LOD %.2f): all %d values %.6f = 0.8 x "
            "the 8-bit mid grey %.6f (tol 1e-6)\n",
            lod_want, W * H * 3, want, grey);
@@ -184,9 +186,9 @@ static void test_mask(void)
         t.width = W, t.height = H, t.rgba = rgba;
         ref_mask m;
         gib_error err;
-        RT_CHECK(ref_mask_build(&m, &t, &err) == 0, "mask build");
-        RT_CHECK((m.code != NULL) == (pass == 0), "%d distinct values: compact form %s", distinct,
-                 m.code ? "built" : "not built");
+        CHECK(ref_mask_build(&m, &t, &err) == 0, "mask build");
+        CHECK((m.code != NULL) == (pass == 0), "%d distinct values: compact form %s", distinct,
+              m.code ? "built" : "not built");
         uint32_t state = 12345u;
         int mismatches = 0;
         for (int n = 0; n < 20000; n++) {
@@ -200,8 +202,8 @@ static void test_mask(void)
             ref_tex_sample(&t, u, v, a);
             mismatches += memcmp(&a[0], &b, sizeof b) != 0;
         }
-        RT_CHECK(mismatches == 0, "%d distinct values: %d of 20000 lookups differ from the floats",
-                 distinct, mismatches);
+        CHECK(mismatches == 0, "%d distinct values: %d of 20000 lookups differ from the floats",
+              distinct, mismatches);
         printf("mask with %d distinct values: compact %d, 20000 lookups bit-identical to the "
                "floats: %s\n", distinct, m.code != NULL, mismatches == 0 ? "yes" : "no");
         ref_mask_free(&m);
@@ -213,5 +215,5 @@ int main(void)
     test_pyramid();
     test_floor();
     test_mask();
-    return rt_failures ? 1 : 0;
+    return failures ? 1 : 0;
 }

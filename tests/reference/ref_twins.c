@@ -36,6 +36,8 @@
 
 #include "harness/imaging/metrics.h"
 #include "ref_test_util.h"
+#include "tests/common/check.h"
+
 
 #define W 64
 #define H 64
@@ -55,7 +57,7 @@ static void load(const char *name, gib_scene *s)
 {
     gib_error err = {0};
     if (gib_scene_load(name, s, &err) < 0) {
-        fprintf(stderr, "FAIL: cannot load scene %s: %s\n", name, err.msg);
+        CHECK(0, "cannot load scene %s: %s", name, err.msg);
         exit(1);
     }
 }
@@ -74,11 +76,11 @@ static void check_back(const gib_scene *far, const gib_scene *back)
     for (int k = 0; !inexact && k < 3; k++)
         inexact += (double)back->cameras[0].eye[k] + FAR_SHIFT != (double)far->cameras[0].eye[k] ||
                    (double)back->cameras[0].target[k] + FAR_SHIFT != (double)far->cameras[0].target[k];
-    RT_CHECK(inexact == 0, "cornell_far_rounded is not hard_far shifted back by exactly 1e5");
+    CHECK(inexact == 0, "cornell_far_rounded is not hard_far shifted back by exactly 1e5");
     float org[3];
     gib_scene_frame_origin(back, org);
-    RT_CHECK(org[0] == 0.0f && org[1] == 0.0f && org[2] == 0.0f,
-             "the moved-back box should be rendered in its own coordinates");
+    CHECK(org[0] == 0.0f && org[1] == 0.0f && org[2] == 0.0f,
+          "the moved-back box should be rendered in its own coordinates");
 }
 
 /* Pixels whose largest channel differs by more than 1% of the image mean (count), and the relative
@@ -109,10 +111,10 @@ static double rel_rmse(const gib_image *ref, const gib_image *test)
     gib_metrics m;
     gib_error err = {0};
     if (gib_metrics_compute(ref, test, 1.0f, &m, &err) < 0) {
-        fprintf(stderr, "FAIL: metrics: %s\n", err.msg);
+        CHECK(0, "metrics: %s", err.msg);
         exit(1);
     }
-    RT_CHECK(m.nonfinite == 0, "non-finite pixels");
+    CHECK(m.nonfinite == 0, "non-finite pixels");
     return m.rel_rmse;
 }
 
@@ -124,13 +126,13 @@ int main(void)
     check_back(&s[C_FAR], &s[C_BACK]);
     float org[3];
     gib_scene_frame_origin(&s[C_FAR], org);
-    RT_CHECK(org[0] != 0.0f || org[1] != 0.0f || org[2] != 0.0f,
-             "hard_far should be rendered moved next to the origin");
+    CHECK(org[0] != 0.0f || org[1] != 0.0f || org[2] != 0.0f,
+          "hard_far should be rendered moved next to the origin");
     for (int i = 0; i < C_COUNT; i++)
         if (i != C_FAR) {
             gib_scene_frame_origin(&s[i], org);
-            RT_CHECK(org[0] == 0.0f && org[1] == 0.0f && org[2] == 0.0f,
-                     "%s is near the origin: its own coordinates, bit for bit", NAMES[i]);
+            CHECK(org[0] == 0.0f && org[1] == 0.0f && org[2] == 0.0f,
+                  "%s is near the origin: its own coordinates, bit for bit", NAMES[i]);
         }
 
     const struct {
@@ -171,21 +173,21 @@ int main(void)
         for (int i = C_TINY; i <= C_HUGE; i++) {
             double rest_s;
             int graze = flipped(&img[C_CORNELL], &img[i], &rest_s);
-            RT_CHECK(graze <= TOL_GRAZE && rest_s <= TOL_SCALED,
-                     "%s: %s: %d pixels apart (max %d), the others within %g (max %g); relative "
-                     "RMSE %g", cases[c].what, NAMES[i], graze, TOL_GRAZE, rest_s, TOL_SCALED,
-                     e[i]);
+            CHECK(graze <= TOL_GRAZE && rest_s <= TOL_SCALED,
+                  "%s: %s: %d pixels apart (max %d), the others within %g (max %g); relative "
+                  "RMSE %g", cases[c].what, NAMES[i], graze, TOL_GRAZE, rest_s, TOL_SCALED,
+                  e[i]);
         }
-        RT_CHECK(flips <= TOL_FLIPS, "%s: hard_far and its box at the origin differ at %d pixels > %d",
-                 cases[c].what, flips, TOL_FLIPS);
-        RT_CHECK(rest <= TOL_REST, "%s: hard_far against its box at the origin, pixels that agree: "
-                 "%g > %g", cases[c].what, rest, TOL_REST);
+        CHECK(flips <= TOL_FLIPS, "%s: hard_far and its box at the origin differ at %d pixels > %d",
+              cases[c].what, flips, TOL_FLIPS);
+        CHECK(rest <= TOL_REST, "%s: hard_far against its box at the origin, pixels that agree: "
+              "%g > %g", cases[c].what, rest, TOL_REST);
         for (int i = 0; i < C_COUNT; i++)
             gib_image_free(&img[i]);
     }
     for (int i = 0; i < C_COUNT; i++)
         gib_scene_free(&s[i]);
-    if (rt_failures)
-        fprintf(stderr, "%d check(s) failed\n", rt_failures);
-    return rt_failures != 0;
+    if (failures)
+        fprintf(stderr, "%d check(s) failed\n", failures);
+    return failures != 0;
 }

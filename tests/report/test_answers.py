@@ -11,6 +11,8 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "harness"))
 from reporting import answers  # noqa: E402
 from reporting import claims  # noqa: E402
+from reporting import claim as claim_mod  # noqa: E402
+from reporting.claim import Claim  # noqa: E402
 from reporting import report  # noqa: E402
 
 failures = []
@@ -143,7 +145,7 @@ check(sorted(x[0] for x in f["unmeasured"]) == ["absolute GPU times", "not run h
 # measured setting holds, fails where one fails, and is not measurable where none was measured;
 # claims of another stem, source or kind stay apart.
 def crow(verdict, text, reason="why", source="s.csv", kind="machine_independent"):
-    return dict(claim(verdict, reason, claim=text), source=source, kind=kind)
+    return Claim("P", source, text, kind, "1 ms", "2 ms", "llvmpipe", "2", verdict, reason)
 
 
 once = claims.counted_once([
@@ -151,7 +153,7 @@ once = claims.counted_once([
     crow("not measurable here", "leak (x=3)"), crow("reproduced", "order (a)"),
     crow("reproduced", "order (b)"), crow("not measurable here", "time [t=0]"),
     crow("not measurable here", "time [t=1]"), crow("reproduced", "leak (x=4)", source="t.csv")])
-by = {(c["source"], c["claim"]): c for c in once}
+by = {(c.source, c.claim): c.row() for c in once}
 check(len(once) == 4, f"eight rows, four claims ({sorted(by)})")
 leak = by.get(("s.csv", "leak"), {})
 check(leak.get("verdict") == "not reproduced" and
@@ -162,12 +164,13 @@ check(leak.get("reason", "").count(" || ") == 2 and "(x=2) not reproduced: why" 
 check(by.get(("s.csv", "order"), {}).get("verdict") == "reproduced", "every setting holds: reproduced")
 check(by.get(("s.csv", "time"), {}).get("verdict") == "not measurable here", "none measured: not measurable")
 check(by.get(("t.csv", "leak (x=4)"), {}).get("verdict") == "reproduced", "another source stays apart, as it was")
+check([len(c.settings) for c in once if c.claim == "leak"] == [3], "the three settings lie beneath the one claim")
 
 # One tolerance for memory: within 25% of the paper's figure holds (Table 2's 153.39 against 156.4
 # MB), 0.69x does not (LDM's 552.6 against 805.5 MB); a figure in words is read by its number.
-check(claims.memory_verdict(153.39, 156.4)[0] == "reproduced", "memory 2% under the paper's holds")
-check(claims.memory_verdict(552.6, 805.5)[0] == "not reproduced", "memory 31% under does not")
-check(claims.paper_number("about 3000 (3 GB)") == 3000.0, "a figure in words read as its number")
+check(claim_mod.memory_verdict(153.39, 156.4)[0] == "reproduced", "memory 2% under the paper's holds")
+check(claim_mod.memory_verdict(552.6, 805.5)[0] == "not reproduced", "memory 31% under does not")
+check(claim_mod.paper_number("about 3000 (3 GB)") == 3000.0, "a figure in words read as its number")
 
 # Ambient occlusion at two dmax estimates two images (two references): two groups, not one; so do
 # two instants of an animation.

@@ -1,6 +1,7 @@
 #include "scene_test.h"
 
 #include "scenes/scene.h"
+#include "tests/common/check.h"
 
 #include <dirent.h>
 #include <string.h>
@@ -14,7 +15,7 @@ int scene_test_begin(const char *name)
 {
     snprintf(tmpdir, sizeof tmpdir, "/tmp/%s_XXXXXX", name);
     if (!mkdtemp(tmpdir)) {
-        printf("FAIL: mkdtemp %s\n", tmpdir);
+        CHECK(0, "mkdtemp %s", tmpdir);
         return -1;
     }
     return 0;
@@ -25,7 +26,7 @@ void write_file(const char *name, const char *text, char *out, size_t n)
     snprintf(out, n, "%s/%s", tmpdir, name);
     FILE *f = fopen(out, "wb");
     if (!f) {
-        printf("FAIL: cannot write %s\n", out);
+        CHECK(0, "cannot write %s", out);
         exit(1);
     }
     fputs(text, f);

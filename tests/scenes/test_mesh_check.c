@@ -120,7 +120,7 @@ int main(void)
     int n = root ? check_tree(root) : 0;
     printf("%d shared-data OBJ files checked%s\n", n, n ? "" : " (no shared data here)");
     if (failures)
-        printf("FAILED: %d\n", failures);
+        CHECK(0, "ED: %d", failures);
     else
         printf("passed\n");
     return failures != 0;

@@ -17,6 +17,10 @@
 #include "harness/base/cone_set.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 32
 #define H 32
@@ -54,9 +58,11 @@ static int check(gib_gl_fixture *fx, const char *name)
             differ = fmax(differ, fabs(part.px[k] - whole.px[k]));
         differ /= gib_rgb_mean(&whole);
         int ok = !gib_image_count_nonfinite(&part) && m > 0 && differ > DIFFER_MIN;
-        printf("%s %s cone %d alone: mean %.5f, differs from the gather by up to %.2f of its mean "
-               "(at least %.2f)\n", ok ? "PASS" : "FAIL", name, i, m, differ, DIFFER_MIN);
-        failures += !ok;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s cone %d alone: mean %.5f, differs from the gather by up to %.2f of its mean "
+                 "(at least %.2f)",
+                 name, i, m, differ, DIFFER_MIN);
+        CHECK_TRUE(check_msg, ok, "");
         for (long k = 0; k < n; k++)
             sum[k] += gib_diffuse_cone_weight(i) * part.px[k];
         gib_image_free(&part);
@@ -65,9 +71,11 @@ static int check(gib_gl_fixture *fx, const char *name)
     for (long k = 0; k < n; k++)
         worst = fmax(worst, fabs(sum[k] - whole.px[k]));
     int ok = mean > 0 && worst <= SPLIT_TOL * mean;
-    printf("%s %s: the weighted sum of the 6 cones' images against the gather: worst pixel off by "
-           "%.3g of the mean (bound %.0e)\n", ok ? "PASS" : "FAIL", name, worst / mean, SPLIT_TOL);
-    failures += !ok;
+    snprintf(check_msg, sizeof check_msg,
+             "%s: the weighted sum of the 6 cones' images against the gather: worst pixel off by "
+             "%.3g of the mean (bound %.0e)",
+             name, worst / mean, SPLIT_TOL);
+    CHECK_TRUE(check_msg, ok, "");
     free(sum);
     gib_image_free(&whole);
     return failures;
@@ -78,7 +86,7 @@ int main(void)
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "cornell_spot45") < 0)
         return 1;
-    int failures = check(&fx, "lrsm") + check(&fx, "vct");
+    failures += check(&fx, "lrsm") + check(&fx, "vct");
     gib_fixture_close(&fx);
     printf("%s: the diffuse gather split into its cones\n", failures ? "FAIL" : "PASS");
     return failures ? 1 : 0;

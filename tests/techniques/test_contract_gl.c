@@ -232,7 +232,7 @@ int main(void)
     gib_error err;
     gib_gl_info info;
     if (gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0) {
-        printf("FAIL: set-up: %s\n", err.msg);
+        CHECK(0, "set-up: %s", err.msg);
         return 1;
     }
     loaded scenes[SCENE_COUNT] = {0};

@@ -20,6 +20,10 @@
 #include "reference/reference.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 64
@@ -58,13 +62,13 @@ static int check(gib_gl_fixture *fx, const char *scene, const char *name, const 
     gib_error err;
     gib_params_default(t, &p);
     if (gib_param_set(t, &p, "voxel_res", res, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return 1;
     }
     gib_run_result r;
     gib_run_technique(&fx->gpu, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: %s: %s: %s\n", name, r.status, r.err.msg);
+        CHECK(0, "%s: %s: %s", name, r.status, r.err.msg);
         return 1;
     }
     int failures = 0, found = 0;
@@ -74,25 +78,24 @@ static int check(gib_gl_fixture *fx, const char *scene, const char *name, const 
         const gib_image *im = &r.images[o];
         found = 1;
         if (gib_image_count_nonfinite(im)) {
-            printf("FAIL %s %s voxel_res=%s: non-finite pixels\n", scene, name, res);
-            failures++;
+            CHECK(0, "%s %s voxel_res=%s: non-finite pixels", scene, name, res);
             continue;
         }
         double ratio = gib_rgb_mean(im) / gib_rgb_mean(ref);
-        int ok = fabs(ratio - 1) <= MEAN_TOL;
-        printf("%s %s %s voxel_res=%s: direct mean %.4f of the reference's (tolerance %.2f)\n",
-               ok ? "PASS" : "FAIL", scene, name, res, ratio, MEAN_TOL);
-        failures += !ok;
+        snprintf(check_msg, sizeof check_msg, "%s %s voxel_res=%s: direct mean / reference's",
+                 scene, name, res);
+        CHECK_NEAR(check_msg, 1.0, ratio, MEAN_TOL,
+                   "lit surfaces exact, cones soften shadow edges and grazing light: measured "
+                   "0.94-0.99, room for another driver's rounding");
         double dark = light_where_reference_dark(ref, im);
-        ok = dark <= DARK_MAX;
-        printf("%s %s %s voxel_res=%s: mean where the reference is dark %.4f of the mean where it "
-               "is lit (bound %.2f)\n", ok ? "PASS" : "FAIL", scene, name, res, dark, DARK_MAX);
-        failures += !ok;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s %s voxel_res=%s: light where the reference is dark / where lit", scene, name,
+                 res);
+        CHECK_AT_MOST(check_msg, dark, DARK_MAX,
+                      "measured 0.0014-0.0067, cones crossing the boxes' one-voxel shells; the "
+                      "paper's mean occupancy lets 3.4% through");
     }
-    if (!found) {
-        printf("FAIL: %s gave no direct image\n", name);
-        failures++;
-    }
+    CHECK(found, "%s gave no direct image", name);
     gib_run_result_free(&r);
     return failures;
 }
@@ -102,7 +105,6 @@ int main(void)
     static const char *const scenes[] = {"cornell", "cornell_spot45"};
     static const char *const techniques[] = {"lrsm", "vct"};
     static const char *const resolutions[] = {"64", "128", "256"};
-    int failures = 0;
     for (int s = 0; s < 2; s++) {
         gib_gl_fixture fx;
         if (gib_fixture_open(&fx, scenes[s]) < 0)

@@ -33,6 +33,9 @@
 #include "harness/app/runner.h"
 #include "reference/reference.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
 
 #define W 128
 #define H 128
@@ -121,13 +124,13 @@ static double measure(gib_gl_fixture *fx, const char *name, const char *const *p
     gib_params_default(t, &p);
     for (int i = 0; params && params[i]; i += 2)
         if (gib_param_set(t, &p, params[i], params[i + 1], &err) < 0) {
-            printf("FAIL: %s\n", err.msg);
+            CHECK(0, "%s", err.msg);
             return -1;
         }
     gib_run_result r;
     gib_run_technique(&fx->gpu, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: %s: %s: %s\n", name, r.status, r.err.msg);
+        CHECK(0, "%s: %s: %s", name, r.status, r.err.msg);
         return -1;
     }
     double m = -1;
@@ -139,7 +142,7 @@ static double measure(gib_gl_fixture *fx, const char *name, const char *const *p
         }
     gib_run_result_free(&r);
     if (m < 0)
-        printf("FAIL: %s gave no finite image of the component asked\n", name);
+        CHECK(0, "%s gave no finite image of the component asked", name);
     return m;
 }
 
@@ -205,7 +208,7 @@ int main(void)
 {
     size_t ni = sizeof indirect_cases / sizeof indirect_cases[0];
     size_t nd = sizeof direct_cases / sizeof direct_cases[0];
-    int failures = run_scene("cornell", GIB_OUT_INDIRECT, indirect_cases, ni, STRAIGHT_MAX, 1) +
+    failures += run_scene("cornell", GIB_OUT_INDIRECT, indirect_cases, ni, STRAIGHT_MAX, 1) +
                    run_scene("cornell_spot45", GIB_OUT_INDIRECT, indirect_cases, ni, STRAIGHT_MAX, 1) +
                    run_scene("cornell", GIB_OUT_DIRECT, direct_cases, nd, DIRECT_MAX, 1);
     printf("%s: straight edges on smooth light\n", failures ? "FAIL" : "PASS");

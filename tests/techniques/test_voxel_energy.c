@@ -23,6 +23,10 @@
 #include "reference/reference.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures; /* every check (check.h); the cases also return their own count */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 64
@@ -50,13 +54,13 @@ static double indirect_mean_with(gib_gl_fixture *fx, const gib_technique *t, con
     gib_params_default(t, &p);
     if (gib_param_set(t, &p, "voxel_res", res, &err) < 0 ||
         (name && gib_param_set(t, &p, name, value, &err) < 0)) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     gib_run_result r;
     gib_run_technique(&fx->gpu, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: %s: %s: %s\n", t->name, r.status, r.err.msg);
+        CHECK(0, "%s: %s: %s", t->name, r.status, r.err.msg);
         return -1;
     }
     double m = -1;
@@ -65,7 +69,7 @@ static double indirect_mean_with(gib_gl_fixture *fx, const gib_technique *t, con
             m = gib_rgb_mean(&r.images[o]);
     gib_run_result_free(&r);
     if (m < 0)
-        printf("FAIL: %s gave no finite indirect image\n", t->name);
+        CHECK(0, "%s gave no finite indirect image", t->name);
     return m;
 }
 
@@ -118,10 +122,11 @@ static int furnace_case(void)
     }
     const double finest = literal[NRES - 1] / ours[NRES - 1];
     int ok = lo / hi >= FURNACE_MIN_RATIO && finest < FILL_GAIN;
-    printf("%s vct furnace: smallest mean over largest across voxel_res %.3f with the fill (at "
-           "least %.2f); at voxel_res %s point injection %.3f of the fill's (below %.2f)\n",
-           ok ? "PASS" : "FAIL", lo / hi, FURNACE_MIN_RATIO, resolutions[NRES - 1], finest,
-           FILL_GAIN);
+    snprintf(check_msg, sizeof check_msg,
+             "vct furnace: smallest mean over largest across voxel_res %.3f with the fill (at "
+             "least %.2f); at voxel_res %s point injection %.3f of the fill's (below %.2f)",
+             lo / hi, FURNACE_MIN_RATIO, resolutions[NRES - 1], finest, FILL_GAIN);
+    CHECK_TRUE(check_msg, ok, "");
     return !ok;
 }
 
@@ -146,9 +151,11 @@ static int open_plane_case(void)
     for (int i = 0; i < NRES; i++) {
         double m = indirect_mean(&fx, t, resolutions[i]);
         int ok = m >= 0 && m / want >= OPEN_LO && m / want <= OPEN_HI;
-        failures += !ok;
-        printf("%s vct plane_box voxel_res %s: indirect mean %.3f of the reference's (band "
-               "%.2f-%.2f)\n", ok ? "PASS" : "FAIL", resolutions[i], m / want, OPEN_LO, OPEN_HI);
+        snprintf(check_msg, sizeof check_msg,
+                 "vct plane_box voxel_res %s: indirect mean %.3f of the reference's (band "
+                 "%.2f-%.2f)",
+                 resolutions[i], m / want, OPEN_LO, OPEN_HI);
+        CHECK_TRUE(check_msg, ok, "");
     }
     gib_image_free(&ref);
     gib_fixture_close(&fx);
@@ -179,17 +186,18 @@ static int scene_case(const char *scene)
             }
             double ratio = m / want;
             int ok = ratio >= cases[k].lo && ratio <= cases[k].hi;
-            failures += !ok;
-            printf("%s %s %s voxel_res %s: indirect mean %.3f of the reference's (band %.2f-%.2f)\n",
-                   ok ? "PASS" : "FAIL", scene, t->name, resolutions[i], ratio, cases[k].lo,
-                   cases[k].hi);
+            snprintf(check_msg, sizeof check_msg,
+                     "%s %s voxel_res %s: indirect mean %.3f of the reference's (band %.2f-%.2f)",
+                     scene, t->name, resolutions[i], ratio, cases[k].lo, cases[k].hi);
+            CHECK_TRUE(check_msg, ok, "");
             lo = fmin(lo, ratio);
             hi = fmax(hi, ratio);
         }
         int ok = hi > 0 && lo / hi >= MIN_RATIO;
-        failures += !ok;
-        printf("%s %s %s: the smallest mean over the largest across voxel_res %.3f (at least %.2f)\n",
-               ok ? "PASS" : "FAIL", scene, t->name, hi > 0 ? lo / hi : 0.0, MIN_RATIO);
+        snprintf(check_msg, sizeof check_msg,
+                 "%s %s: the smallest mean over the largest across voxel_res %.3f (at least %.2f)",
+                 scene, t->name, hi > 0 ? lo / hi : 0.0, MIN_RATIO);
+        CHECK_TRUE(check_msg, ok, "");
     }
     gib_image_free(&ref);
     gib_fixture_close(&fx);
@@ -198,7 +206,7 @@ static int scene_case(const char *scene)
 
 int main(void)
 {
-    int failures = scene_case("cornell") + scene_case("cornell_spot45");
+    failures += scene_case("cornell") + scene_case("cornell_spot45");
     failures += furnace_case();
     failures += open_plane_case();
     printf("%s: voxel techniques' energy against voxel_res\n", failures ? "FAIL" : "PASS");

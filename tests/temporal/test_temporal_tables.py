@@ -21,6 +21,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "harness"))
 from reporting import temporal_tables as tt  # noqa: E402
+from reporting.claim import MACHINE_INDEPENDENT, Claim  # noqa: E402
 from reporting.schema import columns  # noqa: E402
 
 FAILS = []
@@ -87,22 +88,21 @@ def water_rows(level2_redraw):
 def claims(work):
     results = os.path.join(work, "r")
     os.makedirs(results)
-    check(tt.claims(results)[0]["verdict"] == tt.NOT_MEASURABLE, "no rows: not measurable")
+    check(tt.claims(results)[0].verdict == tt.NOT_MEASURABLE, "no rows: not measurable")
     write_table(results, "temporal_lrsm_dragon", lrsm_rows(0.05))
     write_table(results, "temporal_thesis_water", water_rows(0.056))
     write_table(results, "plain", [{"technique": "direct", "component": "direct"}], seq=False)
     c = tt.claims(results)
-    check([x["verdict"] for x in c] == [tt.REPRODUCED, tt.REPRODUCED],
-          f"steady lrsm and reuse lower beyond the spread: both reproduced ({[x['verdict'] for x in c]})")
-    check(all(x["kind"] == tt.MACHINE_INDEPENDENT and set(x) >= {"paper", "source", "claim",
-              "paper_value", "our_value", "renderer", "cores", "verdict", "reason"} for x in c),
-          "claims carry claims.csv's columns and kind")
+    check([x.verdict for x in c] == [tt.REPRODUCED, tt.REPRODUCED],
+          f"steady lrsm and reuse lower beyond the spread: both reproduced ({[x.verdict for x in c]})")
+    check(all(isinstance(x, Claim) and x.kind == MACHINE_INDEPENDENT for x in c),
+          "claims are Claims, of the machine-independent kind")
     write_table(results, "temporal_lrsm_dragon", lrsm_rows(0.1))
     write_table(results, "temporal_thesis_water", water_rows(0.0505))
     c = tt.claims(results)
-    check([x["verdict"] for x in c] == [tt.NOT_REPRODUCED, tt.NOT_REPRODUCED],
-          f"flickering glossy, and reuse within the spread at level 2: not reproduced ({[x['verdict'] for x in c]})")
-    check("glossy" in c[0]["reason"], "the LRSM reason names the failing component")
+    check([x.verdict for x in c] == [tt.NOT_REPRODUCED, tt.NOT_REPRODUCED],
+          f"flickering glossy, and reuse within the spread at level 2: not reproduced ({[x.verdict for x in c]})")
+    check("glossy" in c[0].reason, "the LRSM reason names the failing component")
     path, rows = tt.write(results)
     check(len(rows) == 3 + 12, f"the sequence table: the sequence tables' rows only ({len(rows)})")
     with open(path) as f:

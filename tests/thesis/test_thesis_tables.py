@@ -17,6 +17,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "harness"))
+from reporting.claim import NOT_REPRODUCED, REPRODUCED  # noqa: E402
 from reporting import thesis_tables  # noqa: E402
 
 HEAD = ("matrix,profile,scene,camera,technique,component,params,width,height,time,warmup,frames,dt,"
@@ -90,8 +91,9 @@ def run_case(paper_values, leak, ring_photons=17000):
         write(d, "thesis_t44_water", standard("water_room", {4: 2300, 2: 38000, 5: 600, 3: 9400}, trace=lin))
         # t43 and the Sponza matrices are absent (no shared data): their rows say missing.
         thesis_tables.thesis_table(d, os.path.join(d, "paper"))
+        claims = thesis_tables.claims(d, os.path.join(d, "paper"))
         with open(os.path.join(d, "thesis_tables.csv"), newline="") as f:
-            return list(csv.DictReader(f))
+            return list(csv.DictReader(f)), claims
     finally:
         shutil.rmtree(d)
 
@@ -100,7 +102,7 @@ def main():
     if len(sys.argv) != 2 or not os.path.exists(os.path.join(sys.argv[1], "thesis_tables.csv")):
         print("skip: no thesis_tables.csv under", sys.argv[1:] or "(no argument)")
         return 77
-    rows = run_case(sys.argv[1], leak=3.0)
+    rows, claims = run_case(sys.argv[1], leak=3.0)
     data = [r for r in rows if r["kind"] == "row"]
     ring = [r for r in data if r["table"] == "4.1"]
     check(len(ring) == 4 and all(r["status"] == "ok" for r in ring), "Table 4.1: 4 rows, all matched")
@@ -121,15 +123,15 @@ def main():
     check(all(r["status"] == MISSING for r in data if r["table"] in ("4.3", "4.5")) and
           any(r["table"] == "4.5" for r in data), "absent matrices (bunnies, Sponza): missing")
     check(all(r["status"] == MISSING for r in data if r["figure"] == "4.5(a)"), "the 16,384-photon row: missing")
-    cl = {r["claim"].split(" (")[0]: r for r in rows if r["kind"] == "claim"}
+    cl = {c.claim.split(" (")[0]: c for c in claims}
     lin = next(v for k, v in cl.items() if k.startswith("photon tracing time roughly linear"))
-    check(lin["reproduced"] == "yes" and "R^2 1.000" in lin["evidence"], "linear tracing: yes, R^2 1")
+    check(lin.verdict == REPRODUCED and "R^2 1.000" in lin.reason, "linear tracing: yes, R^2 1")
     dbl = next(v for k, v in cl.items() if k.startswith("photon tracing about doubles"))
-    check(dbl["reproduced"] == "yes" and "median 2.00" in dbl["evidence"], "doubling: yes, ratio 2")
+    check(dbl.verdict == REPRODUCED and "median 2.00" in dbl.reason, "doubling: yes, ratio 2")
     mr = next(v for k, v in cl.items() if k.startswith("multi-resolution"))
-    check(mr["reproduced"] == "yes", "multires 10x cheaper, rel RMSE 0.30 vs 0.28: yes")
+    check(mr.verdict == REPRODUCED, "multires 10x cheaper, rel RMSE 0.30 vs 0.28: yes")
     leak = next(v for k, v in cl.items() if k.startswith("4 depth layers"))
-    check(leak["reproduced"] == "yes", "4 layers with 3x the RMSE: leak reproduced")
+    check(leak.verdict == REPRODUCED, "4 layers with 3x the RMSE: leak reproduced")
     flags = [r for r in rows if r["kind"] == "flag"]
     check(any(f["table"] == "4.3" and f["paper_fps"] == "43" and f["paper_frame_ms"] == "25" for f in flags),
           "flag: Table 4.3's 43 fps against 25 ms")
@@ -137,9 +139,9 @@ def main():
           "flag: Table 4.2's equal splatting at 512^2 and 1024^2")
     check(not any(f["table"] in ("4.1", "4.3", "4.4", "4.5") and "splatting" in f["note"] for f in flags),
           "no splatting flag where the thesis' values differ")
-    rows2 = run_case(sys.argv[1], leak=1.0, ring_photons=12000)
-    leak2 = next(r for r in rows2 if r["kind"] == "claim" and r["claim"].startswith("4 depth layers"))
-    check(leak2["reproduced"] == "no", "equal RMSE: the leak claim does not reproduce")
+    rows2, claims2 = run_case(sys.argv[1], leak=1.0, ring_photons=12000)
+    leak2 = next(c for c in claims2 if c.claim.startswith("4 depth layers"))
+    check(leak2.verdict == NOT_REPRODUCED, "equal RMSE: the leak claim does not reproduce")
     short = [r for r in rows2 if r["kind"] == "row" and r["table"] == "4.1"]
     check(short and all(r["status"] == "count_mismatch" and "nearest 12000" in r["note"] for r in short),
           "a ring run of 12,000 photons (29% under 17,021) matches no Table 4.1 row: count_mismatch")

@@ -24,6 +24,7 @@
 #define TOL 2e-3
 
 static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 /* got against want channel by channel, to TOL; one PASS/FAIL line with both (check.h), at the
  * caller's line. */
@@ -68,7 +69,7 @@ int main(void)
     vct_volume v;
     const float origin[3] = {0, 0, 0};
     if (vct_volume_create(&v, origin, 1.0f, RES, false, &ledger, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return 1;
     }
     size_t n = (size_t)RES * RES * RES * 4;
@@ -106,9 +107,11 @@ int main(void)
     ok &= check("B: level 0 travelling +x, wall behind an empty voxel", at(px0, 0, 2, 3, 3), w_red);
     ok &= check("B: level 0 travelling +y, wall edge-on in half the lines", at(py0, 0, 2, 3, 3), half);
     ok &= check("B: level 1 travelling +y, composited front to back", at(py1, 1, 1, 3, 3), l1);
-    printf("%s: vct anisotropic mips\n", ok ? "PASS" : "FAIL");
+    snprintf(check_msg, sizeof check_msg,
+             "vct anisotropic mips");
+    CHECK_TRUE(check_msg, ok, "");
     free(px0), free(nx0), free(py0), free(py1), free(rad), free(nrm);
     vct_volume_destroy(&v, &ledger);
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

@@ -29,6 +29,10 @@
 #include "reference/reference.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 64
@@ -51,19 +55,19 @@ static int run_vct(gib_gl_fixture *fx, gib_run_result *r)
     gib_params_default(t, &p);
     if (gib_param_set(t, &p, "voxel_res", "64", &err) < 0 ||
         gib_param_set(t, &p, "inject_res", "128", &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     gib_run_technique(&fx->gpu, t, &p, 0, W, H, 0, 1, r);
     if (!r->ok) {
-        printf("FAIL: vct: %s: %s\n", r->status, r->err.msg);
+        CHECK(0, "vct: %s: %s", r->status, r->err.msg);
         return -1;
     }
     long nonfinite = 0;
     for (int i = 0; i < r->output_count; i++)
         nonfinite += gib_image_count_nonfinite(&r->images[i]);
     if (nonfinite || r->output_count != 3 || r->output_components[1] != GIB_OUT_INDIRECT) {
-        printf("FAIL: %ld non-finite pixels, or outputs out of order\n", nonfinite);
+        CHECK(0, "%ld non-finite pixels, or outputs out of order", nonfinite);
         return -1;
     }
     return 0;
@@ -93,9 +97,11 @@ static int furnace(void)
         dmax = e > dmax ? e : dmax;
     }
     int good = ind >= FURNACE_LO * FURNACE && ind <= FURNACE_HI * FURNACE && dmax <= DIRECT_TOL;
-    printf("%s furnace: indirect mean %.6f = %.3f of the closed form %.6f (band %.2f..%.2f); direct "
-           "max error %.2g (bound %.0e)\n", good ? "PASS" : "FAIL", ind, ind / FURNACE, FURNACE,
-           FURNACE_LO, FURNACE_HI, dmax, DIRECT_TOL);
+    snprintf(check_msg, sizeof check_msg,
+             "furnace: indirect mean %.6f = %.3f of the closed form %.6f (band %.2f..%.2f); direct "
+             "max error %.2g (bound %.0e)",
+             ind, ind / FURNACE, FURNACE, FURNACE_LO, FURNACE_HI, dmax, DIRECT_TOL);
+    CHECK_TRUE(check_msg, good, "");
     gib_run_result_free(&r);
     gib_fixture_close(&fx);
     return good;
@@ -113,7 +119,6 @@ int main(void)
     gib_ref_stats st;
     if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, &st) < 0)
         return 1;
-    int ok = 1;
     const gib_image *ind = &r.images[1]; /* direct, indirect, glossy */
     printf("renderer %s: vct on cornell %dx%d (reference %d spp, noise %.2f%% of its mean)\n",
            fx.info.renderer, W, H, st.spp, 100 * st.noise_rmse / st.mean);
@@ -122,10 +127,11 @@ int main(void)
         double block, mean;
         gib_block_error(ref.px, ind->px, W, H, BLOCK, c, &block, &mean);
         int good = mean >= MEAN_LO && mean <= MEAN_HI && block <= BLOCK_TOL;
-        printf("%s %s: mean %.4f of the reference's (band %.2f..%.2f), %dx%d-block relative RMSE "
-               "%.4f (bound %.2f)\n", good ? "PASS" : "FAIL", channel[c], mean, MEAN_LO, MEAN_HI,
-               BLOCK, BLOCK, block, BLOCK_TOL);
-        ok &= good;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s: mean %.4f of the reference's (band %.2f..%.2f), %dx%d-block relative RMSE "
+                 "%.4f (bound %.2f)",
+                 channel[c], mean, MEAN_LO, MEAN_HI, BLOCK, BLOCK, block, BLOCK_TOL);
+        CHECK_TRUE(check_msg, good, "");
     }
     /* Red/green of the left and right thirds, ours and the reference's. */
     double rl = mean_of(ind->px, 0, 0, W / 3) / mean_of(ind->px, 1, 0, W / 3),
@@ -133,14 +139,15 @@ int main(void)
            fl = mean_of(ref.px, 0, 0, W / 3) / mean_of(ref.px, 1, 0, W / 3),
            fr = mean_of(ref.px, 0, W - W / 3, W) / mean_of(ref.px, 1, W - W / 3, W);
     int bleed = rl > rr && fl > fr;
-    printf("%s colour bleeding: red/green left third %.3f, right third %.3f (reference %.3f, %.3f)\n",
-           bleed ? "PASS" : "FAIL", rl, rr, fl, fr);
-    ok &= bleed;
-    ok &= furnace();
+    snprintf(check_msg, sizeof check_msg,
+             "colour bleeding: red/green left third %.3f, right third %.3f (reference %.3f, %.3f)",
+             rl, rr, fl, fr);
+    CHECK_TRUE(check_msg, bleed, "");
+    failures += !(furnace());
     printf("%s: vct against the Cornell box's indirect reference and the furnace\n",
-           ok ? "PASS" : "FAIL");
+           failures ? "FAIL" : "PASS");
     gib_image_free(&ref);
     gib_run_result_free(&r);
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

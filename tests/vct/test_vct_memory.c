@@ -17,6 +17,10 @@
 #include "harness/app/runner.h"
 #include "techniques/vct/vct.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 /* Sum of the ledger summary's entries whose label starts with `prefix`. */
 static uint64_t label_bytes(const char *summary, const char *prefix)
@@ -44,7 +48,7 @@ static int run(gib_gl_fixture *fx, const char *res, const char *budget, gib_run_
     if (gib_param_set(t, &p, "voxel_res", res, &err) < 0 ||
         gib_param_set(t, &p, "inject_res", "32", &err) < 0 ||
         gib_param_set(t, &p, "memory_budget_mb", budget, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     gib_run_technique(&fx->gpu, t, &p, 0, 16, 16, 0, 1, r);
@@ -53,7 +57,6 @@ static int run(gib_gl_fixture *fx, const char *res, const char *budget, gib_run_
 
 int main(void)
 {
-    int ok = 1;
     vct_plan p256, p512, p64, l256, l512;
     gib_gl_fixture fx;
     if (gib_fixture_open(&fx, "cornell") < 0)
@@ -70,9 +73,9 @@ int main(void)
            l256.total, l512.total);
     if (p256.total != 383479216ull || p512.total != 3067833776ull ||
         l256.total != 441001096ull || l512.total != 3528008840ull) {
-        printf("FAIL: the plan's formula (expected 383479216 and 3067833776 bytes, with the lobes "
-               "441001096 and 3528008840)\n");
-        ok = 0;
+        CHECK(0, "the plan's formula (expected 383479216 and 3067833776 bytes, with the lobes "
+              "441001096 and 3528008840)");
+        failures++;
     }
 
     gib_run_result r;
@@ -89,8 +92,8 @@ int main(void)
            r.status, rad, nrm, ani, vox, p64.radiance, p64.normal, p64.aniso, p64.voxels);
     if (!r.ok || rad != p64.radiance || nrm != p64.normal || ani != p64.aniso ||
         lob != p64.lobes || vox != p64.voxels) {
-        printf("FAIL: the ledger's bytes differ from the plan (or the run failed: %s)\n", r.err.msg);
-        ok = 0;
+        CHECK(0, "the ledger's bytes differ from the plan (or the run failed: %s)", r.err.msg);
+        failures++;
     }
     gib_run_result_free(&r);
 
@@ -111,13 +114,13 @@ int main(void)
                    r.technique_bytes == 0 && r.memory_by_label[0] == 0 &&
                    strstr(r.err.msg, planned) && !strcmp(r.planned_structures, structures);
         printf("  planned by structure: '%s' (formula '%s')\n", r.planned_structures, structures);
-        printf("%s voxel_res %s, budget %s MB: status %s, %" PRIu64 " bytes allocated: %s\n",
-               good ? "PASS" : "FAIL", cases[i][0], cases[i][1], r.status, r.technique_bytes,
-               r.err.msg);
-        ok &= good;
+        snprintf(check_msg, sizeof check_msg,
+                 "voxel_res %s, budget %s MB: status %s, %" PRIu64 " bytes allocated: %.200s",
+                 cases[i][0], cases[i][1], r.status, r.technique_bytes, r.err.msg);
+        CHECK_TRUE(check_msg, good, "");
         gib_run_result_free(&r);
     }
-    printf("%s: vct memory plan and out_of_memory\n", ok ? "PASS" : "FAIL");
+    printf("%s: vct memory plan and out_of_memory\n", failures ? "FAIL" : "PASS");
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

@@ -29,6 +29,10 @@
 #include <string.h>
 
 #include "tests/vct/vct_probe.h"
+#include "tests/common/check.h"
+
+static int failures; /* check.h's CHECK counts here; the exit status is decided as before (by the cases' own counts) */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define RES 256
 #define FLOOR_Y 64
@@ -128,7 +132,7 @@ static int run_volume(unsigned prog, vct_volume *v, int solid, int wall, const c
     fill(v, solid, wall);
     float ours[MAX_CONES][4], paper[MAX_CONES][4];
     if (trace(prog, v, 1, c, n, ours) < 0 || trace(prog, v, 0, c, n, paper) < 0) {
-        printf("FAIL: the vct probe did not run\n");
+        CHECK(0, "the vct probe did not run");
         return 1;
     }
     const char *floor = solid ? "solid" : "thin", *receiver = wall ? "wall" : "facing";
@@ -137,11 +141,12 @@ static int run_volume(unsigned prog, vct_volume *v, int solid, int wall, const c
         int good = rad <= 1.0f + LIGHT_PER_OPACITY_TOL &&
                    (solid ? occ >= SOLID_OCCLUSION_MIN
                           : fabsf(rad - occ) <= LIGHT_PER_OPACITY_TOL * occ);
-        failures += !good;
-        printf("%s %2d-degree cone, %s floor, %s receiver, %d deg down, %2d voxels up: radiance "
-               "%.3f, occlusion %.3f (the paper's level %.3f, %.3f)\n", good ? "PASS" : "FAIL",
-               c[i].aperture, floor, receiver, c[i].tilt, c[i].height, rad, occ, paper[i][0],
-               paper[i][3]);
+        snprintf(check_msg, sizeof check_msg,
+                 "%2d-degree cone, %s floor, %s receiver, %d deg down, %2d voxels up: radiance "
+                 "%.3f, occlusion %.3f (the paper's level %.3f, %.3f)",
+                 c[i].aperture, floor, receiver, c[i].tilt, c[i].height, rad, occ, paper[i][0],
+                 paper[i][3]);
+        CHECK_TRUE(check_msg, good, "");
         if (csv)
             fprintf(csv, "%d,%s,%s,%d,%d,%.4f,%.4f,%.4f,%.4f\n", c[i].aperture, floor, receiver,
                     c[i].tilt, c[i].height, rad, occ, paper[i][0], paper[i][3]);
@@ -162,12 +167,12 @@ int main(int argc, char **argv)
     vct_volume v;
     const float origin[3] = {0, 0, 0};
     if (vct_volume_create(&v, origin, 1.0f, RES, false, &ledger, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return 1;
     }
     FILE *csv = csv_path ? fopen(csv_path, "w") : NULL;
     if (csv_path && !csv) {
-        printf("FAIL: cannot write %s\n", csv_path);
+        CHECK(0, "cannot write %s", csv_path);
         return 1;
     }
     if (csv)

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 
 #include "tests/vct/vct_probe.h"
+#include "tests/common/check.h"
 
 #define CONES 3 /* central, tilted toward +x, tilted toward -z */
 #define CENTRAL_MAX 0.1
@@ -31,6 +32,7 @@
 #define ROOF_MIN 0.85
 
 static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 /* Ground below y = res / 4 (unlit: radiance 0, alpha 1, normal +y); with `roof`, a slab 2 voxels
  * thick 12 voxels above it. */
@@ -82,32 +84,32 @@ static void open_ground(unsigned prog, int res, gib_ledger *ledger)
     vct_volume v;
     gib_error err;
     if (vct_volume_create(&v, origin, 1.0f, res, false, ledger, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
-        failures++;
+        CHECK(0, "%s", err.msg);
         return;
     }
     fill(&v, res, 0);
     float ours[CONES], paper[CONES];
     if (trace(prog, &v, 1, ours) < 0 || trace(prog, &v, 0, paper) < 0) {
-        printf("FAIL: the vct probe did not run\n");
-        failures++;
+        CHECK(0, "the vct probe did not run");
     } else {
         for (int i = 0; i < CONES; i++) {
             double bound = i == 0 ? CENTRAL_MAX : TILTED_MAX;
             int good = ours[i] < bound;
-            failures += !good;
-            printf("%s open ground, voxel_res %d, %s cone %d: occlusion %.3f (bound %.2f; the "
-                   "paper's level reads %.3f)\n", good ? "PASS" : "FAIL", res,
-                   i ? "tilted" : "central", i, ours[i], bound, paper[i]);
+            snprintf(check_msg, sizeof check_msg,
+                     "open ground, voxel_res %d, %s cone %d: occlusion %.3f (bound %.2f; the "
+                     "paper's level reads %.3f)",
+                     res, i ? "tilted" : "central", i, ours[i], bound, paper[i]);
+            CHECK_TRUE(check_msg, good, "");
         }
     }
     fill(&v, res, 1);
     if (trace(prog, &v, 1, ours) == 0 && trace(prog, &v, 0, paper) == 0) {
         int good = ours[0] > ROOF_MIN;
-        failures += !good;
-        printf("%s roof, voxel_res %d: the central cone's occlusion %.3f (bound > %.2f; the "
-               "paper's level reads %.3f)\n", good ? "PASS" : "FAIL", res, ours[0], ROOF_MIN,
-               paper[0]);
+        snprintf(check_msg, sizeof check_msg,
+                 "roof, voxel_res %d: the central cone's occlusion %.3f (bound > %.2f; the paper's "
+                 "level reads %.3f)",
+                 res, ours[0], ROOF_MIN, paper[0]);
+        CHECK_TRUE(check_msg, good, "");
     }
     vct_volume_destroy(&v, ledger);
 }

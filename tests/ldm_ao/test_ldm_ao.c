@@ -16,6 +16,9 @@
 #include "harness/app/runner.h"
 #include "harness/imaging/metrics.h"
 #include "reference/reference.h"
+#include "tests/common/check.h"
+
+static int failures;
 
 static int run(const gib_gpu_scene *gpu, int n, const char *dmax, int frames, gib_run_result *r)
 {
@@ -43,16 +46,16 @@ int main(void)
     if (gib_scene_load("cornell", &scene, &err) < 0 || gib_scene_load("plane_box", &plane, &err) < 0 ||
         gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0 || gib_gpu_scene_upload(&scene, &gpu, &err) < 0 ||
         gib_gpu_scene_upload(&plane, &gplane, &err) < 0) {
-        fprintf(stderr, "FAIL: set-up: %s\n", err.msg);
+        CHECK(0, "set-up: %s", err.msg);
         return 1;
     }
-    int ok = 1;
+    char d[256];
     gib_ref_params rp = {.component = GIB_COMP_AO, .width = 64, .height = 64, .spp = 2048,
                          .dmax = INFINITY, .seed = 1, .quiet = 1};
     gib_image ref;
     gib_ref_stats st;
     if (gib_reference_render(&scene, &rp, &ref, NULL, &st, &err) < 0) {
-        fprintf(stderr, "FAIL: reference: %s\n", err.msg);
+        CHECK(0, "reference: %s", err.msg);
         return 1;
     }
     gib_run_result r32, r512, again;
@@ -66,20 +69,12 @@ int main(void)
     printf("N=32:  rmse %.5f ssim %.4f gpu %.1f ms\nN=512: rmse %.5f ssim %.4f gpu %.1f ms\n",
            m32.rmse, m32.ssim, r32.gpu_total.median_ms, m512.rmse, m512.ssim,
            r512.gpu_total.median_ms);
-    if (!(m512.rmse < 0.9 * m32.rmse)) {
-        printf("FAIL: rmse(N=512) %.5f is not below 0.9 x rmse(N=32) = %.5f\n", m512.rmse,
-               0.9 * m32.rmse);
-        ok = 0;
-    } else {
-        printf("PASS: converges (rmse ratio %.3f < 0.9)\n", m512.rmse / m32.rmse);
-    }
+    snprintf(d, sizeof d, "rmse(N=512) %.5f, 0.9 x rmse(N=32) %.5f (ratio %.3f)", m512.rmse,
+             0.9 * m32.rmse, m512.rmse / m32.rmse);
+    CHECK_TRUE("converges: rmse(N=512) < 0.9 x rmse(N=32)", m512.rmse < 0.9 * m32.rmse, d);
     size_t nb = sizeof(float) * 3 * 64 * 64;
-    if (memcmp(r32.images[0].px, again.images[0].px, nb)) {
-        printf("FAIL: two renders of N=32 differ\n");
-        ok = 0;
-    } else {
-        printf("PASS: deterministic (two renders bit-identical)\n");
-    }
+    CHECK_TRUE("deterministic: two renders of N=32 bit-identical",
+               !memcmp(r32.images[0].px, again.images[0].px, nb), "");
     float lo = 1e30f, hi = -1e30f;
     for (int i = 0; i < 64 * 64 * 3; i++) {
         float v = r512.images[0].px[i];
@@ -87,12 +82,8 @@ int main(void)
             lo = -INFINITY;
         lo = fminf(lo, v), hi = fmaxf(hi, v);
     }
-    if (!(lo >= 0 && hi <= 1.0f + 1.0f / 512 + 1e-3f)) {
-        printf("FAIL: values outside [0, 1 + 1/N]: [%g, %g]\n", lo, hi);
-        ok = 0;
-    } else {
-        printf("PASS: finite, in [%g, %g]\n", lo, hi);
-    }
+    snprintf(d, sizeof d, "values in [%g, %g]", lo, hi);
+    CHECK_TRUE("finite, in [0, 1 + 1/N + 1e-3]", lo >= 0 && hi <= 1.0f + 1.0f / 512 + 1e-3f, d);
     /* Open plane: reference pixels that are exactly 1 with dmax = 0.05 (nothing within 5 cm). */
     gib_ref_params pp = rp;
     pp.dmax = 0.05f;
@@ -108,12 +99,11 @@ int main(void)
             count++;
             worst = fmax(worst, fabs(rp128.images[0].px[3 * i] - 1.0));
         }
-    if (!(count > 100 && worst <= 1.0 / 128 + 1e-3)) {
-        printf("FAIL: open plane: %d pixels, worst |AO - 1| %.4g > 1/N + 1e-3\n", count, worst);
-        ok = 0;
-    } else {
-        printf("PASS: open plane: %d pixels, worst |AO - 1| = %.4g <= 1/N + 1e-3\n", count, worst);
-    }
+    snprintf(d, sizeof d, "%d pixels, worst |AO - 1| %.4g, bound 1/N + 1e-3 = %.4g", count, worst,
+             1.0 / 128 + 1e-3);
+    CHECK_TRUE("open plane: > 100 pixels, worst |AO - 1| <= 1/N + 1e-3 (test_eqsp's 1/N plus the "
+               "texel margin)",
+               count > 100 && worst <= 1.0 / 128 + 1e-3, d);
     /* 5. A node buffer too small for the lists: the row's status says overflow, never ok. */
     {
         const gib_technique *t = gib_technique_find("ldm_ao");
@@ -123,12 +113,9 @@ int main(void)
         gib_param_set(t, &p, "node_budget", "0.5", &err);
         gib_run_result ro;
         gib_run_technique(&gpu, t, &p, 0, 64, 64, 0, 1, &ro);
-        if (ro.ok || strcmp(ro.status, "overflow")) {
-            printf("FAIL: node_budget 0.5: status '%s', expected 'overflow'\n", ro.status);
-            ok = 0;
-        } else {
-            printf("PASS: node_budget 0.5 reports status '%s' (%s)\n", ro.status, ro.err.msg);
-        }
+        snprintf(d, sizeof d, "status '%.32s' (%.160s)", ro.status, ro.err.msg);
+        CHECK_TRUE("node_budget 0.5 reports status 'overflow'",
+                   !ro.ok && !strcmp(ro.status, "overflow"), d);
         gib_run_result_free(&ro);
     }
     gib_run_result_free(&r32);
@@ -142,6 +129,6 @@ int main(void)
     gib_scene_free(&scene);
     gib_scene_free(&plane);
     gib_gl_shutdown();
-    printf("%s\n", ok ? "PASS" : "FAIL");
-    return ok ? 0 : 1;
+    printf("%s\n", failures ? "FAIL" : "PASS");
+    return failures != 0;
 }

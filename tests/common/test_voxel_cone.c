@@ -12,6 +12,7 @@
 #include "techniques/common/shader.h"
 #include "techniques/common/voxels.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
 
 static int failures;
 
@@ -42,7 +43,7 @@ static unsigned probe_program(void)
     for (int f = 0; f < 3; f++) {
         const char *t = gib_shader_source(files[f]);
         if (!t) {
-            printf("FAIL: %s is not embedded\n", files[f]);
+            CHECK(0, "%s is not embedded", files[f]);
             free(src);
             return 0;
         }
@@ -67,7 +68,7 @@ static unsigned probe_program(void)
     if (!ok) {
         char log[2048];
         glGetShaderInfoLog(sh, sizeof log, NULL, log);
-        printf("FAIL: voxel_cone.glsl does not compile: %s\n", log);
+        CHECK(0, "voxel_cone.glsl does not compile: %s", log);
         glDeleteShader(sh);
         glDeleteProgram(prog);
         return 0;
@@ -77,7 +78,7 @@ static unsigned probe_program(void)
     glDeleteShader(sh);
     glGetProgramiv(prog, GL_LINK_STATUS, &ok);
     if (!ok) {
-        printf("FAIL: the voxel_cone.glsl probe does not link\n");
+        CHECK(0, "the voxel_cone.glsl probe does not link");
         glDeleteProgram(prog);
         return 0;
     }
@@ -130,8 +131,7 @@ static void check_cones(const char *dir)
     unsigned prog = probe_program();
     if (!prog || gib_voxels_create(&v, &fx.gpu, 64, "voxels", &ledger, &err) < 0) {
         if (prog)
-            printf("FAIL cones: %s\n", err.msg);
-        failures++;
+            CHECK(0, "cones: %s", err.msg);
         gib_fixture_close(&fx);
         return;
     }
@@ -175,34 +175,24 @@ static void check_cones(const char *dir)
             e[1][3] = (float)i;
         }
     run_probe(prog, &v, all, nfix + 24 + ntop);
-    if (gib_gl_check("running the voxel_cone.glsl probe", &err) < 0) {
-        printf("FAIL cones: %s\n", err.msg);
-        failures++;
-    }
+    CHECK(!(gib_gl_check("running the voxel_cone.glsl probe", &err) < 0), "cones: %s", err.msg);
     const float want[4] = {1, 1, 0, 0};
     for (int i = 0; i < 4; i++)
-        if (fabsf(all[3 * i][0] - want[i]) > 1.0f / 255) {
-            printf("FAIL cones: voxel_occlusion query %d = %.4f, expected %.0f\n", i,
-                   all[3 * i][0], want[i]);
-            failures++;
-        }
+        CHECK(!(fabsf(all[3 * i][0] - want[i]) > 1.0f / 255),
+              "cones: voxel_occlusion query %d = %.4f, expected %.0f", i,
+              all[3 * i][0], want[i]);
     float blocked = all[3 * 4][0], open = all[3 * 5][0];
     printf("  cones: occlusion %.3f %.3f %.3f %.3f; shadow cone under the roof %.3f, beside %.3f\n",
            all[0][0], all[3][0], all[6][0], all[9][0], blocked, open);
-    if (!(blocked < 0.5f) || !(open > 0.95f)) {
-        printf("FAIL cones: shadow cone visibility %.3f under the roof (< 0.5), %.3f beside "
-               "(> 0.95)\n", blocked, open);
-        failures++;
-    }
+    CHECK(!(!(blocked < 0.5f) || !(open > 0.95f)),
+          "cones: shadow cone visibility %.3f under the roof (< 0.5), %.3f beside "
+          "(> 0.95)", blocked, open);
     float worst_top = 1;
     for (int k = 0; k < ntop; k++)
         worst_top = fminf(worst_top, all[3 * (nfix + 24 + k)][0]);
     printf("  cones: from the roof's top face, up: visibility >= %.3f\n", worst_top);
-    if (!(worst_top > 0.95f)) {
-        printf("FAIL cones: a shadow cone up from the roof's top face sees its own voxel "
-               "(visibility %.3f, expected > 0.95)\n", worst_top);
-        failures++;
-    }
+    CHECK(worst_top > 0.95f, "cones: a shadow cone up from the roof's top face sees its own voxel "
+          "(visibility %.3f, expected > 0.95)", worst_top);
     for (int m = 0; m < 4; m++) {
         const float *n = normals[m];
         double wsum = 0, tsum[3] = {0, 0, 0};
@@ -234,11 +224,8 @@ static void check_cones(const char *dir)
         }
         bad += fabs(wsum - 1) > 1e-6 ||
                sqrt(tsum[0] * tsum[0] + tsum[1] * tsum[1] + tsum[2] * tsum[2]) > 1e-5;
-        if (bad) {
-            printf("FAIL cones: the diffuse cone set for normal (%g %g %g) (%d errors)\n", n[0],
-                   n[1], n[2], bad);
-            failures++;
-        }
+        CHECK(!bad, "cones: the diffuse cone set for normal (%g %g %g) (%d errors)", n[0],
+              n[1], n[2], bad);
     }
     free(all);
     glDeleteProgram(prog);
@@ -250,7 +237,7 @@ int main(void)
 {
     char dir[] = "/tmp/gib_voxel_cone_XXXXXX";
     if (!mkdtemp(dir)) {
-        printf("FAIL: cannot make a temporary folder\n");
+        CHECK(0, "cannot make a temporary folder");
         return 1;
     }
     check_cones(dir);

@@ -17,6 +17,10 @@
 #include "harness/gl/context.h"
 #include "tests/common/gl_fixture.h"
 #include "harness/app/runner.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 int main(void)
 {
@@ -37,7 +41,7 @@ int main(void)
     gib_run_result r;
     gib_run_technique(gpu_p, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: ldm_indirect: %s: %s\n", r.status, r.err.msg);
+        CHECK(0, "ldm_indirect: %s: %s", r.status, r.err.msg);
         return 1;
     }
     double all = 0, centre = 0;
@@ -62,9 +66,10 @@ int main(void)
            100 * (centre / expected - 1), all, 100 * (all / expected - 1), nonfinite,
            r.gpu_total.median_ms, r.technique_bytes / 1e6);
     int ok = nonfinite == 0 && fabs(centre / expected - 1) < 0.02 && fabs(all / expected - 1) < 0.05;
-    printf("%s: one-bounce indirect in the furnace (centre within 2%%, image within 5%%)\n",
-           ok ? "PASS" : "FAIL");
+    snprintf(check_msg, sizeof check_msg,
+             "one-bounce indirect in the furnace (centre within 2%%, image within 5%%)");
+    CHECK_TRUE(check_msg, ok, "");
     gib_run_result_free(&r);
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

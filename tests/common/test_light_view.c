@@ -19,6 +19,7 @@
 #include "harness/gl/timers.h"
 #include "techniques/common/light_view.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
 
 static int failures;
 
@@ -49,8 +50,7 @@ static int render_views(rendered_views *v, const char *dir, const char *name, co
     gib_timers_init(&v->timers);
     gib_error err;
     if (gib_light_views_create(&v->lv, &v->fx.gpu, res, attributes, "lv", &v->ledger, &err) < 0) {
-        printf("FAIL %s: %s\n", name, err.msg);
-        failures++;
+        CHECK(0, "%s: %s", name, err.msg);
         gib_fixture_close(&v->fx);
         return -1;
     }
@@ -111,10 +111,7 @@ static void check_case(const char *dir, const char *name, const char *light, int
                ok ? "ok  " : "FAIL", name, res, v.lv.face_count, c, sum[c], expected[c], rel);
         failures += !ok;
     }
-    if (outside) {
-        printf("FAIL %s: %ld texels outside the spot's cone carry flux\n", name, outside);
-        failures++;
-    }
+    CHECK(!outside, "%s: %ld texels outside the spot's cone carry flux", name, outside);
     free(flux);
     free(pos);
     close_views(&v);
@@ -173,7 +170,7 @@ int main(void)
 {
     char dir[] = "/tmp/gib_light_view_XXXXXX";
     if (!mkdtemp(dir)) {
-        printf("FAIL: mkdtemp\n");
+        CHECK(0, "mkdtemp");
         return 1;
     }
     const double pi = M_PI, rho = 0.5;

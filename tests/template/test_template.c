@@ -21,7 +21,7 @@ static int failures;
 
 /* The furnace's sphere and camera with a point light of no power. */
 static const char *DARK_ROOM =
-    "[scene]\ndescription = the furnace with a dark light (tests/techniques/test_template.c)\n"
+    "[scene]\ndescription = the furnace with a dark light (tests/template/test_template.c)\n"
     "closed = 1\n[mesh.sphere]\nprocedural = sphere_interior\nradius = 1.0\nsubdivisions = 2\n"
     "[material.wall]\nalbedo = 0.5 0.5 0.5\n[light.centre]\ntype = point\nposition = 0 0 0\n"
     "intensity = 0 0 0\n[camera.inside]\neye = 0 0 -0.6\ntarget = 1 0 -0.6\nup = 0 1 0\n"
@@ -45,7 +45,7 @@ static double run(const gib_gpu_scene *gpu, const gib_technique *t, const char *
     gib_error err;
     gib_params_default(t, &p);
     if (gib_param_set(t, &p, "strength", strength, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return -1;
     }
     gib_run_technique(gpu, t, &p, 0, W, H, 0, 1, r);
@@ -102,7 +102,7 @@ int main(int argc, char **argv)
 {
     const gib_technique *t = the_template();
     if (!t) {
-        printf("FAIL: no test-only technique named 'template'\n");
+        CHECK(0, "no test-only technique named 'template'");
         return 1;
     }
     gib_gl_fixture fx;

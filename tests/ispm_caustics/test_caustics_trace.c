@@ -32,8 +32,12 @@
 #include "harness/gl/view.h"
 #include "techniques/ispm_caustics/ispm_caustics.h"
 #include "techniques/technique.h"
-#include "tests/caustics/caustics_scene.h"
+#include "tests/ispm_caustics/caustics_scene.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures; /* check.h's CHECK counts here; the exit status is decided as before */
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 static const char walls_text[] = CAUSTICS_SCENE_TEXT
     "[mesh.wall1]\nprocedural = quad\nsize = 4 0.7\nrotate = -90 0 0\ntranslate = 0 0.35 -1.0\n"
@@ -118,7 +122,7 @@ static int run(gib_gl_fixture *fx, RTCScene rs, const char *layers, const char *
     gib_view_make(fx->gpu.scene, &fx->gpu.scene->cameras[0], W, H, 0, &view);
     void *self = t->create(&fx->gpu, &p, W, H, &ledger, &err);
     if (!self) {
-        printf("FAIL: create: %s\n", err.msg);
+        CHECK(0, "create: %s", err.msg);
         return -1;
     }
     unsigned tex = gib_gpu_texture(&ledger, "test.target", GL_TEXTURE_2D, W, H, 1, GL_RGBA32F, 1,
@@ -128,7 +132,7 @@ static int run(gib_gl_fixture *fx, RTCScene rs, const char *layers, const char *
     gib_image_target target = {GIB_OUT_CAUSTIC, fbo, tex};
     gib_timers_frame_begin(&timers, 1);
     if (t->render(self, &view, &timers, &target, 1, &err) < 0) {
-        printf("FAIL: render: %s\n", err.msg);
+        CHECK(0, "render: %s", err.msg);
         return -1;
     }
     gib_timers_frame_end(&timers);
@@ -212,11 +216,13 @@ static int fin_case(void)
     int rc = run(&fx, rs, "0", NULL, &bound) < 0 || run(&fx, rs, "0", "0", &plane) < 0;
     int pass = !rc && plane.early >= 50 && 3 * bound.early <= plane.early &&
                frac(bound.agree, bound.in_view) >= 0.90;
-    printf("%s: a fin 2 degrees off edge-on: %d photons stopped short of Embree's hit with the "
-           "depth bound, %d with the plane alone (at most a third, of 50 or more); %.2f%% agree "
-           "(>= 90%%; the plane alone %.2f%%)\n", pass ? "PASS" : "FAIL", bound.early,
-           plane.early, 100 * frac(bound.agree, bound.in_view),
-           100 * frac(plane.agree, plane.in_view));
+    snprintf(check_msg, sizeof check_msg,
+             "a fin 2 degrees off edge-on: %d photons stopped short of Embree's hit with the depth "
+             "bound, %d with the plane alone (at most a third, of 50 or more); %.2f%% agree (>= "
+             "90%%; the plane alone %.2f%%)",
+             bound.early, plane.early, 100 * frac(bound.agree, bound.in_view),
+             100 * frac(plane.agree, plane.in_view));
+    CHECK_TRUE(check_msg, pass, "");
     rtcReleaseScene(rs);
     rtcReleaseDevice(dev);
     gib_fixture_close(&fx);
@@ -239,20 +245,25 @@ int main(void)
     int pass_l = l.photons > 1000 && l.in_view > l.photons / 2 && frac(l.agree, l.in_view) >= 0.97 &&
                  l.hidden >= 50 && frac(l.hidden_agree, l.hidden) >= 0.95 && l.deep >= 50 &&
                  frac(l.deep_agree, l.deep) >= 0.95 && l.extra == 0 && !strcmp(l.status, "ok");
-    printf("%s: lists vs Embree: %.2f%% agree (>= 97%%), %.2f%% of the hidden (>= 95%%), %.2f%% "
-           "of those behind >= 4 surfaces (>= 95%%)\n", pass_l ? "PASS" : "FAIL",
-           100 * frac(l.agree, l.in_view), 100 * frac(l.hidden_agree, l.hidden),
-           100 * frac(l.deep_agree, l.deep));
+    snprintf(check_msg, sizeof check_msg,
+             "lists vs Embree: %.2f%% agree (>= 97%%), %.2f%% of the hidden (>= 95%%), %.2f%% of "
+             "those behind >= 4 surfaces (>= 95%%)",
+             100 * frac(l.agree, l.in_view), 100 * frac(l.hidden_agree, l.hidden),
+             100 * frac(l.deep_agree, l.deep));
+    CHECK_TRUE(check_msg, pass_l, "");
     int pass_d = d.deep >= 50 && frac(d.deep_agree, d.deep) <= 0.10 &&
                  frac(d.shallow_agree, d.shallow) >= 0.97 && !strcmp(d.status, "ok");
-    printf("%s: 4 depth layers vs Embree: %.2f%% of the receivers behind >= 4 surfaces found "
-           "(<= 10%%: they are missing), %.2f%% of the others (>= 97%%)\n",
-           pass_d ? "PASS" : "FAIL", 100 * frac(d.deep_agree, d.deep),
-           100 * frac(d.shallow_agree, d.shallow));
+    snprintf(check_msg, sizeof check_msg,
+             "4 depth layers vs Embree: %.2f%% of the receivers behind >= 4 surfaces found (<= "
+             "10%%: they are missing), %.2f%% of the others (>= 97%%)",
+             100 * frac(d.deep_agree, d.deep), 100 * frac(d.shallow_agree, d.shallow));
+    CHECK_TRUE(check_msg, pass_d, "");
     int pass_b = l.agree >= plane.agree && l.deep_agree >= plane.deep_agree;
-    printf("%s: the depth bound (hit_depth default) vs the tangent plane alone (hit_depth 0): %d "
-           "against %d agree, %d against %d behind >= 4 surfaces (no fewer)\n",
-           pass_b ? "PASS" : "FAIL", l.agree, plane.agree, l.deep_agree, plane.deep_agree);
+    snprintf(check_msg, sizeof check_msg,
+             "the depth bound (hit_depth default) vs the tangent plane alone (hit_depth 0): %d "
+             "against %d agree, %d against %d behind >= 4 surfaces (no fewer)",
+             l.agree, plane.agree, l.deep_agree, plane.deep_agree);
+    CHECK_TRUE(check_msg, pass_b, "");
     rtcReleaseScene(rs);
     rtcReleaseDevice(dev);
     gib_fixture_close(&fx);

@@ -16,6 +16,10 @@
 
 #include "harness/app/runner.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 48
@@ -28,7 +32,6 @@ int main(void)
     if (gib_fixture_open(&fx, "furnace") < 0)
         return 1;
     const double want = 0.25 / M_PI;
-    int ok = 1;
     const char *names[] = {"rsm_gather", "multires_ir"};
     for (int k = 0; k < 2; k++) {
         const gib_technique *t = gib_technique_find(names[k]);
@@ -41,8 +44,8 @@ int main(void)
         gib_run_result r;
         gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
         if (!r.ok) {
-            printf("FAIL: %s: %s: %s\n", names[k], r.status, r.err.msg);
-            ok = 0;
+            CHECK(0, "%s: %s: %s", names[k], r.status, r.err.msg);
+            failures++;
             continue;
         }
         double worst = 0, mean = 0;
@@ -56,13 +59,14 @@ int main(void)
                 worst = e;
         }
         int good = bad == 0 && fabs(mean / want - 1) <= MEAN_TOL;
-        printf("%s %s in the furnace (%s): mean %.6f, closed form %.6f (%+.3f%%, tolerance "
-               "%.1f%%), worst pixel %.3f%% off (tolerance %.1f%%), %ld values beyond\n",
-               good ? "PASS" : "FAIL", names[k], fx.info.renderer, mean, want,
-               100 * (mean / want - 1), 100 * MEAN_TOL, 100 * worst, 100 * PIXEL_TOL, bad);
-        ok &= good;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s in the furnace (%s): mean %.6f, closed form %.6f (%+.3f%%, tolerance %.1f%%), "
+                 "worst pixel %.3f%% off (tolerance %.1f%%), %ld values beyond",
+                 names[k], fx.info.renderer, mean, want, 100 * (mean / want - 1), 100 * MEAN_TOL,
+                 100 * worst, 100 * PIXEL_TOL, bad);
+        CHECK_TRUE(check_msg, good, "");
         gib_run_result_free(&r);
     }
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

@@ -29,6 +29,10 @@
 #include "techniques/ldm_indirect/ldm_indirect.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 64
@@ -50,36 +54,36 @@ int main(void)
     gib_run_result r;
     gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: ldm_indirect: %s: %s\n", r.status, r.err.msg);
+        CHECK(0, "ldm_indirect: %s: %s", r.status, r.err.msg);
         return 1;
     }
     gib_image ref;
     gib_ref_stats st;
     if (gib_fixture_reference(&fx, GIB_COMP_INDIRECT, W, H, REF_SPP, &ref, &st) < 0)
         return 1;
-    int ok = 1;
     long nonfinite = gib_image_count_nonfinite(&r.images[0]);
     printf("renderer %s: ldm_indirect on cornell %dx%d (reference %d spp, noise %.2f%% of its mean), "
            "%ld non-finite\n", fx.info.renderer, W, H, st.spp, 100 * st.noise_rmse / st.mean, nonfinite);
     if (nonfinite) {
-        printf("FAIL: %ld non-finite pixels\n", nonfinite);
-        ok = 0;
+        CHECK(0, "%ld non-finite pixels", nonfinite);
+        failures++;
     }
     static const char *const channel[3] = {"red", "green", "blue"};
     for (int c = 0; c < 3; c++) {
         double block, mean;
         gib_block_error(ref.px, r.images[0].px, W, H, BLOCK, c, &block, &mean);
         int good = fabs(mean - 1) <= MEAN_TOL && block <= BLOCK_TOL;
-        printf("%s %s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative RMSE "
-               "%.4f (bound %.2f)\n", good ? "PASS" : "FAIL", channel[c], mean, MEAN_TOL, BLOCK, BLOCK,
-               block, BLOCK_TOL);
-        ok &= good;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative RMSE "
+                 "%.4f (bound %.2f)",
+                 channel[c], mean, MEAN_TOL, BLOCK, BLOCK, block, BLOCK_TOL);
+        CHECK_TRUE(check_msg, good, "");
     }
 
     ldm_indirect_audit a;
     if (ldm_indirect_audit_last(&a) < 0) {
-        printf("FAIL: no audit was recorded\n");
-        ok = 0;
+        CHECK(0, "no audit was recorded");
+        failures++;
     } else {
         char line[1024];
         ldm_indirect_audit_format(&a, line, sizeof line);
@@ -91,15 +95,17 @@ int main(void)
             double stored = a.flux[LDM_AUDIT_STORED][c], splatted = a.flux[LDM_AUDIT_SPLATTED][c];
             int good = carried > 0 && fabs(sum / carried - 1) <= 1e-4 && stored > 0 &&
                        fabs(splatted / stored - 1) <= SPLAT_TOL;
-            printf("%s %s: carried %.6g W = discarded + stored %.6g W (%+.2g); splatted %.6g W = "
-                   "%.4f of stored\n", good ? "PASS" : "FAIL", channel[c], carried, sum,
-                   carried > 0 ? sum / carried - 1 : 0.0, splatted, stored > 0 ? splatted / stored : 0.0);
-            ok &= good;
+            snprintf(check_msg, sizeof check_msg,
+                     "%s: carried %.6g W = discarded + stored %.6g W (%+.2g); splatted %.6g W = "
+                     "%.4f of stored",
+                     channel[c], carried, sum, carried > 0 ? sum / carried - 1 : 0.0, splatted,
+                     stored > 0 ? splatted / stored : 0.0);
+            CHECK_TRUE(check_msg, good, "");
         }
     }
-    printf("%s: ldm_indirect against the Cornell box's indirect reference\n", ok ? "PASS" : "FAIL");
+    printf("%s: ldm_indirect against the Cornell box's indirect reference\n", failures ? "FAIL" : "PASS");
     gib_image_free(&ref);
     gib_run_result_free(&r);
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

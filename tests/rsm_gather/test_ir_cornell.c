@@ -35,6 +35,10 @@
 #include "reference/reference.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define W 64
 #define H 64
@@ -61,7 +65,6 @@ int main(void)
         return 1;
     printf("renderer %s: cornell %dx%d, reference %d spp (noise %.2f%% of its mean)\n",
            fx.info.renderer, W, H, st.spp, 100 * st.noise_rmse / st.mean);
-    int ok = 1;
     gib_image gather = {0};
     for (int k = 0; k < (int)(sizeof cases / sizeof cases[0]); k++) {
         const gib_technique *t = gib_technique_find(cases[k].name);
@@ -74,24 +77,26 @@ int main(void)
         gib_run_result r;
         gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
         if (!r.ok) {
-            printf("FAIL: %s: %s: %s\n", cases[k].name, r.status, r.err.msg);
-            ok = 0;
+            CHECK(0, "%s: %s: %s", cases[k].name, r.status, r.err.msg);
+            failures++;
             continue;
         }
         long nonfinite = gib_image_count_nonfinite(&r.images[0]);
         if (nonfinite) {
-            printf("FAIL: %s: %ld non-finite values\n", cases[k].name, nonfinite);
-            ok = 0;
+            CHECK(0, "%s: %ld non-finite values", cases[k].name, nonfinite);
+            failures++;
         }
         static const char *const channel[3] = {"red", "green", "blue"};
         for (int c = 0; c < 3; c++) {
             double block, mean;
             gib_block_error(ref.px, r.images[0].px, W, H, BLOCK, c, &block, &mean);
             int good = fabs(mean - 1) <= cases[k].mean_tol && block <= cases[k].block_tol;
-            printf("%s %s %s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative "
-                   "RMSE %.4f (bound %.2f)\n", good ? "PASS" : "FAIL", cases[k].name, channel[c],
-                   mean, cases[k].mean_tol, BLOCK, BLOCK, block, cases[k].block_tol);
-            ok &= good;
+            snprintf(check_msg, sizeof check_msg,
+                     "%s %s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative "
+                     "RMSE %.4f (bound %.2f)",
+                     cases[k].name, channel[c], mean, cases[k].mean_tol, BLOCK, BLOCK, block,
+                     cases[k].block_tol);
+            CHECK_TRUE(check_msg, good, "");
         }
         if (k == 1 && gather.px) {
             double se = 0, sum = 0;
@@ -102,9 +107,11 @@ int main(void)
             }
             double rel = sqrt(se / (W * H * 3)) / (sum / (W * H * 3));
             int good = rel <= INTERP_TOL;
-            printf("%s multires_ir against rsm_gather (its interpolation alone): relative RMSE %.4f "
-                   "(bound %.2f)\n", good ? "PASS" : "FAIL", rel, INTERP_TOL);
-            ok &= good;
+            snprintf(check_msg, sizeof check_msg,
+                     "multires_ir against rsm_gather (its interpolation alone): relative RMSE %.4f "
+                     "(bound %.2f)",
+                     rel, INTERP_TOL);
+            CHECK_TRUE(check_msg, good, "");
         }
         if (k == 0) {
             gather = r.images[0];
@@ -125,15 +132,17 @@ int main(void)
                 for (long i = 0; rs.ok && rm.ok && i < (long)W * H * 3; i++)
                     differ += rs.images[0].px[i] != rm.images[0].px[i];
                 int good = rs.ok && rm.ok && differ == 0;
-                printf("%s multires_ir stencil=1 against stencil=0: %ld values differ (the same "
-                       "regions, the same gathers: none may)\n", good ? "PASS" : "FAIL", differ);
-                ok &= good;
+                snprintf(check_msg, sizeof check_msg,
+                         "multires_ir stencil=1 against stencil=0: %ld values differ (the same "
+                         "regions, the same gathers: none may)",
+                         differ);
+                CHECK_TRUE(check_msg, good, "");
                 gib_run_result_free(&rs);
                 gib_run_result_free(&rm);
             }
             if (gib_param_set(mt, &mp, "levels", "1", &err) < 0) {
-                printf("FAIL: %s\n", err.msg);
-                ok = 0;
+                CHECK(0, "%s", err.msg);
+                failures++;
             } else {
                 gib_run_technique(&fx.gpu, mt, &mp, 0, W, H, 0, 1, &r1);
                 double se = 0, sum = 0;
@@ -144,9 +153,11 @@ int main(void)
                 }
                 double rel = r1.ok && sum > 0 ? sqrt(se / (W * H * 3)) / (sum / (W * H * 3)) : 1;
                 int good = r1.ok && rel <= 1e-5;
-                printf("%s multires_ir levels=1 against rsm_gather: relative RMSE %.2g (tolerance "
-                       "1e-5)\n", good ? "PASS" : "FAIL", rel);
-                ok &= good;
+                snprintf(check_msg, sizeof check_msg,
+                         "multires_ir levels=1 against rsm_gather: relative RMSE %.2g (tolerance "
+                         "1e-5)",
+                         rel);
+                CHECK_TRUE(check_msg, good, "");
                 gib_run_result_free(&r1);
             }
         }
@@ -156,6 +167,6 @@ int main(void)
     gib_image_free(&gather);
     gib_fixture_close(&fx);
     printf("%s: rsm_gather and multires_ir against the Cornell box's indirect reference\n",
-           ok ? "PASS" : "FAIL");
-    return ok ? 0 : 1;
+           failures ? "FAIL" : "PASS");
+    return failures != 0;
 }

@@ -12,6 +12,10 @@
 #include "harness/imaging/metrics.h"
 #include "reference/reference.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 static double rel_rmse_of(const gib_gl_fixture *fx, const char *technique, const gib_image *ref,
                           double *gpu_ms)
@@ -25,7 +29,7 @@ static double rel_rmse_of(const gib_gl_fixture *fx, const char *technique, const
     gib_run_result r;
     gib_run_technique(&fx->gpu, t, &p, 0, ref->width, ref->height, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: %s: %s: %s\n", technique, r.status, r.err.msg);
+        CHECK(0, "%s: %s: %s", technique, r.status, r.err.msg);
         return -1;
     }
     gib_metrics m;
@@ -52,9 +56,10 @@ int main(void)
     printf("ldm_env (N=128): rel_rmse %.4f, gpu %.1f ms; direct (no sky): rel_rmse %.4f, gpu %.1f ms\n",
            env, ms_env, direct, ms_direct);
     int ok = env >= 0 && env < 0.06 && direct > 0.2;
-    printf("%s: ldm_env within 0.06 relative RMSE, direct without the sky above 0.2\n",
-           ok ? "PASS" : "FAIL");
+    snprintf(check_msg, sizeof check_msg,
+             "ldm_env within 0.06 relative RMSE, direct without the sky above 0.2");
+    CHECK_TRUE(check_msg, ok, "");
     gib_image_free(&ref);
     gib_fixture_close(&fx);
-    return ok ? 0 : 1;
+    return failures != 0;
 }

@@ -23,6 +23,10 @@
 #include "techniques/common/light_view.h"
 #include "techniques/common/vpl.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 static const char *spot_scene =
     "[scene]\ndescription = furnace sphere lit by a 40-degree spot (circle pattern)\nclosed = 1\n"
@@ -62,7 +66,10 @@ static int count_test(void)
                                "rsm", &ledger, &err) == 0) {
         ok = gib_vpls_create(&v, &lv, 5, 1, "vpl", &ledger, &err) < 0 &&
              strstr(err.msg, "vpl_count") != NULL;
-        printf("%s: 5 VPLs for a cube's 6 faces: %s\n", ok ? "PASS" : "FAIL", ok ? err.msg : "accepted");
+        snprintf(check_msg, sizeof check_msg,
+                 "5 VPLs for a cube's 6 faces: %.400s",
+                 ok ? err.msg : "accepted");
+        CHECK_TRUE(check_msg, ok, "");
         if (!ok)
             gib_vpls_destroy(&v, &ledger);
         gib_light_views_destroy(&lv, &ledger);
@@ -81,7 +88,7 @@ static int probe_test(gib_gl_fixture *fx)
     if (gib_light_views_create(&lv, &fx->gpu, 16, GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX,
                                "rsm", &ledger, &err) < 0 ||
         gib_vpls_create(&v, &lv, 1, 1, "vpl", &ledger, &err) < 0) {
-        printf("FAIL: probe set-up: %s\n", err.msg);
+        CHECK(0, "probe set-up: %s", err.msg);
         return 0;
     }
     /* One VPL at the origin facing +y (a floor patch), flux (2, 1, 0.5) W. */
@@ -116,7 +123,7 @@ static int probe_test(gib_gl_fixture *fx)
             in[8 * i + 4 + c] = c < 3 ? nx[i][c] : 0;
         }
     if (gib_vpls_probe(&v, eps, in, N, out, &err) < 0) {
-        printf("FAIL: probe: %s\n", err.msg);
+        CHECK(0, "probe: %s", err.msg);
         return 0;
     }
     double worst = 0;
@@ -147,9 +154,11 @@ static int probe_test(gib_gl_fixture *fx)
             }
         }
     }
-    printf("%s: one VPL's irradiance at %d points (%d lit) against Phi cos_l cos_x / (pi max(d^2, "
-           "eps^2)): worst relative error %.2g (tolerance 1e-5)\n", ok ? "PASS" : "FAIL", N, lit,
-           worst);
+    snprintf(check_msg, sizeof check_msg,
+             "one VPL's irradiance at %d points (%d lit) against Phi cos_l cos_x / (pi max(d^2, "
+             "eps^2)): worst relative error %.2g (tolerance 1e-5)",
+             N, lit, worst);
+    CHECK_TRUE(check_msg, ok, "");
     gib_vpls_destroy(&v, &ledger);
     gib_light_views_destroy(&lv, &ledger);
     return ok;
@@ -171,7 +180,7 @@ static int flux_test(const char *name, const char *text, int count)
     if (gib_light_views_create(&lv, &fx.gpu, res, GIB_LV_POSITION | GIB_LV_NORMAL | GIB_LV_FLUX,
                                "rsm", &ledger, &err) < 0 ||
         gib_vpls_create(&v, &lv, count, 7, "vpl", &ledger, &err) < 0) {
-        printf("FAIL %s: set-up: %s\n", name, err.msg);
+        CHECK(0, "%s: set-up: %s", name, err.msg);
         return 0;
     }
     gib_light_views_render(&lv, &fx.gpu, &timers, "rsm");
@@ -196,17 +205,18 @@ static int flux_test(const char *name, const char *text, int count)
     for (int c = 0; c < 3; c++) {
         double e = fabs(got[c] / want[c] - 1);
         int good = want[c] > 0 && e <= 1e-5;
-        printf("%s %s (%d faces, %d VPLs, %d valid) channel %d: VPL flux %.7g W, light views' "
-               "reflected flux %.7g W (relative %.2g, tolerance 1e-5)\n", good ? "PASS" : "FAIL",
-               name, lv.face_count, count, valid, c, got[c], want[c], e);
-        ok &= good;
+        snprintf(check_msg, sizeof check_msg,
+                 "%s (%d faces, %d VPLs, %d valid) channel %d: VPL flux %.7g W, light views' "
+                 "reflected flux %.7g W (relative %.2g, tolerance 1e-5)",
+                 name, lv.face_count, count, valid, c, got[c], want[c], e);
+        CHECK_TRUE(check_msg, good, "");
     }
     if (!on_surface) {
-        printf("FAIL %s: a VPL carries flux without a surface\n", name);
+        CHECK(0, "%s: a VPL carries flux without a surface", name);
         ok = 0;
     }
     if (v.count != count) {
-        printf("FAIL %s: %d VPLs, asked for %d\n", name, v.count, count);
+        CHECK(0, "%s: %d VPLs, asked for %d", name, v.count, count);
         ok = 0;
     }
     free(flux);
@@ -220,19 +230,18 @@ static int flux_test(const char *name, const char *text, int count)
 
 int main(void)
 {
-    int ok = 1;
     gib_gl_fixture fx;
     if (gib_fixture_open_text(&fx, "/tmp", "ir_vpl_spot", spot_scene) < 0)
         return 1;
     printf("renderer %s\n", fx.info.renderer);
-    ok &= probe_test(&fx);
+    failures += !(probe_test(&fx));
     gib_fixture_close(&fx);
-    ok &= flux_test("ir_vpl_spot", spot_scene, 256);
-    ok &= flux_test("ir_vpl_spot", spot_scene, 37);
-    ok &= flux_test("ir_vpl_point", point_scene, 256);
-    ok &= flux_test("ir_vpl_point", point_scene, 6 * 16);
-    ok &= flux_test("ir_vpl_sun", sun_scene, 256);
-    ok &= count_test();
-    printf("%s: VPL gather and flux\n", ok ? "PASS" : "FAIL");
-    return ok ? 0 : 1;
+    failures += !(flux_test("ir_vpl_spot", spot_scene, 256));
+    failures += !(flux_test("ir_vpl_spot", spot_scene, 37));
+    failures += !(flux_test("ir_vpl_point", point_scene, 256));
+    failures += !(flux_test("ir_vpl_point", point_scene, 6 * 16));
+    failures += !(flux_test("ir_vpl_sun", sun_scene, 256));
+    failures += !(count_test());
+    printf("%s: VPL gather and flux\n", failures ? "FAIL" : "PASS");
+    return failures != 0;
 }

@@ -22,6 +22,10 @@
 #include "harness/gl/bindings.h"
 #include "harness/gl/context.h"
 #include "techniques/common/shader.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 static uint64_t rs = 0x9e3779b97f4a7c15ull;
 static float rnd(void)
@@ -36,7 +40,7 @@ static int phong(void)
     const char *files[] = {"ispm_caustics/phong_probe.comp"};
     unsigned prog = gib_program(files, 1, NULL, &err);
     if (!prog) {
-        printf("FAIL: phong probe: %s\n", err.msg);
+        CHECK(0, "phong probe: %s", err.msg);
         return 0;
     }
     const int N = 1 << 16;
@@ -78,11 +82,11 @@ static int phong(void)
             double mean = s / N, se = sqrt((s2 / N - mean * mean) / N);
             double want = (ns[a] + 1) / (ns[a] + 2);
             int pass = fabs(mean - want) <= 4 * se && below == 0 && wrong == 0;
-            printf("%s: Phong n = %g, axis %g deg from the normal: mean cos %.6f, expected %.6f "
-                   "(%.2f standard errors); %d rejected, %d accepted below, %d rejected above\n",
-                   pass ? "PASS" : "FAIL", ns[a], tilt[k], mean, want, (mean - want) / se,
-                   rejected, below, wrong);
-            ok &= pass;
+            snprintf(check_msg, sizeof check_msg,
+                     "Phong n = %g, axis %g deg from the normal: mean cos %.6f, expected %.6f "
+                     "(%.2f standard errors); %d rejected, %d accepted below, %d rejected above",
+                     ns[a], tilt[k], mean, want, (mean - want) / se, rejected, below, wrong);
+            CHECK_TRUE(check_msg, pass, "");
         }
     glDeleteBuffers(2, b);
     glDeleteProgram(prog);
@@ -106,7 +110,7 @@ static int mask(void)
     const char *files[] = {"ispm_caustics/mask_mip.comp"};
     unsigned prog = gib_program(files, 1, NULL, &err);
     if (!prog) {
-        printf("FAIL: mask probe: %s\n", err.msg);
+        CHECK(0, "mask probe: %s", err.msg);
         return 0;
     }
     enum { R = 64, L = 3 };
@@ -158,9 +162,10 @@ static int mask(void)
                 cpu += all;
             }
         int pass = gpu == cpu && cpu > 0;
-        printf("%s: mask level %d: %d texels exactly 1, %d fully specular blocks of %d^2\n",
-               pass ? "PASS" : "FAIL", l, gpu, cpu, b);
-        ok &= pass;
+        snprintf(check_msg, sizeof check_msg,
+                 "mask level %d: %d texels exactly 1, %d fully specular blocks of %d^2",
+                 l, gpu, cpu, b);
+        CHECK_TRUE(check_msg, pass, "");
     }
     unsigned tex[4] = {tp, tn, ts, tm};
     glDeleteTextures(4, tex);
@@ -175,7 +180,7 @@ static int splat(void)
                            "ispm_caustics/splat.frag"};
     unsigned prog = gib_program(files, 3, NULL, &err);
     if (!prog) {
-        printf("FAIL: splat probe: %s\n", err.msg);
+        CHECK(0, "splat probe: %s", err.msg);
         return 0;
     }
     enum { R = 512 };
@@ -228,9 +233,11 @@ static int splat(void)
     int ok = 1;
     for (int c = 0; c < 3; c++)
         ok &= fabs(sum[c] / flux[c] - 1) <= 5e-3;
-    printf("%s: one photon's splat integrates to %.5f %.5f %.5f W, its flux %.5f %.5f %.5f "
-           "(within 0.5%%)\n", ok ? "PASS" : "FAIL", sum[0], sum[1], sum[2], flux[0], flux[1],
-           flux[2]);
+    snprintf(check_msg, sizeof check_msg,
+             "one photon's splat integrates to %.5f %.5f %.5f W, its flux %.5f %.5f %.5f (within "
+             "0.5%%)",
+             sum[0], sum[1], sum[2], flux[0], flux[1], flux[2]);
+    CHECK_TRUE(check_msg, ok, "");
     glDeleteTextures(3, t);
     glDeleteFramebuffers(1, &fbo);
     glDeleteBuffers(1, &buf);
@@ -246,13 +253,13 @@ int main(void)
     gib_error err;
     gib_gl_info info;
     if (gib_gl_init(GIB_BACKEND_AUTO, &info, &err) < 0) {
-        printf("FAIL: set-up: %s\n", err.msg);
+        CHECK(0, "set-up: %s", err.msg);
         return 1;
     }
     printf("renderer %s\n", info.renderer);
-    int ok = phong();
-    ok &= mask();
-    ok &= splat();
-    printf("%s\n", ok ? "PASS" : "FAIL");
-    return ok ? 0 : 1;
+    failures += !phong();
+    failures += !mask();
+    failures += !splat();
+    printf("%s\n", failures ? "FAIL" : "PASS");
+    return failures != 0;
 }

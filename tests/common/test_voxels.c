@@ -30,6 +30,7 @@
 #include "harness/imaging/image.h"
 #include "techniques/common/voxels.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
 
 static int failures;
 
@@ -222,21 +223,16 @@ static void check_mips(const char *name, const gib_voxels *v)
         mean /= (double)r * r * r;
         double dm = fabs(mean - base);
         worst_mean = fmax(worst_mean, dm / l);
-        if (dm > l * 0.5 / 255 + 1e-9) {
-            printf("FAIL %s: mip %d mean %.6f, base occupancy %.6f (tolerance %d x 0.5/255)\n", name,
-                   l, mean, base, l);
-            failures++;
-        }
+        CHECK(!(dm > l * 0.5 / 255 + 1e-9),
+              "%s: mip %d mean %.6f, base occupancy %.6f (tolerance %d x 0.5/255)", name,
+              l, mean, base, l);
         free(prev);
         prev = cur;
         rp = r;
     }
     free(prev);
-    if (bad) {
-        printf("FAIL %s: %d mip texels differ from their 8 children's mean by more than 0.5/255 "
-               "(worst %.5f)\n", name, bad, worst_texel);
-        failures++;
-    }
+    CHECK(!bad, "%s: %d mip texels differ from their 8 children's mean by more than 0.5/255 "
+          "(worst %.5f)", name, bad, worst_texel);
     printf("  %s: mips: base occupancy %.5f, worst texel error %.2f/255, worst mean drift %.2f/255 "
            "per level\n", name, base, worst_texel * 255, worst_mean * 255);
 }
@@ -260,8 +256,7 @@ static void check_case(const char *dir, const char *name, const char *text, int 
     }
     gib_error err;
     if (time > 0 && gib_gpu_scene_set_time(&fx.gpu, time, &err) < 0) {
-        printf("FAIL %s: %s\n", name, err.msg);
-        failures++;
+        CHECK(0, "%s: %s", name, err.msg);
         gib_fixture_close(&fx);
         return;
     }
@@ -269,22 +264,16 @@ static void check_case(const char *dir, const char *name, const char *text, int 
     gib_ledger_init(&ledger);
     gib_voxels v;
     if (gib_voxels_create(&v, &fx.gpu, res, "voxels", &ledger, &err) < 0) {
-        printf("FAIL %s: %s\n", name, err.msg);
-        failures++;
+        CHECK(0, "%s: %s", name, err.msg);
         gib_fixture_close(&fx);
         return;
     }
-    if (ledger.entries[0].bytes != gib_voxels_bytes(res)) {
-        printf("FAIL %s: the ledger counts %llu bytes, the plan %llu\n", name,
-               (unsigned long long)ledger.entries[0].bytes,
-               (unsigned long long)gib_voxels_bytes(res));
-        failures++;
-    }
+    CHECK(ledger.entries[0].bytes == gib_voxels_bytes(res),
+          "%s: the ledger counts %llu bytes, the plan %llu", name,
+          (unsigned long long)ledger.entries[0].bytes,
+          (unsigned long long)gib_voxels_bytes(res));
     gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
-    if (gib_gl_check("building the voxels", &err) < 0) {
-        printf("FAIL %s: %s\n", name, err.msg);
-        failures++;
-    }
+    CHECK(!(gib_gl_check("building the voxels", &err) < 0), "%s: %s", name, err.msg);
     int R;
     unsigned char *gpu = read_level(&v, 0, &R);
     size_t n = (size_t)R * R * R;
@@ -294,8 +283,7 @@ static void check_case(const char *dir, const char *name, const char *text, int 
     for (size_t i = 0; i < n; i++) {
         int g = gpu[i] != 0;
         if (gpu[i] != 0 && gpu[i] != 255) {
-            printf("FAIL %s: voxel %zu holds %d, not 0 or 255\n", name, i, gpu[i]);
-            failures++;
+            CHECK(0, "%s: voxel %zu holds %d, not 0 or 255", name, i, gpu[i]);
             break;
         }
         set += g;
@@ -307,26 +295,18 @@ static void check_case(const char *dir, const char *name, const char *text, int 
     printf("  %s (%u triangles, %d^3): %zu voxels set, %zu touched exactly, %zu missed, "
            "%zu beyond 2e-3 voxel, false positives %.3f%%\n", name, fx.scene.triangle_count, R,
            set, touched, misses, extras, set ? 100.0 * loose / set : 0.0);
-    if (!touched || misses || extras) {
-        printf("FAIL %s: %zu voxels missed, %zu set beyond the dilated overlap (or none touched)\n",
-               name, misses, extras);
-        failures++;
-    }
+    CHECK(!(!touched || misses || extras),
+          "%s: %zu voxels missed, %zu set beyond the dilated overlap (or none touched)",
+          name, misses, extras);
     if (connected) {
         int c = components6(gpu, R);
-        if (c != 1) {
-            printf("FAIL %s: the set voxels form %d 6-connected components, not 1\n", name, c);
-            failures++;
-        }
+        CHECK(c == 1, "%s: the set voxels form %d 6-connected components, not 1", name, c);
     }
     check_mips(name, &v);
     free(gpu);
     free(mark);
     gib_voxels_destroy(&v, &ledger);
-    if (ledger.count) {
-        printf("FAIL %s: %d ledger entries left after destroy\n", name, ledger.count);
-        failures++;
-    }
+    CHECK(!ledger.count, "%s: %d ledger entries left after destroy", name, ledger.count);
     gib_fixture_close(&fx);
 }
 
@@ -343,8 +323,7 @@ static void check_alpha(const char *dir)
     snprintf(path, sizeof path, "%s/quad.obj", dir);
     FILE *f = fopen(path, "w");
     if (!f) {
-        printf("FAIL alpha: cannot write %s\n", path);
-        failures++;
+        CHECK(0, "alpha: cannot write %s", path);
         return;
     }
     fprintf(f, "mtllib quad.mtl\nusemtl leaf\n");
@@ -364,8 +343,7 @@ static void check_alpha(const char *dir)
     gib_error err;
     snprintf(path, sizeof path, "%s/mask.png", dir);
     if (gib_image_alloc(&mask, 64, 64, 1, &err) < 0) {
-        printf("FAIL alpha: %s\n", err.msg);
-        failures++;
+        CHECK(0, "alpha: %s", err.msg);
         return;
     }
     for (int y = 0; y < 64; y++)
@@ -374,8 +352,7 @@ static void check_alpha(const char *dir)
     int rc = gib_png_write_preview(path, &mask, 1.0f, &err);
     gib_image_free(&mask);
     if (rc < 0) {
-        printf("FAIL alpha: %s\n", err.msg);
-        failures++;
+        CHECK(0, "alpha: %s", err.msg);
         return;
     }
     setenv("GIBENCH_SCENES", dir, 1);
@@ -390,8 +367,7 @@ static void check_alpha(const char *dir)
     gib_ledger_init(&ledger);
     gib_voxels v;
     if (gib_voxels_create(&v, &fx.gpu, 64, "voxels", &ledger, &err) < 0) {
-        printf("FAIL alpha: %s\n", err.msg);
-        failures++;
+        CHECK(0, "alpha: %s", err.msg);
         gib_fixture_close(&fx);
         return;
     }
@@ -419,11 +395,9 @@ static void check_alpha(const char *dir)
             }
     printf("  alpha: solid half %zu/%zu voxels set, hole half %zu/%zu set\n", solid_set, solid,
            hole_set, hole);
-    if (!solid || !hole || solid_set != solid || hole_set) {
-        printf("FAIL alpha: the mask is not honoured (solid %zu of %zu set, hole %zu of %zu)\n",
-               solid_set, solid, hole_set, hole);
-        failures++;
-    }
+    CHECK(!(!solid || !hole || solid_set != solid || hole_set),
+          "alpha: the mask is not honoured (solid %zu of %zu set, hole %zu of %zu)",
+          solid_set, solid, hole_set, hole);
     free(gpu);
     free(mark);
     gib_voxels_destroy(&v, &ledger);
@@ -451,7 +425,7 @@ static int bench(const char *scene, char **res, int count)
         gib_voxels v;
         gib_error err;
         if (gib_voxels_create(&v, &fx.gpu, atoi(res[i]), "voxels", &ledger, &err) < 0) {
-            printf("FAIL: %s\n", err.msg);
+            CHECK(0, "%s", err.msg);
             gib_fixture_close(&fx);
             return 1;
         }
@@ -511,7 +485,7 @@ static int dump_png(const char *dir, const char *scene, int res)
     gib_voxels v;
     gib_error err;
     if (gib_voxels_create(&v, &fx.gpu, res, "voxels", &ledger, &err) < 0) {
-        printf("FAIL: %s\n", err.msg);
+        CHECK(0, "%s", err.msg);
         return 1;
     }
     gib_voxels_build(&v, &fx.gpu, NULL, "voxelization");
@@ -553,7 +527,7 @@ int main(int argc, char **argv)
         return dump_png(argv[2], argv[3], atoi(argv[4]));
     char dir[] = "/tmp/gib_voxels_XXXXXX";
     if (!mkdtemp(dir)) {
-        printf("FAIL: cannot make a temporary folder\n");
+        CHECK(0, "cannot make a temporary folder");
         return 1;
     }
     const char *cam = "[camera.c]\neye = 0 0 3\ntarget = 0 0 0\nup = 0 1 0\nfov = 60\n"
@@ -568,11 +542,9 @@ int main(int argc, char **argv)
         uint64_t want = 0;
         for (int r = res; r >= 1; r /= 2)
             want += (uint64_t)r * r * r;
-        if (gib_voxels_bytes(res) != want) {
-            printf("FAIL plan: gib_voxels_bytes(%d) = %llu, expected %llu\n", res,
-                   (unsigned long long)gib_voxels_bytes(res), (unsigned long long)want);
-            failures++;
-        }
+        CHECK(gib_voxels_bytes(res) == want,
+              "plan: gib_voxels_bytes(%d) = %llu, expected %llu", res,
+              (unsigned long long)gib_voxels_bytes(res), (unsigned long long)want);
     }
     printf("  plan: %.2f MB at 256^3, %.2f MB at 512^3\n", gib_voxels_bytes(256) / 1e6,
            gib_voxels_bytes(512) / 1e6);

@@ -18,9 +18,13 @@
 
 #include "harness/app/runner.h"
 #include "reference/reference.h"
-#include "tests/caustics/caustics_scene.h"
+#include "tests/ispm_caustics/caustics_scene.h"
 #include "tests/common/block_stats.h"
 #include "tests/common/gl_fixture.h"
+#include "tests/common/check.h"
+
+static int failures;
+static char check_msg[512]; /* what a CHECK_TRUE line says */
 
 #define MEAN_TOL 0.06
 #define BLOCK_TOL 0.15
@@ -41,14 +45,13 @@ int main(void)
     gib_run_result r;
     gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
     if (!r.ok) {
-        printf("FAIL: run: %s: %s\n", r.status, r.err.msg);
+        CHECK(0, "run: %s: %s", r.status, r.err.msg);
         return 1;
     }
     gib_image ref;
     gib_ref_stats st;
     if (gib_fixture_reference(&fx, GIB_COMP_CAUSTIC, W, H, 32, &ref, &st) < 0)
         return 1;
-    int ok = 1;
     for (int divisor = 1; divisor <= 2; divisor++) {
         if (divisor == 2) {
             gib_run_result_free(&r);
@@ -56,7 +59,7 @@ int main(void)
             gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
             gib_param_set(t, &p, "splat_res_divisor", "1", &err);
             if (!r.ok) {
-                printf("FAIL: run (splat_res_divisor 2): %s: %s\n", r.status, r.err.msg);
+                CHECK(0, "run (splat_res_divisor 2): %s: %s", r.status, r.err.msg);
                 return 1;
             }
         }
@@ -65,11 +68,12 @@ int main(void)
             double block_rel, ratio;
             gib_block_error(ref.px, r.images[0].px, W, H, 8, c, &block_rel, &ratio);
             int pass = fabs(ratio - 1) <= MEAN_TOL && block_rel <= tol;
-            printf("%s: splat_res_divisor %d, channel %d: mean ratio %.4f (tolerance %.2f), "
-                   "8x8-block relative RMSE %.4f (tolerance %.2f); reference mean %.5f, noise "
-                   "RMSE %.5f\n", pass ? "PASS" : "FAIL", divisor, c, ratio, MEAN_TOL, block_rel,
-                   tol, st.mean, st.noise_rmse);
-            ok &= pass;
+            snprintf(check_msg, sizeof check_msg,
+                     "splat_res_divisor %d, channel %d: mean ratio %.4f (tolerance %.2f), "
+                     "8x8-block relative RMSE %.4f (tolerance %.2f); reference mean %.5f, noise "
+                     "RMSE %.5f",
+                     divisor, c, ratio, MEAN_TOL, block_rel, tol, st.mean, st.noise_rmse);
+            CHECK_TRUE(check_msg, pass, "");
         }
     }
     gib_run_result_free(&r);
@@ -77,12 +81,13 @@ int main(void)
     gib_param_set(t, &p, "list_capacity", "0.1", &err);
     gib_run_technique(&fx.gpu, t, &p, 0, W, H, 0, 1, &r);
     int over = !r.ok && !strcmp(r.status, "overflow");
-    printf("%s: list_capacity 0.1: status '%s' (expected 'overflow')\n", over ? "PASS" : "FAIL",
-           r.status);
-    ok &= over;
+    snprintf(check_msg, sizeof check_msg,
+             "list_capacity 0.1: status '%s' (expected 'overflow')",
+             r.status);
+    CHECK_TRUE(check_msg, over, "");
     gib_run_result_free(&r);
     gib_image_free(&ref);
     gib_fixture_close(&fx);
-    printf("%s\n", ok ? "PASS" : "FAIL");
-    return ok ? 0 : 1;
+    printf("%s\n", failures ? "FAIL" : "PASS");
+    return failures != 0;
 }
