@@ -4,14 +4,7 @@ set -u
 G=${GIBENCH:?set GIBENCH to the gibench executable}
 W=${1:?work directory}
 rm -rf "$W" && mkdir -p "$W"
-fails=0 passes=0
-pass() { echo "PASS: $*"; passes=$((passes + 1)); }
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-expect_rc() { # expected-rc description command...
-  local want=$1 what=$2; shift 2
-  "$@" >"$W/out.txt" 2>&1; local rc=$?
-  if [ "$rc" = "$want" ]; then pass "$what (exit $rc)"; else fail "$what: exit $rc, expected $want"; cat "$W/out.txt"; fi
-}
+. "$(dirname "$0")/../common/cli_checks.sh"
 
 # --help on every command exits 0 and prints a usage line.
 for c in "" list render reference compare run bench merge history; do
@@ -148,5 +141,4 @@ grep -q "1 rows written" "$W/out.txt" && pass "only the interrupted row was redo
 notok=$(tail -n +2 "$W/run/tiny.csv" | grep -vc ',ok,')
 [ "$notok" = 0 ] && pass "every row's status is ok" || fail "$notok rows are not ok"
 
-echo "$passes passed, $fails failed"
-[ "$fails" = 0 ]
+finish

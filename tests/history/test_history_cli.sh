@@ -10,9 +10,7 @@ G=${GIBENCH:?GIBENCH}
 HERE=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$W"
 mkdir -p "$W"
-fails=0
-pass() { echo "PASS $1"; }
-fail() { echo "FAIL $1"; fails=$((fails + 1)); }
+. "$HERE/../common/cli_checks.sh"
 py() { /usr/bin/python3 -c "$@"; }
 
 cat >"$W/tiny.matrix" <<'M'
@@ -142,5 +140,4 @@ assert (p, f) == (0, 6), (p, f)
 " >"$W/q.txt" 2>&1 && pass "quality gate against the history's best: equal rows pass, 10% worse fail" \
   || fail "quality gate history: $(cat "$W/q.txt")"
 
-echo "$fails failures"
-[ $fails = 0 ]
+finish

@@ -7,9 +7,7 @@ set -u
 G=${GIBENCH:?set GIBENCH to the gibench executable}
 W=${1:?work directory}
 rm -rf "$W" && mkdir -p "$W"
-fails=0 passes=0
-pass() { echo "PASS: $*"; passes=$((passes + 1)); }
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+. "$(dirname "$0")/../common/cli_checks.sh"
 # refused description expected-text command...: exit 2, the text in the error, no scene error
 refused() {
   local what=$1 want=$2; shift 2
@@ -54,5 +52,4 @@ refused "a matrix combining rsm_res=16 with mask_level=5" "rule.matrix: [params.
   $G run "$W/rule.matrix" --profile default --out "$W/run"
 [ ! -e "$W/run" ] || [ -z "$(ls -A "$W/run")" ] && pass "nothing written for the refused matrix" || fail "the refused matrix wrote $(ls "$W/run")"
 
-echo "$passes passed, $fails failed"
-[ "$fails" = 0 ]
+finish
