@@ -1,4 +1,5 @@
-/* gibench — mesh files through assimp 5.2's C API: OBJ with its MTL, PLY, gzipped PLY.
+/* gibench — mesh files through assimp 5.2's C API: OBJ with its MTL, PLY, OFF, STL, glTF 2.0, GLB,
+ * gzipped PLY, OFF, STL and GLB; nothing else (mesh_bounds.c), each checked before assimp reads it.
  *
  * Post-processing flags, and why:
  *  - ValidateDataStructure: assimp's own check of indices and counts before the other steps.
@@ -359,15 +360,9 @@ static int append_scene(const struct aiScene *sc, const char *dir, const char *m
     return rc;
 }
 
-static int has_suffix_ci(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), k = strlen(suffix);
-    return n >= k && strcasecmp(s + n - k, suffix) == 0;
-}
-
-/* A PLY or OBJ file on disk, checked whole (gib_ply_check, gib_obj_check) before assimp reads it. */
-static int file_check(const char *path, int (*check)(const char *, size_t, const char *, gib_error *),
-                      gib_error *err)
+/* A mesh file on disk, read whole and checked (gib_mesh_bounds: what it declares against its
+ * size, and the format's own checks) before assimp reads it. */
+static int file_check(const char *path, const char *fmt, gib_error *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
@@ -379,7 +374,7 @@ static int file_check(const char *path, int (*check)(const char *, size_t, const
         rc = gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
                            "cannot read '%s'%s", path, buf ? "" : " (out of memory)");
     else
-        rc = check(buf, (size_t)size, path, err);
+        rc = gib_mesh_bounds(buf, (size_t)size, path, fmt, err);
     fclose(f);
     free(buf);
     return rc;
@@ -388,9 +383,14 @@ static int file_check(const char *path, int (*check)(const char *, size_t, const
 int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
                     gib_error *err)
 {
+    /* Only the formats FORMAT.md documents (mesh_bounds.c), each checked before assimp. */
+    char fmt[8];
+    int gz = 0;
+    if (gib_mesh_format(path, fmt, &gz, err) != 0)
+        return -1;
     /* PLY without aiProcess_Triangulate: its assertion aborts the process on malformed face
      * lists (found by tests/fuzz/fuzz_mesh), and append_scene makes fans of PLY's polygons. */
-    const int is_ply = has_suffix_ci(path, ".ply") || has_suffix_ci(path, ".ply.gz");
+    const int is_ply = strcmp(fmt, "ply") == 0;
     const unsigned flags = aiProcess_ValidateDataStructure | (is_ply ? 0u : aiProcess_Triangulate) |
                            aiProcess_SortByPType | aiProcess_GenSmoothNormals |
                            aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices;
@@ -406,39 +406,21 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
     gib_path_dirname(path, dir, sizeof dir);
     const struct aiScene *sc = NULL;
     int rc = 0;
-    if (has_suffix_ci(path, ".gz")) {
+    if (gz) {
         /* assimp picks the importer by extension, so the inner one is passed as a hint. Only
-         * self-contained formats work this way: the data comes from memory, and an OBJ's MTL
-         * could not be found. */
-        char hint[16] = "";
-        const char *end = path + strlen(path) - 3, *dot = end;
-        while (dot > path && dot[-1] != '.' && dot[-1] != '/')
-            dot--;
-        if (dot > path && dot[-1] == '.' && end - dot < (long)sizeof hint) {
-            memcpy(hint, dot, (size_t)(end - dot));
-            hint[end - dot] = '\0';
-        }
-        if (!hint[0] || strcasecmp(hint, "obj") == 0) {
-            aiReleasePropertyStore(props);
-            return gib_fail(err,
-                            "'%s': gzipped meshes must be self-contained (.ply.gz, ...); "
-                            "decompress OBJ files, whose MTL sits beside them",
-                            path);
-        }
+         * self-contained formats work this way (gib_mesh_format): the data comes from memory. */
         unsigned char *buf = NULL;
         size_t len = 0;
         rc = read_gz(path, &buf, &len, hash, err);
         if (rc == 0 && len > 0xffffffffu)
             rc = gib_fail(err, "'%s' decompresses to more than 4 GiB", path);
-        if (rc == 0 && strcasecmp(hint, "ply") == 0)
-            rc = gib_ply_check((const char *)buf, len, path, err);
         if (rc == 0)
-            sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags, hint,
+            rc = gib_mesh_bounds((const char *)buf, len, path, fmt, err);
+        if (rc == 0)
+            sc = aiImportFileFromMemoryWithProperties((const char *)buf, (unsigned)len, flags, fmt,
                                                       props);
         free(buf);
-    } else if (has_suffix_ci(path, ".ply") && (rc = file_check(path, gib_ply_check, err)) != 0) {
-        /* refused before assimp reads it */
-    } else if (has_suffix_ci(path, ".obj") && (rc = file_check(path, gib_obj_check, err)) != 0) {
+    } else if ((rc = file_check(path, fmt, err)) != 0) {
         /* refused before assimp reads it */
     } else {
         io_state st;

@@ -9,7 +9,9 @@
  * element, `end_header`, within GIB_PLY_HEADER_MAX bytes), then the body: every element's values,
  * one element a line in ASCII, numbers of their types, list lengths up to GIB_PLY_LIST_MAX, face
  * indices within the vertices, and a binary body exactly as long as the header says. Anything else
- * is an error naming the file and the line (or byte offset). */
+ * is an error naming the file and the line (or byte offset). Before the body is read, every
+ * element count is held to the bytes that can hold it (check_counts), so a header declaring
+ * billions of vertices in a small file is refused at once, naming the count and the size. */
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -292,10 +294,39 @@ static int check_binary(const char *data, size_t len, const char *path, const pl
     return 0;
 }
 
+/* The fewest bytes one instance of el takes: in ASCII a token (a digit and a separator) per
+ * property, a list's being its length; in binary each property's size, a list's its count's. An
+ * instance of no property still takes a byte (an ASCII line end), so no count is free. */
+static size_t min_instance_bytes(const ply_element *el, int format)
+{
+    size_t n = 0;
+    for (int p = 0; p < el->nprops; p++)
+        n += format == 0 ? 2
+                         : (size_t)type_size[el->props[p].list ? el->props[p].count_type
+                                                               : el->props[p].type];
+    return n ? n : 1;
+}
+
+/* Every element count held to the body's bytes before the body is read (scenes/FORMAT.md,
+ * "Declared counts"), so that a header declaring billions of elements is refused at once. */
+static int check_counts(size_t len, const char *path, const ply_layout *L, gib_error *err)
+{
+    size_t avail = len - L->body + (L->format == 0); /* the last ASCII line may lack its end */
+    for (int e = 0; e < L->nel; e++) {
+        const ply_element *el = &L->el[e];
+        size_t min = min_instance_bytes(el, L->format);
+        if (el->count > avail / min)
+            return gib_fail(err, "mesh '%s': declares %lu '%s' elements, its %zu bytes hold at "
+                                 "most %zu", path, el->count, el->name, len, avail / min);
+        avail -= el->count * min;
+    }
+    return 0;
+}
+
 int gib_ply_check(const char *data, size_t len, const char *path, gib_error *err)
 {
     ply_layout L;
-    if (parse_header(data, len, path, &L, err) < 0)
+    if (parse_header(data, len, path, &L, err) < 0 || check_counts(len, path, &L, err) < 0)
         return -1;
     return L.format == 0 ? check_ascii(data, len, path, &L, err)
                          : check_binary(data, len, path, &L, err);

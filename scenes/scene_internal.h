@@ -160,12 +160,28 @@ void gib_geom_add_box(gib_geom *g, const float lo[3], const float hi[3], int inw
 
 /* ---------------------------------------------------------------- mesh files */
 
-/* Imports a mesh file (OBJ+MTL, PLY, *.ply.gz, anything else assimp reads) into out (appending),
+/* Imports a mesh file (OBJ+MTL, PLY, OFF, STL, glTF 2.0, GLB, gzipped PLY/OFF/STL/GLB; others are
+ * refused, gib_mesh_format) into out (appending), after gib_mesh_bounds has passed,
  * in the file's own coordinates. Hashes the bytes of every file read (the mesh, its MTL) into
  * *hash. smooth_angle_deg limits normal smoothing for meshes that carry no normals. Texture paths
  * are stored joined to the mesh's folder, unresolved. Errors name the file. */
 int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
                     gib_error *err);
+
+/* mesh_bounds.c: the mesh formats gibench reads (scenes/FORMAT.md, "Meshes"). gib_mesh_format
+ * puts path's format ("obj", "ply", "off", "stl", "gltf", "glb") in fmt and sets *gz for a
+ * gzipped one (.ply.gz, .off.gz, .stl.gz, .glb.gz): 0, or -1 with an error naming the file and
+ * the formats read. gib_mesh_formats_text: that list, in words. */
+int gib_mesh_format(const char *path, char fmt[8], int *gz, gib_error *err);
+const char *gib_mesh_formats_text(void);
+/* 0 when what data (a whole mesh file of format fmt, len bytes) declares fits its bytes (and the
+ * format's own check passes: gib_obj_check, gib_ply_check); else -1 with an error naming the file,
+ * what it declared and its size. Every mesh file goes through it before assimp reads it. */
+int gib_mesh_bounds(const char *data, size_t len, const char *path, const char *fmt,
+                    gib_error *err);
+/* gltf_bounds.c: gib_mesh_bounds for glTF 2.0 (glb = 0: JSON; 1: GLB). Buffers named by a uri
+ * are found beside path. */
+int gib_gltf_bounds(const char *data, size_t len, const char *path, int glb, gib_error *err);
 
 /* ply_check.c: 0 when data (a whole PLY file, len bytes) is well formed: its header ends in
  * end_header within GIB_PLY_HEADER_MAX bytes, its body holds every element the header declares as
