@@ -30,12 +30,12 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan install test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-timing bundle clean help
 
 all: build
 
 help:
-	@echo "make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
+	@echo "make install PREFIX=DIR | make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -52,6 +52,12 @@ deps:
 build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_ARGS)
 	cmake --build $(BUILD) -j$(JOBS)
+
+# gibench, the technique contract's headers and a CMake / pkg-config package for techniques built
+# as plugins in their own repositories (docs/adding-a-technique.md, "As a plugin").
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # Unit tests run again under AddressSanitizer and UndefinedBehaviorSanitizer.
 build-asan: deps

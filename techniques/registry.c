@@ -1,6 +1,6 @@
 /* gibench — the list of techniques, and the parameter handling every technique shares.
  *
- * Two lists. `registry` is what gibench runs: `gibench list`, matrices and gib_technique_find see
+ * Two lists, and the techniques plugins add (gib_technique_register, harness/app/plugins.c). `registry` is what gibench runs: `gibench list`, matrices and gib_technique_find see
  * it and nothing else. `test_only` holds techniques that are compiled and tested like the others
  * but never benchmarked (the template a new technique is copied from): the tests that walk every
  * technique (tests/techniques/) walk both lists, through gib_techniques_test_only(). */
@@ -41,10 +41,52 @@ static const gib_technique *const test_only[] = {
     &gib_technique_template,
 };
 
+#define BUILTIN_COUNT ((int)(sizeof registry / sizeof registry[0]))
+
+/* The built-in techniques then the plugins' (gib_technique_register, before any thread starts);
+ * plugin_count 0: gib_techniques() hands out `registry` itself. */
+static const gib_technique *with_plugins[BUILTIN_COUNT + GIB_MAX_PLUGIN_TECHNIQUES];
+static const char *plugin_origin[GIB_MAX_PLUGIN_TECHNIQUES];
+static int plugin_count;
+
 const gib_technique *const *gib_techniques(int *count)
 {
-    *count = (int)(sizeof registry / sizeof registry[0]);
-    return registry;
+    *count = BUILTIN_COUNT + plugin_count;
+    return plugin_count ? with_plugins : registry;
+}
+
+int gib_technique_register(const gib_technique *t, const char *origin, gib_error *err)
+{
+    if (!t || !t->name || !t->name[0])
+        return gib_fail(err, "%s: a technique without a name", origin);
+    for (int i = 0; i < BUILTIN_COUNT; i++)
+        if (!strcmp(registry[i]->name, t->name))
+            return gib_fail(err, "%s: technique '%s' has the name of a built-in technique",
+                            origin, t->name);
+    for (int i = 0; i < (int)(sizeof test_only / sizeof test_only[0]); i++)
+        if (!strcmp(test_only[i]->name, t->name))
+            return gib_fail(err, "%s: technique '%s' has the name of a built-in (test-only) "
+                            "technique", origin, t->name);
+    for (int i = 0; i < plugin_count; i++)
+        if (!strcmp(with_plugins[BUILTIN_COUNT + i]->name, t->name))
+            return gib_fail(err, "%s: technique '%s' is already loaded from %s", origin, t->name,
+                            plugin_origin[i]);
+    if (plugin_count >= GIB_MAX_PLUGIN_TECHNIQUES)
+        return gib_fail(err, "%s: technique '%s': more than %d plugin techniques", origin, t->name,
+                        GIB_MAX_PLUGIN_TECHNIQUES);
+    if (!plugin_count)
+        memcpy(with_plugins, registry, sizeof registry);
+    plugin_origin[plugin_count] = origin;
+    with_plugins[BUILTIN_COUNT + plugin_count++] = t;
+    return 0;
+}
+
+const char *gib_technique_origin(const gib_technique *t)
+{
+    for (int i = 0; i < plugin_count; i++)
+        if (with_plugins[BUILTIN_COUNT + i] == t)
+            return plugin_origin[i];
+    return NULL;
 }
 
 const gib_technique *const *gib_techniques_test_only(int *count)

@@ -148,9 +148,32 @@ typedef struct gib_technique {
     void (*destroy)(void *self);
 } gib_technique;
 
-/* registry.c: the techniques gibench runs, and one of them by name (NULL: none). */
+/* registry.c: the techniques gibench runs (the built-in ones, then those plugins added), and one of
+ * them by name (NULL: none). */
 const gib_technique *const *gib_techniques(int *count);
 const gib_technique *gib_technique_find(const char *name);
+
+/* ---- plugins: techniques built outside this repository (docs/adding-a-technique.md, "As a
+ * plugin") ----
+ * The version of this contract: of gib_technique, gib_param_spec, gib_view, ... and of what the
+ * harness hands a technique. It changes with any change a technique built against an older
+ * technique.h would misread; gibench refuses a plugin built with another version. */
+#define GIB_CONTRACT_VERSION 1
+/* A plugin is a shared library (`gibench --plugin PATH`, $GIBENCH_PLUGINS) exporting one function
+ * of this type named GIB_PLUGIN_ENTRY: its descriptors (their count in *count) and the
+ * GIB_CONTRACT_VERSION it was compiled with in *contract_version. It links nothing of gibench's:
+ * the functions it calls (gib_*, glad's GL pointers) are resolved in the gibench executable, which
+ * exports them. */
+#define GIB_PLUGIN_ENTRY "gib_plugin_techniques"
+/* Marks the entry point exported from a plugin built with hidden symbols (gibench_add_plugin). */
+#define GIB_PLUGIN_EXPORT __attribute__((visibility("default")))
+typedef const gib_technique *const *(*gib_plugin_entry_fn)(int *count, int *contract_version);
+#define GIB_MAX_PLUGIN_TECHNIQUES 64
+/* Adds a plugin's technique after the built-in ones (`origin`: the plugin's file): 0, or -1 with err
+ * naming the file when its name is a built-in's, a test-only technique's or an earlier plugin's. */
+int gib_technique_register(const gib_technique *t, const char *origin, gib_error *err);
+/* The plugin file technique t came from, or NULL for a built-in. */
+const char *gib_technique_origin(const gib_technique *t);
 /* Techniques only tests run (the template, techniques/template/): compiled and tested like the
  * others, never in gib_techniques(), `gibench list` or a matrix. */
 const gib_technique *const *gib_techniques_test_only(int *count);

@@ -16,6 +16,14 @@ int gib_cmd_run(int argc, char **argv);
 int gib_cmd_bench(int argc, char **argv);
 int gib_cmd_merge(int argc, char **argv);
 int gib_cmd_history(int argc, char **argv);
+int gib_cmd_check(int argc, char **argv);
+
+/* Technique plugins (plugins.c): loads the shared library at path and registers its techniques; 0,
+ * or -1 with err naming the file (a contract version mismatch names both versions). */
+int gib_plugin_load(const char *path, gib_error *err);
+/* Loads $GIBENCH_PLUGINS (paths joined by ':'), then every `--plugin PATH` / `--plugin=PATH` of
+ * argv, which it removes from argv (argc updated): 0, or -1 with err set. */
+int gib_plugins_from_args(int *argc, char **argv, gib_error *err);
 
 /* "256x256" → w, h; errors name the option. */
 int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *err);

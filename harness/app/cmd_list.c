@@ -36,7 +36,10 @@ int gib_cmd_list(int argc, char **argv)
         const gib_technique *t = all[i];
         printf("  %-14s outputs ", t->name);
         print_components(t->components);
-        printf("  — %s\n      passes:", t->source);
+        printf("  — %s\n", t->source);
+        if (gib_technique_origin(t))
+            printf("      plugin: %s\n", gib_technique_origin(t));
+        printf("      passes:");
         for (int k = 0; t->passes && t->passes[k]; k++)
             printf(" %s", t->passes[k]);
         putchar('\n');

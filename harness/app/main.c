@@ -21,12 +21,23 @@ static const char usage[] =
     "  describe  [--out FILE]           what the binary knows, as JSON: the tables' columns, the\n"
     "                                   techniques (outputs, passes, parameters, presets), the\n"
     "                                   statuses, the references' bindings, the revision (alias: schema)\n"
+    "  check-technique NAME [--no-gl]   one technique (built-in or plugin) against the contract:\n"
+    "                                   descriptor checks, then create/render/destroy; PASS/FAIL\n"
+    "\n"
+    "Every command takes --plugin PATH (repeatable): a technique plugin, a shared library\n"
+    "exporting " GIB_PLUGIN_ENTRY " (docs/adding-a-technique.md, \"As a plugin\"); so does\n"
+    "$GIBENCH_PLUGINS, paths joined by ':'.\n"
     "\n"
     "Scene data (Crytek Sponza, Sibenik, ...) is found through $GIBENCH_SCENES\n"
     "(default ../shared/scenes beside the project); the procedural scenes need none.\n";
 
 int main(int argc, char **argv)
 {
+    gib_error err;
+    if (gib_plugins_from_args(&argc, argv, &err) < 0) {
+        fprintf(stderr, "gibench: %s\n", err.msg);
+        return 2;
+    }
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") ||
         !strcmp(argv[1], "help")) {
         fputs(usage, argc < 2 ? stderr : stdout);
@@ -49,6 +60,8 @@ int main(int argc, char **argv)
         return gib_cmd_bench(argc - 1, argv + 1);
     if (!strcmp(cmd, "history"))
         return gib_cmd_history(argc - 1, argv + 1);
+    if (!strcmp(cmd, "check-technique"))
+        return gib_cmd_check(argc - 1, argv + 1);
     if (!strcmp(cmd, "describe") || !strcmp(cmd, "schema"))
         return gib_cmd_schema(argc - 1, argv + 1);
     fprintf(stderr, "gibench: unknown command '%s'\n\n%s", cmd, usage);

@@ -1,5 +1,7 @@
 #include "every_technique.h"
 
+#include "harness/app/technique_check.h"
+
 #include <stdio.h>
 
 int every_technique(const gib_technique **out, int max)
@@ -18,16 +20,5 @@ int every_technique(const gib_technique **out, int max)
 
 int technique_runs_on(const gib_technique *t, const gib_scene *s, char *why, size_t len)
 {
-    char f[256];
-    if ((s->features & t->scene_needs) != t->scene_needs) {
-        gib_features_str(t->scene_needs & ~s->features, f, sizeof f);
-        snprintf(why, len, "scene lacks %s", f);
-        return 0;
-    }
-    if (t->scene_needs_any && !(s->features & t->scene_needs_any)) {
-        gib_features_str(t->scene_needs_any, f, sizeof f);
-        snprintf(why, len, "scene has none of %s", f);
-        return 0;
-    }
-    return 1;
+    return gib_technique_runs_on(t, s, why, len); /* harness/app/technique_check.c */
 }
