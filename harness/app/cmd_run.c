@@ -131,12 +131,22 @@ static void run_scene_runs(gib_run_ctx *ctx, int from, const gib_scene *scene,
             continue;
         }
         gib_run_result res;
-        gib_run(&(gib_run_request){.scene = gpu, .technique = mr->technique,
-                                   .params = &mr->params, .camera = m->camera,
-                                   .width = mr->width, .height = mr->height,
-                                   .warmup = m->warmup, .frames = m->frames, .time = mr->time,
-                                   .dt = m->dt, .sequence = m->sequence},
-                &res);
+        const gib_external *x = gib_matrix_external(m, mr->technique);
+        if (x)
+            gib_external_run(&(gib_external_request){.x = x, .scene = scene, .scene_name = sname,
+                                                     .params = &mr->params, .camera = m->camera,
+                                                     .width = mr->width, .height = mr->height,
+                                                     .warmup = m->warmup < 0 ? GIB_WARMUP_FALLBACK
+                                                                             : m->warmup,
+                                                     .frames = m->frames, .time = mr->time},
+                             &res);
+        else
+            gib_run(&(gib_run_request){.scene = gpu, .technique = mr->technique,
+                                       .params = &mr->params, .camera = m->camera,
+                                       .width = mr->width, .height = mr->height,
+                                       .warmup = m->warmup, .frames = m->frames, .time = mr->time,
+                                       .dt = m->dt, .sequence = m->sequence},
+                    &res);
         if (!res.ok)
             fprintf(stderr, "gibench run: %s on %s (%s): %s: %s\n", mr->technique->name, sname,
                     mr->params_key, res.status, res.err.msg);

@@ -145,8 +145,80 @@ static void name_matrix(gib_matrix *m, const char *path, const char *profile, ch
     snprintf(psec, psec_len, "profile.%s", profile);
 }
 
+/* ---- external techniques ([external.NAME], external.h) ---- */
+
+const gib_external *gib_matrix_external(const gib_matrix *m, const gib_technique *t)
+{
+    for (int i = 0; t && i < m->external_count; i++)
+        if (t == &m->externals[i].technique)
+            return &m->externals[i];
+    return NULL;
+}
+
+/* A technique by name: the matrix's externals (by NAME or ext:NAME), then the registry. */
+static const gib_technique *find_technique(const gib_matrix *m, const char *name)
+{
+    for (int i = 0; i < m->external_count; i++)
+        if (!strcmp(name, m->externals[i].name) || !strcmp(name, m->externals[i].tech_name))
+            return &m->externals[i].technique;
+    return gib_technique_find(name);
+}
+
+/* The external named in section "external.NAME", made on its first key. */
+static gib_external *external_of(const parse_state *s, const raw_value *v, gib_matrix *m)
+{
+    const char *name = v->section + 9;
+    for (int i = 0; i < m->external_count; i++)
+        if (!strcmp(m->externals[i].name, name))
+            return &m->externals[i];
+    if (!*name || strlen(name) >= sizeof m->externals[0].name ||
+        strspn(name, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
+            strlen(name)) {
+        gib_fail(s->err, "%s:%d: [%s]: an external's name is 1 to 63 letters, digits, _ - .",
+                 s->path, v->line, v->section);
+        return NULL;
+    }
+    if (gib_technique_find(name)) {
+        gib_fail(s->err, "%s:%d: [%s]: '%s' is a built-in technique's name: name the external "
+                 "otherwise", s->path, v->line, v->section, name);
+        return NULL;
+    }
+    if (m->external_count == GIB_MAX_EXTERNALS) {
+        gib_fail(s->err, "%s:%d: more than %d externals", s->path, v->line, GIB_MAX_EXTERNALS);
+        return NULL;
+    }
+    if (!m->externals && !(m->externals = calloc(GIB_MAX_EXTERNALS, sizeof *m->externals))) {
+        gib_fail_code(s->err, GIB_ERR_OUT_OF_MEMORY, "out of memory");
+        return NULL;
+    }
+    gib_external *x = &m->externals[m->external_count++];
+    snprintf(x->name, sizeof x->name, "%s", name);
+    x->line = v->line;
+    return x;
+}
+
+/* Every [external.NAME] section's keys, then each external completed. */
+static int load_externals(const parse_state *s, gib_matrix *m)
+{
+    for (int i = 0; i < s->count; i++) {
+        const raw_value *v = &s->vals[i];
+        if (strncmp(v->section, "external.", 9))
+            continue;
+        gib_external *x = external_of(s, v, m);
+        if (!x)
+            return -1;
+        if (gib_external_set(x, v->key, trim((char *)v->value), s->err) < 0)
+            return gib_error_prefix(s->err, "%s:%d: [%s]", s->path, v->line, v->section);
+    }
+    for (int i = 0; i < m->external_count; i++)
+        if (gib_external_finish(&m->externals[i], s->path, s->err) < 0)
+            return gib_error_prefix(s->err, "%s:%d", s->path, m->externals[i].line);
+    return 0;
+}
+
 /* Every section and key is checked, so a typo never silently changes what runs. */
-static int check_sections(const parse_state *s, const char *profile, const char *psec)
+static int check_sections(const parse_state *s, const gib_matrix *m, const char *profile,
+                          const char *psec)
 {
     int have_profile = 0;
     for (int i = 0; i < s->nsections; i++)
@@ -158,15 +230,16 @@ static int check_sections(const parse_state *s, const char *profile, const char 
             if (!known_matrix_key(v->key) && !(dotk && !strncmp(v->section, "profile.", 8)))
                 return gib_fail(s->err, "%s:%d: unknown key '%s' in [%s]", s->path, v->line,
                                 v->key, v->section);
-        } else if (!strcmp(v->section, "scene_scale")) {
-            continue; /* checked against the scene list (load_scene_scale) */
+        } else if (!strcmp(v->section, "scene_scale") || !strncmp(v->section, "external.", 9)) {
+            continue; /* checked against the scene list (load_scene_scale), load_externals */
         } else if (!strncmp(v->section, "params.", 7)) {
-            if (!gib_technique_find(v->section + 7))
+            if (!find_technique(m, v->section + 7))
                 return gib_fail(s->err, "%s:%d: [%s]: unknown technique '%s'", s->path, v->line,
                                 v->section, v->section + 7);
         } else {
             return gib_fail(s->err, "%s:%d: unknown section [%s] (expected [matrix], "
-                            "[params.TECHNIQUE], [scene_scale] or [profile.NAME])", s->path,
+                            "[params.TECHNIQUE], [scene_scale], [external.NAME] or "
+                            "[profile.NAME])", s->path,
                             v->line, v->section);
         }
     }
@@ -309,10 +382,28 @@ typedef struct param_lists {
     const gib_technique *t;
     int np;
     char sec[80]; /* "params.T" */
+    char alias[72]; /* an external's plain name ([params.NAME] as well as [params.ext:NAME]) */
     int counts[GIB_MAX_PARAMS];
     double values[GIB_MAX_PARAMS][GIB_MATRIX_MAX_LIST];
     unsigned char named[GIB_MAX_PARAMS]; /* the file sets this parameter (a preset leaves it) */
 } param_lists;
+
+/* The parameter raw value rv sets for pl's technique ([params.T], or T.key in the profile's
+ * section; T its name or, for an external, its plain name), else NULL. */
+static const char *param_of(const raw_value *rv, const char *psec, const param_lists *pl)
+{
+    const char *names[2] = {pl->t->name, pl->alias};
+    for (int k = 0; k < 2; k++) {
+        size_t len = strlen(names[k]);
+        if (!len)
+            continue;
+        if (!strncmp(rv->section, "params.", 7) && !strcmp(rv->section + 7, names[k]))
+            return rv->key;
+        if (!strcmp(rv->section, psec) && !strncmp(rv->key, names[k], len) && rv->key[len] == '.')
+            return rv->key + len + 1;
+    }
+    return NULL;
+}
 
 /* Every key naming a parameter of the technique names one it has. */
 static int check_param_names(const parse_state *s, const char *psec, const param_lists *pl)
@@ -320,12 +411,9 @@ static int check_param_names(const parse_state *s, const char *psec, const param
     const gib_technique *t = pl->t;
     for (int k = 0; k < s->count; k++) {
         const raw_value *rv = &s->vals[k];
-        int in_params = !strcmp(rv->section, pl->sec);
-        int in_prof = !strcmp(rv->section, psec) && !strncmp(rv->key, t->name, strlen(t->name)) &&
-                      rv->key[strlen(t->name)] == '.';
-        if (!in_params && !in_prof)
+        const char *pname = param_of(rv, psec, pl);
+        if (!pname)
             continue;
-        const char *pname = in_params ? rv->key : rv->key + strlen(t->name) + 1;
         if (gib_param_index(t, pname) < 0) {
             gib_error e2;
             gib_param_set(t, &(gib_params){0}, pname, "0", &e2);
@@ -340,14 +428,13 @@ static int load_param_list(const parse_state *s, const char *psec, param_lists *
 {
     const gib_technique *t = pl->t;
     const raw_value *pv = NULL;
-    char pkey[128];
-    for (int k = 0; k < s->count; k++)
-        if (!strcmp(s->vals[k].section, pl->sec) && !strcmp(s->vals[k].key, t->params[pi].name))
-            pv = &s->vals[k];
-    snprintf(pkey, sizeof pkey, "%s.%s", t->name, t->params[pi].name);
-    for (int k = 0; k < s->count; k++)
-        if (!strcmp(s->vals[k].section, psec) && !strcmp(s->vals[k].key, pkey))
-            pv = &s->vals[k];
+    for (int pass = 0; pass < 2; pass++) /* [params.T], then the profile's T.key over it */
+        for (int k = 0; k < s->count; k++) {
+            const char *pn = param_of(&s->vals[k], psec, pl);
+            if (pn && !strcmp(pn, t->params[pi].name) &&
+                (strcmp(s->vals[k].section, psec) == 0) == pass)
+                pv = &s->vals[k];
+        }
     if (!pv) {
         pl->counts[pi] = 1;
         pl->values[pi][0] = t->params[pi].def;
@@ -435,7 +522,11 @@ static int expand_runs(gib_matrix *m, const matrix_axes *ax, const param_lists *
                 if (gib_params_check(t, &r->params, err) < 0)
                     return gib_error_prefix(err, "%s: [%s] on scene %s", path, pl->sec,
                                             ax->scenes[si]);
-                gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
+                if (pl->alias[0])
+                    gib_external_params_key(gib_matrix_external(m, t), &r->params, r->params_key,
+                                            sizeof r->params_key);
+                else
+                    gib_params_key(t, &r->params, r->params_key, sizeof r->params_key);
                 r->width = ax->ws[zi % ax->nz];
                 r->height = ax->hs[zi % ax->nz];
                 r->time = ax->times[zi / ax->nz];
@@ -450,15 +541,23 @@ static int build_matrix(const parse_state *s, const char *profile, gib_matrix *m
     char psec[64];
     name_matrix(m, s->path, profile, psec, sizeof psec);
     matrix_axes ax;
-    if (check_sections(s, profile, psec) < 0 || load_settings(s, psec, m) < 0 ||
+    if (load_externals(s, m) < 0 || check_sections(s, m, profile, psec) < 0 ||
+        load_settings(s, psec, m) < 0 ||
         load_times(s, psec, m, &ax) < 0 || load_lists(s, psec, &ax) < 0 ||
         load_scene_scale(s, &ax) < 0)
         return -1;
     for (int ti = 0; ti < ax.nt; ti++) {
-        param_lists pl = {.t = gib_technique_find(ax.techs[ti])};
+        param_lists pl = {.t = find_technique(m, ax.techs[ti])};
+        const gib_external *x = gib_matrix_external(m, pl.t);
         if (!pl.t)
-            return gib_fail(s->err, "%s:%d: unknown technique '%s' (see gibench list)", s->path,
-                            ax.techs_line, ax.techs[ti]);
+            return gib_fail(s->err, "%s:%d: unknown technique '%s' (see gibench list, or declare "
+                            "it in [external.%s])", s->path, ax.techs_line, ax.techs[ti],
+                            ax.techs[ti]);
+        if (x && m->sequence > 1)
+            return gib_fail(s->err, "%s:%d: external '%s' renders one frame a row: not with "
+                            "sequence = %d", s->path, ax.techs_line, x->name, m->sequence);
+        if (x)
+            snprintf(pl.alias, sizeof pl.alias, "%s", x->name);
         if (load_param_lists(s, psec, &pl) < 0 || expand_runs(m, &ax, &pl, s->path, s->err) < 0)
             return -1;
     }
@@ -491,6 +590,9 @@ int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_er
 
 void gib_matrix_free(gib_matrix *m)
 {
+    free(m->externals);
+    m->externals = NULL;
+    m->external_count = 0;
     free(m->runs);
     m->runs = NULL;
     m->run_count = 0;

@@ -22,6 +22,11 @@
  *   [profile.quick]        ; overrides for --profile quick: any [matrix] key, and TECH.PARAM lists
  *   sizes = 128x128
  *   direct.shadow_res = 256
+ *   [external.myrenderer]  ; a renderer outside gibench, listed in techniques as myrenderer (or
+ *   command = ./render.sh  ; ext:myrenderer, its rows' name): external.h. Not with sequence > 1.
+ *   version = 1.0
+ *   components = direct
+ *   timeout_s = 600
  *
  * Parsing expands and validates everything (names, parameter ranges, sizes) before any rendering;
  * errors name the file and line. */
@@ -29,6 +34,7 @@
 #define GIB_MATRIX_H
 
 #include "techniques/technique.h"
+#include "external.h"
 
 #define GIB_MATRIX_MAX_LIST 32
 #define GIB_MATRIX_MAX_COMPONENTS 16
@@ -57,7 +63,12 @@ typedef struct gib_matrix {
                                most a fifth of the smallest error it scores (1: never) */
     gib_matrix_run *runs;
     int run_count;
+    gib_external *externals;   /* its [external.NAME] sections; runs point at their descriptors */
+    int external_count;
 } gib_matrix;
+
+/* The external technique whose descriptor t is, or NULL for a built-in or a plugin's. */
+const gib_external *gib_matrix_external(const gib_matrix *m, const gib_technique *t);
 
 int gib_matrix_load(const char *path, const char *profile, gib_matrix *m, gib_error *err);
 void gib_matrix_free(gib_matrix *m);

@@ -8,6 +8,7 @@
 
 #include "run_rows.h"
 #include "harness/base/status.h"
+#include "harness/base/hash.h"
 
 void gib_row_set(gib_row *r, int col, const char *fmt, ...)
 {
@@ -75,6 +76,16 @@ void gib_run_row_identity(gib_row *r, const gib_run_ctx *ctx, const gib_matrix_r
     gib_row_set(r, GIB_C_GL_VERSION, "%s", ctx->info.version);
     gib_row_set(r, GIB_C_GIT, "%s", gib_git_revision());
     gib_row_set(r, GIB_C_TECH_HASH, "%s", gib_technique_source_hash(mr->technique->name));
+    const gib_external *x = gib_matrix_external(ctx->m, mr->technique);
+    if (x) { /* an external's: its version for the GL version, a hash of command and version */
+        char hex[17];
+        gib_row_set(r, GIB_C_BACKEND, "external");
+        gib_row_set(r, GIB_C_RENDERER, "%s %s", x->name, x->version);
+        gib_row_set(r, GIB_C_GL_VERSION, "%s", x->version);
+        gib_hash_hex(gib_hash_str(gib_hash_str(GIB_HASH_INIT, x->command), x->version), hex);
+        gib_row_set(r, GIB_C_TECH_HASH, "%s", hex);
+        gib_row_set(r, GIB_C_MESSAGE, "external command: %s", x->command); /* failures replace it */
+    }
     time_t now = time(NULL);
     strftime(r->v[GIB_C_TIMESTAMP], sizeof r->v[GIB_C_TIMESTAMP], "%Y-%m-%dT%H:%M:%SZ",
              gmtime(&now));

@@ -79,7 +79,8 @@ static int write_passes(gib_run_ctx *ctx, const gib_matrix_run *mr, const gib_ru
         gib_row_set(&r, GIB_P_IQR, "%.6g", ps->iqr_ms);
         gib_row_set(&r, GIB_P_FIRST, "%.6g", ps->first_ms);
         pass_work(&r, ps);
-        gib_row_set(&r, GIB_P_RENDERER, "%s", ctx->info.renderer);
+        gib_row_set(&r, GIB_P_RENDERER, "%s",
+                    res->renderer[0] ? res->renderer : ctx->info.renderer);
         gib_row_set(&r, GIB_P_GIT, "%s", gib_git_revision());
         gib_error err;
         if (gib_csv_append(ctx->passes, r.ptr, &err) < 0) {
@@ -99,6 +100,8 @@ static void row_run_result(gib_row *r, const gib_gpu_scene *gpu, const gib_run_r
     /* What the technique planned, filled when the runner reports it (empty until then). */
     gib_row_set(r, GIB_C_MEM_PLANNED, "%s", res->planned_structures);
     gib_row_set(r, GIB_C_COUNTERS, "%s", res->counters);
+    if (res->renderer[0]) /* an external's (external.h), as it reports itself */
+        gib_row_set(r, GIB_C_RENDERER, "%s", res->renderer);
     if (res->ok)
         gib_row_set(r, GIB_C_WARMUP, "%d", res->warmup_frames);
     if (res->driver_bytes >= 0)

@@ -301,6 +301,11 @@ void gib_run(const gib_run_request *rq, gib_run_result *r)
         set_failure_status(r, GIB_STATUS_CREATE_FAILED);
         return;
     }
+    if (!rq->technique->create || !rq->technique->render) { /* an external's (gib_external_run) */
+        gib_fail(&r->err, "technique '%s' has no create() or render()", rq->technique->name);
+        set_status(r, GIB_STATUS_CREATE_FAILED);
+        return;
+    }
     run_state st;
     memset(&st, 0, sizeof st);
     gib_ledger_init(&st.ledger);

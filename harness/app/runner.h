@@ -36,6 +36,7 @@ typedef struct gib_run_result {
     char planned_structures[256];   /* what the technique planned, by structure, even when create()
                                        refused it (gib_ledger_planned_structures); "" if none */
     char counters[256];             /* the technique's counters of the last frame, or "" */
+    char renderer[256];             /* an external technique's renderer (external.h), else "" */
     gib_error err;
 } gib_run_result;
 

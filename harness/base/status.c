@@ -21,11 +21,18 @@ static const struct {
     [GIB_STATUS_RENDER_FAILED] = {"render_failed", "the technique's render() failed"},
     [GIB_STATUS_SCENE_UPDATE_FAILED] =
         {"scene_update_failed", "the animated scene could not be posed or uploaded"},
-    [GIB_STATUS_READBACK_FAILED] = {"readback_failed", "the images could not be read back"},
+    [GIB_STATUS_READBACK_FAILED] =
+        {"readback_failed", "the images could not be read back (an external renderer's: missing, "
+                            "unreadable, of the wrong size, or its timings.json malformed)"},
     [GIB_STATUS_REFERENCE_FAILED] =
         {"reference_failed", "the reference image could not be rendered or read"},
     [GIB_STATUS_SCORING_FAILED] = {"scoring_failed", "the metrics could not be computed"},
     [GIB_STATUS_SEQUENCE_FAILED] = {"sequence_failed", "a frame of the scored sequence failed"},
+    [GIB_STATUS_EXTERNAL_FAILED] =
+        {"external_failed", "an external renderer's command failed (non-zero exit, a signal, or "
+                            "it could not start): the message holds its stderr's tail"},
+    [GIB_STATUS_TIMEOUT] = {"timeout", "an external renderer's command ran past its timeout_s and "
+                                       "was killed"},
 };
 
 const char *gib_status_name(gib_status s)
