@@ -105,11 +105,12 @@ static void check_case(const char *dir, const char *name, const char *light, int
         }
     }
     for (int c = 0; c < 3; c++) {
-        double rel = sum[c] / expected[c] - 1;
-        int ok = fabs(rel) <= 0.01;
-        printf("%s %s res %d faces %d channel %d: texels sum %.6f, expected %.6f, relative %+.2e\n",
-               ok ? "ok  " : "FAIL", name, res, v.lv.face_count, c, sum[c], expected[c], rel);
-        failures += !ok;
+        char what[160];
+        snprintf(what, sizeof what,
+                 "%s res %d faces %d channel %d: texels' flux %.6f over the expected %.6f", name,
+                 res, v.lv.face_count, c, sum[c], expected[c]);
+        CHECK_NEAR(what, 1, sum[c] / expected[c], 0.01,
+                   "the issue's bound: point-sampled solid angles, areas, the tessellated sphere");
     }
     CHECK(!outside, "%s: %ld texels outside the spot's cone carry flux", name, outside);
     free(flux);
@@ -158,10 +159,13 @@ static void check_depth_precision(const char *dir)
             inside++;
             ground += pos[i + 1] < 0.01f;
         }
-    int ok = inside > 1000 && ground <= 4 * res;
-    printf("%s depth_precision: %ld texels over the sheet, %ld of them see the ground 1 cm under it "
-           "(at most %d: its border)\n", ok ? "ok  " : "FAIL", inside, ground, 4 * res);
-    failures += !ok;
+    char what[128];
+    snprintf(what, sizeof what, "%ld texels over the sheet", inside);
+    CHECK_TRUE("depth_precision: more than 1000 texels over the sheet", inside > 1000, what);
+    snprintf(what, sizeof what, "depth_precision: of %ld, texels seeing the ground 1 cm under",
+             inside);
+    CHECK_AT_MOST(what, ground, 4 * res,
+                  "the sheet's border: its outline crosses at most 4 x res texels of the map");
     free(pos);
     close_views(&v);
 }

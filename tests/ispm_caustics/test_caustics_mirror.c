@@ -67,13 +67,19 @@ int main(void)
         for (int c = 0; c < 3; c++) {
             double block_rel, ratio;
             gib_block_error(ref.px, r.images[0].px, W, H, 8, c, &block_rel, &ratio);
-            int pass = fabs(ratio - 1) <= MEAN_TOL && block_rel <= tol;
             snprintf(check_msg, sizeof check_msg,
-                     "splat_res_divisor %d, channel %d: mean ratio %.4f (tolerance %.2f), "
-                     "8x8-block relative RMSE %.4f (tolerance %.2f); reference mean %.5f, noise "
-                     "RMSE %.5f",
-                     divisor, c, ratio, MEAN_TOL, block_rel, tol, st.mean, st.noise_rmse);
-            CHECK_TRUE(check_msg, pass, "");
+                     "splat_res_divisor %d, channel %d: mean over the reference's", divisor, c);
+            CHECK_NEAR(check_msg, 1, ratio, MEAN_TOL,
+                       "splats' flux past the disc's rim and onto the block; measured 3.0% low");
+            snprintf(check_msg, sizeof check_msg,
+                     "splat_res_divisor %d, channel %d: 8x8-block relative RMSE (reference mean "
+                     "%.5f, noise RMSE %.5f)",
+                     divisor, c, st.mean, st.noise_rmse);
+            CHECK_AT_MOST(check_msg, block_rel, tol,
+                          divisor == 1
+                              ? "splats' blur at the rims, ray resolution, reference noise ~3%; "
+                                "measured 0.097"
+                              : "half-resolution G-buffer moves the rims by up to a pixel");
         }
     }
     gib_run_result_free(&r);

@@ -216,13 +216,20 @@ static int fin_case(void)
     int rc = run(&fx, rs, "0", NULL, &bound) < 0 || run(&fx, rs, "0", "0", &plane) < 0;
     int pass = !rc && plane.early >= 50 && 3 * bound.early <= plane.early &&
                frac(bound.agree, bound.in_view) >= 0.90;
+    snprintf(check_msg, sizeof check_msg, "%d stopped short with the plane alone",
+             plane.early);
+    CHECK_TRUE("a fin 2 degrees off edge-on: ran, 50 or more stopped", !rc && plane.early >= 50,
+               check_msg);
     snprintf(check_msg, sizeof check_msg,
-             "a fin 2 degrees off edge-on: %d photons stopped short of Embree's hit with the depth "
-             "bound, %d with the plane alone (at most a third, of 50 or more); %.2f%% agree (>= "
-             "90%%; the plane alone %.2f%%)",
-             bound.early, plane.early, 100 * frac(bound.agree, bound.in_view),
-             100 * frac(plane.agree, plane.in_view));
-    CHECK_TRUE(check_msg, pass, "");
+             "fin: stopped short with the depth bound (plane alone %d)", plane.early);
+    CHECK_AT_MOST(check_msg, bound.early, plane.early / 3.0,
+                  "the depth bound (~9 cm) removes most hits on the fin plane's extension; "
+                  "measured 86 against 457");
+    snprintf(check_msg, sizeof check_msg, "fin: share agreeing with Embree (plane alone %.4f)",
+             frac(plane.agree, plane.in_view));
+    CHECK_AT_LEAST(check_msg, frac(bound.agree, bound.in_view), 0.90,
+                   "the bound's price: photons crossing the fin beyond it reach the floor; "
+                   "measured 10596 of 11550");
     rtcReleaseScene(rs);
     rtcReleaseDevice(dev);
     gib_fixture_close(&fx);
@@ -246,18 +253,32 @@ int main(void)
                  l.hidden >= 50 && frac(l.hidden_agree, l.hidden) >= 0.95 && l.deep >= 50 &&
                  frac(l.deep_agree, l.deep) >= 0.95 && l.extra == 0 && !strcmp(l.status, "ok");
     snprintf(check_msg, sizeof check_msg,
-             "lists vs Embree: %.2f%% agree (>= 97%%), %.2f%% of the hidden (>= 95%%), %.2f%% of "
-             "those behind >= 4 surfaces (>= 95%%)",
-             100 * frac(l.agree, l.in_view), 100 * frac(l.hidden_agree, l.hidden),
-             100 * frac(l.deep_agree, l.deep));
-    CHECK_TRUE(check_msg, pass_l, "");
+             "%d photons, %d in view, %d hidden, %d deep, %d extra, status %s", l.photons,
+             l.in_view, l.hidden, l.deep, l.extra, l.status);
+    CHECK_TRUE("lists: >1000 photons, most in view, >= 50 hidden and deep",
+               l.photons > 1000 && l.in_view > l.photons / 2 && l.hidden >= 50 && l.deep >= 50 &&
+                   l.extra == 0 && !strcmp(l.status, "ok"),
+               check_msg);
+    CHECK_AT_LEAST("lists vs Embree: share agreeing", frac(l.agree, l.in_view), 0.97,
+                   "disagreements lie at edges (a face near edge-on, a face's extension); "
+                   "measured 1.1% disagree");
+    CHECK_AT_LEAST("lists vs Embree: share of the hidden agreeing",
+                   frac(l.hidden_agree, l.hidden), 0.95,
+                   "a list keeps every surface; edges: measured 1.3% disagree");
+    CHECK_AT_LEAST("lists vs Embree: share behind >= 4 surfaces agreeing",
+                   frac(l.deep_agree, l.deep), 0.95,
+                   "a list keeps every surface; edges: measured 1.6% disagree");
     int pass_d = d.deep >= 50 && frac(d.deep_agree, d.deep) <= 0.10 &&
                  frac(d.shallow_agree, d.shallow) >= 0.97 && !strcmp(d.status, "ok");
-    snprintf(check_msg, sizeof check_msg,
-             "4 depth layers vs Embree: %.2f%% of the receivers behind >= 4 surfaces found (<= "
-             "10%%: they are missing), %.2f%% of the others (>= 97%%)",
-             100 * frac(d.deep_agree, d.deep), 100 * frac(d.shallow_agree, d.shallow));
-    CHECK_TRUE(check_msg, pass_d, "");
+    snprintf(check_msg, sizeof check_msg, "%d deep, status %s", d.deep, d.status);
+    CHECK_TRUE("4 depth layers: >= 50 receivers behind >= 4 surfaces",
+               d.deep >= 50 && !strcmp(d.status, "ok"), check_msg);
+    CHECK_AT_MOST("4 depth layers: share behind >= 4 surfaces found", frac(d.deep_agree, d.deep),
+                  0.10, "they are missing; chance hits through a wall plane's extension, "
+                  "measured 4.9%");
+    CHECK_AT_LEAST("4 depth layers: share of the others found",
+                   frac(d.shallow_agree, d.shallow), 0.97,
+                   "the first 4 layers are kept; measured 99.2%");
     int pass_b = l.agree >= plane.agree && l.deep_agree >= plane.deep_agree;
     snprintf(check_msg, sizeof check_msg,
              "the depth bound (hit_depth default) vs the tangent plane alone (hit_depth 0): %d "

@@ -100,10 +100,13 @@ int main(void)
            "difference %.3g = %.2g of the diagonal); from the unsnapped origin %.2f%% are within "
            "2 texels (%.4g)\n", m, hits, agree, 100 * frac, worst, worst / diag,
            100.0 * lateral_close / m, 2 * texel);
-    int pass = frac >= 0.995 && hits > m / 2 && ldm_status(&l) == GIB_STATUS_OK;
-    snprintf(check_msg, sizeof check_msg,
-             "LDM trace vs Embree (expect >= 99.5%% agreement to 1e-4 of the diagonal)");
-    CHECK_TRUE(check_msg, pass, "");
+    CHECK_AT_LEAST("LDM trace vs Embree: share agreeing to 1e-4 of diag.", frac, 0.995,
+                   "rays snapped within float rounding of a triangle edge may see another "
+                   "triangle (rasterisation's tie rules vs Embree's watertight test)");
+    snprintf(check_msg, sizeof check_msg, "%d of %d rays hit, ldm status %d", hits, m,
+             (int)ldm_status(&l));
+    CHECK_TRUE("LDM trace: more than half the rays hit, status ok",
+               hits > m / 2 && ldm_status(&l) == GIB_STATUS_OK, check_msg);
     free(rays);
     free(dist);
     free(snapped);

@@ -72,12 +72,15 @@ int main(void)
     for (int c = 0; c < 3; c++) {
         double block, mean;
         gib_block_error(ref.px, r.images[0].px, W, H, BLOCK, c, &block, &mean);
-        int good = fabs(mean - 1) <= MEAN_TOL && block <= BLOCK_TOL;
-        snprintf(check_msg, sizeof check_msg,
-                 "%s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative RMSE "
-                 "%.4f (bound %.2f)",
-                 channel[c], mean, MEAN_TOL, BLOCK, BLOCK, block, BLOCK_TOL);
-        CHECK_TRUE(check_msg, good, "");
+        snprintf(check_msg, sizeof check_msg, "%s: mean over the reference's", channel[c]);
+        CHECK_NEAR(check_msg, 1, mean, MEAN_TOL,
+                   "photon splitting conserves flux to ~1/N, the splats deposit what is stored; "
+                   "measured +-0.5%");
+        snprintf(check_msg, sizeof check_msg, "%s: %dx%d-block relative RMSE", channel[c], BLOCK,
+                 BLOCK);
+        CHECK_AT_MOST(check_msg, block, BLOCK_TOL,
+                      "block means average the splats' footprints out; measured 0.075-0.100, "
+                      "splats moved 2 pixels 0.16-0.19");
     }
 
     ldm_indirect_audit a;
@@ -93,14 +96,19 @@ int main(void)
             for (int k = LDM_AUDIT_GRAZING; k <= LDM_AUDIT_STORED; k++)
                 sum += a.flux[k][c];
             double stored = a.flux[LDM_AUDIT_STORED][c], splatted = a.flux[LDM_AUDIT_SPLATTED][c];
-            int good = carried > 0 && fabs(sum / carried - 1) <= 1e-4 && stored > 0 &&
-                       fabs(splatted / stored - 1) <= SPLAT_TOL;
+            snprintf(check_msg, sizeof check_msg, "carried %.6g W, stored %.6g W", carried,
+                     stored);
+            CHECK_TRUE("audit: flux carried and stored, both positive", carried > 0 && stored > 0,
+                       check_msg);
             snprintf(check_msg, sizeof check_msg,
-                     "%s: carried %.6g W = discarded + stored %.6g W (%+.2g); splatted %.6g W = "
-                     "%.4f of stored",
-                     channel[c], carried, sum, carried > 0 ? sum / carried - 1 : 0.0, splatted,
-                     stored > 0 ? splatted / stored : 0.0);
-            CHECK_TRUE(check_msg, good, "");
+                     "%s: (discarded + stored %.6g W) over carried %.6g W", channel[c], sum,
+                     carried);
+            CHECK_NEAR(check_msg, 1, sum / carried, 1e-4, "float sums over the photons");
+            snprintf(check_msg, sizeof check_msg, "%s: splatted %.6g W over stored %.6g W",
+                     channel[c], splatted, stored);
+            CHECK_NEAR(check_msg, 1, splatted / stored, SPLAT_TOL,
+                       "the kernel sampled at pixel centres, a few per footprint; measured +3.4% "
+                       "at 64x64");
         }
     }
     printf("%s: ldm_indirect against the Cornell box's indirect reference\n", failures ? "FAIL" : "PASS");

@@ -126,25 +126,23 @@ int main(void)
         if (comp == GIB_OUT_DIRECT) {
             for (int c = 0; c < 3; c++) {
                 double ratio = mean(im, c, 0, W) / mean(&ref, c, 0, W);
-                int ok = fabs(ratio - 1) <= DIRECT_MEAN_TOL;
-                snprintf(check_msg, sizeof check_msg,
-                         "direct %s: mean %.4f of the reference's (tolerance %.2f)",
-                         channel[c], ratio, DIRECT_MEAN_TOL);
-                CHECK_TRUE(check_msg, ok, "");
+                snprintf(check_msg, sizeof check_msg, "direct %s: mean over the reference's",
+                         channel[c]);
+                CHECK_NEAR(check_msg, 1, ratio, DIRECT_MEAN_TOL,
+                           "cones soften shadow edges and darken grazing-lit surfaces; "
+                           "measured -2%");
             }
-            int ok = e <= DIRECT_RMSE;
-            snprintf(check_msg, sizeof check_msg,
-                     "direct: relative RMSE %.4f (bound %.2f)",
-                     e, DIRECT_RMSE);
-            CHECK_TRUE(check_msg, ok, "");
+            CHECK_AT_MOST("direct: relative RMSE", e, DIRECT_RMSE,
+                          "shadow cones instead of hard shadows; measured 0.18 (0.59 untapered)");
         } else {
             for (int c = 0; c < 3; c++) {
                 double ratio = mean(im, c, 0, W) / mean(&ref, c, 0, W);
-                int ok = ratio >= INDIRECT_MIN && ratio <= 1;
-                snprintf(check_msg, sizeof check_msg,
-                         "indirect %s: mean %.4f of the reference's (must be in [%.2f, 1])",
-                         channel[c], ratio, INDIRECT_MIN);
-                CHECK_TRUE(check_msg, ok, "");
+                snprintf(check_msg, sizeof check_msg, "indirect %s: mean over the reference's",
+                         channel[c]);
+                CHECK_AT_LEAST(check_msg, ratio, INDIRECT_MIN,
+                               "cones leak out of the open front and through thin walls "
+                               "(measured 0.93-0.94); any literal reading of the paper fails");
+                CHECK_AT_MOST(check_msg, ratio, 1, "no light created");
             }
             double bleed_ref = (mean(&ref, 0, 0, W / 4) / mean(&ref, 1, 0, W / 4)) /
                                (mean(&ref, 0, 3 * W / 4, W) / mean(&ref, 1, 3 * W / 4, W));
@@ -157,12 +155,12 @@ int main(void)
                      bleed, bleed_ref);
             CHECK_TRUE(check_msg, ok, "");
             double corr = block_corr(&ref, im);
-            ok = corr >= CORR_MIN;
             snprintf(check_msg, sizeof check_msg,
-                     "indirect: %dx%d-block correlation with the reference %.3f (at least %.2f); "
-                     "relative RMSE %.4f (reported, not bounded)",
-                     BLOCK, BLOCK, corr, CORR_MIN, e);
-            CHECK_TRUE(check_msg, ok, "");
+                     "indirect: %dx%d-block Pearson r with the reference (relative RMSE %.4f, "
+                     "reported, not bounded)",
+                     BLOCK, BLOCK, e);
+            CHECK_AT_LEAST(check_msg, corr, CORR_MIN,
+                           "the light falls where it should, whatever its level");
         }
         gib_image_free(&ref);
     }

@@ -96,12 +96,12 @@ int main(int argc, char **argv)
             worst = fmax(worst, fabs(out[4 * i + c] / wall - 1));
             mean += out[4 * i + c] / (3.0 * PROBES);
         }
-    int ok = worst <= LOOKUP_TOL;
     snprintf(check_msg, sizeof check_msg,
-             "LRSM lookup (%s light view) at %d wall points: mean %.6f, largest deviation %.3f%% "
-             "from a I / (pi R^2) = %.6f (tolerance %.0f%%)",
-             spot ? "perspective" : "cube", PROBES, mean, 100 * worst, wall, 100 * LOOKUP_TOL);
-    CHECK_TRUE(check_msg, ok, "");
+             "LRSM lookup (%s light view) at %d wall points (mean %.6f): largest relative "
+             "deviation from a I / (pi R^2) = %.6f",
+             spot ? "perspective" : "cube", PROBES, mean, wall);
+    CHECK_AT_MOST(check_msg, worst, LOOKUP_TOL,
+                  "half-float storage 0.05%, the facets 0.06%, mips of a curved wall");
     lrsm_setup_destroy(&s);
     if (spot) {
         gib_fixture_close(&fx);
@@ -130,25 +130,22 @@ int main(int argc, char **argv)
                 sum += v / (3.0 * n);
                 dev = fmax(dev, fabs(v / wall - 1));
             }
+        CHECK(!nonfinite, "output %d: %ld non-finite pixels", o, nonfinite);
         if (r.output_components[o] == GIB_OUT_DIRECT) {
-            ok = !nonfinite && dev <= DIRECT_TOL;
             snprintf(check_msg, sizeof check_msg,
-                     "direct: mean %.6f, largest deviation %.4f%% from %.6f (tolerance %.1f%%)",
-                     sum, 100 * dev, wall, 100 * DIRECT_TOL);
-            CHECK_TRUE(check_msg, ok, "");
+                     "direct (mean %.6f): largest relative deviation from %.6f", sum, wall);
+            CHECK_AT_MOST(check_msg, dev, DIRECT_TOL,
+                          "nothing occludes the wall from the light; measured 2e-7");
         } else if (r.output_components[o] == GIB_OUT_INDIRECT) {
-            ok = !nonfinite && sum >= INDIRECT_MIN * indirect && sum <= INDIRECT_MAX * indirect;
             snprintf(check_msg, sizeof check_msg,
-                     "indirect: mean %.6f = %.4f of the one-bounce answer %.6f (must be in [%.2f, "
-                     "%.2f]: the isotropic voxels' alpha keeps it below, see above)",
-                     sum, sum / indirect, indirect, INDIRECT_MIN, INDIRECT_MAX);
-            CHECK_TRUE(check_msg, ok, "");
+                     "indirect: mean (%.4f of the one-bounce answer %.6f)", sum / indirect,
+                     indirect);
+            CHECK_AT_LEAST(check_msg, sum, INDIRECT_MIN * indirect,
+                           "isotropic occlusion voxels let part of each cone pass the wall "
+                           "(Eq. 1); measured 0.80, the paper's readings 0.42 and 0.012");
+            CHECK_AT_MOST(check_msg, sum, INDIRECT_MAX * indirect, "no light created");
         } else {
-            ok = !nonfinite && sum == 0;
-            snprintf(check_msg, sizeof check_msg,
-                     "glossy: mean %g (no specular lobe in the furnace)",
-                     sum);
-            CHECK_TRUE(check_msg, ok, "");
+            CHECK_NEAR("glossy: mean", 0, sum, 0, "no specular lobe in the furnace");
         }
     }
     gib_run_result_free(&r);

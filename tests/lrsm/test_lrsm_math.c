@@ -76,7 +76,7 @@ static void check_plane_hits(void)
             double got = lrsm_cap_cosine(cos(t), sin(t), sh), want = cap_cosine_grid(cos(t), sh * sin(t));
             char what[80];
             snprintf(what, sizeof what, "cap cosine, tilt %g, sin_half %g", tilts[i], sh);
-            CHECK_GOT(fabs(got - want) <= CAP_TOL, what, got, want);
+            CHECK_NEAR(what, want, got, CAP_TOL, "the 1000 x 1000 grid's integral errs by ~1e-4");
         }
     /* A touching-sphere sequence of a 60-degree cone (r = t tan 30, next centre one diameter on)
      * against a plane facing the axis at depth D. */
@@ -91,8 +91,8 @@ static void check_plane_hits(void)
             }
             worst = fmin(worst, 1 - pass);
         }
-        CHECK_GOT(worst >= TILE_MIN, spread > 0 ? "a facing plane met, spread 2 cm" : "a facing plane met",
-                  worst, TILE_MIN);
+        CHECK_AT_LEAST(spread > 0 ? "a facing plane met, spread 2 cm" : "a facing plane met", worst,
+                       TILE_MIN, "a 60-degree cone's touching spheres meet a plane it faces");
     }
     double worst = 0;
     for (double E = 0.01; E < 1; E += 0.01) {
@@ -100,7 +100,8 @@ static void check_plane_hits(void)
         double exact = (2 / M_PI) * (asin(c) + c * sqrt(1 - c * c));
         worst = fmax(worst, fabs(lrsm_plane_hits(0, E, 1, 1, 0) - exact));
     }
-    CHECK_GOT(worst <= HITS_TOL, "a plane through the centre against the disk's exact share", worst, 0);
+    CHECK_AT_MOST("a plane through the centre vs the disk's exact share", worst, HITS_TOL,
+                  "the Gaussian stand-in for the disk's projection differs by at most 0.081");
     CHECK_GOT(lrsm_plane_hits(5, 0.5, 1, 1, 0) < 1e-6 && lrsm_plane_hits(-5, 0.5, 1, 1, 0) < 1e-6,
               "a plane far from the sample", lrsm_plane_hits(5, 0.5, 1, 1, 0), 0);
     double r = 0.1, th = M_PI / 3;
@@ -131,7 +132,10 @@ int main(void)
         double want = gauss_integral(c[0] - c[1], c[0] + c[1], c[2], c[3]);
         char what[128];
         snprintf(what, sizeof what, "Eq. 12 at zc %g rc %g mu %g sigma^2 %g", c[0], c[1], c[2], c[3]);
-        CHECK_GOT(fabs(got - want) <= VIS_TOL && got >= -VIS_TOL && got <= 1 + VIS_TOL, what, got, want);
+        CHECK_NEAR(what, want, got, VIS_TOL,
+                   "two Phi values, each within 7.5e-8; Simpson exact to ~1e-12");
+        CHECK_AT_LEAST(what, got, -VIS_TOL, "a visibility, in [0, 1] to VIS_TOL");
+        CHECK_AT_MOST(what, got, 1 + VIS_TOL, "a visibility, in [0, 1] to VIS_TOL");
         vworst = fmax(vworst, fabs(got - want));
     }
     printf("Eq. 12 against Simpson: largest |difference| %.3g over %u cases (tolerance %.1g)\n", vworst,

@@ -80,13 +80,13 @@ int main(void)
             return 1;
         }
     double near = largest_step(out[1], 1), far = largest_step(out[1], 0);
-    int good = near <= STEP_RATIO * far;
     snprintf(check_msg, sizeof check_msg,
-             "seam: largest step between neighbouring probes %.2f%% within 0.15 m of the seam, "
-             "%.2f%% elsewhere (bound %.1fx); the centre's face only: %.2f%% and %.2f%%",
-             100 * near, 100 * far, STEP_RATIO, 100 * largest_step(out[0], 1),
-             100 * largest_step(out[0], 0));
-    CHECK_TRUE(check_msg, good, "");
+             "seam: largest step within 0.15 m of it (bound %.1fx the %.2f%% elsewhere; the "
+             "centre's face only: %.2f%% and %.2f%%)",
+             STEP_RATIO, 100 * far, 100 * largest_step(out[0], 1), 100 * largest_step(out[0], 0));
+    CHECK_AT_MOST(check_msg, near, STEP_RATIO * far,
+                  "the falloff's slope and the mip levels' transitions: measured 2.1% and 1.9%; "
+                  "the centre's face alone steps 63%");
     double away = 0, dip = 0;
     int lo = (int)((0.85 - X0) / DX), hi = (int)((1.15 - X0) / DX + 0.5);
     for (int i = 0; i < PROBES; i++) {
@@ -99,13 +99,12 @@ int main(void)
             dip = fmax(dip, 1 - L1 / line);
         }
     }
-    good = away <= AWAY_TOL;
     snprintf(check_msg, sizeof check_msg,
-             "away from the seam: the blend against the centre's face, largest difference %.2g "
-             "(tolerance %.0e); within the seam band the lookups dip %.1f%% below the line between "
-             "its ends",
-             away, AWAY_TOL, 100 * dip);
-    CHECK_TRUE(check_msg, good, "");
+             "away from the seam: blend vs the centre's face, largest relative difference (within "
+             "the seam band the lookups dip %.1f%% below the line between its ends)",
+             100 * dip);
+    CHECK_AT_MOST(check_msg, away, AWAY_TOL,
+                  "float rounding: the blend changes only the samples that straddle a seam");
     lrsm_setup_destroy(&s);
     gib_fixture_close(&fx);
     char path[600];

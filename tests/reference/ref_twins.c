@@ -173,15 +173,28 @@ int main(void)
         for (int i = C_TINY; i <= C_HUGE; i++) {
             double rest_s;
             int graze = flipped(&img[C_CORNELL], &img[i], &rest_s);
-            CHECK(graze <= TOL_GRAZE && rest_s <= TOL_SCALED,
-                  "%s: %s: %d pixels apart (max %d), the others within %g (max %g); relative "
-                  "RMSE %g", cases[c].what, NAMES[i], graze, TOL_GRAZE, rest_s, TOL_SCALED,
-                  e[i]);
+            char what[160];
+            snprintf(what, sizeof what, "%s: %s (rel. RMSE %g): pixels apart by > 1%%",
+                     cases[c].what, NAMES[i], e[i]);
+            CHECK_AT_MOST(what, graze, TOL_GRAZE,
+                          "a ray grazing an edge within 2^-24 can hit in one scene, miss in the "
+                          "other");
+            snprintf(what, sizeof what, "%s: %s: the others' largest difference, of the mean",
+                     cases[c].what, NAMES[i]);
+            CHECK_AT_MOST(what, rest_s, TOL_SCALED,
+                          "scaling rounds coordinates by 2^-24: a few 1e-6, room for another "
+                          "compiler or Embree ISA");
         }
-        CHECK(flips <= TOL_FLIPS, "%s: hard_far and its box at the origin differ at %d pixels > %d",
-              cases[c].what, flips, TOL_FLIPS);
-        CHECK(rest <= TOL_REST, "%s: hard_far against its box at the origin, pixels that agree: "
-              "%g > %g", cases[c].what, rest, TOL_REST);
+        char what[160];
+        snprintf(what, sizeof what, "%s: hard_far vs its box at the origin: pixels apart",
+                 cases[c].what);
+        CHECK_AT_MOST(what, flips, TOL_FLIPS,
+                      "a pixel centre within the arithmetic's rounding of an edge may land on the "
+                      "other surface; measured <= 6 of 4096");
+        snprintf(what, sizeof what, "%s: hard_far vs its box at the origin: the rest, of the mean",
+                 cases[c].what);
+        CHECK_AT_MOST(what, rest, TOL_REST,
+                      "only the arithmetic's rounding differs (a few 1e-7); measured <= 3e-7");
         for (int i = 0; i < C_COUNT; i++)
             gib_image_free(&img[i]);
     }

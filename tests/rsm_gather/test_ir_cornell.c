@@ -90,13 +90,15 @@ int main(void)
         for (int c = 0; c < 3; c++) {
             double block, mean;
             gib_block_error(ref.px, r.images[0].px, W, H, BLOCK, c, &block, &mean);
-            int good = fabs(mean - 1) <= cases[k].mean_tol && block <= cases[k].block_tol;
-            snprintf(check_msg, sizeof check_msg,
-                     "%s %s: mean %.4f of the reference's (tolerance %.2f), %dx%d-block relative "
-                     "RMSE %.4f (bound %.2f)",
-                     cases[k].name, channel[c], mean, cases[k].mean_tol, BLOCK, BLOCK, block,
-                     cases[k].block_tol);
-            CHECK_TRUE(check_msg, good, "");
+            snprintf(check_msg, sizeof check_msg, "%s %s: mean over the reference's",
+                     cases[k].name, channel[c]);
+            CHECK_NEAR(check_msg, 1, mean, cases[k].mean_tol,
+                       "no VPL visibility brightens it (measured 1.07-1.10); 1/pi lost is 3.1x");
+            snprintf(check_msg, sizeof check_msg, "%s %s: %dx%d-block relative RMSE",
+                     cases[k].name, channel[c], BLOCK, BLOCK);
+            CHECK_AT_MOST(check_msg, block, cases[k].block_tol,
+                          "VPL blotches and light through the blocks (measured 0.24-0.32); "
+                          "|n.v| cosines give 1.6-2.4");
         }
         if (k == 1 && gather.px) {
             double se = 0, sum = 0;
@@ -106,12 +108,10 @@ int main(void)
                 sum += gather.px[i];
             }
             double rel = sqrt(se / (W * H * 3)) / (sum / (W * H * 3));
-            int good = rel <= INTERP_TOL;
-            snprintf(check_msg, sizeof check_msg,
-                     "multires_ir against rsm_gather (its interpolation alone): relative RMSE %.4f "
-                     "(bound %.2f)",
-                     rel, INTERP_TOL);
-            CHECK_TRUE(check_msg, good, "");
+            CHECK_AT_MOST("multires_ir vs rsm_gather (interpolation): rel. RMSE", rel,
+                          INTERP_TOL,
+                          "1/d^2 varies inside a region near walls and corners; measured 0.072, "
+                          "nearest-parent 0.087");
         }
         if (k == 0) {
             gather = r.images[0];
@@ -152,12 +152,9 @@ int main(void)
                     sum += gather.px[i];
                 }
                 double rel = r1.ok && sum > 0 ? sqrt(se / (W * H * 3)) / (sum / (W * H * 3)) : 1;
-                int good = r1.ok && rel <= 1e-5;
-                snprintf(check_msg, sizeof check_msg,
-                         "multires_ir levels=1 against rsm_gather: relative RMSE %.2g (tolerance "
-                         "1e-5)",
-                         rel);
-                CHECK_TRUE(check_msg, good, "");
+                /* rel is 1 when the run failed, so the bound fails it too. */
+                CHECK_AT_MOST("multires_ir levels=1 vs rsm_gather: relative RMSE", rel, 1e-5,
+                              "the same VPLs and formula: float rounding; measured 1.6e-8");
                 gib_run_result_free(&r1);
             }
         }

@@ -58,13 +58,19 @@ int main(void)
             if (!(e <= worst))
                 worst = e;
         }
-        int good = bad == 0 && fabs(mean / want - 1) <= MEAN_TOL;
         snprintf(check_msg, sizeof check_msg,
-                 "%s in the furnace (%s): mean %.6f, closed form %.6f (%+.3f%%, tolerance %.1f%%), "
-                 "worst pixel %.3f%% off (tolerance %.1f%%), %ld values beyond",
-                 names[k], fx.info.renderer, mean, want, 100 * (mean / want - 1), 100 * MEAN_TOL,
-                 100 * worst, 100 * PIXEL_TOL, bad);
-        CHECK_TRUE(check_msg, good, "");
+                 "%s in the furnace (%s): mean %.6f over the closed form %.6f", names[k],
+                 fx.info.renderer, mean, want);
+        CHECK_NEAR(check_msg, 1, mean / want, MEAN_TOL, "the facets: 0.06%; measured -0.08%");
+        snprintf(check_msg, sizeof check_msg,
+                 "%s in the furnace: worst pixel's relative error (%ld values beyond)", names[k],
+                 bad);
+        CHECK_AT_MOST(check_msg, worst, PIXEL_TOL,
+                      "eps = 0.05 m dims a pixel near a VPL by at most its flux share; measured "
+                      "0.77%");
+        /* `bad` also counts the NaNs, which `worst` may not keep. */
+        CHECK(bad == 0, "%s: %ld values beyond %.1f%% of the closed form (or not a number)",
+              names[k], bad, 100 * PIXEL_TOL);
         gib_run_result_free(&r);
     }
     gib_fixture_close(&fx);

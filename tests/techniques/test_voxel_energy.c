@@ -121,12 +121,17 @@ static int furnace_case(void)
         hi = fmax(hi, ours[i]);
     }
     const double finest = literal[NRES - 1] / ours[NRES - 1];
-    int ok = lo / hi >= FURNACE_MIN_RATIO && finest < FILL_GAIN;
+    int before = failures;
+    CHECK_AT_LEAST("vct furnace, fill: smallest mean over the largest", lo / hi,
+                   FURNACE_MIN_RATIO,
+                   "the honest thin-shell loss varies with the grid by a few percent; measured "
+                   "0.94");
+    /* Strictly below FILL_GAIN, which CHECK_AT_MOST is not. */
     snprintf(check_msg, sizeof check_msg,
-             "vct furnace: smallest mean over largest across voxel_res %.3f with the fill (at "
-             "least %.2f); at voxel_res %s point injection %.3f of the fill's (below %.2f)",
-             lo / hi, FURNACE_MIN_RATIO, resolutions[NRES - 1], finest, FILL_GAIN);
-    CHECK_TRUE(check_msg, ok, "");
+             "vct furnace: at voxel_res %s point injection %.3f of the fill's (below %.2f)",
+             resolutions[NRES - 1], finest, FILL_GAIN);
+    CHECK_TRUE(check_msg, finest < FILL_GAIN, "");
+    int ok = failures == before;
     return !ok;
 }
 
@@ -150,12 +155,14 @@ static int open_plane_case(void)
     int failures = 0;
     for (int i = 0; i < NRES; i++) {
         double m = indirect_mean(&fx, t, resolutions[i]);
-        int ok = m >= 0 && m / want >= OPEN_LO && m / want <= OPEN_HI;
+        CHECK(m >= 0, "vct plane_box voxel_res %s: the render failed", resolutions[i]);
         snprintf(check_msg, sizeof check_msg,
-                 "vct plane_box voxel_res %s: indirect mean %.3f of the reference's (band "
-                 "%.2f-%.2f)",
-                 resolutions[i], m / want, OPEN_LO, OPEN_HI);
-        CHECK_TRUE(check_msg, ok, "");
+                 "vct plane_box voxel_res %s: indirect mean over the reference's",
+                 resolutions[i]);
+        CHECK_AT_LEAST(check_msg, m / want, OPEN_LO,
+                       "measured 1.09 / 1.03 / 0.99; the plane lighting itself read 3.4-4.9x");
+        CHECK_AT_MOST(check_msg, m / want, OPEN_HI,
+                      "measured 1.09 / 1.03 / 0.99; the plane lighting itself read 3.4-4.9x");
     }
     gib_image_free(&ref);
     gib_fixture_close(&fx);
@@ -185,19 +192,22 @@ static int scene_case(const char *scene)
                 continue;
             }
             double ratio = m / want;
-            int ok = ratio >= cases[k].lo && ratio <= cases[k].hi;
             snprintf(check_msg, sizeof check_msg,
-                     "%s %s voxel_res %s: indirect mean %.3f of the reference's (band %.2f-%.2f)",
-                     scene, t->name, resolutions[i], ratio, cases[k].lo, cases[k].hi);
-            CHECK_TRUE(check_msg, ok, "");
+                     "%s %s voxel_res %s: indirect mean over the reference's", scene, t->name,
+                     resolutions[i]);
+            CHECK_AT_LEAST(check_msg, ratio, cases[k].lo,
+                           "the issue's 15%, held at 20% against another renderer's rounding; "
+                           "Eq. 12's own window read 0.66-0.74");
+            CHECK_AT_MOST(check_msg, ratio, cases[k].hi,
+                          "vct: the issue's 15%; lrsm: below the reference, never above it");
             lo = fmin(lo, ratio);
             hi = fmax(hi, ratio);
         }
-        int ok = hi > 0 && lo / hi >= MIN_RATIO;
         snprintf(check_msg, sizeof check_msg,
-                 "%s %s: the smallest mean over the largest across voxel_res %.3f (at least %.2f)",
-                 scene, t->name, hi > 0 ? lo / hi : 0.0, MIN_RATIO);
-        CHECK_TRUE(check_msg, ok, "");
+                 "%s %s: the smallest mean over the largest across voxel_res (0 if none)", scene,
+                 t->name);
+        CHECK_AT_LEAST(check_msg, hi > 0 ? lo / hi : 0.0, MIN_RATIO,
+                       "a finer grid describes the same scene: within 10%; measured 0.93-0.95");
     }
     gib_image_free(&ref);
     gib_fixture_close(&fx);

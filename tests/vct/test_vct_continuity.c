@@ -49,12 +49,11 @@ int main(void)
             break;
         }
         double jump = (m > prev ? m - prev : prev - m) / (m < prev ? m : prev);
-        int ok = jump <= JUMP_MAX;
         snprintf(check_msg, sizeof check_msg,
-                 "vct diffuse_aperture %.1f -> %.1f: indirect mean %.5f -> %.5f, %.3f apart (at "
-                 "most %.2f)",
-                 a - STEP, a, prev, m, jump, JUMP_MAX);
-        CHECK_TRUE(check_msg, ok, "");
+                 "vct diffuse_aperture %.1f -> %.1f: indirect mean %.5f -> %.5f, relative jump",
+                 a - STEP, a, prev, m);
+        CHECK_AT_MOST(check_msg, jump, JUMP_MAX,
+                      "a half-degree wider cone is a nearly equal integral; measured at most 0.05");
         prev = m;
     }
     gib_fixture_close(&fx);

@@ -96,12 +96,17 @@ static int furnace(void)
         double e = fabs(r.images[0].px[i] - 0.5 / M_PI);
         dmax = e > dmax ? e : dmax;
     }
-    int good = ind >= FURNACE_LO * FURNACE && ind <= FURNACE_HI * FURNACE && dmax <= DIRECT_TOL;
-    snprintf(check_msg, sizeof check_msg,
-             "furnace: indirect mean %.6f = %.3f of the closed form %.6f (band %.2f..%.2f); direct "
-             "max error %.2g (bound %.0e)",
-             ind, ind / FURNACE, FURNACE, FURNACE_LO, FURNACE_HI, dmax, DIRECT_TOL);
-    CHECK_TRUE(check_msg, good, "");
+    int before = failures;
+    snprintf(check_msg, sizeof check_msg, "furnace: indirect mean (closed form %.6f)", FURNACE);
+    CHECK_AT_LEAST(check_msg, ind, FURNACE_LO * FURNACE,
+                   "VCT's thin-shell loss: a one-voxel shell leaks through coarse cells; "
+                   "measured 0.63 of the closed form");
+    CHECK_AT_MOST(check_msg, ind, FURNACE_HI * FURNACE,
+                  "one bounce's closed form; radiance without its 1/pi (x3.1) or cone weights "
+                  "not summing to 1 fall outside");
+    CHECK_AT_MOST("furnace: direct, largest error from 0.5 / pi", dmax, DIRECT_TOL,
+                  "no occluder between the light and any wall; measured 8.9e-5");
+    int good = failures == before;
     gib_run_result_free(&r);
     gib_fixture_close(&fx);
     return good;
@@ -126,12 +131,14 @@ int main(void)
     for (int c = 0; c < 3; c++) {
         double block, mean;
         gib_block_error(ref.px, ind->px, W, H, BLOCK, c, &block, &mean);
-        int good = mean >= MEAN_LO && mean <= MEAN_HI && block <= BLOCK_TOL;
-        snprintf(check_msg, sizeof check_msg,
-                 "%s: mean %.4f of the reference's (band %.2f..%.2f), %dx%d-block relative RMSE "
-                 "%.4f (bound %.2f)",
-                 channel[c], mean, MEAN_LO, MEAN_HI, BLOCK, BLOCK, block, BLOCK_TOL);
-        CHECK_TRUE(check_msg, good, "");
+        snprintf(check_msg, sizeof check_msg, "%s: mean, ratio to the reference's", channel[c]);
+        CHECK_AT_LEAST(check_msg, mean, MEAN_LO, "within 15% of the reference; measured 1.03-1.06");
+        CHECK_AT_MOST(check_msg, mean, MEAN_HI, "within 15% of the reference; measured 1.03-1.06");
+        snprintf(check_msg, sizeof check_msg, "%s: %dx%d-block relative RMSE", channel[c], BLOCK,
+                 BLOCK);
+        CHECK_AT_MOST(check_msg, block, BLOCK_TOL,
+                      "VCT is coarse and biased; measured 0.26-0.37 (0.81-1.03 at the paper's "
+                      "level)");
     }
     /* Red/green of the left and right thirds, ours and the reference's. */
     double rl = mean_of(ind->px, 0, 0, W / 3) / mean_of(ind->px, 1, 0, W / 3),

@@ -50,12 +50,21 @@ int main(void)
                 continue;
             }
             double leak = dark / lit;
-            int ok = f ? leak <= LEAK_MAX : leak > LEAK_CONTROL;
+            if (f) {
+                snprintf(check_msg, sizeof check_msg,
+                         "vct voxel_res=%s front_faces=%s: the dark room over the lit room",
+                         resolutions[v], ff);
+                CHECK_AT_MOST(check_msg, leak, LEAK_MAX,
+                              "anisotropic voxels do not leak through such walls (LRSM paper, "
+                              "Sec. 6); measured 0.013-0.015");
+                continue;
+            }
+            /* The control is strict (> LEAK_CONTROL), which CHECK_AT_LEAST is not. */
+            int ok = leak > LEAK_CONTROL;
             snprintf(check_msg, sizeof check_msg,
-                     "vct voxel_res=%s front_faces=%s: the dark room %.4f of the lit room's (%s "
-                     "%.2f)",
-                     resolutions[v], ff, leak, f ? "at most" : "control: above",
-                     f ? LEAK_MAX : LEAK_CONTROL);
+                     "vct voxel_res=%s front_faces=%s: the dark room %.4f of the lit room's "
+                     "(control: above %.2f)",
+                     resolutions[v], ff, leak, LEAK_CONTROL);
             CHECK_TRUE(check_msg, ok, "");
         }
     gib_fixture_close(&fx);
