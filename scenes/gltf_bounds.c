@@ -653,3 +653,117 @@ int gib_gltf_bounds(const char *data, size_t len, const char *path, int glb, gib
     free(g.mesh_bytes);
     return rc;
 }
+
+/* ------------------------------------------------------------------ the JSON reader, for gltf_scene.c
+ * (scene_internal.h, "glTF JSON"): the same tokenizer, handed out read-only. */
+
+struct gib_json {
+    jdoc d;
+};
+
+int gib_json_parse(const char *text, size_t len, gib_json **out)
+{
+    *out = calloc(1, sizeof **out);
+    if (!*out)
+        return -2;
+    size_t at = 0;
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0)
+        text += 3, len -= 3;
+    (*out)->d.s = text;
+    int rc = jparse(&(*out)->d, len, &at);
+    if (rc == 0 && (*out)->d.t[0].type != J_OBJ)
+        rc = -1;
+    if (rc) {
+        gib_json_free(*out);
+        *out = NULL;
+    }
+    return rc;
+}
+
+void gib_json_free(gib_json *j)
+{
+    if (j)
+        free(j->d.t);
+    free(j);
+}
+
+int gib_json_get(const gib_json *j, int obj, const char *key)
+{
+    return jget(&j->d, obj, key);
+}
+
+int gib_json_type(const gib_json *j, int tok)
+{
+    if (tok < 0)
+        return -1;
+    static const char types[] = {'o', 'a', 's', 'p'};
+    return types[j->d.t[tok].type];
+}
+
+int gib_json_child(const gib_json *j, int container, int prev)
+{
+    if (container < 0 || (j->d.t[container].type != J_ARR && j->d.t[container].type != J_OBJ))
+        return -1;
+    uint32_t k;
+    if (prev < 0)
+        k = (uint32_t)container + 1;
+    else if (j->d.t[container].type == J_OBJ)
+        k = j->d.t[prev + 1].next; /* prev is a key: skip its value */
+    else
+        k = j->d.t[prev].next;
+    return k < j->d.t[container].next ? (int)k : -1;
+}
+
+int gib_json_num(const gib_json *j, int tok, double *out)
+{
+    if (tok < 0 || j->d.t[tok].type != J_PRIM)
+        return -1;
+    char buf[64];
+    size_t n = j->d.t[tok].end - j->d.t[tok].start;
+    if (n == 0 || n >= sizeof buf)
+        return -1;
+    memcpy(buf, j->d.s + j->d.t[tok].start, n);
+    buf[n] = '\0';
+    char *e;
+    double x = strtod(buf, &e);
+    if (*e || !isfinite(x))
+        return -1;
+    *out = x;
+    return 0;
+}
+
+int gib_json_str(const gib_json *j, int tok, char *out, size_t cap)
+{
+    if (tok < 0 || j->d.t[tok].type != J_STR || cap == 0)
+        return -1;
+    size_t n = j->d.t[tok].end - j->d.t[tok].start;
+    snprintf(out, cap, "%.*s", (int)(n < cap ? n : cap - 1), j->d.s + j->d.t[tok].start);
+    return 0;
+}
+
+int gib_json_span(const gib_json *j, int tok, const char **s, size_t *n)
+{
+    if (tok < 0)
+        return -1;
+    *s = j->d.s + j->d.t[tok].start;
+    *n = j->d.t[tok].end - j->d.t[tok].start;
+    return 0;
+}
+
+int gib_json_streq(const gib_json *j, int tok, const char *s)
+{
+    return jstreq(&j->d, tok, s);
+}
+
+int gib_glb_split(const char *data, size_t len, const char *path, const char **json, size_t *jlen,
+                  const char **bin, size_t *blen, gib_error *err)
+{
+    gltf g;
+    memset(&g, 0, sizeof g);
+    g.path = path;
+    if (glb_chunks(&g, data, len, json, jlen, err))
+        return -1;
+    *bin = g.bin;
+    *blen = (size_t)g.bin_len;
+    return 0;
+}

@@ -229,7 +229,7 @@ static int texture_path(const struct aiMaterial *am, enum aiTextureType type, co
  * (Sponza's MTL has Ns 7.8 with Ks 0 everywhere). map_Kd multiplies Kd; a zero Kd with a texture is
  * read as 1, since an exporter that wrote 0 did not mean a black surface. */
 static int read_material(const struct aiMaterial *am, const char *dir, const char *mesh_path,
-                         gib_mat_desc *d, gib_error *err)
+                         unsigned flags, gib_mat_desc *d, gib_error *err)
 {
     struct aiString name;
     if (aiGetMaterialString(am, AI_MATKEY_NAME, &name) != aiReturn_SUCCESS || name.length == 0) {
@@ -249,10 +249,11 @@ static int read_material(const struct aiMaterial *am, const char *dir, const cha
     unsigned int one = 1;
     aiGetMaterialFloatArray(am, AI_MATKEY_SHININESS, &ns, &one);
 
-    if (texture_path(am, aiTextureType_DIFFUSE, dir, d->albedo_path, sizeof d->albedo_path,
-                     mesh_path, err) ||
-        texture_path(am, aiTextureType_OPACITY, dir, d->alpha_path, sizeof d->alpha_path, mesh_path,
-                     err))
+    if (!(flags & GIB_IMPORT_NO_TEXTURES) &&
+        (texture_path(am, aiTextureType_DIFFUSE, dir, d->albedo_path, sizeof d->albedo_path,
+                      mesh_path, err) ||
+         texture_path(am, aiTextureType_OPACITY, dir, d->alpha_path, sizeof d->alpha_path,
+                      mesh_path, err)))
         return -1;
 
     float a[3] = {(float)kd.r, (float)kd.g, (float)kd.b};
@@ -280,10 +281,41 @@ static int read_material(const struct aiMaterial *am, const char *dir, const cha
     return 0;
 }
 
+/* What assimp read of a glTF material (PBR factors, name, texture, sidedness), for gltf_scene.c
+ * to find which of the file's materials it is (gib_gltf_match). */
+static void source_pbr(const struct aiMaterial *am, gib_mat_desc *d)
+{
+    struct aiColor4D bc = {1, 1, 1, 1};
+    ai_real v = 1;
+    unsigned int one = 1;
+    int two = 0;
+    struct aiString name;
+    aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &bc);
+    d->src_pbr[0] = (float)bc.r;
+    d->src_pbr[1] = (float)bc.g;
+    d->src_pbr[2] = (float)bc.b;
+    d->src_pbr[3] = (float)bc.a;
+    d->src_pbr[4] = aiGetMaterialFloatArray(am, AI_MATKEY_METALLIC_FACTOR, &v, &one) ==
+                            aiReturn_SUCCESS ? (float)v : 1.0f;
+    v = 1;
+    one = 1;
+    d->src_pbr[5] = aiGetMaterialFloatArray(am, AI_MATKEY_ROUGHNESS_FACTOR, &v, &one) ==
+                            aiReturn_SUCCESS ? (float)v : 1.0f;
+    one = 1;
+    d->src_flags = 0;
+    if (aiGetMaterialString(am, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS && name.length > 0)
+        d->src_flags |= GIB_SRC_NAMED;
+    if (aiGetMaterialTextureCount(am, aiTextureType_BASE_COLOR) > 0 ||
+        aiGetMaterialTextureCount(am, aiTextureType_DIFFUSE) > 0)
+        d->src_flags |= GIB_SRC_BASE_TEX;
+    if (aiGetMaterialIntegerArray(am, AI_MATKEY_TWOSIDED, &two, &one) == aiReturn_SUCCESS && two)
+        d->src_flags |= GIB_SRC_TWO_SIDED;
+}
+
 /* ------------------------------------------------------------------ geometry */
 
 static int append_scene(const struct aiScene *sc, const char *dir, const char *mesh_path,
-                        gib_geom *out, gib_error *err)
+                        unsigned flags, gib_geom *out, gib_error *err)
 {
     int *mat_map = gib_calloc(sc->mNumMaterials ? sc->mNumMaterials : 1, sizeof *mat_map, err);
     if (!mat_map)
@@ -318,8 +350,12 @@ static int append_scene(const struct aiScene *sc, const char *dir, const char *m
         }
         if (mat_map[am] < 0) {
             gib_mat_desc d;
-            if ((rc = read_material(sc->mMaterials[am], dir, mesh_path, &d, err)) != 0)
+            if ((rc = read_material(sc->mMaterials[am], dir, mesh_path, flags, &d, err)) != 0)
                 break;
+            d.source_index = (int)am;
+            source_pbr(sc->mMaterials[am], &d);
+            if (am + 1 == sc->mNumMaterials)
+                d.src_flags |= GIB_SRC_LAST;
             if ((mat_map[am] = gib_geom_material(out, &d, err)) < 0) {
                 rc = -1;
                 break;
@@ -383,6 +419,12 @@ static int file_check(const char *path, const char *fmt, gib_error *err)
 int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
                     gib_error *err)
 {
+    return gib_mesh_import_ex(path, smooth_angle_deg, 0, out, hash, err);
+}
+
+int gib_mesh_import_ex(const char *path, float smooth_angle_deg, unsigned import_flags,
+                       gib_geom *out, uint64_t *hash, gib_error *err)
+{
     /* Only the formats FORMAT.md documents (mesh_bounds.c), each checked before assimp. */
     char fmt[8];
     int gz = 0;
@@ -435,7 +477,7 @@ int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uin
     if (rc == 0 && !sc)
         rc = gib_fail(err, "assimp cannot read '%s': %s", path, aiGetErrorString());
     if (rc == 0)
-        rc = append_scene(sc, dir, path, out, err);
+        rc = append_scene(sc, dir, path, import_flags, out, err);
     if (sc)
         aiReleaseImport(sc);
     return rc;

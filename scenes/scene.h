@@ -143,6 +143,9 @@ typedef struct gib_scene {
                                            structures sized from them at create stay valid */
     uint64_t content_hash; /* hash of the scene file, every mesh and texture file's bytes and of
                               everything built procedurally: changes whenever the image could */
+    char ignored[256];     /* what the load dropped as harmless, comma-separated ("normal maps"):
+                              a glTF's features gibench does not model (FORMAT.md, "glTF scenes");
+                              "" for none. `gibench list` prints it. */
 } gib_scene;
 
 /* Where shared scene data lives: $GIBENCH_SCENES, else <project root>/../shared/scenes when it

@@ -163,7 +163,9 @@ static int load_textures(const gib_scene_spec *s, gib_mat_desc *mats, uint32_t n
             const char *want = kind == 0 ? mats[i].albedo_path : mats[i].alpha_path;
             if (!want[0])
                 continue;
-            if (gib_path_resolve_ci(want, paths[count], GIB_PATH_MAX) != 0 ||
+            if (gib_gltf_image_ref(want)) /* embedded in a glTF: read from it (textures.c) */
+                snprintf(paths[count], GIB_PATH_MAX, "%s", want);
+            else if (gib_path_resolve_ci(want, paths[count], GIB_PATH_MAX) != 0 ||
                 !gib_path_is_file(paths[count])) {
                 const gib_mesh_spec *ms =
                     mats[i].mesh_index >= 0 ? &s->meshes[mats[i].mesh_index] : NULL;
@@ -358,7 +360,38 @@ typedef struct build_state {
     uint32_t nmat;              /* materials kept (drop_unused_materials) */
     uint64_t hash;
     gib_error *err;
+    gib_gltf_info gltf;         /* what [scene] gltf's file gives (FORMAT.md, "glTF scenes") */
 } build_state;
+
+/* The [scene] gltf file's mesh (the last, gib_scene_validate appends it): reads what the scene
+ * takes from the file, and hands its materials to the imported geometry (gib_gltf_match finds
+ * which of the file's materials each of assimp's is; primitives without a material get gibench's
+ * `default`, Lambertian 0.8). */
+static int gltf_import(build_state *b, const gib_mesh_spec *m, const char *path, gib_geom *local)
+{
+    const gib_scene_spec *s = b->s;
+    const unsigned want = (s->gltf_camera ? GIB_GLTF_CAMERAS : 0u) |
+                          (s->gltf_lights ? GIB_GLTF_LIGHTS : 0u) |
+                          (s->gltf_materials ? GIB_GLTF_MATERIALS : 0u);
+    if (gib_gltf_read(path, want, &b->gltf, b->err))
+        return gib_error_prefix(b->err, "%s:%d: [scene] gltf", s->path, s->gltf_line);
+    b->hash = gib_hash_str(b->hash, "gltf mapping 1");
+    b->hash = gib_hash_u64(b->hash, want);
+    if (gib_mesh_import_ex(path, m->smooth_angle_deg, want & GIB_GLTF_MATERIALS
+                                                          ? GIB_IMPORT_NO_TEXTURES : 0u,
+                           local, &b->hash, b->err))
+        return gib_error_prefix(b->err, "%s:%d: [scene] gltf", s->path, s->gltf_line);
+    if (!(want & GIB_GLTF_MATERIALS))
+        return 0;
+    for (uint32_t k = 0; k < local->mcount; k++) {
+        const int gi = gib_gltf_match(&b->gltf, &local->mats[k], path, b->err);
+        if (gi == -2)
+            return gib_error_prefix(b->err, "%s:%d: [scene] gltf", s->path, s->gltf_line);
+        local->mats[k] = gi >= 0 ? b->gltf.mats[gi]
+                                 : gib_mat_desc_diffuse("default", 0.8f, 0.8f, 0.8f);
+    }
+    return 0;
+}
 
 /* Mesh i (generated, or imported from the data root) appended in world space. */
 static int load_mesh(build_state *b, int i, const char *root)
@@ -387,6 +420,8 @@ static int load_mesh(build_state *b, int i, const char *root)
                                    "mesh '%s': file '%s' not found under the "
                                    "data root '%s' ($GIBENCH_SCENES, default ../shared/scenes)",
                                    m->name, m->file, root);
+        else if (s->gltf[0] && i == s->mesh_count - 1)
+            rc = gltf_import(b, m, path, &local);
         else if (gib_mesh_import(path, m->smooth_angle_deg, &local, &b->hash, err))
             rc = gib_error_prefix(err, "%s:%d: mesh '%s'", s->path, m->file_line, m->name);
     }
@@ -523,6 +558,35 @@ static unsigned scene_features(const gib_scene_spec *s, const gib_scene *sc)
     return f | room_encloses(s);
 }
 
+/* camera = gltf (every camera of the file, in node order) or gltf:NAME (the one whose camera or
+ * node has that name): they come first, so the first is the default view. */
+static int gltf_cameras(build_state *b)
+{
+    const gib_scene_spec *s = b->s;
+    gib_scene *sc = b->sc;
+    const gib_gltf_info *g = &b->gltf;
+    if (!s->gltf_camera)
+        return 0;
+    for (int i = 0; i < g->camera_count; i++)
+        if (!s->gltf_camera_name[0] || strcmp(g->cameras[i].name, s->gltf_camera_name) == 0 ||
+            strcmp(g->camera_alias[i], s->gltf_camera_name) == 0)
+            sc->cameras[sc->camera_count++] = g->cameras[i];
+    if (sc->camera_count > 0)
+        return 0;
+    char names[256] = "";
+    for (int i = 0; i < g->camera_count; i++) {
+        size_t n = strlen(names);
+        snprintf(names + n, sizeof names - n, "%s'%s'", i ? ", " : "", g->cameras[i].name);
+    }
+    if (s->gltf_camera_name[0])
+        return gib_scene_fail_at(s, s->camera_line, b->err,
+                                 "[scene]: glTF '%s' has no camera named '%s' (its cameras: %s)",
+                                 s->gltf, s->gltf_camera_name, names[0] ? names : "none");
+    return gib_scene_fail_at(s, s->camera_line, b->err,
+                             "[scene]: camera = gltf, but glTF '%s' has no camera in its scene",
+                             s->gltf);
+}
+
 /* The scene's arrays from the geometry (moved, not copied), the cache's textures and the spec's
  * lights and cameras; then shift, bounds, features, hash and motion. */
 static int fill_scene(build_state *b)
@@ -531,8 +595,10 @@ static int fill_scene(build_state *b)
     gib_scene *sc = b->sc;
     gib_geom *g = &b->g;
     sc->materials = gib_calloc(b->nmat, sizeof *sc->materials, b->err);
-    sc->lights = gib_calloc((size_t)s->light_count + 1, sizeof *sc->lights, b->err);
-    sc->cameras = gib_calloc((size_t)s->camera_count, sizeof *sc->cameras, b->err);
+    sc->lights = gib_calloc((size_t)s->light_count + (size_t)b->gltf.light_count + 1,
+                            sizeof *sc->lights, b->err);
+    sc->cameras = gib_calloc((size_t)s->camera_count + (size_t)b->gltf.camera_count + 1,
+                             sizeof *sc->cameras, b->err);
     if (!sc->materials || !sc->lights || !sc->cameras)
         return -1;
     snprintf(sc->name, sizeof sc->name, "%s", s->name);
@@ -556,9 +622,13 @@ static int fill_scene(build_state *b)
     for (int i = 0; i < s->light_count; i++)
         sc->lights[i] = s->lights[i].l;
     sc->light_count = (uint32_t)s->light_count;
+    for (int i = 0; i < b->gltf.light_count; i++) /* lights = gltf: after the file's own */
+        sc->lights[sc->light_count++] = b->gltf.lights[i];
+    if (gltf_cameras(b))
+        return -1;
     for (int i = 0; i < s->camera_count; i++)
-        sc->cameras[i] = s->cameras[i].c;
-    sc->camera_count = (uint32_t)s->camera_count;
+        sc->cameras[sc->camera_count++] = s->cameras[i].c;
+    snprintf(sc->ignored, sizeof sc->ignored, "%s", b->gltf.ignored);
     scene_shift(sc, s->shift);
     scene_bounds(sc);
     sc->features = scene_features(s, sc);
@@ -600,6 +670,7 @@ int gib_scene_build(const gib_scene_spec *s, gib_scene *sc, gib_error *err)
     free(b.cache.tex);
     gib_tex_cache_release(&b.cache);
     gib_geom_free(&b.g);
+    gib_gltf_info_free(&b.gltf);
     free(b.tri_mesh_begin);
     free(b.vert_mesh_begin);
     if (rc != 0) {

@@ -184,11 +184,55 @@ static int check_camera(const gib_scene_spec *s, const gib_camera_spec *cs, gib_
     return 0;
 }
 
+/* [scene] gltf = FILE (FORMAT.md, "glTF scenes"): its meshes become the mesh 'gltf', found under
+ * the data root like every mesh file; camera, lights and materials = gltf need the key. */
+static int gltf_mesh(gib_scene_spec *s, gib_error *err)
+{
+    const int line = s->camera_line ? s->camera_line : s->lights_line ? s->lights_line
+                                                                      : s->materials_line;
+    if (!s->gltf[0]) {
+        if (line)
+            return gib_scene_fail_at(s, line, err,
+                                     "[scene]: camera, lights or materials = gltf need "
+                                     "'gltf = FILE' (a glTF 2.0 .gltf or .glb under the data "
+                                     "root)");
+        return 0;
+    }
+    char fmt[8];
+    int gz = 0;
+    if (gib_mesh_format(s->gltf, fmt, &gz, err) || gz ||
+        (strcmp(fmt, "gltf") != 0 && strcmp(fmt, "glb") != 0)) {
+        return gib_scene_fail_at(s, s->gltf_line, err,
+                                 "[scene]: 'gltf' names '%s'; it takes a .gltf or .glb file "
+                                 "(glTF 2.0, not gzipped)", s->gltf);
+    }
+    for (int i = 0; i < s->mesh_count; i++)
+        if (strcmp(s->meshes[i].name, "gltf") == 0)
+            return gib_scene_fail_at(s, s->meshes[i].line, err,
+                                     "[mesh.gltf]: the name 'gltf' is the [scene] gltf file's "
+                                     "mesh; name this mesh otherwise");
+    gib_mesh_spec *m = gib_realloc_array(s->meshes, (size_t)s->mesh_count + 1, sizeof *m, err);
+    if (!m)
+        return -1;
+    s->meshes = m;
+    m = &s->meshes[s->mesh_count++];
+    memset(m, 0, sizeof *m);
+    snprintf(m->name, sizeof m->name, "gltf");
+    snprintf(m->file, sizeof m->file, "%s", s->gltf);
+    m->line = m->file_line = s->gltf_line;
+    m->scale[0] = m->scale[1] = m->scale[2] = 1.0f;
+    m->smooth_angle_deg = 60.0f;
+    m->gltf_materials = s->gltf_materials;
+    return 0;
+}
+
 int gib_scene_validate(gib_scene_spec *s, gib_error *err)
 {
     if (!s->scene_line)
         return gib_scene_fail_at(s, 1, err,
                                  "no [scene] section (every scene file starts with one)");
+    if (gltf_mesh(s, err))
+        return -1;
     for (int i = 0; i < s->mesh_count; i++)
         if (check_mesh(s, &s->meshes[i], err))
             return -1;
@@ -213,10 +257,10 @@ int gib_scene_validate(gib_scene_spec *s, gib_error *err)
     for (int i = 0; i < s->camera_count; i++)
         if (check_camera(s, &s->cameras[i], err))
             return -1;
-    if (s->camera_count == 0)
+    if (s->camera_count == 0 && !s->gltf_camera)
         return gib_scene_fail_at(s, s->scene_line, err,
                                  "the scene has no [camera.NAME] section (the first "
-                                 "one is the default view)");
+                                 "one is the default view) and no 'camera = gltf'");
     return 0;
 }
 

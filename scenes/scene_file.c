@@ -22,8 +22,9 @@
 
 enum section_kind { SEC_NONE, SEC_SCENE, SEC_MESH, SEC_MATERIAL, SEC_LIGHT, SEC_CAMERA };
 
-static const char *const scene_keys[] = {"description", "exposure", "data", "closed", "sky",
-                                         "shift", NULL};
+static const char *const scene_keys[] = {"description", "exposure", "data",   "closed",
+                                         "sky",         "shift",    "gltf",   "camera",
+                                         "lights",      "materials", NULL};
 /* The first 13 are the mesh's own (7 placement, 6 motion); the rest are generator keys
  * (gib_proc_key_parse). */
 static const char *const mesh_keys[] = {
@@ -390,6 +391,23 @@ static int scene_key(parse_ctx *c, const key_line *kl)
         rc = FLOATS(s->shift, 3, 3, NULL);
         if (!rc && !isfinite(s->shift[0] + s->shift[1] + s->shift[2]))
             rc = ctx_fail(c, "%s: 'shift' must be 3 finite numbers, got '%s'", label, value);
+    } else if (k == 6) {
+        rc = COPY_STR(s->gltf, value);
+        s->gltf_line = c->lineno;
+    } else if (k == 7) {
+        s->camera_line = c->lineno;
+        if (strncmp(value, "gltf:", 5) == 0 && value[5])
+            rc = COPY_STR(s->gltf_camera_name, value + 5);
+        else if (strcmp(value, "gltf") != 0)
+            rc = ctx_fail(c, "%s: 'camera' expects 'gltf' or 'gltf:NAME' (the glTF file's "
+                             "cameras, or the one named), got '%s'", label, value);
+        s->gltf_camera = 1;
+    } else if (k == 8 || k == 9) {
+        *(k == 8 ? &s->lights_line : &s->materials_line) = c->lineno;
+        *(k == 8 ? &s->gltf_lights : &s->gltf_materials) = 1;
+        if (strcmp(value, "gltf") != 0)
+            rc = ctx_fail(c, "%s: '%s' expects 'gltf' (take them from the [scene] gltf file), "
+                             "got '%s'", label, name, value);
     } else if (parse_bool(value, &s->closed))
         rc = ctx_fail(c, "%s: 'closed' expects 0 or 1, got '%s'", label, value);
     return rc;

@@ -9,6 +9,8 @@
  *   proc_shapes.c  quad, box, slivers, sphere_interior; proc_hairball.c: hairball;
  *                  proc_water.c: water; proc_ring.c: ring
  *   mesh_import.c  mesh files through assimp (OBJ+MTL, PLY, gzipped PLY) -> gib_geom
+ *   gltf_scene.c   a glTF's cameras, lights and materials for [scene] gltf (FORMAT.md, "glTF
+ *                  scenes"), read with gltf_bounds.c's JSON reader
  *   scene_build.c  spec + geometry -> the flattened gib_scene (materials, ranges, hash, features)
  *   textures.c     texture files -> linear float RGBA, cached per file
  *   paths.c        data root, case-insensitive path resolution
@@ -37,7 +39,15 @@ typedef struct gib_mat_desc {
                                      * folder but not yet resolved on disk; "" for none */
     char alpha_path[GIB_PATH_MAX];
     int mesh_index;                /* the [mesh.*] it came from, for error messages; -1 if none */
+    int source_index;              /* mesh files: the file's own material index (assimp's) */
+    /* glTF: assimp's reading of the file's material, which gltf_scene.c matches to the file's
+     * own (assimp 5.2 orders a glTF's materials by first use, not by index): base colour r g b a,
+     * metallic, roughness, and GIB_SRC_* bits */
+    float src_pbr[6];
+    unsigned src_flags;
 } gib_mat_desc;
+enum { GIB_SRC_NAMED = 1u << 0, GIB_SRC_BASE_TEX = 1u << 1, GIB_SRC_TWO_SIDED = 1u << 2,
+       GIB_SRC_LAST = 1u << 3 /* assimp's last material: glTF's default, for primitives without */ };
 
 /* A growable triangle soup with its own material table; triangles index mats. */
 typedef struct gib_geom {
@@ -167,6 +177,12 @@ void gib_geom_add_box(gib_geom *g, const float lo[3], const float hi[3], int inw
  * are stored joined to the mesh's folder, unresolved. Errors name the file. */
 int gib_mesh_import(const char *path, float smooth_angle_deg, gib_geom *out, uint64_t *hash,
                     gib_error *err);
+/* The same with flags: GIB_IMPORT_NO_TEXTURES leaves the materials' texture paths empty (a glTF
+ * whose materials gltf_scene.c maps, embedded textures included). Each material's source_index
+ * is the file's own (assimp's) material index. */
+enum { GIB_IMPORT_NO_TEXTURES = 1u << 0 };
+int gib_mesh_import_ex(const char *path, float smooth_angle_deg, unsigned import_flags,
+                       gib_geom *out, uint64_t *hash, gib_error *err);
 
 /* mesh_bounds.c: the mesh formats gibench reads (scenes/FORMAT.md, "Meshes"). gib_mesh_format
  * puts path's format ("obj", "ply", "off", "stl", "gltf", "glb") in fmt and sets *gz for a
@@ -182,6 +198,65 @@ int gib_mesh_bounds(const char *data, size_t len, const char *path, const char *
 /* gltf_bounds.c: gib_mesh_bounds for glTF 2.0 (glb = 0: JSON; 1: GLB). Buffers named by a uri
  * are found beside path. */
 int gib_gltf_bounds(const char *data, size_t len, const char *path, int glb, gib_error *err);
+
+/* The JSON reader of gltf_bounds.c, read-only, for gltf_scene.c. Tokens are ints (the root object
+ * is 0; -1 = absent). gib_json_parse: 0, -1 (not one JSON object), -2 (out of memory); text must
+ * outlive the document. gib_json_type: 'o', 'a', 's' (string), 'p' (number, true, false, null), -1.
+ * gib_json_child: an array's element or an object's KEY after prev (-1: the first), -1 at the end;
+ * an object member's value is key + 1. gib_json_num: a finite number, 0 or -1. gib_json_str: a
+ * string's raw text (escapes kept), truncated to cap. gib_glb_split: a GLB's JSON and BIN chunks
+ * (bin NULL when none), checked as gib_gltf_bounds checks them. */
+typedef struct gib_json gib_json;
+int gib_json_parse(const char *text, size_t len, gib_json **out);
+void gib_json_free(gib_json *j);
+int gib_json_get(const gib_json *j, int obj, const char *key);
+int gib_json_type(const gib_json *j, int tok);
+int gib_json_child(const gib_json *j, int container, int prev);
+int gib_json_num(const gib_json *j, int tok, double *out);
+int gib_json_str(const gib_json *j, int tok, char *out, size_t cap);
+int gib_json_span(const gib_json *j, int tok, const char **s, size_t *n);
+int gib_json_streq(const gib_json *j, int tok, const char *s);
+int gib_glb_split(const char *data, size_t len, const char *path, const char **json, size_t *jlen,
+                  const char **bin, size_t *blen, gib_error *err);
+
+/* gltf_scene.c: what a .scene takes from a glTF 2.0 file on request (FORMAT.md, "glTF scenes"):
+ * its cameras, KHR_lights_punctual lights and materials mapped to the scene model, read from its
+ * JSON (node transforms included). What gibench cannot model is refused (an error naming the file
+ * and the feature); what is harmless to drop is listed in `ignored` ("normal maps, ..."). */
+enum { GIB_GLTF_CAMERAS = 1u << 0, GIB_GLTF_LIGHTS = 1u << 1, GIB_GLTF_MATERIALS = 1u << 2 };
+typedef struct gib_gltf_info {
+    gib_camera *cameras;           /* every node instance with a camera, in node order */
+    int camera_count;
+    char (*camera_alias)[64];      /* the camera's own name, where the node's differs */
+    gib_light *lights;             /* every node instance with a KHR_lights_punctual light */
+    int light_count;
+    gib_mat_desc *mats;            /* glTF material i, mapped; textures as paths or image refs */
+    int mat_count;
+    float (*raw)[6];               /* material i's factors as the file gives them (src_pbr) */
+    unsigned *raw_flags;           /* and its GIB_SRC_* bits */
+    char (*raw_name)[128];         /* its name, "" for none */
+    char ignored[256];             /* comma-separated: what was dropped ("normal maps") */
+} gib_gltf_info;
+int gib_gltf_read(const char *path, unsigned want, gib_gltf_info *out, gib_error *err);
+void gib_gltf_info_free(gib_gltf_info *info);
+/* The glTF material that assimp's material d (as gib_mesh_import_ex read it) is: its index, -1
+ * for none (assimp's default for primitives without a material), or -2 with an error when two
+ * of the file's materials that map differently cannot be told apart (unnamed, same factors). */
+int gib_gltf_match(const gib_gltf_info *info, const gib_mat_desc *d, const char *path,
+                   gib_error *err);
+/* The glTF mapping's numbers (FORMAT.md), exposed for the tests. */
+#define GIB_GLTF_LM_PER_W 683.0
+#define GIB_GLTF_PHONG_MAX 10000.0f
+float gib_gltf_phong_n(float roughness);
+float gib_gltf_spot_exponent(double inner_rad, double outer_rad);
+/* An image embedded in a glTF (a GLB's bufferView, a data: URI) is named "<file>#image<N>"; the
+ * alpha-mask of glTF image N (any source) "<file>#mask<N>:<scale>" (mask = alpha x scale).
+ * gib_gltf_image_ref: 1 for an image, 2 for a mask, 0 for neither; gib_gltf_image_bytes reads
+ * its bytes (malloc'd), the file extension its mimeType implies (".png", ".jpg") and the mask's
+ * scale (0 for an image). */
+int gib_gltf_image_ref(const char *path);
+int gib_gltf_image_bytes(const char *ref, unsigned char **bytes, size_t *len, char ext[8],
+                         float *mask_scale, char *errbuf, int errbuf_len);
 
 /* ply_check.c: 0 when data (a whole PLY file, len bytes) is well formed: its header ends in
  * end_header within GIB_PLY_HEADER_MAX bytes, its body holds every element the header declares as
@@ -260,6 +335,7 @@ typedef struct gib_mesh_spec {
     float pivot[3];
     int wave_count, waves_line;    /* waves = a wavelength direction speed, ... */
     float waves[GIB_MOTION_MAX_WAVES][4];
+    int gltf_materials;            /* the [scene] gltf file's mesh with `materials = gltf` */
 } gib_mesh_spec;
 
 typedef struct gib_material_spec {
@@ -296,6 +372,13 @@ typedef struct gib_scene_spec {
     float sky[3];                  /* [scene] sky = r g b: uniform environment radiance */
     float shift[3];                /* [scene] shift = x y z: every position moved after the build */
     int scene_line;
+    /* [scene] gltf = FILE and what is taken from it (FORMAT.md, "glTF scenes") */
+    char gltf[GIB_PATH_MAX];
+    int gltf_line;
+    int gltf_camera, camera_line;  /* camera = gltf | gltf:NAME */
+    char gltf_camera_name[64];     /* "" for every camera */
+    int gltf_lights, lights_line;  /* lights = gltf */
+    int gltf_materials, materials_line; /* materials = gltf */
     gib_mesh_spec *meshes;
     int mesh_count;
     gib_material_spec *materials;

@@ -48,6 +48,8 @@ int gib_scene_load(const char *name_or_path, gib_scene *scene, gib_error *err)
     int rc = gib_scene_check_data(&spec, err);
     if (rc == 0)
         rc = gib_scene_build(&spec, scene, err) ? -1 : 0;
+    if (rc == 0 && scene->ignored[0]) /* FORMAT.md, "glTF scenes": never dropped silently */
+        fprintf(stderr, "gibench: warning: %s: ignored: %s\n", path, scene->ignored);
     gib_scene_spec_free(&spec);
     return rc;
 }

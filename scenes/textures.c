@@ -68,8 +68,58 @@ typedef struct load_job {
     uint64_t file_hash; /* hash of the file's bytes alone, combined in order afterwards */
 } load_job;
 
+/* An image embedded in a glTF ("<file>#image<N>", gltf_scene.c): its bytes go through a
+ * temporary file, since the image reader takes paths; the hash covers the bytes. */
+static void run_embedded(load_job *j)
+{
+    unsigned char *bytes = NULL;
+    size_t len = 0;
+    char ext[8], tmp[512];
+    float mask = 0.0f;
+    j->file_hash = GIB_HASH_INIT;
+    j->rc = gib_gltf_image_bytes(j->path, &bytes, &len, ext, &mask, j->errbuf,
+                                 (int)sizeof j->errbuf);
+    if (j->rc == 0) {
+        const char *dir = getenv("TMPDIR");
+        snprintf(tmp, sizeof tmp, "%s/gibench_gltf_XXXXXX%s", dir && dir[0] ? dir : "/tmp", ext);
+        int fd = mkstemps(tmp, (int)strlen(ext));
+        FILE *fp = fd >= 0 ? fdopen(fd, "wb") : NULL;
+        int ok = fp && fwrite(bytes, 1, len, fp) == len;
+        if (fp)
+            ok = (fclose(fp) == 0) && ok;
+        else if (fd >= 0)
+            close(fd);
+        if (!ok) {
+            snprintf(j->errbuf, sizeof j->errbuf, "cannot write texture '%s' to a temporary file",
+                     j->path);
+            j->rc = -1;
+        } else {
+            j->rc = gib_oiio_read_rgba(tmp, &j->width, &j->height, &j->rgba, j->errbuf,
+                                       (int)sizeof j->errbuf);
+            if (j->rc != 0)
+                snprintf(j->errbuf, sizeof j->errbuf, "texture '%s': cannot decode its image",
+                         j->path);
+        }
+        if (fd >= 0)
+            unlink(tmp);
+        j->file_hash = gib_hash_bytes(j->file_hash, bytes, len);
+        j->file_hash = gib_hash_u64(j->file_hash, (uint64_t)(mask * 1e9f));
+    }
+    free(bytes);
+    /* a glTF alpha mask: alpha x scale (at most 1) in the first channels, where the mask is read */
+    for (size_t i = 0; j->rc == 0 && mask > 0.0f && i < (size_t)j->width * (size_t)j->height; i++)
+        j->rgba[4 * i] = j->rgba[4 * i + 1] = j->rgba[4 * i + 2] =
+            fminf(j->rgba[4 * i + 3] * mask, 1.0f);
+    if (j->rc == 0 && j->srgb)
+        decode_srgb(j->rgba, (size_t)j->width * (size_t)j->height);
+}
+
 static void run_job(load_job *j)
 {
+    if (gib_gltf_image_ref(j->path)) {
+        run_embedded(j);
+        return;
+    }
     j->rc = gib_oiio_read_rgba(j->path, &j->width, &j->height, &j->rgba, j->errbuf,
                                (int)sizeof j->errbuf);
     if (j->rc == 0 && j->srgb)
