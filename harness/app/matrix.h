@@ -22,11 +22,8 @@
  *   [profile.quick]        ; overrides for --profile quick: any [matrix] key, and TECH.PARAM lists
  *   sizes = 128x128
  *   direct.shadow_res = 256
- *   [external.myrenderer]  ; a renderer outside gibench, listed in techniques as myrenderer (or
- *   command = ./render.sh  ; ext:myrenderer, its rows' name): external.h. Not with sequence > 1.
- *   version = 1.0
- *   components = direct
- *   timeout_s = 600
+ *   [external.myrenderer]  ; another program as a technique (external.h: command, version,
+ *   command = ./render.sh  ; components, timeout_s); its rows are ext:myrenderer
  *
  * Parsing expands and validates everything (names, parameter ranges, sizes) before any rendering;
  * errors name the file and line. */
