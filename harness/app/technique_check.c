@@ -272,12 +272,12 @@ int gib_technique_runs_on(const gib_technique *t, const gib_scene *s, char *why,
     char f[256];
     if ((s->features & t->scene_needs) != t->scene_needs) {
         gib_features_str(t->scene_needs & ~s->features, f, sizeof f);
-        snprintf(why, len, "scene lacks %s", f);
+        snprintf(why, len, "scene lacks %.200s", f);
         return 0;
     }
     if (t->scene_needs_any && !(s->features & t->scene_needs_any)) {
         gib_features_str(t->scene_needs_any, f, sizeof f);
-        snprintf(why, len, "scene has none of %s", f);
+        snprintf(why, len, "scene has none of %.200s", f);
         return 0;
     }
     return 1;
