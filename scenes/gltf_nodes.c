@@ -174,10 +174,46 @@ static int read_camera(const gfile *f, int node, int ni, const double w[16], gib
     if (node_frame(w, c->eye, fwd, c->up))
         return gib_fail(err, "glTF '%s': camera %d's node %d has a degenerate transform", f->path,
                         ci, ni);
+    /* the target as far from the eye as the eye is from the origin, so that eye + d fwd keeps
+     * fwd to float rounding in scenes far from the origin (Sponza's centimetres) */
+    const float d = fmaxf(1.0f, 2.0f * fmaxf(fabsf(c->eye[0]), fmaxf(fabsf(c->eye[1]),
+                                                                     fabsf(c->eye[2]))));
     for (int k = 0; k < 3; k++)
-        c->target[k] = c->eye[k] + fwd[k];
+        c->target[k] = c->eye[k] + d * fwd[k];
     c->vfov_deg = (float)(yfov * 180.0 / M_PI);
     out->camera_count++;
+    return 0;
+}
+
+/* extras.gibench of light l: gibench's exact intensity (W/sr, or W/m^2), spot exponent and outer
+ * angle, which `gibench export` writes beside glTF's photometric values and smooth cone edge,
+ * preferred to the mapping while the file's values (have: colour, intensity, inner and outer
+ * cone angles) are the ones it recorded; else listed as ignored. */
+static int light_extras(const gfile *f, int l, int li, const double have[6], gib_light *g,
+                        char *ignored, size_t cap, gib_error *err)
+{
+    const int x = gib_json_get(f->j, gib_json_get(f->j, l, "extras"), "gibench");
+    const int spot = g->type == GIB_LIGHT_SPOT;
+    double in[3] = {0, 0, 0}, e = g->spot_exponent, o = g->spot_outer_deg;
+    if (x < 0)
+        return 0;
+    if (!gib_gltf_extras_current(f, x, have, spot ? 6 : 4)) {
+        note(ignored, cap, "gibench extras of lights edited since export (their glTF values "
+                           "are used)");
+        return 0;
+    }
+    if (gib_json_get(f->j, x, "intensity") < 0 || nums(f, x, "intensity", in, 3) ||
+        !(in[0] >= 0 && in[1] >= 0 && in[2] >= 0) || num(f, x, "spot_exponent", e, &e) ||
+        num(f, x, "spot_outer_deg", o, &o) || !(e >= 0) || !(o > 0 && o <= 180))
+        return gib_fail(err, "glTF '%s': light %d: extras.gibench needs intensity (3 numbers >= "
+                             "0) and may give spot_exponent (>= 0) and spot_outer_deg (in (0, "
+                             "180])", f->path, li);
+    for (int k = 0; k < 3; k++)
+        g->intensity[k] = (float)in[k];
+    if (spot) {
+        g->spot_exponent = (float)e;
+        g->spot_outer_deg = (float)o;
+    }
     return 0;
 }
 
@@ -231,6 +267,9 @@ static int read_light(const gfile *f, int node, int ni, int li, const double w[1
         g->position[0] = g->position[1] = g->position[2] = 0.0f;
     g->spot_exponent = t == GIB_LIGHT_SPOT ? gib_gltf_spot_exponent(inner, outer) : 1.0f;
     g->spot_outer_deg = t == GIB_LIGHT_SPOT ? (float)(outer * 180.0 / M_PI) : 90.0f;
+    const double have[6] = {color[0], color[1], color[2], intensity, inner, outer};
+    if (light_extras(f, l, li, have, g, out->ignored, sizeof out->ignored, err))
+        return -1;
     out->light_count++;
     return 0;
 }

@@ -15,7 +15,10 @@
  *  - materials: rho_d = baseColor (1 - metallic), rho_s = baseColor metallic as a normalised
  *    Phong lobe of exponent n = 2 / alpha^2 - 2, alpha = roughness^2 (Walter et al. 2007's
  *    Beckmann-Phong equivalence), at least 1; n >= GIB_GLTF_PHONG_MAX a mirror. Dielectrics' 4%
- *    Fresnel reflection has no counterpart (no Fresnel in gibench): they are Lambertian.
+ *    Fresnel reflection has no counterpart (no Fresnel in gibench): they are Lambertian;
+ *  - extras.gibench on a material or a light (what `gibench export` writes, external_job.c):
+ *    gibench's exact values, preferred to the mapping while the file's own values are the ones
+ *    recorded beside them ("core"), so that an edit made since wins.
  * Whatever gibench cannot model is refused naming the file and the feature; what is harmless to
  * drop goes into info->ignored. */
 #include <math.h>
@@ -227,6 +230,72 @@ static int texture_ref(const gfile *f, int info, const char *what, const char *m
     return 0;
 }
 
+/* Whether extras.gibench at g still describes the file: its "core" (what the exporter wrote as
+ * the file's own values) equals have[0..n-1], within the printing of a float. Extras without
+ * "core" are taken as they are. */
+int gib_gltf_extras_current(const gfile *f, int g, const double *have, int n)
+{
+    double core[8];
+    if (gib_json_get(f->j, g, "core") < 0)
+        return 1;
+    if (n > 8 || nums(f, g, "core", core, n))
+        return 0;
+    for (int k = 0; k < n; k++)
+        if (!(fabs(core[k] - have[k]) <= 1e-6 * fmax(1.0, fabs(core[k]))))
+            return 0;
+    return 1;
+}
+
+/* extras.gibench of material mt: the exact gibench material (albedo, specular, spec_type,
+ * phong_n, two_sided, alpha_texture) that `gibench export` writes beside the metallic-roughness
+ * mapping, preferred to it while the file's factors are the ones it recorded (an editor that
+ * changed them keeps its change; the stale extras are then listed as ignored). */
+static int material_extras(const gfile *f, int mt, const char *name, gib_mat_desc *d,
+                           char *ignored, size_t cap, gib_error *err)
+{
+    const int g = gib_json_get(f->j, gib_json_get(f->j, mt, "extras"), "gibench");
+    const int pbr = gib_json_get(f->j, mt, "pbrMetallicRoughness");
+    double have[5] = {1, 1, 1, 1, 1}, a[3], sp[3] = {0, 0, 0}, n = 1;
+    if (g < 0)
+        return 0;
+    nums(f, pbr, "baseColorFactor", have, 3);
+    num(f, pbr, "metallicFactor", 1, &have[3]);
+    num(f, pbr, "roughnessFactor", 1, &have[4]);
+    if (!gib_gltf_extras_current(f, g, have, 5)) {
+        note(ignored, cap, "gibench extras of materials edited since export (their "
+                           "metallic-roughness is used)");
+        return 0;
+    }
+    char type[16] = "none";
+    const int ts = gib_json_get(f->j, g, "spec_type"), ds = gib_json_get(f->j, g, "two_sided");
+    const int st = (ts >= 0 && gib_json_str(f->j, ts, type, sizeof type)) ? -1
+                   : !strcmp(type, "none")   ? GIB_SPEC_NONE
+                   : !strcmp(type, "mirror") ? GIB_SPEC_MIRROR
+                   : !strcmp(type, "phong")  ? GIB_SPEC_PHONG : -1;
+    int ok = gib_json_get(f->j, g, "albedo") >= 0 && nums(f, g, "albedo", a, 3) == 0 &&
+             nums(f, g, "specular", sp, 3) == 0 && num(f, g, "phong_n", 1, &n) == 0 && st >= 0 &&
+             (st != GIB_SPEC_PHONG || n > 0);
+    for (int k = 0; ok && k < 3; k++)
+        ok = a[k] >= 0 && sp[k] >= 0 && a[k] + (st != GIB_SPEC_NONE ? sp[k] : 0) <= 1 + 1e-6;
+    if (!ok)
+        return gib_fail(err, "glTF '%s': material '%s': extras.gibench needs albedo (3 numbers), "
+                             "and may give specular (3), spec_type (none, mirror, phong), "
+                             "phong_n (> 0), two_sided, alpha_texture; albedo + specular at "
+                             "most 1 per channel", f->path, name);
+    for (int k = 0; k < 3; k++) {
+        d->m.albedo[k] = (float)a[k];
+        d->m.specular[k] = st != GIB_SPEC_NONE ? (float)sp[k] : 0.0f;
+    }
+    d->m.spec_type = st;
+    d->m.phong_n = st == GIB_SPEC_PHONG ? (float)n : 1.0f;
+    if (ds >= 0)
+        d->m.two_sided = is_true(f, ds);
+    const int at = gib_json_get(f->j, g, "alpha_texture");
+    return at >= 0 ? texture_ref(f, at, "extras.gibench.alpha_texture", name, ignored, cap, 0.0,
+                                 d->alpha_path, sizeof d->alpha_path, err)
+                   : 0;
+}
+
 static int read_material(const gfile *f, int mt, int mi, gib_mat_desc *d, char *ignored,
                          size_t cap, gib_error *err)
 {
@@ -274,13 +343,7 @@ static int read_material(const gfile *f, int mt, int mi, gib_mat_desc *d, char *
         note(ignored, cap, "occlusion maps");
     if (gib_json_get(f->j, pbr, "metallicRoughnessTexture") >= 0)
         note(ignored, cap, "metallic-roughness textures (their factors are used)");
-    { /* doubleSided is a literal: true or false (default) */
-        const int ds = gib_json_get(f->j, mt, "doubleSided");
-        const char *s;
-        size_t n;
-        d->m.two_sided = ds >= 0 && gib_json_span(f->j, ds, &s, &n) == 0 && n == 4 &&
-                         memcmp(s, "true", 4) == 0;
-    }
+    d->m.two_sided = is_true(f, gib_json_get(f->j, mt, "doubleSided")); /* default false */
     metal = fmin(fmax(metal, 0.0), 1.0);
     rough = fmin(fmax(rough, 0.0), 1.0);
     for (int c = 0; c < 3; c++) {
@@ -310,7 +373,7 @@ static int read_material(const gfile *f, int mt, int mi, gib_mat_desc *d, char *
                                         a * 0.5 / cutoff, d->alpha_path, sizeof d->alpha_path,
                                         err))
         return -1;
-    return 0;
+    return material_extras(f, mt, name, d, ignored, cap, err);
 }
 
 /* Material mt's factors and flags as assimp would report them (gib_gltf_match). */
@@ -327,13 +390,9 @@ static void raw_material(const gfile *f, int mt, float raw[6], unsigned *flags, 
     raw[5] = (float)r;
     name[0] = '\0';
     gib_json_str(f->j, gib_json_get(f->j, mt, "name"), name, 128);
-    const int ds = gib_json_get(f->j, mt, "doubleSided");
-    const char *s;
-    size_t n;
     *flags = (name[0] ? GIB_SRC_NAMED : 0u) |
              (gib_json_get(f->j, pbr, "baseColorTexture") >= 0 ? GIB_SRC_BASE_TEX : 0u) |
-             (ds >= 0 && gib_json_span(f->j, ds, &s, &n) == 0 && n == 4 && memcmp(s, "true", 4) == 0
-                  ? GIB_SRC_TWO_SIDED : 0u);
+             (is_true(f, gib_json_get(f->j, mt, "doubleSided")) ? GIB_SRC_TWO_SIDED : 0u);
 }
 
 static int read_materials(const gfile *f, gib_gltf_info *out, gib_error *err)
@@ -401,6 +460,29 @@ int gib_gltf_match(const gib_gltf_info *info, const gib_mat_desc *d, const char 
 
 /* ------------------------------------------------------------------ entry points */
 
+/* The image files of the materials' base colour textures (and of gibench's masks) are there: a
+ * missing one is named with the glTF that names it, whether the materials are taken or assimp
+ * reads them. */
+static int image_files(const gfile *f, gib_error *err)
+{
+    for (int m = -1; (m = gib_json_child(f->j, gib_json_get(f->j, 0, "materials"), m)) >= 0;) {
+        const int pbr = gib_json_get(f->j, m, "pbrMetallicRoughness");
+        const int g = gib_json_get(f->j, gib_json_get(f->j, m, "extras"), "gibench");
+        const int info[2] = {gib_json_get(f->j, pbr, "baseColorTexture"),
+                             gib_json_get(f->j, g, "alpha_texture")};
+        for (int k = 0; k < 2; k++) {
+            int ti = -1, src = -1;
+            if (info[k] < 0 || index_of(f, info[k], "index", &ti) ||
+                index_of(f, top(f, "textures", ti), "source", &src) || src < 0)
+                continue; /* texture_ref says what is wrong, where the materials are taken */
+            const int uri = gib_json_get(f->j, top(f, "images", src), "uri");
+            if (uri >= 0 && uri_file_there(f->path, f->j, uri, "image", src, err))
+                return -1;
+        }
+    }
+    return 0;
+}
+
 int gib_gltf_read(const char *path, unsigned want, gib_gltf_info *out, gib_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -409,6 +491,7 @@ int gib_gltf_read(const char *path, unsigned want, gib_gltf_info *out, gib_error
         return -1;
     int rc = check_extensions(&f, want, out->ignored, sizeof out->ignored, err) ||
              check_geometry(&f, want, out->ignored, sizeof out->ignored, err) ||
+             image_files(&f, err) ||
              gib_gltf_read_nodes(&f, want, out, err) ||
              ((want & GIB_GLTF_MATERIALS) && read_materials(&f, out, err)) ? -1 : 0;
     gfile_close(&f);

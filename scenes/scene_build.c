@@ -375,7 +375,7 @@ static int gltf_import(build_state *b, const gib_mesh_spec *m, const char *path,
                           (s->gltf_materials ? GIB_GLTF_MATERIALS : 0u);
     if (gib_gltf_read(path, want, &b->gltf, b->err))
         return gib_error_prefix(b->err, "%s:%d: [scene] gltf", s->path, s->gltf_line);
-    b->hash = gib_hash_str(b->hash, "gltf mapping 1");
+    b->hash = gib_hash_str(b->hash, "gltf mapping 2");
     b->hash = gib_hash_u64(b->hash, want);
     if (gib_mesh_import_ex(path, m->smooth_angle_deg, want & GIB_GLTF_MATERIALS
                                                           ? GIB_IMPORT_NO_TEXTURES : 0u,

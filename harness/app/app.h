@@ -12,6 +12,7 @@ int gib_cmd_list(int argc, char **argv);
 int gib_cmd_render(int argc, char **argv);
 int gib_cmd_reference(int argc, char **argv);
 int gib_cmd_compare(int argc, char **argv);
+int gib_cmd_export(int argc, char **argv);
 int gib_cmd_run(int argc, char **argv);
 int gib_cmd_bench(int argc, char **argv);
 int gib_cmd_merge(int argc, char **argv);

@@ -14,6 +14,8 @@ static const char usage[] =
     "  render    --scene S --technique T [--param k=v]... --size WxH --out DIR\n"
     "  reference --scene S --component C --spp N --size WxH (--out F.exr | --cache DIR)\n"
     "  compare   REF.exr TEST.exr [--exposure E] [--json] [--map F.png] [--fail ...]\n"
+    "  export    SCENE DIR [--camera NAME|INDEX] [--time T] [--size WxH]   the scene as glTF\n"
+    "                                   2.0 + job.json, as an external renderer gets it\n"
     "  run       MATRIX [--profile quick|paper] [--out DIR] [--shard I/N]\n"
     "  merge     SHARD_DIR... --out DIR      the shards' CSVs as one run's table\n"
     "  bench     reference [--scene S] [--size WxH] [--out F.csv]   ray throughput\n"
@@ -52,6 +54,8 @@ int main(int argc, char **argv)
         return gib_cmd_reference(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare"))
         return gib_cmd_compare(argc - 1, argv + 1);
+    if (!strcmp(cmd, "export"))
+        return gib_cmd_export(argc - 1, argv + 1);
     if (!strcmp(cmd, "run"))
         return gib_cmd_run(argc - 1, argv + 1);
     if (!strcmp(cmd, "merge"))

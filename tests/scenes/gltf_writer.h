@@ -1,7 +1,7 @@
 /* gibench scene tests — a small glTF 2.0 writer for test_scene_gltf*.c: flat-shaded triangles
- * (one primitive per material), a buffer as a base64 data: URI (.gltf) or a GLB's BIN chunk, an
- * optional image in the buffer, and the test's own JSON for everything else (nodes, cameras,
- * lights, materials). Header-only: static functions. */
+ * (one primitive per material), a buffer as a base64 data: URI or a file beside it (.gltf) or a
+ * GLB's BIN chunk, an optional image in the buffer, and the test's own JSON for everything else
+ * (nodes, cameras, lights, materials, images by URI). Header-only: static functions. */
 #ifndef GIB_TEST_GLTF_WRITER_H
 #define GIB_TEST_GLTF_WRITER_H
 
@@ -145,10 +145,11 @@ static inline void gw_base64(gw_buf *out, const unsigned char *d, size_t n)
 /* Writes path: prims (mesh 0 on node 0), the image's bytes as bufferView 3 x nprim when given,
  * `nodes` (JSON objects after node 0, comma-separated, may be ""), `scene_nodes` (the scene's
  * root list after 0, e.g. ",1,2"), `extra` (top-level members, each followed by a comma).
- * glb = 1 writes a GLB. */
-static inline void gw_write(const char *path, int glb, const gw_prim *prims, int nprim, const char *nodes,
-                     const char *scene_nodes, const char *extra, const unsigned char *image,
-                     size_t image_len)
+ * glb = 1 writes a GLB; bin_file (a .gltf's) not NULL: the buffer is that file beside path (not
+ * written when it starts with "missing"), its uri bin_file. */
+static inline void gw_write_bin(const char *path, int glb, const gw_prim *prims, int nprim,
+                                const char *nodes, const char *scene_nodes, const char *extra,
+                                const unsigned char *image, size_t image_len, const char *bin_file)
 {
     gw_buf bin = {0}, js = {0};
     char tmp[1024];
@@ -230,7 +231,16 @@ static inline void gw_write(const char *path, int glb, const gw_prim *prims, int
     }
     snprintf(tmp, sizeof tmp, "],\"buffers\":[{\"byteLength\":%zu", bin.n);
     gw_str(&js, tmp);
-    if (!glb) {
+    if (!glb && bin_file) {
+        gw_str(&js, ",\"uri\":\"");
+        gw_str(&js, bin_file);
+        gw_str(&js, "\"");
+        const char *slash = strrchr(path, '/');
+        snprintf(tmp, sizeof tmp, "%.*s%s", (int)(slash ? slash - path + 1 : 0), path, bin_file);
+        FILE *bf = strncmp(bin_file, "missing", 7) ? fopen(tmp, "wb") : NULL;
+        if (bf)
+            fwrite(bin.d, 1, bin.n, bf), fclose(bf);
+    } else if (!glb) {
         gw_str(&js, ",\"uri\":\"data:application/octet-stream;base64,");
         gw_base64(&js, bin.d, bin.n);
         gw_str(&js, "\"");
@@ -255,6 +265,14 @@ static inline void gw_write(const char *path, int glb, const gw_prim *prims, int
     free(bin.d);
     free(js.d);
     free(off);
+}
+
+/* gw_write_bin with the buffer inside the file (a data: URI, or a GLB's BIN chunk). */
+static inline void gw_write(const char *path, int glb, const gw_prim *prims, int nprim,
+                            const char *nodes, const char *scene_nodes, const char *extra,
+                            const unsigned char *image, size_t image_len)
+{
+    gw_write_bin(path, glb, prims, nprim, nodes, scene_nodes, extra, image, image_len, NULL);
 }
 
 static inline void gw_prim_free(gw_prim *p)

@@ -116,16 +116,15 @@ static void test_a(void)
     const gib_camera *c = &s.cameras[0];
     CHECK(strcmp(c->name, "Cam") == 0, "(a) camera 0 is '%s', want 'Cam'", c->name);
     check_vec("(a) Cam eye", c->eye, 1, 2, 3, 1e-6);
-    const float d0[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1],
-                         c->target[2] - c->eye[2]};
+    float d0[3], d1[3], r[3], u[3]; /* the view direction: the target lies along it */
+    gib_camera_basis(c, r, u, d0);
     check_vec("(a) Cam direction (node -Z turned 90 about +y)", d0, -1, 0, 0, 1e-6);
     check_vec("(a) Cam up", c->up, 0, 1, 0, 1e-6);
     NEAR(c->vfov_deg, 0.6 * 180.0 / M_PI, 1e-4, "yfov 0.6 rad in degrees");
     if (s.camera_count == 2) {
         c = &s.cameras[1];
         check_vec("(a) Top eye (parent's translation)", c->eye, 0, 10, 0, 1e-6);
-        const float d1[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1],
-                             c->target[2] - c->eye[2]};
+        gib_camera_basis(c, r, u, d1);
         check_vec("(a) Top direction (down)", d1, 0, -1, 0, 1e-6);
         check_vec("(a) Top up", c->up, 0, 0, -1, 1e-6);
     }
