@@ -169,6 +169,7 @@ cone-study-sponza: build
 bench: build
 	$(BUILD)/gibench bench reference --scene cornell,sibenik,sponza --repeat 9 \
 	  --out $(RESULTS)/bench_reference.csv
+	$(BUILD)/gibench bench scoring --repeat 9 --out $(RESULTS)/bench_scoring.csv
 	$(MAKE) --no-print-directory bench-timing
 
 # The scripts read the results schema the build exports ($(BUILD)/schema.json, harness/reporting/schema.py).

@@ -7,6 +7,7 @@
 #include "techniques/technique.h"
 #include "harness/gl/context.h"
 #include "harness/imaging/metrics.h"
+#include "harness/imaging/score.h"
 
 int gib_cmd_list(int argc, char **argv);
 int gib_cmd_render(int argc, char **argv);
@@ -115,20 +116,13 @@ int gib_ref_seal_ok(const gib_image *img, const gib_kv *want, int nwant, const g
 
 /* Returned by gib_score_and_save when the metrics are computed but an image cannot be written
  * (a full disk): the caller stops rather than record a row. */
-#define GIB_IMAGE_WRITE_FAILED (-2)
-
-/* FLIP means into m->flip and m->hdrflip (NaN where undefined: non-finite samples, or a black
- * reference for HDR-FLIP). LDR-FLIP compares the images the PNG previews show, clamp(exposure *
- * rgb) per channel (FLIP decodes its sRGB input to these linear values); HDR-FLIP the linear
- * radiance, over the exposure range the reference defines. Both at the reference
- * implementation's default 67.02 pixels per degree. ldr_map (w*h floats) gets the LDR-FLIP map
- * when non-NULL. Returns -1 (err set) only when out of memory. */
-int gib_score_flip(const gib_image *ref, const gib_image *img, float exposure, float *ldr_map,
-                   gib_metrics *m, gib_error *err);
+#define GIB_IMAGE_WRITE_FAILED GIB_SCORE_WRITE_FAILED
 
 /* Scores a technique image against a reference and writes the images: DIR/NAME.exr, NAME.png
  * (preview at the scene's exposure), NAME_error.png and NAME_flip.png (the LDR-FLIP error map in
- * the magma colours of FLIP's reference tool). */
+ * the magma colours of FLIP's reference tool; LDR-FLIP compares the images the previews show,
+ * HDR-FLIP the linear radiance: gib_flip_pair_on in flip.h). gib_score_pair (harness/imaging/
+ * score.h): every metric once, over the scoring threads, the images written meanwhile. */
 int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,
                        const char *name, gib_metrics *m, gib_error *err);
 

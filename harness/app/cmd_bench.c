@@ -1,7 +1,7 @@
 /* gibench bench reference — the reference renderer's ray throughput against raw Embree
  * (reference/ref_bench.c), and with --efficiency its sampling efficiency by sampler (how fast its
  * error falls per second), printed and written to CSV with the machine it ran on. Performance is
- * measured and reported here, never asserted by a test. */
+ * measured and reported here, never asserted by a test. `bench scoring` is bench_scoring.c. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "bench_scoring.h"
 #include "options.h"
 
 static const gib_command_doc doc = {
@@ -39,7 +40,7 @@ static const gib_command_doc doc = {
     "predicts, and their ratio (an honest estimate gives ~1). Defaults: scenes cornell,sibenik,\n"
     "sponza, components full,indirect, 128x128, spp 16,64, samplers random,sobol, 3 repeats.\n"};
 
-static void machine_name(char *out, size_t len)
+void gib_bench_machine_name(char *out, size_t len)
 {
     snprintf(out, len, "unknown");
     FILE *f = fopen("/proc/cpuinfo", "r");
@@ -226,7 +227,7 @@ static int bench_scene(const char *name, int fallback, int in_list, const gib_re
         return 1;
     }
     bench_table t = {.scene = &scene, .p = p, .comp = comp, .rows = rows, .n = n};
-    machine_name(t.machine, sizeof t.machine);
+    gib_bench_machine_name(t.machine, sizeof t.machine);
     t.cores = p->threads > 0 ? p->threads : sysconf(_SC_NPROCESSORS_ONLN);
     bench_find_yardsticks(&t);
     bench_print_rows(&t, f);
@@ -468,7 +469,7 @@ static int part_finish(FILE *f, const char *part, const char *out, int ran)
 static int eff_run(const char *scenes, const eff_opts *o, const char *out)
 {
     char machine[256], list[1024], part[4096];
-    machine_name(machine, sizeof machine);
+    gib_bench_machine_name(machine, sizeof machine);
     snprintf(list, sizeof list, "%s", scenes);
     FILE *f;
     int st = part_open(out, part, sizeof part,
@@ -641,12 +642,15 @@ static int bench_throughput(const bench_opts *o)
 
 int gib_cmd_bench(int argc, char **argv)
 {
+    if (argc >= 2 && strcmp(argv[1], "scoring") == 0)
+        return gib_bench_scoring(argc - 1, argv + 1);
     if (argc < 2 || strcmp(argv[1], "reference") != 0) {
         if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
             gib_options_usage(stdout, &doc, NULL);
+            puts("\ngibench bench scoring --help: the scoring of a row, by thread count.");
             return 0;
         }
-        fputs("gibench bench: what to measure? ('reference')\n", stderr);
+        fputs("gibench bench: what to measure? ('reference' or 'scoring')\n", stderr);
         gib_options_usage(stderr, &doc, NULL);
         return 2;
     }

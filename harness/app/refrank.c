@@ -22,9 +22,10 @@ int gib_ref_spp_to_rank(int spp, double noise_rmse, double rmse, long pixels, in
 int gib_reference_to_rank(gib_ref_request *rq, const gib_image *img, float exposure, int growth,
                           gib_ref_result *ref, gib_error *err)
 {
+    (void)exposure; /* SSIM's alone: the ranking reads the RMSE */
     int grc = gib_reference_get(rq, ref, err);
     gib_metrics m;
-    if (grc < 0 || gib_metrics_compute(&ref->image, img, exposure, &m, err) < 0 || m.nonfinite)
+    if (grc < 0 || gib_metrics_errors(&ref->image, img, &m, err) < 0 || m.nonfinite)
         return grc;
     int spp = gib_ref_spp_to_rank(rq->spp, ref->noise_rmse, m.rmse, (long)rq->width * rq->height,
                                   growth);

@@ -176,7 +176,7 @@ typedef struct seq_scores {
 /* The references of the frames, at the spp the row's last frame was ranked at (rq), and each
  * frame's error. Returns 0, -1 (err set), or GIB_REF_WRITE_FAILED. */
 static int seq_references(const gib_run_ctx *ctx, const gib_matrix_run *mr, const gib_image *frames,
-                          float exposure, gib_ref_request rq, seq_scores *sc, gib_error *err)
+                          gib_ref_request rq, seq_scores *sc, gib_error *err)
 {
     for (int k = 0; k < sc->n; k++) {
         rq.time = (float)(mr->time - (double)(sc->n - 1 - k) * ctx->m->dt);
@@ -186,8 +186,8 @@ static int seq_references(const gib_run_ctx *ctx, const gib_matrix_run *mr, cons
             return grc;
         sc->refs[sc->have++] = ref.image;
         sc->noise2 += ref.noise_rmse * ref.noise_rmse;
-        gib_metrics m;
-        if (gib_metrics_compute(&ref.image, &frames[k], exposure, &m, err) < 0)
+        gib_metrics m; /* the RMSE alone: a frame's SSIM and FLIP are not reported */
+        if (gib_metrics_errors(&ref.image, &frames[k], &m, err) < 0)
             return -1;
         gib_rmse_bounds b;
         gib_rmse_interval(m.rmse, ref.noise_rmse, (long)mr->width * mr->height, &b);
@@ -265,7 +265,7 @@ static int score_sequence(gib_run_ctx *ctx, const gib_scene *scene, const gib_ma
     const gib_image *frames = res->seq_images[i];
     gib_error err;
     double worst = 0;
-    int rc = seq_references(ctx, mr, frames, scene->exposure, *rq, &sc, &err);
+    int rc = seq_references(ctx, mr, frames, *rq, &sc, &err);
     if (rc == 0)
         rc = seq_columns(r, &sc, frames, scene->exposure, &worst, &err);
     if (rc == 0 && ctx->images &&

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "app.h"
-#include "harness/imaging/flip.h"
+#include "harness/imaging/score.h"
 
 int gib_parse_size(const char *opt, const char *s, int *w, int *h, gib_error *err)
 {
@@ -160,73 +160,10 @@ const char *gib_git_revision(void)
     return rev;
 }
 
-int gib_score_flip(const gib_image *ref, const gib_image *img, float exposure, float *ldr_map,
-                   gib_metrics *m, gib_error *err)
-{
-    m->flip = m->hdrflip = NAN;
-    int w = ref->width, h = ref->height;
-    size_t n = (size_t)w * h;
-    if (img->width != w || img->height != h || ref->channels < 3 || img->channels < 3)
-        return 0; /* gib_metrics_compute reports the mismatch */
-    float *a = malloc(4 * 3 * n * sizeof(float));
-    if (!a)
-        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                             "FLIP: out of memory for a %dx%d image", w, h);
-    float *b = a + 3 * n, *la = b + 3 * n, *lb = la + 3 * n;
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < 3; c++) {
-            a[3 * i + c] = ref->px[i * ref->channels + c];
-            b[3 * i + c] = img->px[i * img->channels + c];
-            la[3 * i + c] = fminf(fmaxf(exposure * a[3 * i + c], 0.0f), 1.0f);
-            lb[3 * i + c] = fminf(fmaxf(exposure * b[3 * i + c], 0.0f), 1.0f);
-        }
-    /* A NaN mean (non-finite samples, black reference) is the answer: the row's nonfinite count
-     * and status already say what is wrong with the image, so the message is not needed. */
-    gib_error ferr = {0};
-    const float ppd = gib_flip_default_ppd();
-    m->flip = gib_flip_ldr(la, lb, w, h, ppd, ldr_map, &ferr);
-    if (!isnan(m->flip))
-        m->hdrflip = gib_flip_hdr(a, b, w, h, ppd, NULL, NULL, NULL, &ferr);
-    free(a);
-    if (isnan(m->flip + m->hdrflip) && ferr.code == GIB_ERR_OUT_OF_MEMORY)
-        return gib_fail_code(err, ferr.code, "%s", ferr.msg);
-    return 0;
-}
-
 int gib_score_and_save(const gib_image *ref, const gib_image *img, float exposure, const char *dir,
                        const char *name, gib_metrics *m, gib_error *err)
 {
-    if (gib_metrics_compute(ref, img, exposure, m, err) < 0)
-        return -1;
-    float *map = dir ? malloc((size_t)ref->width * ref->height * sizeof(float)) : NULL;
-    if (dir && !map)
-        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                             "FLIP: out of memory for a %dx%d map", ref->width, ref->height);
-    if (gib_score_flip(ref, img, exposure, map, m, err) < 0) {
-        free(map);
-        return -1;
-    }
-    if (!dir)
-        return 0;
-    char path[4096];
-    if (!isnan(m->flip)) {
-        snprintf(path, sizeof path, "%s/%s_flip.png", dir, name);
-        if (gib_flip_write_png(path, map, ref->width, ref->height, err) < 0) {
-            free(map);
-            return GIB_IMAGE_WRITE_FAILED;
-        }
-    }
-    free(map);
-    snprintf(path, sizeof path, "%s/%s.exr", dir, name);
-    if (gib_exr_write(path, img, NULL, 0, err) < 0)
-        return GIB_IMAGE_WRITE_FAILED;
-    snprintf(path, sizeof path, "%s/%s.png", dir, name);
-    if (gib_png_write_preview(path, img, exposure, err) < 0)
-        return GIB_IMAGE_WRITE_FAILED;
-    snprintf(path, sizeof path, "%s/%s_error.png", dir, name);
-    if (gib_png_write_error_map(path, ref, img, 0.0f, err) < 0)
-        return GIB_IMAGE_WRITE_FAILED;
-    return 0;
+    return gib_score_pair(ref, img, exposure, dir, name, m, err);
 }
 
 int gib_score_image(const gib_image *ref, double ref_noise_rmse, const gib_image *img,

@@ -1,9 +1,11 @@
 /* gibench — LDR-FLIP and HDR-FLIP (see flip.h). Equation numbers refer to the FLIP paper (HPG 2020);
  * constants and the separable form of its filters follow the reference implementation, whose means
- * the unit test compares against. Single-threaded: the harness shares its cores with the renderer. */
+ * the unit test compares against. The work is spread over the scoring threads (parallel.h), which
+ * run after a technique's frames, never beside them. */
 #include "flip.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -206,182 +208,22 @@ static void col_filter(const float *plane, int w, int h, int y, const float *f, 
     }
 }
 
-/* One image's filtered quantities. ycc: three planes (Y, Cx, Cz). csf_out: three planes of the
- * CSF-filtered YCxCz; edge, point: feature magnitudes. tmp: 4 planes of scratch; pad: a row of
- * w + 2 max(radius) floats; row: 4 rows of w floats. */
-static void filter_one(const float *ycc, int w, int h, const csf_filters *cf, const feat_filters *ff,
-                       float *tmp, float *pad, float *row, float *csf_out, float *edge, float *point)
-{
-    size_t n = (size_t)w * h;
-    const float *Y = ycc, *Cx = ycc + n, *Cz = ycc + 2 * n;
-    int r = cf->radius;
-    /* CSF (Eq. 2-3), horizontal: Y, Cx and the Cz channel with each of its two filters. */
-    for (int y = 0; y < h; y++) {
-        size_t o = (size_t)y * w;
-        row_filter(Y + o, w, cf->y, r, pad, tmp + o);
-        row_filter(Cx + o, w, cf->cx, r, pad, tmp + n + o);
-        row_filter(Cz + o, w, cf->cz1, r, pad, tmp + 2 * n + o);
-        row_filter(Cz + o, w, cf->cz2, r, pad, tmp + 3 * n + o);
-    }
-    /* Vertical; the blue-yellow channel is the sum of its two separable terms. */
-    for (int y = 0; y < h; y++) {
-        size_t o = (size_t)y * w;
-        col_filter(tmp, w, h, y, cf->y, r, csf_out + o);
-        col_filter(tmp + n, w, h, y, cf->cx, r, csf_out + n + o);
-        col_filter(tmp + 2 * n, w, h, y, cf->cz1, r, row);
-        col_filter(tmp + 3 * n, w, h, y, cf->cz2, r, row + w);
-        for (int x = 0; x < w; x++)
-            csf_out[2 * n + o + x] = row[x] + row[w + x];
-    }
-    /* Features (Sec. 5.1) on the achromatic channel normalised to [0,1], (Y + 16) / 116.
-     * Horizontal: d/dx, d2/dx2 and Gaussian; vertical: Gaussian of the first two, d/dy and d2/dy2
-     * of the third. */
-    r = ff->radius;
-    float *yn = row;
-    for (int y = 0; y < h; y++) {
-        size_t o = (size_t)y * w;
-        for (int x = 0; x < w; x++)
-            yn[x] = Y[o + x] / 116.0f + 16.0f / 116.0f;
-        row_filter(yn, w, ff->dg, r, pad, tmp + o);
-        row_filter(yn, w, ff->ddg, r, pad, tmp + n + o);
-        row_filter(yn, w, ff->g, r, pad, tmp + 2 * n + o);
-    }
-    for (int y = 0; y < h; y++) {
-        size_t o = (size_t)y * w;
-        float *dx = row, *ddx = row + w, *dy = row + 2 * w, *ddy = row + 3 * w;
-        col_filter(tmp, w, h, y, ff->g, r, dx);
-        col_filter(tmp + n, w, h, y, ff->g, r, ddx);
-        col_filter(tmp + 2 * n, w, h, y, ff->dg, r, dy);
-        col_filter(tmp + 2 * n, w, h, y, ff->ddg, r, ddy);
-        for (int x = 0; x < w; x++) {
-            edge[o + x] = sqrtf(dx[x] * dx[x] + dy[x] * dy[x]);
-            point[o + x] = sqrtf(ddx[x] * ddx[x] + ddy[x] * ddy[x]);
-        }
-    }
-}
+/* ---- one evaluation: a pair of images mapped to [0,1], filtered and compared ----
+ *
+ * Two steps over bands of rows, each band an item for the scoring threads (parallel.h): the rows'
+ * colour conversion and horizontal filters (per image and band), then the vertical filters and the
+ * per-pixel error (per band, both images). Every pixel's value comes from the same operations in
+ * the same order whatever the thread that computes it, and the mean is summed in pixel order
+ * afterwards, so the results do not depend on the thread count. */
 
-typedef struct flip_work {
-    csf_filters cf;
-    feat_filters ff;
-    float *ycc_r, *ycc_t, *tmp, *csf_r, *csf_t, *e_r, *e_t, *p_r, *p_t, *err_px, *pad, *row;
-} flip_work;
+#define FLIP_BAND 8
+#define FLIP_PLANES 7 /* per image: CSF Y, Cx, Cz (first filter), Cz (second); features dG, ddG, G */
 
-static void work_free(flip_work *k)
-{
-    free(k->cf.y);
-    free(k->ff.g);
-    free(k->ycc_r);
-    memset(k, 0, sizeof *k);
-}
-
-static int work_alloc(flip_work *k, int w, int h, float ppd, gib_error *err)
-{
-    memset(k, 0, sizeof *k);
-    size_t n = (size_t)w * h;
-    /* ycc x2, csf x2 (3 planes each), tmp (4), edge/point x2, error (1): 21 floats per pixel;
-     * then the padded row and 4 scratch rows. */
-    int rmax = 3 * (int)ceilf(ppd) + 8; /* above both filters' radii (10 and 9 at 67 ppd) */
-    k->ycc_r = malloc((21 * n + (size_t)w + 2 * (size_t)rmax + 4 * (size_t)w) * sizeof(float));
-    if (!k->ycc_r || csf_make(&k->cf, ppd) < 0 || feat_make(&k->ff, ppd) < 0) {
-        work_free(k);
-        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                             "FLIP: out of memory for a %dx%d image", w, h);
-    }
-    k->ycc_t = k->ycc_r + 3 * n;
-    k->csf_r = k->ycc_t + 3 * n;
-    k->csf_t = k->csf_r + 3 * n;
-    k->tmp = k->csf_t + 3 * n;
-    k->e_r = k->tmp + 4 * n;
-    k->e_t = k->e_r + n;
-    k->p_r = k->e_t + n;
-    k->p_t = k->p_r + n;
-    k->err_px = k->p_t + n;
-    k->pad = k->err_px + n;
-    k->row = k->pad + w + 2 * rmax;
-    if (k->cf.radius > rmax || k->ff.radius > rmax) {
-        work_free(k);
-        return gib_fail(err, "FLIP: %g pixels per degree gives filters wider than planned", ppd);
-    }
-    return 0;
-}
-
-/* LDR-FLIP of the pair already converted to YCxCz in k->ycc_r / k->ycc_t; writes k->err_px. */
-static void ldr_flip_core(flip_work *k, int w, int h)
-{
-    filter_one(k->ycc_r, w, h, &k->cf, &k->ff, k->tmp, k->pad, k->row, k->csf_r, k->e_r, k->p_r);
-    filter_one(k->ycc_t, w, h, &k->cf, &k->ff, k->tmp, k->pad, k->row, k->csf_t, k->e_t, k->p_t);
-    const float cmax = cmax_value(), pccmax = pc * cmax;
-    size_t n = (size_t)w * h;
-    for (size_t i = 0; i < n; i++) {
-        float lr[3], lt[3], vr[3] = {k->csf_r[i], k->csf_r[n + i], k->csf_r[2 * n + i]};
-        float vt[3] = {k->csf_t[i], k->csf_t[n + i], k->csf_t[2 * n + i]};
-        ycxcz_to_lab_hunt(vr, lr);
-        ycxcz_to_lab_hunt(vt, lt);
-        /* Colour error (Eq. 5): HyAB^qc, compressed so that [0, pc cmax] maps to [0, pt] and the
-         * rest to (pt, 1]. */
-        float de = powf(hyab(lr, lt), qc);
-        de = de < pccmax ? de * pt / pccmax : pt + (de - pccmax) / (cmax - pccmax) * (1.0f - pt);
-        /* Feature error (Eq. 8) and the combination (Eq. 9): dE_c ^ (1 - dE_f). */
-        float fe = fmaxf(fabsf(k->e_r[i] - k->e_t[i]), fabsf(k->p_r[i] - k->p_t[i]));
-        fe = qf == 0.5f ? sqrtf(fe / sqrtf(2.0f)) : powf(fe / sqrtf(2.0f), qf);
-        k->err_px[i] = powf(de, 1.0f - fe);
-    }
-}
-
-/* Linear RGB pixel i -> YCxCz, into three planes of n floats. */
-static void store_ycc(float *planes, size_t n, size_t i, const float rgb[3])
-{
-    float v[3];
-    rgb_to_ycxcz(rgb, v);
-    planes[i] = v[0];
-    planes[n + i] = v[1];
-    planes[2 * n + i] = v[2];
-}
-
-static int check_inputs(const float *ref, const float *test, int w, int h, gib_error *err)
-{
-    if (w < 1 || h < 1)
-        return gib_fail(err, "FLIP: empty image (%dx%d)", w, h);
-    size_t n = 3 * (size_t)w * h;
-    for (size_t i = 0; i < n; i++)
-        if (!isfinite(ref[i]) || !isfinite(test[i]))
-            return gib_fail_code(err, GIB_ERR_NON_FINITE,
-                                 "FLIP: non-finite sample in the %s image at pixel %zu",
-                                 isfinite(ref[i]) ? "test" : "reference", i / 3);
-    return 0;
-}
-
-static double mean_of(const float *v, size_t n)
-{
-    double s = 0;
-    for (size_t i = 0; i < n; i++)
-        s += v[i];
-    return s / (double)n;
-}
-
-double gib_flip_ldr(const float *ref, const float *test, int w, int h, float ppd, float *map,
-                    gib_error *err)
-{
-    flip_work k;
-    if (check_inputs(ref, test, w, h, err) < 0 || work_alloc(&k, w, h, ppd, err) < 0)
-        return NAN;
-    size_t n = (size_t)w * h;
-    for (size_t i = 0; i < n; i++) {
-        float a[3], b[3];
-        for (int c = 0; c < 3; c++) {
-            a[c] = fminf(fmaxf(ref[3 * i + c], 0.0f), 1.0f);
-            b[c] = fminf(fmaxf(test[3 * i + c], 0.0f), 1.0f);
-        }
-        store_ycc(k.ycc_r, n, i, a);
-        store_ycc(k.ycc_t, n, i, b);
-    }
-    ldr_flip_core(&k, w, h);
-    double mean = mean_of(k.err_px, n);
-    if (map)
-        memcpy(map, k.err_px, n * sizeof(float));
-    work_free(&k);
-    return mean;
-}
+/* An image's linear RGB: `stride` floats per pixel, R, G, B first. */
+typedef struct flip_src {
+    const float *px;
+    int stride;
+} flip_src;
 
 /* ACES filmic curve fit (Narkowicz) as HDR-FLIP uses it, with its 0.6 pre-exposure folded into
  * the coefficients: (c0 x^2 + c1 x + c2) / (c3 x^2 + c4 x + c5). */
@@ -394,89 +236,341 @@ static float tonemap(float x)
     return fminf(fmaxf(v, 0.0f), 1.0f);
 }
 
-static int cmp_float(const void *a, const void *b)
+typedef struct flip_eval {
+    flip_src img[2]; /* reference, test */
+    int w, h, rmax;
+    int hdr;     /* 0: LDR, samples clamp(scale * v, 0, 1); 1: tonemap(v * scale) */
+    float scale; /* LDR: the exposure; HDR: this exposure's multiplier */
+    csf_filters cf;
+    feat_filters ff;
+    float cmax;
+    float *planes; /* 2 images x FLIP_PLANES planes of w*h */
+    float *out;    /* per-pixel error (LDR), or its running maximum over exposures (HDR) */
+    atomic_int failed; /* an item's scratch could not be allocated */
+} flip_eval;
+
+/* Linear RGB of pixel i of image k, mapped to [0,1] as the evaluation says. */
+static void load_rgb(const flip_eval *e, int k, size_t i, float rgb[3])
 {
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
+    const float *p = e->img[k].px + i * (size_t)e->img[k].stride;
+    for (int c = 0; c < 3; c++)
+        rgb[c] = e->hdr ? tonemap(p[c] * e->scale) : fminf(fmaxf(e->scale * p[c], 0.0f), 1.0f);
 }
 
-double gib_flip_hdr(const float *ref, const float *test, int w, int h, float ppd, float *map,
-                    float *start_out, float *stop_out, gib_error *err)
+/* Item: one band of one image's rows to YCxCz (Sec. 4.1), through the CSF's horizontal filters
+ * (Eq. 2-3: Y, Cx, and Cz with each of its two) and, on the achromatic channel normalised to
+ * [0,1], (Y + 16) / 116, the features' (Sec. 5.1: d/dx, d2/dx2, Gaussian). */
+static void rows_horizontal(void *ctx, int item)
 {
-    if (check_inputs(ref, test, w, h, err) < 0)
-        return NAN;
+    flip_eval *e = ctx;
+    const int w = e->w, k = item & 1, y0 = (item >> 1) * FLIP_BAND;
+    const int y1 = y0 + FLIP_BAND < e->h ? y0 + FLIP_BAND : e->h;
+    const size_t n = (size_t)w * e->h;
+    float *pad = malloc(((size_t)w + 2 * (size_t)e->rmax + 4 * (size_t)w) * sizeof(float));
+    if (!pad) {
+        atomic_store(&e->failed, 1);
+        return;
+    }
+    float *Y = pad + w + 2 * e->rmax, *Cx = Y + w, *Cz = Cx + w, *yn = Cz + w;
+    float *P = e->planes + (size_t)k * FLIP_PLANES * n;
+    const int rc = e->cf.radius, rf = e->ff.radius;
+    for (int y = y0; y < y1; y++) {
+        size_t o = (size_t)y * w;
+        for (int x = 0; x < w; x++) {
+            float rgb[3], v[3];
+            load_rgb(e, k, o + x, rgb);
+            rgb_to_ycxcz(rgb, v);
+            Y[x] = v[0];
+            Cx[x] = v[1];
+            Cz[x] = v[2];
+        }
+        row_filter(Y, w, e->cf.y, rc, pad, P + o);
+        row_filter(Cx, w, e->cf.cx, rc, pad, P + n + o);
+        row_filter(Cz, w, e->cf.cz1, rc, pad, P + 2 * n + o);
+        row_filter(Cz, w, e->cf.cz2, rc, pad, P + 3 * n + o);
+        for (int x = 0; x < w; x++)
+            yn[x] = Y[x] / 116.0f + 16.0f / 116.0f;
+        row_filter(yn, w, e->ff.dg, rf, pad, P + 4 * n + o);
+        row_filter(yn, w, e->ff.ddg, rf, pad, P + 5 * n + o);
+        row_filter(yn, w, e->ff.g, rf, pad, P + 6 * n + o);
+    }
+    free(pad);
+}
+
+/* Row y of image k's vertical filters: its CSF-filtered YCxCz (3 rows of w; the blue-yellow
+ * channel the sum of its two separable terms) and feature magnitudes. s: 6 rows of scratch. */
+static void row_vertical(const flip_eval *e, int k, int y, float *csf, float *edge, float *point,
+                         float *s)
+{
+    const int w = e->w, h = e->h, rc = e->cf.radius, rf = e->ff.radius;
+    const size_t n = (size_t)w * h;
+    const float *P = e->planes + (size_t)k * FLIP_PLANES * n;
+    col_filter(P, w, h, y, e->cf.y, rc, csf);
+    col_filter(P + n, w, h, y, e->cf.cx, rc, csf + w);
+    col_filter(P + 2 * n, w, h, y, e->cf.cz1, rc, s);
+    col_filter(P + 3 * n, w, h, y, e->cf.cz2, rc, s + w);
+    for (int x = 0; x < w; x++)
+        csf[2 * w + x] = s[x] + s[w + x];
+    /* Features: Gaussian across the first two, d/dy and d2/dy2 of the third. */
+    float *dx = s + 2 * w, *ddx = s + 3 * w, *dy = s + 4 * w, *ddy = s + 5 * w;
+    col_filter(P + 4 * n, w, h, y, e->ff.g, rf, dx);
+    col_filter(P + 5 * n, w, h, y, e->ff.g, rf, ddx);
+    col_filter(P + 6 * n, w, h, y, e->ff.dg, rf, dy);
+    col_filter(P + 6 * n, w, h, y, e->ff.ddg, rf, ddy);
+    for (int x = 0; x < w; x++) {
+        edge[x] = sqrtf(dx[x] * dx[x] + dy[x] * dy[x]);
+        point[x] = sqrtf(ddx[x] * ddx[x] + ddy[x] * ddy[x]);
+    }
+}
+
+/* The per-pixel error of one pixel from both images' filtered values (index x of the rows). */
+static float pixel_error(const flip_eval *e, const float *csf_r, const float *csf_t,
+                         const float *ef, int x)
+{
+    const int w = e->w;
+    const float cmax = e->cmax, pccmax = pc * cmax;
+    float lr[3], lt[3], vr[3] = {csf_r[x], csf_r[w + x], csf_r[2 * w + x]};
+    float vt[3] = {csf_t[x], csf_t[w + x], csf_t[2 * w + x]};
+    ycxcz_to_lab_hunt(vr, lr);
+    ycxcz_to_lab_hunt(vt, lt);
+    /* Colour error (Eq. 5): HyAB^qc, compressed so that [0, pc cmax] maps to [0, pt] and the rest
+     * to (pt, 1]. */
+    float de = powf(hyab(lr, lt), qc);
+    de = de < pccmax ? de * pt / pccmax : pt + (de - pccmax) / (cmax - pccmax) * (1.0f - pt);
+    /* Feature error (Eq. 8) and the combination (Eq. 9): dE_c ^ (1 - dE_f). ef: the reference's
+     * edge and point rows, then the test's. */
+    float fe = fmaxf(fabsf(ef[x] - ef[2 * w + x]), fabsf(ef[w + x] - ef[3 * w + x]));
+    fe = qf == 0.5f ? sqrtf(fe / sqrtf(2.0f)) : powf(fe / sqrtf(2.0f), qf);
+    return powf(de, 1.0f - fe);
+}
+
+/* Item: one band's vertical filters for both images and its per-pixel errors into e->out. */
+static void rows_vertical(void *ctx, int item)
+{
+    flip_eval *e = ctx;
+    const int w = e->w, y0 = item * FLIP_BAND;
+    const int y1 = y0 + FLIP_BAND < e->h ? y0 + FLIP_BAND : e->h;
+    float *csf_r = malloc(16 * (size_t)w * sizeof(float));
+    if (!csf_r) {
+        atomic_store(&e->failed, 1);
+        return;
+    }
+    float *csf_t = csf_r + 3 * w, *ef = csf_t + 3 * w, *s = ef + 4 * w;
+    for (int y = y0; y < y1; y++) {
+        row_vertical(e, 0, y, csf_r, ef, ef + w, s);
+        row_vertical(e, 1, y, csf_t, ef + 2 * w, ef + 3 * w, s);
+        float *out = e->out + (size_t)y * w;
+        for (int x = 0; x < w; x++) {
+            float v = pixel_error(e, csf_r, csf_t, ef, x);
+            out[x] = e->hdr ? fmaxf(out[x], v) : v;
+        }
+    }
+    free(csf_r);
+}
+
+/* Filters and plane memory for a w x h pair (e->out left to the caller). */
+static int eval_init(flip_eval *e, const flip_src *ref, const flip_src *test, int w, int h,
+                     float ppd, gib_error *err)
+{
+    memset(e, 0, sizeof *e);
+    e->img[0] = *ref;
+    e->img[1] = *test;
+    e->w = w;
+    e->h = h;
+    e->rmax = 3 * (int)ceilf(ppd) + 8; /* above both filters' radii (10 and 9 at 67 ppd) */
+    e->cmax = cmax_value();
+    e->planes = malloc(2 * FLIP_PLANES * (size_t)w * h * sizeof(float));
+    if (!e->planes || csf_make(&e->cf, ppd) < 0 || feat_make(&e->ff, ppd) < 0) {
+        free(e->planes);
+        free(e->cf.y);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "FLIP: out of memory for a %dx%d image", w, h);
+    }
+    if (e->cf.radius > e->rmax || e->ff.radius > e->rmax) {
+        free(e->planes);
+        free(e->cf.y);
+        free(e->ff.g);
+        return gib_fail(err, "FLIP: %g pixels per degree gives filters wider than planned", ppd);
+    }
+    return 0;
+}
+
+static void eval_free(flip_eval *e)
+{
+    free(e->planes);
+    free(e->cf.y);
+    free(e->ff.g);
+    memset(e, 0, sizeof *e);
+}
+
+/* One evaluation into e->out. Returns -1 (err set) when an item ran out of memory. */
+static int eval_run(gib_team *team, flip_eval *e, gib_error *err)
+{
+    const int bands = (e->h + FLIP_BAND - 1) / FLIP_BAND;
+    gib_team_run(team, 2 * bands, rows_horizontal, e);
+    if (!atomic_load(&e->failed))
+        gib_team_run(team, bands, rows_vertical, e);
+    if (atomic_load(&e->failed))
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "FLIP: out of memory for a %dx%d image", e->w, e->h);
+    return 0;
+}
+
+static int check_inputs(const flip_src *ref, const flip_src *test, int w, int h, gib_error *err)
+{
+    if (w < 1 || h < 1)
+        return gib_fail(err, "FLIP: empty image (%dx%d)", w, h);
     size_t n = (size_t)w * h;
-    /* Exposure range (HDR-FLIP Sec. 3.2): x_max solves tonemap(x) = t = 0.85 (a quadratic), Y_max
-     * and Y_median are the reference's luminance maximum and median (element n/2 of the sorted
-     * luminances, as the reference implementation's nth_element). */
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            float r = ref->px[i * ref->stride + c], t = test->px[i * test->stride + c];
+            if (!isfinite(r) || !isfinite(t))
+                return gib_fail_code(err, GIB_ERR_NON_FINITE,
+                                     "FLIP: non-finite sample in the %s image at pixel %zu",
+                                     isfinite(r) ? "test" : "reference", i);
+        }
+    return 0;
+}
+
+static double mean_of(const float *v, size_t n)
+{
+    double s = 0;
+    for (size_t i = 0; i < n; i++)
+        s += v[i];
+    return s / (double)n;
+}
+
+/* LDR-FLIP of clamp(exposure * rgb) (inputs already checked); map: w*h floats or NULL. */
+static double ldr_on(gib_team *team, const flip_src *ref, const flip_src *test, int w, int h,
+                     float ppd, float exposure, float *map, gib_error *err)
+{
+    flip_eval e;
+    if (eval_init(&e, ref, test, w, h, ppd, err) < 0)
+        return NAN;
+    const size_t n = (size_t)w * h;
+    e.scale = exposure;
+    e.out = map ? map : malloc(n * sizeof(float));
+    double mean = NAN;
+    if (!e.out)
+        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "FLIP: out of memory for a %dx%d image", w, h);
+    else if (eval_run(team, &e, err) == 0)
+        mean = mean_of(e.out, n);
+    if (e.out != map)
+        free(e.out);
+    eval_free(&e);
+    return mean;
+}
+
+double gib_flip_ldr(const float *ref, const float *test, int w, int h, float ppd, float *map,
+                    gib_error *err)
+{
+    const flip_src r = {ref, 3}, t = {test, 3};
+    if (check_inputs(&r, &t, w, h, err) < 0)
+        return NAN;
+    gib_team *team = gib_team_start(0);
+    double mean = ldr_on(team, &r, &t, w, h, ppd, 1.0f, map, err);
+    gib_team_stop(team);
+    return mean;
+}
+
+/* Exposure range (HDR-FLIP Sec. 3.2): x_max solves tonemap(x) = t = 0.85 (a quadratic), Y_max and
+ * Y_median are the reference's luminance maximum and median (element n/2 of the sorted
+ * luminances, as the reference implementation's nth_element). Returns -1 (err set) when the
+ * reference is black or memory runs out. */
+static int hdr_range(const flip_src *ref, size_t n, float *start, float *stop, gib_error *err)
+{
     const float t = 0.85f;
     float qa = aces[0] - t * aces[3], qb = aces[1] - t * aces[4], qcc = aces[2] - t * aces[5];
     float d1 = -0.5f * (qb / qa), xmax = d1 + sqrtf(d1 * d1 - qcc / qa);
     float *lum = malloc(n * sizeof(float));
-    if (!lum) {
-        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "FLIP: out of memory for a %dx%d image", w, h);
-        return NAN;
-    }
+    if (!lum)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "FLIP: out of memory for %zu pixels", n);
     float ymax = -INFINITY;
+    size_t dark = 0; /* luminances not above 0 */
     for (size_t i = 0; i < n; i++) {
-        const float *p = ref + 3 * i;
+        const float *p = ref->px + i * (size_t)ref->stride;
         lum[i] = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
         ymax = fmaxf(ymax, lum[i]);
+        dark += !(lum[i] > 0.0f);
     }
-    qsort(lum, n, sizeof(float), cmp_float);
-    float ymed = lum[n / 2];
+    float ymed = gib_float_kth(lum, n, n / 2);
     /* Choice: where over half the reference is black (an AO or indirect-only image with empty
      * sky), log2(x_max / 0) is infinite and the reference implementation has no range; we take
      * the median of the positive luminances instead. */
-    if (!(ymed > 0.0f)) {
-        size_t first = 0;
-        while (first < n && !(lum[first] > 0.0f))
-            first++;
-        ymed = first < n ? lum[first + (n - first) / 2] : 0.0f;
-    }
+    if (!(ymed > 0.0f))
+        ymed = dark < n ? gib_float_kth(lum, n, dark + (n - dark) / 2) : 0.0f;
     free(lum);
-    if (!(ymax > 0.0f) || !(ymed > 0.0f)) {
-        gib_fail(err, "HDR-FLIP: the reference is black, so it defines no exposure range");
+    if (!(ymax > 0.0f) || !(ymed > 0.0f))
+        return gib_fail(err, "HDR-FLIP: the reference is black, so it defines no exposure range");
+    *start = log2f(xmax / ymax);
+    *stop = log2f(xmax / ymed);
+    return 0;
+}
+
+/* HDR-FLIP (inputs already checked): the per-pixel maximum of LDR-FLIP over the exposures. */
+static double hdr_on(gib_team *team, const flip_src *ref, const flip_src *test, int w, int h,
+                     float ppd, float *map, float *start_out, float *stop_out, gib_error *err)
+{
+    const size_t n = (size_t)w * h;
+    float start = 0.0f, stop = 0.0f;
+    if (hdr_range(ref, n, &start, &stop, err) < 0)
         return NAN;
-    }
-    float start = log2f(xmax / ymax), stop = log2f(xmax / ymed);
     int count = (int)fmaxf(2.0f, ceilf(stop - start));
     if (start_out)
         *start_out = start;
     if (stop_out)
         *stop_out = stop;
-
-    flip_work k;
-    float *best = calloc(n, sizeof(float));
-    if (!best || work_alloc(&k, w, h, ppd, err) < 0) {
-        if (!best)
-            gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                          "FLIP: out of memory for a %dx%d image", w, h);
-        free(best);
+    flip_eval e;
+    if (eval_init(&e, ref, test, w, h, ppd, err) < 0)
         return NAN;
-    }
+    e.hdr = 1;
+    e.out = calloc(n, sizeof(float));
+    int rc = e.out ? 0 : gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                                       "FLIP: out of memory for a %dx%d image", w, h);
     float step = (stop - start) / (float)(count - 1);
-    for (int e = 0; e < count; e++) {
-        float m = powf(2.0f, start + (float)e * step);
-        for (size_t i = 0; i < n; i++) {
-            float a[3], b[3];
-            for (int c = 0; c < 3; c++) {
-                a[c] = tonemap(ref[3 * i + c] * m);
-                b[c] = tonemap(test[3 * i + c] * m);
-            }
-            store_ycc(k.ycc_r, n, i, a);
-            store_ycc(k.ycc_t, n, i, b);
-        }
-        ldr_flip_core(&k, w, h);
-        for (size_t i = 0; i < n; i++)
-            best[i] = fmaxf(best[i], k.err_px[i]);
+    for (int k = 0; k < count && rc == 0; k++) {
+        e.scale = powf(2.0f, start + (float)k * step);
+        rc = eval_run(team, &e, err);
     }
-    work_free(&k);
-    double mean = mean_of(best, n);
-    if (map)
-        memcpy(map, best, n * sizeof(float));
-    free(best);
+    double mean = rc == 0 ? mean_of(e.out, n) : NAN;
+    if (rc == 0 && map)
+        memcpy(map, e.out, n * sizeof(float));
+    free(e.out);
+    eval_free(&e);
     return mean;
+}
+
+double gib_flip_hdr(const float *ref, const float *test, int w, int h, float ppd, float *map,
+                    float *start_out, float *stop_out, gib_error *err)
+{
+    const flip_src r = {ref, 3}, t = {test, 3};
+    if (check_inputs(&r, &t, w, h, err) < 0)
+        return NAN;
+    gib_team *team = gib_team_start(0);
+    double mean = hdr_on(team, &r, &t, w, h, ppd, map, start_out, stop_out, err);
+    gib_team_stop(team);
+    return mean;
+}
+
+int gib_flip_pair_on(gib_team *team, const gib_image *ref, const gib_image *test, float exposure,
+                     float *ldr_map, double *ldr, double *hdr, gib_error *err)
+{
+    *ldr = *hdr = NAN;
+    const int w = ref->width, h = ref->height;
+    if (test->width != w || test->height != h || ref->channels < 3 || test->channels < 3)
+        return 0; /* gib_metrics_compute reports the mismatch */
+    const flip_src r = {ref->px, ref->channels}, t = {test->px, test->channels};
+    /* A NaN mean (non-finite samples, black reference) is the answer: the row's nonfinite count
+     * and status already say what is wrong with the image, so the message is not needed. The LDR
+     * pair is clamped (NaN to 0, infinities to 0 or 1), so only HDR-FLIP checks the samples. */
+    gib_error ferr = {0};
+    const float ppd = gib_flip_default_ppd();
+    *ldr = ldr_on(team, &r, &t, w, h, ppd, exposure, ldr_map, &ferr);
+    if (!isnan(*ldr) && check_inputs(&r, &t, w, h, &ferr) == 0)
+        *hdr = hdr_on(team, &r, &t, w, h, ppd, NULL, NULL, NULL, &ferr);
+    if (isnan(*ldr + *hdr) && ferr.code == GIB_ERR_OUT_OF_MEMORY)
+        return gib_fail_code(err, ferr.code, "%s", ferr.msg);
+    return 0;
 }
 
 /* Every 16th entry of matplotlib's magma (sRGB), the map FLIP's tool uses, linearly interpolated. */

@@ -10,6 +10,8 @@
 #define GIB_FLIP_H
 
 #include "harness/base/error.h"
+#include "harness/imaging/image.h"
+#include "harness/imaging/parallel.h"
 
 /* Pixels per degree of the reference implementation's default viewing condition: a 0.7 m wide,
  * 3840-pixel monitor seen from 0.7 m: 0.7 * 3840 / 0.7 * pi / 180 = 67.02 ppd. */
@@ -30,6 +32,15 @@ double gib_flip_ldr(const float *ref, const float *test, int w, int h, float ppd
  * runs out. */
 double gib_flip_hdr(const float *ref, const float *test, int w, int h, float ppd, float *map,
                     float *start, float *stop, gib_error *err);
+
+/* What a row reports of two images (>= 3 channels each, RGB compared): LDR-FLIP of the images the
+ * PNG previews show, clamp(exposure * rgb, 0, 1) per channel (NaN to 0), into *ldr, and HDR-FLIP
+ * of the linear radiance into *hdr, both at gib_flip_default_ppd(), on a team already started
+ * (NULL: the caller's thread). ldr_map (w*h floats) gets the LDR-FLIP map when non-NULL. A mean is
+ * NaN where it is undefined: sizes that differ (both), a non-finite sample or a black reference
+ * (HDR-FLIP). Returns -1 (err set) only when out of memory. */
+int gib_flip_pair_on(gib_team *team, const gib_image *ref, const gib_image *test, float exposure,
+                     float *ldr_map, double *ldr, double *hdr, gib_error *err);
 
 /* The magma colour map the reference tool paints error maps with (matplotlib's magma, sRGB), at
  * t in [0,1]. */

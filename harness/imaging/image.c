@@ -146,10 +146,35 @@ static void ramp(float t, unsigned char rgb[3])
         rgb[k] = to_u8(viridis[i][k] + f * (viridis[i + 1][k] - viridis[i][k]));
 }
 
-static int cmp_float(const void *a, const void *b)
+/* A quickselect with a three-way partition, so images with many equal values (black pixels) stay
+ * linear; a median of three as the pivot. */
+float gib_float_kth(float *v, size_t n, size_t k)
 {
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
+    size_t lo = 0, hi = n; /* the answer lies in v[lo, hi) */
+    while (hi - lo > 1) {
+        float a = v[lo], b = v[lo + (hi - lo) / 2], c = v[hi - 1];
+        float p = a < b ? (b < c ? b : a < c ? c : a) : (a < c ? a : b < c ? c : b);
+        size_t lt = lo, i = lo, gt = hi; /* [lo,lt) < p, [lt,i) == p, [gt,hi) > p */
+        while (i < gt) {
+            float x = v[i];
+            if (x < p) {
+                v[i++] = v[lt];
+                v[lt++] = x;
+            } else if (x > p) {
+                v[i] = v[--gt];
+                v[gt] = x;
+            } else {
+                i++;
+            }
+        }
+        if (k < lt)
+            hi = lt;
+        else if (k >= gt)
+            lo = gt;
+        else
+            return p;
+    }
+    return v[lo];
 }
 
 int gib_png_write_error_map(const char *path, const gib_image *ref, const gib_image *test,
@@ -168,11 +193,11 @@ int gib_png_write_error_map(const char *path, const gib_image *ref, const gib_im
     const size_t n = (size_t)ref->width * (size_t)ref->height;
 
     float *e = gib_calloc(n, sizeof(float), err);
-    float *sorted = gib_calloc(n, sizeof(float), err);
+    float *finite = gib_calloc(n, sizeof(float), err);
     unsigned char *rgb = gib_calloc(n * 3, 1, err);
-    if (!e || !sorted || !rgb) {
+    if (!e || !finite || !rgb) {
         free(e);
-        free(sorted);
+        free(finite);
         free(rgb);
         return gib_error_prefix(err, "error map '%s'", path);
     }
@@ -185,17 +210,14 @@ int gib_png_write_error_map(const char *path, const gib_image *ref, const gib_im
         }
         e[i] = (float)sqrt(s / nc); /* NaN or Inf when any sample is non-finite */
         if (isfinite(e[i]))
-            sorted[nfinite++] = e[i];
+            finite[nfinite++] = e[i];
     }
     float scale = max_err;
     if (!(scale > 0.0f)) {
         /* The 99th percentile, not the max, so a few fireflies do not flatten the map to black. */
         scale = 0.0f;
-        if (nfinite > 0) {
-            qsort(sorted, nfinite, sizeof(float), cmp_float);
-            size_t idx = (size_t)(0.99 * (double)(nfinite - 1) + 0.5);
-            scale = sorted[idx];
-        }
+        if (nfinite > 0)
+            scale = gib_float_kth(finite, nfinite, (size_t)(0.99 * (double)(nfinite - 1) + 0.5));
         if (!(scale > 0.0f))
             scale = 1.0f; /* identical images: everything maps to the bottom of the ramp */
     }
@@ -210,7 +232,7 @@ int gib_png_write_error_map(const char *path, const gib_image *ref, const gib_im
     }
     int rc = gib_png_write8(path, ref->width, ref->height, 3, rgb, err);
     free(e);
-    free(sorted);
+    free(finite);
     free(rgb);
     return rc;
 }

@@ -52,4 +52,8 @@ int gib_png_write_preview(const char *path, const gib_image *img, float exposure
 int gib_png_write_error_map(const char *path, const gib_image *ref, const gib_image *test,
                             float max_err, gib_error *err);
 
+/* The k-th smallest of v[0, n) (k < n; v sorted ascending, v[k]), the value qsort would leave at
+ * index k, in linear time; v's order is changed. For finite values (a NaN breaks the order). */
+float gib_float_kth(float *v, size_t n, size_t k);
+
 #endif

@@ -12,6 +12,7 @@
 #define GIB_METRICS_H
 
 #include "image.h"
+#include "parallel.h"
 
 typedef struct gib_metrics {
     double rmse, rel_rmse, psnr, ssim;
@@ -22,7 +23,7 @@ typedef struct gib_metrics {
     double mean_ratio;
     double black_rmse; /* what an all-black image scores: sqrt(mean of ref^2) over the same samples */
     /* LDR-FLIP and HDR-FLIP means (harness/imaging/flip.h); gib_metrics_compute leaves them 0,
-     * gib_score_flip (harness/app) fills them. */
+     * gib_score_pair (score.h) fills them. */
     double flip, hdrflip;
     long nonfinite; /* NaN/Inf samples in the test image (the reference's are counted too) */
 } gib_metrics;
@@ -32,10 +33,22 @@ typedef struct gib_metrics {
  * (a row with nonfinite > 0 is never `ok`). */
 int gib_metrics_compute(const gib_image *ref, const gib_image *test, float exposure,
                         gib_metrics *out, gib_error *err);
+/* The same on a team already started (NULL: the caller's thread alone); the numbers do not depend
+ * on the team's size. */
+int gib_metrics_compute_on(gib_team *team, const gib_image *ref, const gib_image *test,
+                           float exposure, gib_metrics *out, gib_error *err);
+/* 0 when gib_metrics_compute takes the pair, else -1 with its message. */
+int gib_metrics_check(const gib_image *ref, const gib_image *test, gib_error *err);
+
+/* gib_metrics_compute without SSIM (left NaN): the error and its scales alone, one pass over the
+ * samples, for a caller that needs no more (ranking a reference by its noise against the error). */
+int gib_metrics_errors(const gib_image *ref, const gib_image *test, gib_metrics *out,
+                       gib_error *err);
 
 /* SSIM of two single-channel images already in [0,1] (w*h floats each), as above. NaN when
  * either side is under 11 pixels (no valid window position; scikit-image refuses such images). */
 double gib_ssim_gray(const float *a, const float *b, int width, int height);
+double gib_ssim_gray_on(gib_team *team, const float *a, const float *b, int width, int height);
 
 /* The SSIM channel of a linear RGB image: srgb_encode(clamp(exposure * Y, 0, 1)). out: w*h floats. */
 void gib_ssim_channel(const gib_image *img, float exposure, float *out);
