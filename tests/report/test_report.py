@@ -121,7 +121,9 @@ def check_claims(src, md, claims):
     absolute GPU times, collapsed; each once."""
     mi = re.search(r'<table id="claims">(.*?)</table>', src, re.S)
     orders = re.search(r'<table id="claims-orders-table">(.*?)</table>', src, re.S)
-    absolute = re.findall(r'<details class="absolute"( open)?>(.*?)</details>', src, re.S)
+    # each paper's absolute times: its <details> up to its table's end (a long reason is a nested
+    # <details class="more">, so the first </details> is not the paper's)
+    absolute = re.findall(r'<details class="absolute"( open)?>(.*?)</table>', src, re.S)
     in_mi = len(re.findall(r'<tr class="claim ', mi.group(1))) if mi else 0
     in_orders = len(re.findall(r'<tr class="claim ', orders.group(1))) if orders else 0
     in_abs = sum(len(re.findall(r'<tr class="claim ', body)) for _, body in absolute)
