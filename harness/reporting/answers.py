@@ -22,6 +22,7 @@ judge, so it is not a question of this table.
 import math
 
 from reporting import claims  # noqa: E402
+from reporting import external  # noqa: E402
 from reporting import schema  # noqa: E402
 from reporting.schema import param  # noqa: E402
 from reporting.uncertainty import error_interval, fnum, overlap, time_interval, worse_than_black  # noqa: E402
@@ -47,9 +48,12 @@ def reference_text(r):
 
 def group_key(r):
     """(component, scene, camera, width, height, renderer, time, reference parameters): the rows
-    that estimate one image on one renderer. The first six are GROUP, in its order."""
+    that estimate one image on one renderer. The first six are GROUP, in its order; an external
+    renderer's row ranks on the renderer of its table's built-in rows, the machine it ran on
+    (external.group_renderer)."""
     t = fnum(r.get("time")) or 0.0
-    return tuple(r.get(k, "") for k in GROUP) + (f"{t:g}", reference_text(r))
+    return tuple(external.group_renderer(r) if k == "renderer" else r.get(k, "") for k in GROUP) + \
+        (f"{t:g}", reference_text(r))
 
 
 def time_cost(r, resolution):
@@ -60,8 +64,12 @@ def time_cost(r, resolution):
 
 
 def memory_cost(r, _resolution=None):
+    """A row's memory, exact: the ledger's bytes; an external renderer's as its program reported
+    them, none where it reported none (its row holds 0)."""
     b = fnum(r.get("mem_bytes"))
-    return None if b is None else (b, b, b)
+    if b is None or (not b and external.is_external(r)):
+        return None
+    return (b, b, b)
 
 
 def compare(a, b):

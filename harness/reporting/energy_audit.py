@@ -8,12 +8,15 @@ harness/energy_causes.csv (technique, preset, scene, component, cause, control),
 the band with none is listed as unexplained. A cause's `verdict` is `explained` (the control
 accounts for the gap), `partly` (a part fixed or accounted for, the rest open) or `open`; its scene
 or component may be `*` (every scene or component of that technique and preset without a cause of
-its own). Writes RESULTS/energy_audit.csv.
+its own). An external renderer's cells (external.py) are named as the report names it, with its
+program and version (`ext:x (external, render.py 1.0)`), its rows of a version its table supersedes
+left out (external.superseded). Writes RESULTS/energy_audit.csv.
 """
 import csv
 import html
 import os
 
+from reporting import external  # noqa: E402
 from reporting.schema import fnum, matrices, preset, read_csv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -54,10 +57,11 @@ def chosen_rows(mats):
     away from the paper's) then speaks for a cell only where no row at the papers' settings does.
     A row whose reference is black (a leak test, a component the view lacks) has no energy to
     audit: the leak claims judge it."""
+    old = {k for rows in mats.values() for k in external.superseded(rows)}  # an external's older versions
     ok = [(name, r) for name, rows in mats.items() for r in rows
-          if r.get("status") == "ok" and r.get("component") in COMPONENTS
+          if r.get("status") == "ok" and id(r) not in old and r.get("component") in COMPONENTS
           and fnum(r.get("mean_ratio")) is not None and fnum(r.get("black_rmse")) != 0]
-    cell = lambda r: (r["technique"], preset(r), r["scene"], r["component"])  # noqa: E731
+    cell = lambda r: (external.label(r), preset(r), r["scene"], r["component"])  # noqa: E731
     with_paper = {cell(r) for _, r in ok if r.get("profile") == "paper"}
     return [(name, r) for name, r in ok if r.get("profile") == "paper" or cell(r) not in with_paper]
 
@@ -66,7 +70,8 @@ def cells(mats):
     """The audit's cells, sorted by technique, preset, scene and component."""
     groups = {}
     for name, r in chosen_rows(mats):
-        key = (r["technique"], preset(r), r["scene"], r["component"], r["profile"])
+        # an external renderer's cell is named with its program and version (external.label)
+        key = (external.label(r), preset(r), r["scene"], r["component"], r["profile"])
         groups.setdefault(key, []).append((name, r))
     known = causes()
     out = []

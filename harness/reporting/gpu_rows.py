@@ -3,7 +3,8 @@ each judged before the report takes a time from it:
 
 - current: its technique's source hash (column technique_hash; for a row written before the column,
   the hash of its git_revision's files) equals the hash of the sources now (source_hash.py). A stale
-  row describes code that has changed since and is shown as such, never used.
+  row describes code that has changed since and is shown as such, never used. An external
+  renderer's row (external.py) has no sources here: it is current by its version (in its params).
 - held down: a sample of the GPU's state in the row's window (from the previous row's timestamp to
   its own, gpu_samples.csv) names a reason the clocks are held down other than idle (power or
   thermal caps, slowdowns, application clocks). Such a row is not used.
@@ -18,6 +19,7 @@ import glob
 import os
 from datetime import datetime, timezone
 
+from reporting import external  # noqa: E402
 from reporting import source_hash  # noqa: E402
 from reporting.schema import read_csv  # noqa: E402
 
@@ -92,6 +94,16 @@ class Hashes:
     def current(self, technique):
         return source_hash.technique_hash(self.now, technique)
 
+    def is_current(self, r):
+        """Whether row r describes the sources now: its technique hash equals theirs. An external
+        renderer's row has no sources here (its technique_hash is a hash of its command and
+        version): it is current by its version string, part of its params, so it is never stale
+        by hash (external.superseded judges its version within a table)."""
+        if external.is_external(r):
+            return True
+        now = self.current(r.get("technique", ""))
+        return bool(now) and self.of_row(r) == now
+
     def of_row(self, r):
         if r.get("technique_hash"):
             return r["technique_hash"]
@@ -114,8 +126,7 @@ def judge(r, smp, start, hashes):
         med = iqr = float("nan")
     end = epoch(r.get("timestamp", ""))
     held, moved, seen = window_state(smp, start or end or 0, end or 0) if end else (False, False, 0)
-    now = hashes.current(r.get("technique", ""))
-    r["_current"] = bool(now) and hashes.of_row(r) == now
+    r["_current"] = hashes.is_current(r)
     r["_held_down"], r["_clock_moved"], r["_samples"] = held, moved, seen
     r["_spread_ok"] = med == med and iqr == iqr and iqr <= SPREAD_LIMIT * med
     r["_valid"] = (r.get("status") == "ok" and r["_current"] and not held
@@ -221,13 +232,16 @@ def timed_copies(rows, results, gpu_loaded=None):
             g = index.get((r["scene"], r["camera"], r["technique"], r["component"], r["params"],
                            r["time"], w, h))
             groups.setdefault((r["scene"], r["component"], r["width"], r["time"]), []).append((r, g))
+        # an external's copy ranks on the GPU its run's built-in rows name (external.group_renderer)
+        host = next((g["renderer"] for g in grs if not external.is_external(g) and g.get("renderer")), None)
         for pairs in groups.values():
             if any(g is None for _, g in pairs):
                 continue
             for r, g in pairs:
+                ext = {"_group_renderer": host or g["renderer"]} if external.is_external(r) else {}
                 out.append(dict(r, gpu_ms_median=g["gpu_ms_median"], gpu_ms_iqr=g["gpu_ms_iqr"],
                                 gpu_ms_min=g["gpu_ms_min"], gpu_ms_max=g["gpu_ms_max"],
-                                renderer=g["renderer"], time_resolution=str(GPU_TIE),
+                                renderer=g["renderer"], time_resolution=str(GPU_TIE), **ext,
                                 time_source=f"{gpu} at {g['width']}x{g['height']} (the papers' size), "
                                             f"gibench {g['git_revision']}; error on {r['renderer']}"))
     return out

@@ -34,6 +34,23 @@ import sys
 from reporting.schema import fnum as finite_num, matrices, params, read_csv  # noqa: E402
 from reporting.uncertainty import error_interval, time_interval, time_resolution, worse_than_black  # noqa: E402
 from reporting import answers  # noqa: E402
+from reporting import external  # noqa: E402
+
+
+def technique_label(r):
+    """A point set's name: the technique, an external renderer's with its program and version
+    (external.py)."""
+    return external.label(r)
+
+
+def axis_note(rows, what="times"):
+    """What an axis adds where external renderers' rows are plotted: their figures are the programs'
+    own (timings.json), not gibench's; '' without any."""
+    return f"; ext: {what} {external.TIMES}" if any(external.is_external(r) for r in rows) else ""
+
+
+def param_text(k, v):
+    return f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
 
 
 def gp_quote(s):
@@ -76,13 +93,13 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
             varying.setdefault((r["technique"], k), set()).add(v)
     by_tech, worse, blacks = {}, [], []
     for r in rows:
-        short = ";".join(f"{k}={v:g}" for k, v in params(r).items()
-                         if len(varying[(r["technique"], k)]) > 1)
+        short = ";".join(param_text(k, v) for k, v in params(r).items()
+                         if len(varying[(r["technique"], k)]) > 1 and not (k == "version" and external.is_external(r)))
         xv, iv = finite_num(r.get(col)), error_interval(r, relative=metric == "rel_rmse")
         if xv is None or iv is None or xv <= 0:
             continue  # unplottable (no memory figure, an infinite error): the CSV keeps the row
         spread = (finite_num(r.get("gpu_ms_iqr")) or 0.0) if x == "time" else 0.0
-        tech = r["technique"] + (f" ({r['matrix']})" if label_matrix else "")
+        tech = technique_label(r) + (f" ({r['matrix']})" if label_matrix else "")
         point = (xv * scale, iv[1], short,
                  r["width"] + "x" + r["height"] + (f" t={r['time']}" if r.get("time", "0") != "0" else ""),
                  max(xv - spread / 2, xv * 0.5) * scale, (xv + spread / 2) * scale, iv[0], iv[2])
@@ -134,7 +151,7 @@ def plot_group(key, rows, out_dir, renderer, x="time", name=None, label_matrix=F
     for term, ext in (("pngcairo size 900,600 font 'sans,10'", "png"), ("svg size 900,600", "svg")):
         script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
                    f"set title {gp_quote(title)} noenhanced",
-                   f"set xlabel {gp_quote(xlabel)}",
+                   f"set xlabel {gp_quote(xlabel + axis_note(rows, 'times' if x == 'time' else 'memory'))}",
                    f"set ylabel {gp_quote(ylabel + ', reference noise removed (bars: 95% interval)')}",
                    "set logscale x", "set grid", "set key outside right top noenhanced",
                    "plot " + ", ".join(plots), "unset output"]
@@ -151,7 +168,8 @@ def cross_groups(groups):
     merged = {}
     for (matrix, scene, component), rows in groups.items():
         for r in rows:
-            merged.setdefault((scene, component, r["width"] + "x" + r["height"], r["renderer"]), []).append(r)
+            merged.setdefault((scene, component, r["width"] + "x" + r["height"], external.group_renderer(r)),
+                              []).append(r)
     out = {}
     for k, rows in merged.items():
         if len({r["technique"] for r in rows}) >= 2 and len({r["matrix"] for r in rows}) >= 2:
@@ -168,16 +186,17 @@ def sweep_plots(key, rows, out_dir, renderer):
     for r in rows:
         for k, v in params(r).items():
             values.setdefault((r["technique"], k), set()).add(v)
-    names = sorted({k for (t, k), vals in values.items() if len(vals) >= 3})
+    names = sorted({k for (t, k), vals in values.items()
+                    if len(vals) >= 3 and all(isinstance(v, float) for v in vals)})  # a number to sweep
     for name in names:
         series = {}
         for r in rows:
             p = params(r)
             if name not in p:
                 continue
-            others = ", ".join(f"{k}={v:g}" for k, v in sorted(p.items()) if k != name
+            others = ", ".join(param_text(k, v) for k, v in sorted(p.items()) if k != name
                                and len(values[(r["technique"], k)]) > 1)
-            label = r["technique"] + (f" ({others})" if others else "") + f" {r['width']}x{r['height']}"
+            label = technique_label(r) + (f" ({others})" if others else "") + f" {r['width']}x{r['height']}"
             err, ms = finite_num(r[metric]), finite_num(r["gpu_ms_median"])
             if err is None or ms is None or err <= 0 or ms <= 0:
                 continue  # both axes are logarithmic (a black reference and image give error 0)
@@ -276,6 +295,7 @@ def answer_data(path, ans, resolution):
     the techniques and whether any row is worse than black."""
     rows = answers.usable_rows(ans["rows"])
     techs = sorted({r["technique"] for r in rows})
+    names = {r["technique"]: technique_label(r) for r in rows}
     with open(path, "w") as f:
         for t in techs:
             f.write(f"# {t}\n")
@@ -288,7 +308,7 @@ def answer_data(path, ans, resolution):
         first = {id(seg[0][0]) for _, seg in answers.segments(ans["front"])}
         for c in ans["front"]:
             r = c[0]
-            label = r["technique"] if id(r) in first else ""
+            label = external.label(r) if id(r) in first else ""
             f.write(f"{finite_num(r['gpu_ms_median']):.6g} {answers.relative_error(r)[1]:.6g} {gp_quote(label)}\n")
         if not ans["front"]:
             f.write('NaN NaN ""\n')  # keeps the block, so the next one's index holds (not plotted)
@@ -296,7 +316,7 @@ def answer_data(path, ans, resolution):
         worse = [r for r in rows if worse_than_black(r)]
         for r in worse:
             f.write(f"{finite_num(r['gpu_ms_median']):.6g} {answers.relative_error(r)[1]:.6g}\n")
-    return techs, bool(worse)
+    return [names[t] for t in techs], bool(worse)
 
 
 def answer_plot(key, ans, out_dir, resolution):
@@ -330,7 +350,8 @@ def answer_plot(key, ans, out_dir, resolution):
     for term, ext in (("pngcairo size 900,560 font 'sans,10'", "png"), ("svg size 900,560", "svg")):
         script += [f"set terminal {term}", f"set output {gp_quote(base + '.' + ext)}",
                    f"set title {gp_quote(title)} noenhanced", "set logscale x", "set grid",
-                   "set xlabel 'GPU time per frame, median (ms); bars: the machine''s time resolution'",
+                   "set xlabel " + gp_quote("GPU time per frame, median (ms); bars: the machine's time resolution"
+                                            + axis_note(answers.usable_rows(ans["rows"]))),
                    "set ylabel 'relative RMSE, reference noise removed (bars: 95% interval)'",
                    "set key outside right top noenhanced", "plot " + ", ".join(plots), "unset output"]
     subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
@@ -366,7 +387,7 @@ def main():
                 continue
             key = (r["matrix"], r["scene"], r["component"])
             groups.setdefault(key, []).append(r)
-            renderers[key] = r["renderer"]
+            renderers[key] = external.group_renderer(r)
     if not groups:
         print(f"plot.py: no ok rows in {a.results}/*.csv; nothing to plot")
         return

@@ -29,6 +29,7 @@ from reporting.schema import fmt, image_name, matrices, read_csv  # noqa: E402
 from reporting.uncertainty import (error_interval, fnum, over_black, ranks, time_interval,  # noqa: E402
                          time_resolution, worse_than_black)
 from reporting import answers  # noqa: E402
+from reporting import external  # noqa: E402
 from reporting import shipped_images  # noqa: E402
 from reporting import gpu_rows  # noqa: E402
 from reporting.gpu_summary import RASTER_LIMITS  # noqa: E402
@@ -94,12 +95,27 @@ def time_text(r):
     return fmt(r.get("gpu_ms_median")) + (f" (IQR {fmt(iqr, 2)})" if iqr else "")
 
 
+def reported(r, column, text, note=external.TIMES):
+    """A time or memory figure as shown; where r is an external renderer's, said to be the program's
+    own (its timings.json: not gibench's timer queries nor its memory ledger), or that the program
+    reported none."""
+    if not external.is_external(r):
+        return text
+    value = fnum(r.get(column))
+    return f"{text} ({note})" if value is not None and (value or column != "mem_bytes") else f"not {external.TIMES}"
+
+
 def row_numbers(r, rank=("", "")):
-    """(label, value) pairs shown with each row; the reference's noise beside every error."""
+    """(label, value) pairs shown with each row; the reference's noise beside every error. A failed
+    external renderer's row has none: its status and message are its result (external.FAILURES)."""
+    if external.failed(r):
+        return []
     noise = fmt(r.get("ref_noise_rmse"))
-    out = [("GPU ms (warm median)", time_text(r)), ("first frame ms", fmt(r.get("first_frame_ms"))),
-           ("CPU ms", fmt(r.get("cpu_ms"))),
-           ("memory MB", fmt(float(r["mem_bytes"]) / 1e6) if r.get("mem_bytes") else ""),
+    out = [("GPU ms (warm median)", reported(r, "gpu_ms_median", time_text(r))),
+           ("first frame ms", reported(r, "first_frame_ms", fmt(r.get("first_frame_ms")),
+                                       f"{external.TIMES}, else the command's wall time")),
+           ("CPU ms", reported(r, "cpu_ms", fmt(r.get("cpu_ms")))),
+           ("memory MB", reported(r, "mem_bytes", fmt(float(r["mem_bytes"]) / 1e6)) if r.get("mem_bytes") else ""),
            ("RMSE", f"{fmt(r.get('rmse'))} (ref noise {noise})"),
            ("RMSE without the noise [95%]", error_text(r)),
            ("RMSE / black image's", black_text(r)),
@@ -183,10 +199,14 @@ def mean_text(cands):
 
 
 def segment_text(tech, cands, memory, digits=3):
-    """One technique's step of a front: 'lrsm 168–204 ms 1.62 mean 0.81–0.94 (9 settings)'."""
+    """One technique's step of a front: 'lrsm 168–204 ms 1.62 mean 0.81–0.94 (9 settings)'; an
+    external renderer's named with its program and version, its cost said to be the program's own:
+    'ext:x (external, render.py 1.0) 156 ms (reported by the program) 0.02 mean 1.00'."""
+    tech = external.label(cands[0][0]) if external.is_external(cands[0][0]) else tech
     costs = [c[2][1] for c in cands]
     errs = [err_text(shown_error(c[0]), digits) for c in cands]
     cost = span_text(costs, mb_text) + " MB" if memory else span_text(costs, ms_text) + " ms"
+    cost += external.times_note(cands[0][0])
     err = errs[0] if errs[0] == errs[-1] else f"{errs[0]}–{errs[-1]}"
     mean = mean_text(cands)
     return (f"{tech} {cost} {err}" + (f" {mean}" if mean else "")
@@ -227,7 +247,8 @@ def beaten_list(ans):
     """The techniques compared whose every usable setting another row beats (not worse than black)."""
     on = {c[0]["technique"] for c in ans["front"]}
     usable = {c[0]["technique"] for c in answers.candidates(ans["rows"], answers.time_cost, None)[0]}
-    return ", ".join(sorted(usable - on))
+    names = external.labels(ans["rows"])
+    return ", ".join(names.get(t, t) for t in sorted(usable - on))
 
 
 def black_list(ans):
@@ -235,7 +256,21 @@ def black_list(ans):
     counts = {}
     for r in answers.distinct(ans["black"]):
         counts[r["technique"]] = counts.get(r["technique"], 0) + 1
-    return ", ".join(t + (f" ×{n}" if n > 1 else "") for t, n in sorted(counts.items()))
+    names = external.labels(ans["rows"])
+    return ", ".join(names.get(t, t) + (f" ×{n}" if n > 1 else "") for t, n in sorted(counts.items()))
+
+
+def unranked_list(ans):
+    """'ext:x (external, x.py 1) timeout': the external renderers of the group that the front cannot
+    rank, each with its status (the message is in its matrix's section), or `no time reported`
+    where its program wrote no timings.json; '' where there are none."""
+    out = {}
+    for r in ans["rows"]:
+        if external.failed(r):
+            out.setdefault(external.label(r), set()).add(r["status"])
+        elif external.is_external(r) and r.get("status") == "ok" and fnum(r.get("gpu_ms_median")) is None:
+            out.setdefault(external.label(r), set()).add(f"no time {external.TIMES}")
+    return "; ".join(f"{t} {', '.join(sorted(st))}" for t, st in sorted(out.items()))
 
 
 def size_text(key):
@@ -292,7 +327,7 @@ def lone_components(mats, heads):
     for rs in mats.values():
         for r in rs:
             if r["status"] == "ok" and r["component"] in ANSWER_COMPONENTS:
-                comps.setdefault(r["component"], set()).add(r["technique"])
+                comps.setdefault(r["component"], set()).add(external.label(r))
     answered = {h["key"][0] for h in heads}
     return {c: sorted(t) for c, t in comps.items() if c not in answered}
 
@@ -303,12 +338,21 @@ ANSWER_COMPONENTS = ("ao", "direct", "indirect", "glossy", "caustic")
 def mark_stale(mats):
     """Rows whose technique's sources changed since they ran (their technique_hash, or for rows
     written before the column their revision's, differs from the sources' now: gpu_rows.Hashes)
-    get status `stale`: the answers leave them out, the tables show them as such."""
+    get status `stale`: the answers leave them out, the tables show them as such. An external
+    renderer's row has no sources here: it is stale where its table holds a newer version of the
+    same external (external.superseded), never by a hash."""
     hashes = gpu_rows.Hashes()
     for rows in mats.values():
+        old = external.superseded(rows)
         for r in rows:
-            if r.get("status") == "ok" and r.get("technique") and \
-                    hashes.of_row(r) != hashes.current(r["technique"]):
+            if r.get("status") != "ok" or not r.get("technique"):
+                continue
+            if external.is_external(r):  # no sources here: current by its version (external.py)
+                if id(r) in old:
+                    r["status"] = "stale"
+                    r["message"] = (f"{r['technique']} version {external.version(r)} was superseded by version "
+                                    f"{old[id(r)]} in this table (an external renderer is current by its version)")
+            elif not hashes.is_current(r):
                 r["status"] = "stale"
                 r["message"] = "the technique's sources changed since this row ran (source_hash.py)"
 
@@ -327,6 +371,13 @@ def renderer_sentences(heads):
             out.append(f"Times from {rend}{limit}, at the papers' image sizes (a timing-only device run, "
                        "results/gpu); errors from the paper profile's rows on llvmpipe at at most 4x smaller "
                        "sizes.")
+    ext = sorted({(r["technique"], external.reported_renderer(r)) for h in heads for r in h["time"]["rows"]
+                  if external.is_external(r) and r.get("status") == "ok"})
+    if ext:
+        out.append("An external renderer's times and memory (" + ", ".join(
+            t + (f" on {rend}" if rend else "") for t, rend in ext) + f") are {external.TIMES} in its "
+            "timings.json, not gibench's GL timer queries nor its memory ledger; its errors are gibench's, "
+            "against the same references; it ranks beside the built-ins of the run it ran in (the same machine).")
     stale = sum(1 for h in heads for r in h["time"]["rows"] if r.get("status") == "stale")
     if stale:
         out.append(f"{stale} rows of these groups are stale (their technique changed since they ran) and "
@@ -376,11 +427,12 @@ def gallery_cells(results, group_rows):
         emap, scale = (flip, "FLIP, 0–1") if has_flip else (base + "_error.png", "RMS error, own scale")
         what = "error over black's" if r.get("component") in OVER_BLACK else "rel. error"
         mean = fnum(r.get("mean_ratio"))
-        nums = (f"{ms_text(fnum(r['gpu_ms_median']))} ms · {what} {err_text(shown_error(r))}"
+        note = external.times_note(r)  # an external's time and memory: the program's own
+        nums = (f"{ms_text(fnum(r['gpu_ms_median']))} ms{note} · {what} {err_text(shown_error(r))}"
                 + (f" · mean {mean:.2f}" if mean is not None else "")
-                + (f" · {mb_text(fnum(r['mem_bytes']))} MB" if fnum(r.get("mem_bytes")) else "")
+                + (f" · {mb_text(fnum(r['mem_bytes']))} MB{note}" if fnum(r.get("mem_bytes")) else "")
                 + (" · WORSE THAN BLACK" if worse_than_black(r) else ""))
-        cells.append((r["technique"], nums, shipped_images.shipped(results, base + ".png"),
+        cells.append((external.label(r), nums, shipped_images.shipped(results, base + ".png"),
                       shipped_images.shipped(results, emap), scale, r["params"]))
     return cells
 
@@ -581,12 +633,14 @@ def answer_table(entries, cls):
             ([M.Link("images", "#" + e["anchor"], md_href="#gallery")] if cls == "answers" else [])
         also = ([M.Span("also " + ", ".join(other_text(k, key) for k in e["others"]), cls="also", block=True)]
                 if e["others"] else [])
-        beaten, black = beaten_list(t), black_list(t)
+        beaten, black, unranked = beaten_list(t), black_list(t), unranked_list(t)
         front = (front_nodes(t) + ([M.Span(f"beaten: {beaten}", cls="beaten", block=True)] if beaten else [])
-                 + ([M.Span(f"worse than black: {black}", cls="black", block=True)] if black else []))
+                 + ([M.Span(f"worse than black: {black}", cls="black", block=True)] if black else [])
+                 + ([M.Span(f"not ranked: {unranked}", cls="unranked", block=True)] if unranked else []))
         rows.append(M.Row([M.Cell(key[0], header=True), key[1],
                            [M.Span(size_label(key, t, many), cls="size")] + [x for l in links for x in (" ", l)] + also,
-                           M.Cell(front, title="compared: " + ", ".join(t["techniques"])),
+                           M.Cell(front, title="compared: " + ", ".join(
+                               external.labels(t["rows"]).get(x, x) for x in t["techniques"])),
                            front_nodes(e["memory"], memory=True)],
                           cls="answer" + (" first" if key[0] != prev else ""),
                           attrs={"data-component": key[0], "data-scene": key[1], "data-size": size_text(key)}))
@@ -602,7 +656,9 @@ def matrix_section(results, name, rows, plots, resolution):
     img_dir = os.path.join(results, "images", name)
     rank = group_ranks(rows, resolution)
     ok = sum(1 for r in rows if r["status"] == "ok")
-    renderers = sorted({r.get("renderer", "") for r in rows if r.get("renderer")})
+    renderers = sorted({r.get("renderer", "") for r in rows if r.get("renderer") and not external.is_external(r)})
+    renderers += sorted({f"{r['technique']} on {external.reported_renderer(r)} ({external.TIMES})" for r in rows
+                         if r["status"] == "ok" and external.reported_renderer(r)})
     cards = []
     for r in rows:
         figures = []
@@ -619,7 +675,7 @@ def matrix_section(results, name, rows, plots, resolution):
                     for suffix, caption in (("", "technique"), ("_error", "error map"), ("_flip", "FLIP map"))
                     if os.path.exists(base + suffix + ".png")]
         cards.append(M.Card(
-            [r["scene"], r["technique"], r["component"], f'{r["width"]}x{r["height"]}', f'{r.get("profile", "")} profile',
+            [r["scene"], external.label(r), r["component"], f'{r["width"]}x{r["height"]}', f'{r.get("profile", "")} profile',
              f't={r["time"]}' if r.get("time") not in ("", "0", None) else ""],
             r["status"],
             [M.Span(r["params"], cls="params", block=True)]
@@ -850,7 +906,7 @@ def reading_guide(results, mats):
     out.append("Every error stands beside what an all-black image scores against the same reference "
                "(RMSE / black image's): above 1, the technique is further from the reference than "
                f"leaving the component out. {len(worse)} of {len(ok)} ok rows are worse than black"
-               + (": " + "; ".join(sorted({f"{r['matrix']} {r['scene']} {r['technique']} {r['component']}"
+               + (": " + "; ".join(sorted({f"{r['matrix']} {r['scene']} {external.label(r)} {r['component']}"
                                            for r in worse})[:12]) + (" ..." if len(worse) > 12 else "")
                   if worse else "") + ".")
     out.append("The RMSE without the noise takes the reference's own noise out of the error "
@@ -859,6 +915,17 @@ def reading_guide(results, mats):
     out.append(f"{noisy} of {len(ok)} ok rows ({100 * noisy / max(len(ok), 1):.1f}%) are ref_noisy (the "
                "reference's noise above a fifth of the row's error even after its samples were raised "
                "to rank its rows, up to ref_spp_growth times the matrix's).")
+    ext = [r for rows in mats.values() for r in rows if external.is_external(r)]
+    if ext:
+        failed = sum(1 for r in ext if external.failed(r))
+        out.append(f"{len(ext)} rows are external renderers' (" + ", ".join(sorted({external.label(r) for r in ext}))
+                   + "; README.md, \"Bring your own renderer\"): gibench ran the program on the scene and scored "
+                   "its image against the same reference as the built-ins', so its error ranks as theirs; its "
+                   f"times, memory and renderer are {external.TIMES} (its timings.json), not gibench's GL timer "
+                   "queries nor its memory ledger, and rank beside the built-ins of the run it ran in. An "
+                   "external is current by its version: a table's rows of an older version of it are stale. "
+                   f"{failed} failed (" + "/".join(external.FAILURES) + "): the status and its message are "
+                   "the row's result, no number.")
     return out
 
 

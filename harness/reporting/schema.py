@@ -24,6 +24,8 @@ import glob
 import json
 import os
 
+from reporting import external  # noqa: E402 (rows only: it imports no other module of the package)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # the repository
 _schema = None
 
@@ -147,13 +149,14 @@ def runs_table(results, matrix, ok_only=False):
 
 
 def matrices(results):
-    """{matrix: rows} for every runs table in RESULTS (not *_passes, nor other tables), by name."""
+    """{matrix: rows} for every runs table in RESULTS (not *_passes, nor other tables), by name; an
+    external renderer's rows marked with what their table says of them (external.annotate)."""
     out = {}
     for name in sorted(os.listdir(results)):
         path = os.path.join(results, name)
         if not name.endswith(".csv") or name.endswith("_passes.csv") or not is_runs_table(header(path)):
             continue
-        out[name[:-4]] = read_csv(path)
+        out[name[:-4]] = external.annotate(read_csv(path))
     return out
 
 
