@@ -13,6 +13,7 @@
 
 #include "app.h"
 #include "bench_scoring.h"
+#include "harness/base/hash.h"
 #include "harness/imaging/flip.h"
 #include "harness/imaging/score.h"
 #include "options.h"
@@ -42,12 +43,7 @@ static const char *const measure_name[M_COUNT] = {"errors", "metrics", "flip_ldr
 
 static float hash01(uint32_t a, uint32_t b)
 {
-    uint32_t x = a * 0x9E3779B1u ^ (b + 0x7F4A7C15u) * 0x85EBCA77u;
-    x ^= x >> 16;
-    x *= 0x7FEB352Du;
-    x ^= x >> 15;
-    x *= 0x846CA68Bu;
-    x ^= x >> 16;
+    uint32_t x = gib_hash_mix32(a * 0x9E3779B1u ^ (b + 0x7F4A7C15u) * 0x85EBCA77u);
     return (float)(x >> 8) / 16777216.0f;
 }
 

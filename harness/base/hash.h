@@ -17,4 +17,15 @@ int gib_hash_file(uint64_t *h, const char *path);
 /* 16 lowercase hex digits plus NUL. */
 void gib_hash_hex(uint64_t h, char out[17]);
 
+/* A 32-bit integer finaliser (xor-shift-multiply, constants of C. Wellons' lowbias32): well-mixed
+ * bits from a counter, for noise that must be the same on every machine (synthetic test images). */
+static inline uint32_t gib_hash_mix32(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7FEB352Du;
+    x ^= x >> 15;
+    x *= 0x846CA68Bu;
+    return x ^ (x >> 16);
+}
+
 #endif

@@ -9,18 +9,14 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "harness/base/hash.h"
 #include "harness/imaging/image.h"
 
 #define SCORE_PAIRS 3
 
 static inline float score_pairs_noise(uint32_t i, uint32_t c)
 {
-    uint32_t x = i * 0x9E3779B1u ^ (c + 1u) * 0x85EBCA77u;
-    x ^= x >> 16;
-    x *= 0x7FEB352Du;
-    x ^= x >> 15;
-    x *= 0x846CA68Bu;
-    x ^= x >> 16;
+    uint32_t x = gib_hash_mix32(i * 0x9E3779B1u ^ (c + 1u) * 0x85EBCA77u);
     return (float)(x >> 8) / 16777216.0f - 0.5f; /* in [-0.5, 0.5) */
 }
 
