@@ -23,6 +23,8 @@ PACKAGES = build-essential cmake pkg-config python3 python3-glad \
   chromium ffmpeg
 # The self-contained bundle (make bundle) reads images with libstb instead of OpenImageIO.
 BUNDLE_PACKAGES = libstb-dev
+# The reference renderer against Blender Cycles (make bench-cycles): Debian's blender, only there.
+BENCH_PACKAGES = blender
 BUNDLE ?= build-bundle
 
 # The papers' figures and tables (make reproduce, ~20 min on 2 cores) and our own parameter studies
@@ -30,12 +32,12 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan install test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-timing bundle clean help
+.PHONY: all deps build build-asan install test tsan reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-cycles bench-timing bundle clean help
 
 all: build
 
 help:
-	@echo "make install PREFIX=DIR | make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-timing | make bundle | make clean"
+	@echo "make install PREFIX=DIR | make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-cycles | make bench-timing | make bundle | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -170,7 +172,16 @@ bench: build
 	$(BUILD)/gibench bench reference --scene cornell,sibenik,sponza --repeat 9 \
 	  --out $(RESULTS)/bench_reference.csv
 	$(BUILD)/gibench bench scoring --repeat 9 --out $(RESULTS)/bench_scoring.csv
+	$(MAKE) --no-print-directory bench-cycles
 	$(MAKE) --no-print-directory bench-timing
+
+# The reference's `full` against Blender Cycles (CPU, no denoising) on one closed room, 128x128 at
+# 256 spp, 8 seeds each: time, noise and efficiency (reference/PERFORMANCE.md, "Against Blender
+# Cycles"); rows appended to $(RESULTS)/bench_cycles.csv.
+bench-cycles: build
+	@$(MAKE) --no-print-directory deps PACKAGES="$(BENCH_PACKAGES)"
+	python3 harness/bench_cycles/bench_cycles.py --gibench $(BUILD)/gibench --threads $(JOBS) \
+	  --out $(RESULTS)/bench_cycles.csv
 
 # The scripts read the results schema the build exports ($(BUILD)/schema.json, harness/reporting/schema.py).
 plots: build

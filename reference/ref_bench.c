@@ -280,7 +280,8 @@ enum { M_PT, M_PTE, M_RND, M_DIF, M_API, M_LEAN = M_API + NAPI, M_LAPI, NM = M_L
 /* What the benchmark's steps share: the world, the ray logs and every repeat's times. */
 typedef struct ref_bench_run {
     const gib_scene *scene;
-    const gib_ref_params *p;
+    const gib_ref_params *p;     /* &fixed once the strategies are chosen */
+    gib_ref_params fixed;        /* the request with full's strategies fixed (ref_bench_record) */
     ref_world w;
     int threads, lean, reps;
     ref_raylog rnd, dif, rec, lrec; /* random, diffuse, the path tracer's and the lean tracer's */
@@ -304,6 +305,13 @@ static int ref_bench_record(ref_bench_run *b)
     if (ref_render_world(&b->w, b->scene, &q, &img, NULL, &st, b->err) < 0) /* also warms caches */
         return -1;
     gib_image_free(&img);
+    /* the strategies this render chose (its pilot, at the bench's size) for every later render,
+     * the recorded rays' smaller one included, and the lean tracer */
+    b->fixed = *p;
+    b->fixed.strategies = st.light_vertices ? GIB_REF_STRATEGIES_LIGHT_VERTICES
+                                            : GIB_REF_STRATEGIES_CAMERA;
+    b->p = p = &b->fixed;
+    q.strategies = b->fixed.strategies;
     double scale = sqrt(3e6 / fmax((double)st.rays, 1.0));
     q.width = scale < 1.0 ? (int)fmax(8.0, p->width * scale) : p->width;
     q.height = scale < 1.0 ? (int)fmax(8.0, p->height * scale) : p->height;

@@ -81,6 +81,8 @@ void ref_nee_visible(const ref_world *w, const ref_hit *h, const float wo[3], in
         }
         memcpy(v->e[v->n], E, sizeof E);
         v->cosn[v->n] = cosn;
+        v->pb[v->n] = ref_lv_density(w, i, wi, dist, h->ng);
+        v->wd[v->n] = 1.0f;
         v->lobe[v->n++] = lobe;
     }
 }
@@ -89,7 +91,7 @@ void ref_nee_shade(const ref_nee_vis *v, const ref_mat *m, float dif[3], float s
 {
     for (int i = 0; i < v->n; i++)
         for (int k = 0; k < 3; k++) {
-            dif[k] += m->kd[k] * (1.0f / REF_PI) * v->e[i][k] * v->cosn[i];
+            dif[k] += m->kd[k] * (1.0f / REF_PI) * v->e[i][k] * v->cosn[i] * v->wd[i];
             if (spec)
                 spec[k] += m->ks[k] * v->lobe[i] * v->e[i][k] * v->cosn[i];
         }

@@ -75,6 +75,8 @@ typedef struct ref_world {
     ref_mip *mips;           /* one per scene texture */
     ref_mask *masks;         /* one per scene texture (code set for the cut-out masks) */
     float *spot_cos;         /* per light: gib_spot_cos_outer (spots), computed once */
+    float *light_pick;       /* per light: the probability that a light vertex starts there, in
+                              * proportion to its power (ref_connect.c); NULL: no light emits */
     int has_specular;        /* some material has a specular lobe (Phong or mirror) */
     int has_mirror;          /* some material is a mirror */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
@@ -129,6 +131,9 @@ void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit);
 void ref_ray_init(struct RTCRay *r, const float o[3], const float d[3], float tfar);
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */
 int ref_occluded(const ref_world *w, const float o[3], const float d[3], float tfar);
+/* The shadow rays (ref_occluded calls that reached Embree) the calling thread has cast so far:
+ * the pilot (ref_pilot.c) weighs them apart from closest-hit rays. */
+long long ref_shadow_rays(void);
 /* Bench: a cheap clock (the time-stamp counter on x86, nanoseconds elsewhere; ticks to seconds
  * by comparing it with the wall clock over a run), and the ticks the calling thread has spent
  * inside Embree's ray calls since it last asked, with w->time_embree set. */
@@ -201,6 +206,8 @@ void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float
 typedef struct ref_nee_vis {
     int n;
     float e[REF_NEE_LIGHTS][3], cosn[REF_NEE_LIGHTS], lobe[REF_NEE_LIGHTS];
+    float pb[REF_NEE_LIGHTS]; /* the light strategy's density of the hit point (ref_lv_density) */
+    float wd[REF_NEE_LIGHTS]; /* the diffuse part's weight: 1, or its MIS weight (ref_path.c) */
 } ref_nee_vis;
 void ref_nee_visible(const ref_world *w, const ref_hit *h, const float wo[3], int want_d,
                      int want_s, float phong_n, uint32_t first, ref_nee_vis *v, long long *rays);
@@ -241,6 +248,67 @@ static inline float ref_lum(const float c[3])
     return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
 }
 
+/* ---- light vertices (ref_connect.c): the second strategy of full and higher ----
+ *
+ * A light vertex y is a surface point reached by a ray from a light (the light chosen in
+ * proportion to its power, the direction uniform over the light's emission: sphere, spot cone,
+ * or a disk across the scene for a directional light). Connected by a shadow ray to a camera
+ * vertex x through both vertices' diffuse lobes, it samples the paths L y x ... E that camera
+ * paths find by a diffuse bounce from x to y and next-event estimation at y; the two are combined
+ * by multiple importance sampling (ref_path.c). */
+
+/* 1 when full or higher (parameters q, normalised) can sample light vertices: paths of 2 or more
+ * vertices (`higher` keeps them from 3 on) and a light that emits. Whether a render does is
+ * q->strategies' choice, or the pilot's (ref_pilot.c). */
+int ref_light_vertices(const gib_scene *s, const gib_ref_params *q);
+/* 1 when the light emits anything (positive luminance; a spot's cone not empty). */
+int ref_light_emits(const gib_light *l);
+/* The light's power, the selection weight of light vertices: luminance times the solid angle it
+ * emits into (a directional light: across the scene's bounding disk). */
+float ref_light_power(const ref_world *w, const gib_light *l);
+/* Builds w->light_pick (NULL when no light emits). */
+int ref_light_pick_build(ref_world *w, gib_error *err);
+/* The light strategy's density (area measure) of a point with geometric normal ng lit by light i
+ * from direction wi (toward the light) at distance dist: 0 when the light lies below ng. */
+float ref_lv_density(const ref_world *w, uint32_t i, const float wi[3], float dist,
+                     const float ng[3]);
+
+typedef struct ref_lvert {
+    int ok;                  /* 0: the ray missed, or the point reflects nothing diffusely */
+    float p[3], ng[3];       /* the point; its geometric normal, on the light's side */
+    float rad[3];            /* rho_d / pi E cos_n / density: its diffuse radiance over density */
+    float pdf;               /* its density (ref_lv_density) */
+} ref_lvert;
+
+/* A light vertex's ray from three uniform numbers (w->light_pick set): the light, chosen with u0,
+ * whose index it returns, and the emitted ray (o, d) from u1, u2. */
+uint32_t ref_lv_ray(const ref_world *w, float u0, float u1, float u2, float o[3], float d[3]);
+/* Samples one light vertex from the sample's numbers (1D for the light when there are several,
+ * 2D for the direction): one ray, counted in *rays. */
+void ref_lv_sample(const ref_world *w, ref_rng *rng, ref_lvert *lv, long long *rays);
+/* The connection of lv to camera vertex h through h's diffuse lobe: g = (what multiplies h's
+ * throughput and rho_d) with the MIS weight against a camera bounce whose probability of taking
+ * h's diffuse lobe, its Russian roulette included, is pa_lobe. Returns 0 (g untouched) when the
+ * two do not see each other or nothing is carried; casts at most one shadow ray. */
+int ref_lv_connect(const ref_world *w, const ref_hit *h, const ref_lvert *lv, float pa_lobe,
+                   float g[3], long long *rays);
+/* The camera strategy's density (area measure) of y reached from x (shading normal nx) by a
+ * diffuse bounce of probability pa_lobe: pa_lobe cos_x / pi cos_y / d^2, ngy y's geometric normal
+ * facing x. */
+float ref_camera_density(const float x[3], const float nx[3], float pa_lobe, const float y[3],
+                         const float ngy[3]);
+/* The balance heuristic (Veach 1997, Sec. 9.2.2): a / (a + b) for densities a, b >= 0, as
+ * 1 / (1 + b/a) so that large densities (points close together) do not overflow; 0 when a is 0
+ * or b/a is not finite. (The power heuristic's noise was 1-3% higher on the closed room and the
+ * Cornell box: reference/PERFORMANCE.md.) */
+static inline float ref_mis_weight(float a, float b)
+{
+    if (!(a > 0.0f))
+        return 0.0f;
+    float r = b / a;
+    return r <= 3e38f ? 1.0f / (1.0f + r) : 0.0f;
+}
+
 /* ---- one render's shared state ---- */
 
 typedef struct ref_ctx {
@@ -250,6 +318,7 @@ typedef struct ref_ctx {
     float right[3], up[3], fwd[3], tan_half, aspect;
     int light_part;          /* light tracing runs (caustic, full, higher: scenes with mirrors) */
     int camera_part;         /* per-pixel camera samples run */
+    int lv_on;               /* full and higher sample light vertices (ref_connect.c) */
 } ref_ctx;
 
 /* A contribution of light tracing to one pixel. */
@@ -263,6 +332,19 @@ typedef struct ref_splats {
     size_t n, cap;
     int oom;
 } ref_splats;
+
+/* The visible point of pixel (x, y), as every camera sample of the pixel starts from it: the
+ * camera ray through the pixel centre (counted in *rays), the albedo filtered at the pixel's
+ * footprint, and for `full` next-event estimation there (once per pixel). wo points to the eye.
+ * Returns 0 when there is nothing to sample (a miss, or the back of a one-sided surface for a
+ * shaded component): the pixel is exactly 0. */
+int ref_pixel_hit(const ref_ctx *c, int x, int y, ref_hit *h, float wo[3], long long *rays);
+
+/* The pilot of GIB_REF_STRATEGIES_AUTO (ref_pilot.c): renders a sixteenth of c's pixels with
+ * and without light vertices and returns the efficiency of light vertices over camera paths
+ * alone (variance x cost), 0 when there was nothing to measure. Deterministic (its own seeds,
+ * sums in row order) whatever nthreads. */
+double ref_pilot_gain(const ref_ctx *c, int nthreads);
 
 /* n <= REF_PATH_BATCH camera samples of the component at the visible point h (wo toward the
  * eye), sample i on its own stream rng[i] into out[i]: the same values whether taken one at a

@@ -32,16 +32,7 @@
 /* The light's selection weight: its power (luminance), or an upper bound for spots. */
 static float ref_light_weight(const ref_ctx *c, const gib_light *l)
 {
-    float lum = ref_lum(l->intensity);
-    if (!(lum > 0.0f))
-        return 0.0f;
-    if (l->type == GIB_LIGHT_DIRECTIONAL)
-        return lum * REF_PI * c->w->bradius * c->w->bradius;
-    if (l->type == GIB_LIGHT_SPOT) {
-        float co = cosf(l->spot_outer_deg * (REF_PI / 180.0f));
-        return lum * 2.0f * REF_PI * (1.0f - co);
-    }
-    return lum * 4.0f * REF_PI;
+    return ref_light_power(c->w, l);
 }
 
 /* Emits one particle: origin o, direction d, flux beta. Returns 0 when nothing is emitted. */

@@ -87,6 +87,23 @@ int gib_ref_sampler_parse(const char *name)
     return -1;
 }
 
+static const char *const ref_strategies_names[] = {"auto", "camera", "light-vertices"};
+
+const char *gib_ref_strategies_name(int strategies)
+{
+    return strategies >= 0 && strategies <= GIB_REF_STRATEGIES_LIGHT_VERTICES
+               ? ref_strategies_names[strategies]
+               : "unknown";
+}
+
+int gib_ref_strategies_parse(const char *name)
+{
+    for (int i = 0; name && i <= GIB_REF_STRATEGIES_LIGHT_VERTICES; i++)
+        if (!strcmp(name, ref_strategies_names[i]))
+            return i;
+    return -1;
+}
+
 int ref_sobol_round_spp(int spp)
 {
     const int B = GIB_REF_SOBOL_BATCHES;
@@ -98,6 +115,18 @@ int ref_sobol_round_spp(int spp)
 int gib_component_deterministic(const gib_scene *scene, int component)
 {
     return ref_deterministic(scene, component, GIB_REF_DEFAULT_MAX_DEPTH);
+}
+
+int ref_light_vertices(const gib_scene *s, const gib_ref_params *q)
+{
+    const int c = q->component;
+    if (!s || !((c == GIB_COMP_FULL && q->max_depth >= 2) ||
+                (c == GIB_COMP_HIGHER && q->max_depth >= 3)))
+        return 0;
+    for (uint32_t i = 0; i < s->light_count; i++)
+        if (ref_light_emits(&s->lights[i]))
+            return 1;
+    return 0;
 }
 
 void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gib_ref_params *o)
@@ -129,6 +158,12 @@ void gib_reference_normalize(const gib_scene *scene, const gib_ref_params *p, gi
                                : 0.0f;
     if (paths && o->min_depth > o->max_depth)
         o->min_depth = o->max_depth; /* no roulette: the same image */
+    o->strategies = GIB_REF_STRATEGIES_AUTO; /* kept only where light vertices are possible */
+    if (paths && ref_light_vertices(scene, o))
+        o->strategies = p->strategies == GIB_REF_STRATEGIES_CAMERA ||
+                                p->strategies == GIB_REF_STRATEGIES_LIGHT_VERTICES
+                            ? p->strategies
+                            : GIB_REF_STRATEGIES_AUTO;
     o->sampler = p->sampler == GIB_REF_SAMPLER_RANDOM ? GIB_REF_SAMPLER_RANDOM
                                                       : GIB_REF_SAMPLER_SOBOL;
     if (ref_deterministic(scene, c, o->max_depth)) {
@@ -180,6 +215,9 @@ uint64_t gib_reference_params_hash(const gib_scene *scene, const gib_ref_params 
         h = gib_hash_bytes(h, scene->sky, sizeof scene->sky);
     if (scene && scene->motion_count)
         h = gib_hash_f32(gib_hash_str(h, "time"), n.time);
+    if (ref_light_vertices(scene, &n) && n.strategies != GIB_REF_STRATEGIES_CAMERA)
+        h = gib_hash_u64(gib_hash_str(h, "light vertices"), (uint64_t)n.strategies);
+    /* camera paths alone hash as they did before light vertices */
     if (n.cone) /* the whole hemisphere's images hash as they did before cones could be asked */
         h = gib_hash_f32(gib_hash_u64(gib_hash_str(h, "cone"), (uint64_t)n.cone), n.cone_aperture);
     return h;
@@ -208,6 +246,24 @@ static int ref_attr(gib_kv *attrs, int max, int *n, const char *key, const char 
     va_end(ap);
     ++*n;
     return 0;
+}
+
+/* full and higher's `strategies`: which the image used (the stats say; without them, what the
+ * parameters ask) and how they were chosen. */
+static void ref_attr_strategies(const gib_scene *scene, const gib_ref_params *q,
+                                const gib_ref_stats *s, gib_kv *attrs, int max_attrs, int *n)
+{
+    const int possible = ref_light_vertices(scene, q);
+    const int lv = s ? s->light_vertices
+                     : possible && q->strategies != GIB_REF_STRATEGIES_CAMERA;
+    const char *what = lv ? "camera paths and light vertices, balance heuristic" : "camera paths";
+    if (possible && q->strategies == GIB_REF_STRATEGIES_AUTO && s)
+        ref_attr(attrs, max_attrs, n, "strategies", s->pilot_gain > 0.0
+                 ? "%s; pilot: light vertices %.3g x as efficient"
+                 : "%s; pilot: nothing to measure", what, s->pilot_gain);
+    else
+        ref_attr(attrs, max_attrs, n, "strategies", "%s; %s", what,
+                 possible ? "asked" : "no light vertices possible");
 }
 
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
@@ -271,5 +327,7 @@ int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const g
                                        : "max_spp");
     if (scene && scene->motion_count)
         ref_attr(attrs, max_attrs, &n, "time", "%.9g", (double)q.time);
+    if (c == GIB_COMP_FULL || c == GIB_COMP_HIGHER)
+        ref_attr_strategies(scene, &q, s, attrs, max_attrs, &n);
     return n;
 }

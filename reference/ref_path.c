@@ -5,26 +5,29 @@
  * is connected by next-event estimation through the non-delta lobes (diffuse and Phong); the path
  * is continued by sampling one lobe (diffuse, Phong or mirror, chosen in proportion to the
  * lobes' reflectances). Point, spot and directional lights are deltas that a sampled direction
- * never hits, so every path class is found by exactly one strategy and no MIS is needed — except
- * the classes whose light-side vertex is a mirror: next-event estimation cannot go through a delta
- * lobe, so those come from light tracing (ref_light.c, run by the render loop for scenes with
- * mirrors). Camera paths through mirrors are followed (a mirror seen from the camera shows the
- * diffuse surfaces behind it, lit by next-event estimation there).
+ * never hits, so a sampled direction never finds a light itself. The classes whose light-side
+ * vertex is a mirror come from light tracing (ref_light.c, run by the render loop for scenes with
+ * mirrors): next-event estimation cannot go through a delta lobe. Camera paths through mirrors
+ * are followed (a mirror seen from the camera shows the diffuse surfaces behind it, lit by
+ * next-event estimation there).
  *
- * The sky is reached only by next-event estimation at every vertex (escapes add nothing), so again
- * one strategy per path class (ARCHITECTURE.md, "Reference renderer").
+ * Light vertices (ref_connect.c; chosen per image by ref_pilot.c): each sample also draws a light
+ * vertex y (a ray from a light) and connects it to every camera vertex x below max_depth through
+ * both diffuse lobes; L y x ... E is also the camera path's diffuse bounce from x to y with
+ * next-event estimation at y, and the balance heuristic weighs the two (ref_path_weights), so each
+ * path counts once in expectation. The connection ends on a camera vertex, never on the camera.
  *
+ * The sky is reached only by next-event estimation at every vertex (escapes add nothing).
  * Russian roulette from min_depth on: a path that has reached vertex d >= min_depth continues
  * with probability q = min(1, max channel of its throughput after this bounce, estimated from the
- * material's untextured reflectances), and the survivors' throughput is divided by q, which keeps
- * the estimator unbiased (Arvo and Kirk 1990). max_depth cuts paths off: `full` is exactly the
- * sum of all classes of at most max_depth vertices.
+ * material's untextured reflectances; doubled with light vertices, REF_RR_LV), and the survivors'
+ * throughput is divided by q, which keeps the estimator unbiased (Arvo and Kirk 1990). max_depth
+ * cuts paths off: `full` is exactly the sum of all classes of at most max_depth vertices.
  *
- * `higher` runs the same paths and keeps only the contributions whose class none of direct,
- * indirect, glossy and caustic counts (ref_basic_class).
- *
- * The camera part of `caustic` is here too: L S+ D E whose vertex next to the light is Phong (or
- * whose light is the sky); its mirror-first paths come from light tracing (ref_light.c). */
+ * `higher` keeps only the contributions whose class none of direct, indirect, glossy and caustic
+ * counts (ref_basic_class). The camera part of `caustic` is here too: L S+ D E whose vertex next
+ * to the light is Phong (or whose light is the sky); its mirror-first paths come from light
+ * tracing (ref_light.c). */
 #include <math.h>
 #include <string.h>
 
@@ -38,6 +41,13 @@ int ref_basic_class(int verts, int s1, int all_s_rest, int max_specular)
         return !(s1 && all_s_rest); /* L D D E, L D S E, L S D E; L S S E is higher */
     return !s1 && all_s_rest && verts - 1 <= max_specular; /* L S+ D E: caustic */
 }
+
+/* With light vertices, Russian roulette keeps paths longer: survival min(1, 2 x the throughput
+ * estimate) instead of min(1, it). Each vertex's connection estimates its bounce's light with
+ * little noise, so a path killed early loses a well-estimated tail, and the roulette's 1/q
+ * became the larger part of the noise. On the closed room (reference/PERFORMANCE.md) the
+ * variance x rays fell 1.28x with 2; 2.5 and 3.3 gave 1.34x, 1.4 gave 1.15x, no roulette 1.0x. */
+#define REF_RR_LV 2.0f
 
 /* The order of work hides memory latency. Paths run in batches (the samples of one pixel, which
  * share its visible point), depth by depth: first every live path chooses its continuation and
@@ -62,6 +72,13 @@ typedef struct ref_path_state {
     int keep[2];             /* the vertex's diffuse and Phong parts count (`higher` drops some) */
     int nee_cast, nee_want_s; /* vis holds the vertex's next-event shadow rays, cast */
     ref_nee_vis vis;
+    ref_lvert lv;            /* the sample's light vertex (ref_connect.c) */
+    float cont_pa;           /* the continuation's probability of its diffuse lobe (selection
+                              * and roulette); 0: not diffuse, or no light vertices */
+    float arr_x[3], arr_n[3], arr_pa; /* the vertex before cur, its shading normal and the
+                              * cont_pa of the bounce that reached cur */
+    float conn[3];           /* the light vertex's connection to cur, before beta and rho_d */
+    int conn_on;
 } ref_path_state;
 
 /* The vertex's diffuse and Phong parts are different classes; `higher` keeps only those whose
@@ -80,6 +97,73 @@ static int ref_any_positive(const float v[3])
     return v[0] > 0.0f || v[1] > 0.0f || v[2] > 0.0f;
 }
 
+/* The continuation's survival probability: 1 before min_depth, then min(1, the largest channel
+ * of the throughput it would carry, from the material's untextured reflectance refl, the lobe's
+ * weight f and its selection probability prob), that throughput doubled with light vertices
+ * (REF_RR_LV). */
+static float ref_path_survival(const ref_ctx *c, const ref_path_state *ps, const float refl[3],
+                               float f, float prob)
+{
+    if (ps->depth < c->p.min_depth)
+        return 1.0f;
+    float est = 0.0f;
+    for (int k = 0; k < 3; k++)
+        est = ref_fmaxf(est, ps->beta[k] * refl[k] * f / prob);
+    return ref_fminf(1.0f, c->lv_on ? est * REF_RR_LV : est);
+}
+
+/* The MIS weights of next-event estimation's diffuse part at cur when a diffuse bounce reached
+ * it: the same paths are light vertices connected to the vertex before (ref_connect.c). */
+static void ref_path_weights(const ref_path_state *ps, ref_nee_vis *v)
+{
+    if (!(ps->arr_pa > 0.0f))
+        return;
+    float pa = ref_camera_density(ps->arr_x, ps->arr_n, ps->arr_pa, ps->cur.p, ps->cur.ng);
+    for (int i = 0; i < v->n; i++)
+        if (v->pb[i] > 0.0f)
+            v->wd[i] = ref_mis_weight(pa, v->pb[i]);
+}
+
+/* Next-event estimation at cur toward every light, in chunks of REF_NEE_LIGHTS (ref_nee's
+ * arithmetic), with the MIS weights: scenes with more lights than one ref_nee_vis holds. */
+static void ref_path_nee_all(const ref_ctx *c, const ref_path_state *ps, const ref_mat *m,
+                             float dif[3], float spec[3], long long *rays)
+{
+    const ref_world *w = c->w;
+    dif[0] = dif[1] = dif[2] = 0.0f;
+    if (spec)
+        spec[0] = spec[1] = spec[2] = 0.0f;
+    int want_d = m->kd[0] > 0.0f || m->kd[1] > 0.0f || m->kd[2] > 0.0f;
+    int want_s = spec && m->spec == GIB_SPEC_PHONG;
+    for (uint32_t first = 0; first < w->gs->light_count; first += REF_NEE_LIGHTS) {
+        ref_nee_vis v;
+        ref_nee_visible(w, &ps->cur, ps->wcur, want_d, want_s, m->phong_n, first, &v, rays);
+        ref_path_weights(ps, &v);
+        ref_nee_shade(&v, m, dif, want_s ? spec : NULL);
+    }
+}
+
+/* The light vertex's connection to cur through cur's diffuse lobe, a path one vertex longer than
+ * cur's own (so only below max_depth, and in `higher` only when its class is not basic), weighted
+ * against the diffuse bounce the camera path would take here (its selection and roulette). */
+static void ref_path_connect(const ref_ctx *c, int higher_only, ref_path_state *ps,
+                             long long *rays)
+{
+    const gib_material *gm = ps->cur.mat;
+    ps->conn_on = 0;
+    if (!c->lv_on || !ps->lv.ok || ps->depth >= c->p.max_depth || ps->cur.back)
+        return;
+    if (higher_only && ref_basic_class(ps->depth + 1, ps->depth == 1 ? 0 : ps->s1, 0,
+                                       c->p.max_specular))
+        return;
+    float pd = ref_lum(gm->albedo);
+    float psp = gm->spec_type != GIB_SPEC_NONE ? ref_lum(gm->specular) : 0.0f;
+    if (!(pd > 0.0f))
+        return;
+    float prob = pd / (pd + psp), pa = prob * ref_path_survival(c, ps, gm->albedo, 1.0f, prob);
+    ps->conn_on = ref_lv_connect(c->w, &ps->cur, &ps->lv, pa, ps->conn, rays);
+}
+
 /* The vertex's shadow rays toward the delta lights, cast before its texel is read: the light's
  * part does not depend on the texel (a texel of 0 only makes a ray unnecessary), and a last
  * vertex that no light reaches then needs no texel at all. Scenes with more lights than one
@@ -96,6 +180,7 @@ static void ref_path_shadow_rays(const ref_ctx *c, ref_path_state *ps, long long
     ps->nee_want_s = ps->keep[1] && gm->spec_type == GIB_SPEC_PHONG &&
                      ref_any_positive(gm->specular);
     ref_nee_visible(c->w, cur, ps->wcur, want_d, ps->nee_want_s, gm->phong_n, 0, &ps->vis, rays);
+    ref_path_weights(ps, &ps->vis);
     ps->nee_cast = 1;
 }
 
@@ -108,6 +193,7 @@ static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, lo
     float pd = ref_lum(gm->albedo), psp = spec ? ref_lum(gm->specular) : 0.0f;
     int cont = ps->depth < c->p.max_depth && pd + psp > 0.0f;
     ps->lobe_s = 0, ps->hit = 0, ps->f = 1.0f, ps->q = 1.0f, ps->prob = 1.0f;
+    ps->cont_pa = 0.0f;
     if (!cont)
         return;
     float u0 = ref_rng_1d(ps->rng), u1, u2;
@@ -126,14 +212,12 @@ static void ref_path_trace_continuation(const ref_ctx *c, ref_path_state *ps, lo
     }
     cont = ps->f > 0.0f && ref_dot(ps->d, ps->cur.ng) > 0.0f;
     if (cont && ps->depth >= c->p.min_depth) { /* roulette on the untextured throughput estimate */
-        const float *refl = ps->lobe_s ? gm->specular : gm->albedo;
-        float est = 0.0f;
-        for (int k = 0; k < 3; k++)
-            est = ref_fmaxf(est, ps->beta[k] * refl[k] * ps->f / ps->prob);
-        ps->q = ref_fminf(1.0f, est);
+        ps->q = ref_path_survival(c, ps, ps->lobe_s ? gm->specular : gm->albedo, ps->f, ps->prob);
         cont = ref_rng_1d(ps->rng) < ps->q;
     }
     if (cont) {
+        if (!ps->lobe_s && c->lv_on)
+            ps->cont_pa = ps->prob * ps->q;
         float o[3];
         ref_offset_origin(w, &ps->cur, ps->d, o);
         ++*rays;
@@ -149,6 +233,7 @@ static void ref_path_continue(const ref_ctx *c, int higher_only, ref_path_state 
     ref_path_keep(c, higher_only, ps);
     ref_path_trace_continuation(c, ps, rays);
     ref_path_shadow_rays(c, ps, rays);
+    ref_path_connect(c, higher_only, ps, rays);
 }
 
 /* 2. this vertex: textured material, next-event estimation (diffuse and Phong parts are different
@@ -163,8 +248,8 @@ static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *ray
     ps->live = 0;
     /* a last vertex that adds nothing (no part kept, or no light reaches it and there is no sky)
      * reads no texel: out += beta * 0 would leave out exactly as it is */
-    if (!ps->hit && (!(keep[0] || keep[1]) ||
-                     (ps->nee_cast && ps->vis.n == 0 && !ref_has_sky(w->gs))))
+    if (!ps->hit && !ps->conn_on &&
+        (!(keep[0] || keep[1]) || (ps->nee_cast && ps->vis.n == 0 && !ref_has_sky(w->gs))))
         return;
     ref_mat m;
     ref_material(w, cur, &m);
@@ -184,13 +269,16 @@ static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *ray
             dif[0] = dif[1] = dif[2] = sp[0] = sp[1] = sp[2] = 0.0f;
             ref_nee_shade(&ps->vis, mk, dif, ps->nee_want_s ? sp : NULL);
         } else {
-            ref_nee(w, cur, mk, ps->wcur, dif, keep[1] ? sp : NULL, rays);
+            ref_path_nee_all(c, ps, mk, dif, keep[1] ? sp : NULL, rays);
         }
         if (ref_has_sky(w->gs))
             ref_nee_sky(w, cur, mk, ps->wcur, ps->rng, dif, keep[1] ? sp : NULL, rays);
         for (int k = 0; k < 3; k++)
             ps->out[k] += ps->beta[k] * (dif[k] + (keep[1] ? sp[k] : 0.0f));
     }
+    if (ps->conn_on)
+        for (int k = 0; k < 3; k++)
+            ps->out[k] += ps->beta[k] * m.kd[k] * ps->conn[k];
     if (!ps->hit)
         return;
 
@@ -201,6 +289,9 @@ static void ref_path_vertex(const ref_ctx *c, ref_path_state *ps, long long *ray
         ps->s1 = ps->lobe_s;
     else
         ps->all_s_rest = ps->all_s_rest && ps->lobe_s;
+    for (int k = 0; k < 3; k++)
+        ps->arr_x[k] = cur->p[k], ps->arr_n[k] = cur->n[k];
+    ps->arr_pa = ps->cont_pa;
     ref_trace_finish(w, &ps->pend, &ps->cur);
     if (ps->cur.back || (ps->beta[0] <= 0.0f && ps->beta[1] <= 0.0f && ps->beta[2] <= 0.0f))
         return;
@@ -230,6 +321,10 @@ void ref_est_paths(const ref_ctx *c, const ref_hit *h, const float wo[3], int hi
         p->depth = 1;
         p->s1 = 0;
         p->all_s_rest = 1;
+        p->arr_pa = 0.0f;
+        p->lv.ok = 0;
+        if (c->lv_on)
+            ref_lv_sample(c->w, p->rng, &p->lv, rays);
     }
     while (live > 0) {
         for (int i = 0; i < n; i++)

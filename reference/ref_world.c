@@ -244,7 +244,7 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
         r2 += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]);
     }
     w->bradius = (float)sqrt(r2) * 1.001f + w->eps;
-    return 0;
+    return ref_light_pick_build(w, err);
 }
 
 /* One triangle geometry holding the scene's opaque (g = 0) or masked (g = 1) triangles, with
@@ -356,6 +356,8 @@ void ref_world_free(ref_world *w)
     w->masks = NULL;
     free(w->spot_cos);
     w->spot_cos = NULL;
+    free(w->light_pick);
+    w->light_pick = NULL;
     ref_free_huge(w->tris, w->gs ? (size_t)w->gs->triangle_count * sizeof *w->tris : 0);
     w->tris = NULL;
     free(w->rec_tri);
@@ -456,6 +458,12 @@ uint64_t ref_ticks(void)
 }
 
 static _Thread_local uint64_t ref_embree_ticks;
+static _Thread_local long long ref_shadow_count;
+
+long long ref_shadow_rays(void)
+{
+    return ref_shadow_count;
+}
 
 /* What a pair of clock reads around nothing counts, on average: subtracted once per timed call.
  * Calibrated once per process. */
@@ -573,6 +581,7 @@ int ref_occluded(const ref_world *w, const float o[3], const float d[3], float t
     rtcInitIntersectContext(&ctx);
     struct RTCRay r;
     ref_ray_init(&r, o, d, tfar);
+    ref_shadow_count++;
     if (w->log)
         ref_log_ray(w, &r, 1);
     uint64_t t0 = w->time_embree ? ref_ticks() : 0;

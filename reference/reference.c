@@ -44,6 +44,7 @@ typedef struct ref_run {
     const gib_ref_interrupt *stop;
     double *saved;            /* cm, cm2, lm, lm2 of the last finished round; NULL: none kept */
     int can_abandon;          /* a finished round is saved */
+    double pilot_gain;        /* ref_choose_strategies: the pilot's figure, 0 without one */
     atomic_int abandoned;     /* a task of this round skipped its work */
 } ref_run;
 
@@ -66,36 +67,45 @@ static inline void ref_welford(double *mean, double *m2, int n, const float v[3]
     }
 }
 
+int ref_pixel_hit(const ref_ctx *c, int x, int y, ref_hit *h, float wo[3], long long *rays)
+{
+    const int W = c->p.width, H = c->p.height;
+    const int aux = c->p.component >= GIB_COMP_ALBEDO;
+    float o[3], d[3];
+    /* Pixel centres only, no jitter: the GL techniques rasterise there without anti-aliasing,
+     * so both sides see the same surface point and the error measures light transport, not
+     * aliasing. */
+    gib_camera_ray(c->cam, W, H, (float)x + 0.5f, (float)y + 0.5f, o, d);
+    ++*rays;
+    if (!ref_trace(c->w, o, d, h) || (h->back && !aux))
+        return 0; /* a miss, or the back of a one-sided surface: 0, exactly */
+    ref_hit_differentials(c->w, c->cam, W, H, x, y, h);
+    ref_albedo(c->w, h, h->kd); /* trilinear once per pixel, not once per sample */
+    h->has_kd = 1;
+    wo[0] = -d[0], wo[1] = -d[1], wo[2] = -d[2];
+    if (c->p.component == GIB_COMP_FULL) { /* next-event estimation at x1: once per pixel */
+        ref_mat m;
+        ref_material(c->w, h, &m);
+        ref_nee(c->w, h, &m, wo, h->nee_dif, h->nee_spec, rays);
+        h->has_nee = 1;
+    }
+    return 1;
+}
+
 static void ref_row_task(void *ctx, int y)
 {
     ref_run *r = ctx;
     const ref_ctx *c = &r->c;
-    const int W = c->p.width, H = c->p.height;
-    const int aux = c->p.component >= GIB_COMP_ALBEDO;
+    const int W = c->p.width;
     long long rays = 0;
     for (int x = 0; x < W; x++) {
         if (ref_abandon(r))
             return;
         size_t pix = (size_t)y * (size_t)W + (size_t)x;
-        float o[3], d[3];
-        /* Pixel centres only, no jitter: the GL techniques rasterise there without anti-aliasing,
-         * so both sides see the same surface point and the error measures light transport, not
-         * aliasing. */
-        gib_camera_ray(c->cam, W, H, (float)x + 0.5f, (float)y + 0.5f, o, d);
-        ++rays;
         ref_hit h;
-        if (!ref_trace(c->w, o, d, &h) || (h.back && !aux))
-            continue; /* a miss, or the back of a one-sided surface: 0, exactly */
-        ref_hit_differentials(c->w, c->cam, W, H, x, y, &h);
-        ref_albedo(c->w, &h, h.kd); /* trilinear once per pixel, not once per sample */
-        h.has_kd = 1;
-        const float wo[3] = {-d[0], -d[1], -d[2]};
-        if (c->p.component == GIB_COMP_FULL) { /* next-event estimation at x1: once per pixel */
-            ref_mat m;
-            ref_material(c->w, &h, &m);
-            ref_nee(c->w, &h, &m, wo, h.nee_dif, h.nee_spec, &rays);
-            h.has_nee = 1;
-        }
+        float wo[3];
+        if (!ref_pixel_hit(c, x, y, &h, wo, &rays))
+            continue;
         /* the pixel's samples in batches, each on its sample's own stream (ref_sample_camera) */
         for (int s0 = r->s0; s0 < r->s1; s0 += REF_PATH_BATCH) {
             int nb = r->s1 - s0 < REF_PATH_BATCH ? r->s1 - s0 : REF_PATH_BATCH;
@@ -204,6 +214,11 @@ int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error 
         p->sampler != GIB_REF_SAMPLER_RANDOM)
         return gib_fail(err, "reference: unknown sampler %d (sobol %d, random %d)", p->sampler,
                         GIB_REF_SAMPLER_SOBOL, GIB_REF_SAMPLER_RANDOM);
+    if (p->strategies < GIB_REF_STRATEGIES_AUTO ||
+        p->strategies > GIB_REF_STRATEGIES_LIGHT_VERTICES)
+        return gib_fail(err, "reference: unknown strategies %d (auto %d, camera %d, "
+                             "light-vertices %d)", p->strategies, GIB_REF_STRATEGIES_AUTO,
+                        GIB_REF_STRATEGIES_CAMERA, GIB_REF_STRATEGIES_LIGHT_VERTICES);
     if (p->threads < 0)
         return gib_fail(err, "reference: threads must be >= 0 (0 = all cores), got %d",
                         p->threads);
@@ -353,6 +368,21 @@ static void ref_ctx_init(ref_ctx *c, const ref_world *w, const gib_scene *scene,
                                       ((comp == GIB_COMP_FULL || comp == GIB_COMP_HIGHER) &&
                                        c->p.max_depth >= 2));
     c->camera_part = comp != GIB_COMP_CAUSTIC || w->has_specular;
+    c->lv_on = 0; /* ref_choose_strategies */
+}
+
+/* full and higher's strategies: as asked, or by the pilot (ref_pilot.c). */
+static void ref_choose_strategies(ref_run *r, int nthreads)
+{
+    ref_ctx *c = &r->c;
+    if (!c->w->light_pick || !ref_light_vertices(c->w->gs, &c->p))
+        return;
+    if (c->p.strategies == GIB_REF_STRATEGIES_AUTO) {
+        r->pilot_gain = ref_pilot_gain(c, nthreads);
+        c->lv_on = r->pilot_gain > 1.0;
+    } else {
+        c->lv_on = c->p.strategies == GIB_REF_STRATEGIES_LIGHT_VERTICES;
+    }
 }
 
 /* How a render's rounds went, and when it began. */
@@ -465,6 +495,8 @@ static void ref_fill_stats(gib_ref_stats *stats, const ref_run *r, const gib_sce
     stats->seconds = ref_now() - t->t0;
     stats->render_seconds = stats->seconds;
     stats->threads = prog->threads_used;
+    stats->light_vertices = r->c.lv_on;
+    stats->pilot_gain = r->pilot_gain;
     if (w->time_embree) { /* ticks to seconds at the rate the clock ran during this render,
                            * less the clock reads themselves (one pair a ray) */
         double k = (double)(ref_ticks() - t->k0), wall = ref_now() - t->t0;
@@ -491,6 +523,7 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     ref_progress prog;
     r.prog = &prog;
     ref_progress_init(&prog, &r, p, t.t0);
+    ref_choose_strategies(&r, nthreads);
     int rc = -1;
     if (ref_run_alloc(&r, err) < 0)
         goto done;

@@ -11,7 +11,11 @@
 #include "harness/imaging/image.h"
 #include "scenes/scene.h"
 
-/* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). */
+/* Bumped whenever an estimator, the sampling or the seeding changes (the cache keys on it). A
+ * change confined to some components is keyed for those alone instead, so that every other
+ * image keeps its key (the cached references and the committed rows' reference names): full and
+ * higher's light vertices hash their strategies into their keys (gib_reference_params_hash; camera
+ * paths alone hash as before) and write `strategies` into the EXR header. */
 #define GIB_REFERENCE_VERSION "gibench-ref-6" /* 6: Owen-scrambled Sobol camera samples, noise from
                                                 * independently scrambled batches */
 
@@ -56,6 +60,23 @@ int gib_component_deterministic(const gib_scene *scene, int component);
  * renderer before version 6, bit for bit). The light-tracing passes (mirrors) use PCG32 with
  * either; their passes are independent and their variance is added as before. */
 enum { GIB_REF_SAMPLER_DEFAULT = 0, GIB_REF_SAMPLER_SOBOL = 1, GIB_REF_SAMPLER_RANDOM = 2 };
+
+/* The strategies of full and higher (reference/ref_connect.c, ref_pilot.c). CAMERA: camera paths
+ * with next-event estimation alone, the estimator before light vertices, bit for bit (and its
+ * cache key). LIGHT_VERTICES: also a light vertex per sample connected to every camera vertex,
+ * weighted by multiple importance sampling. AUTO, the default: a pilot (a sixteenth of the
+ * pixels, 16 independent samples each, both ways) picks the one of the two with the lower
+ * variance x cost, a deterministic choice recorded in the EXR header (`strategies`). Light
+ * vertices pay off where lights sit close to surfaces (a lamp under a ceiling: 8x as efficient
+ * on the closed room of reference/PERFORMANCE.md) and cost up to a third elsewhere. */
+enum {
+    GIB_REF_STRATEGIES_AUTO = 0,
+    GIB_REF_STRATEGIES_CAMERA = 1,
+    GIB_REF_STRATEGIES_LIGHT_VERTICES = 2
+};
+/* "auto", "camera", "light-vertices" (a command line's words); parse returns -1 for others. */
+const char *gib_ref_strategies_name(int strategies);
+int gib_ref_strategies_parse(const char *name);
 #define GIB_REF_SOBOL_BATCHES 8
 const char *gib_ref_sampler_name(int sampler);
 /* Returns the enum value ("sobol", "random"), or -1. */
@@ -98,6 +119,7 @@ typedef struct gib_ref_params {
     int camera;           /* index into scene->cameras */
     float time;           /* seconds: the instant a moving scene is rendered at (gib_motion_pose);
                            * ignored (normalised to 0) for a static scene */
+    int strategies;       /* full, higher: GIB_REF_STRATEGIES_* (0 = auto) */
     int quiet;            /* no progress output */
     gib_ref_interrupt *interrupt; /* NULL: none; never changes the image */
 } gib_ref_params;
@@ -117,6 +139,9 @@ typedef struct gib_ref_stats {
                                 * threads (0 unless the bench asked for it, or not measurable) */
     int threads;          /* threads the render ran on (at most one per image row, 256) */
     double render_seconds; /* seconds of sampling alone (seconds less the BVH build) */
+    int light_vertices;   /* full, higher: 1 when light vertices were sampled */
+    double pilot_gain;    /* with GIB_REF_STRATEGIES_AUTO: the pilot's efficiency of light
+                           * vertices over camera paths alone (0: no pilot ran) */
 } gib_ref_stats;
 
 /* Renders into out (3 channels, allocated here). If stderr_img is non-NULL it receives the per-pixel
@@ -149,8 +174,12 @@ uint64_t gib_reference_cache_key(const gib_scene *scene, const gib_ref_params *p
  * "area" or "centre+area"), missing (path classes no estimator samples, or "none"), cache_key,
  * sky (the sky's radiance, three numbers, "0 0 0" without one), stop (why sampling ended: "spp"
  * the fixed count, "target" the target noise, "max_spp" the cap before the target, "interrupted").
- * A moving scene's also get `time` (seconds). Parameters are written normalised. Returns the
- * count written, at most max_attrs; GIB_REF_ATTR_COUNT is the most there are. */
+ * A moving scene's also get `time` (seconds); full and higher's `strategies` (the paths' strategies
+ * and how they were chosen: "camera paths", "camera paths and light vertices, balance heuristic",
+ * each followed by "; asked" or "; pilot: light vertices N x as efficient"). Parameters are
+ * written normalised.
+ * Returns the count written, at most max_attrs; GIB_REF_ATTR_COUNT is the most there are (cone
+ * and strategies never come together). */
 #define GIB_REF_ATTR_COUNT 28
 int gib_reference_attrs(const gib_scene *scene, const gib_ref_params *p, const gib_ref_stats *s,
                         gib_kv *attrs, int max_attrs);

@@ -50,7 +50,11 @@ static const gib_command_doc doc = {
     "T; the cache key and header include it. A static scene is the same at every T.\n"
     "--sampler picks the camera samples' numbers: sobol (default; Owen-scrambled Sobol, noise from\n"
     "8 independently scrambled batches) or random (PCG32, the renderer before version 6). With\n"
-    "--out only: the cache holds sobol renders. The header records it.\n"};
+    "--out only: the cache holds sobol renders. The header records it.\n"
+    "--strategies picks full's and higher's paths: auto (default; a pilot chooses per image),\n"
+    "camera (camera paths with next-event estimation, the renderer before light vertices) or\n"
+    "light-vertices (also a light vertex per sample, weighted by the balance heuristic). The\n"
+    "cache key and header record it.\n"};
 
 /* Ctrl-C: once a round is done, the first one asks the renderer to stop and keep the rounds
  * finished (reference.h, gib_ref_interrupt); before that, or a second time, it ends the process
@@ -132,7 +136,7 @@ static int write_png_beside(const char *exr, const gib_image *img, float exposur
 typedef struct ref_opts {
     const char *scene_name, *comp, *out, *cache, *se_out, *size;
     long spp, camera, seed, threads, obsc, max_depth, min_depth, max_spec, max_spp, cone;
-    int sampler, force, quiet;
+    int sampler, strategies, force, quiet;
     double dmax, target, time, cone_aperture;
     int component, w, h; /* from comp and size (check_args) */
 } ref_opts;
@@ -154,6 +158,13 @@ static int parse_sampler(const gib_option *o, const char *v, gib_error *err)
 {
     if ((*(int *)o->dest = gib_ref_sampler_parse(v)) < 0)
         return gib_fail(err, "%s '%s': sobol or random", o->name, v);
+    return 0;
+}
+
+static int parse_strategies(const gib_option *o, const char *v, gib_error *err)
+{
+    if ((*(int *)o->dest = gib_ref_strategies_parse(v)) < 0)
+        return gib_fail(err, "%s '%s': auto, camera or light-vertices", o->name, v);
     return 0;
 }
 
@@ -193,6 +204,8 @@ static int parse_args(int argc, char **argv, ref_opts *o)
         GIB_OPTION_FLOAT("--time", &o->time, -1e6, 1e6, "T", "the instant, seconds"),
         GIB_OPTION_CUSTOM("--sampler", &o->sampler, parse_sampler, "sobol|random",
                           "the camera samples' numbers"),
+        GIB_OPTION_CUSTOM("--strategies", &o->strategies, parse_strategies,
+                          "auto|camera|light-vertices", "full's and higher's paths"),
         GIB_OPTION_CUSTOM("--cone", &o->cone, parse_cone, "I", "indirect: diffuse cone I's cap"),
         GIB_OPTION_FLOAT("--cone-aperture", &o->cone_aperture, 1, 179, "DEG",
                          "the cap's aperture (default 60)"),
@@ -404,7 +417,8 @@ static int run_reference(ref_job *j)
                             .cone_aperture = (float)o->cone_aperture, .target_noise = o->target,
                             .max_spp = (int)o->max_spp, .seed = (uint64_t)o->seed,
                             .threads = (int)o->threads, .camera = (int)o->camera,
-                            .time = (float)o->time, .sampler = o->sampler, .quiet = o->quiet};
+                            .time = (float)o->time, .sampler = o->sampler, .strategies = o->strategies,
+                            .quiet = o->quiet};
     j->where = o->out;
     if (o->target > 0) { /* rounds: Ctrl-C keeps the rounds done */
         atomic_init(&interrupt_req.requested, 0);
