@@ -100,6 +100,13 @@ void ref_nee_shade(const ref_nee_vis *v, const ref_mat *m, float dif[3], float s
 void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
              float dif[3], float spec[3], long long *rays)
 {
+    ref_nee_weighed(w, h, m, wo, dif, spec, rays, NULL, NULL);
+}
+
+void ref_nee_weighed(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+                     float dif[3], float spec[3], long long *rays,
+                     void (*weigh)(const void *arg, struct ref_nee_vis *v), const void *arg)
+{
     dif[0] = dif[1] = dif[2] = 0.0f;
     if (spec)
         spec[0] = spec[1] = spec[2] = 0.0f;
@@ -108,6 +115,8 @@ void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float
     for (uint32_t first = 0; first < w->gs->light_count; first += REF_NEE_LIGHTS) {
         ref_nee_vis v;
         ref_nee_visible(w, h, wo, want_d, want_s, m->phong_n, first, &v, rays);
+        if (weigh)
+            weigh(arg, &v);
         ref_nee_shade(&v, m, dif, want_s ? spec : NULL);
     }
 }

@@ -197,6 +197,12 @@ void ref_albedo(const ref_world *w, const ref_hit *h, float a[3]);
  * not wanted). Mirrors add nothing (a delta lobe never meets a delta light). */
 void ref_nee(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
              float dif[3], float spec[3], long long *rays);
+/* ref_nee with each chunk of lights' visibility passed to weigh(arg, v) before shading (the
+ * camera path's MIS weights, ref_path.c); weigh NULL: ref_nee itself. */
+struct ref_nee_vis;
+void ref_nee_weighed(const ref_world *w, const ref_hit *h, const ref_mat *m, const float wo[3],
+                     float dif[3], float spec[3], long long *rays,
+                     void (*weigh)(const void *arg, struct ref_nee_vis *v), const void *arg);
 /* ref_nee in two halves, so that the shadow rays can be cast before the albedo texel is read:
  * _visible casts them for lights [first, first + REF_NEE_LIGHTS) and keeps the unoccluded ones'
  * irradiance, cosine and Phong lobe (wanted lobes: want_d, want_s); _shade adds their reflected

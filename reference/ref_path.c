@@ -124,23 +124,17 @@ static void ref_path_weights(const ref_path_state *ps, ref_nee_vis *v)
             v->wd[i] = ref_mis_weight(pa, v->pb[i]);
 }
 
-/* Next-event estimation at cur toward every light, in chunks of REF_NEE_LIGHTS (ref_nee's
- * arithmetic), with the MIS weights: scenes with more lights than one ref_nee_vis holds. */
+static void ref_path_weigh(const void *ps, ref_nee_vis *v)
+{
+    ref_path_weights(ps, v);
+}
+
+/* Next-event estimation at cur toward every light with the MIS weights: scenes with more lights
+ * than one ref_nee_vis holds. */
 static void ref_path_nee_all(const ref_ctx *c, const ref_path_state *ps, const ref_mat *m,
                              float dif[3], float spec[3], long long *rays)
 {
-    const ref_world *w = c->w;
-    dif[0] = dif[1] = dif[2] = 0.0f;
-    if (spec)
-        spec[0] = spec[1] = spec[2] = 0.0f;
-    int want_d = m->kd[0] > 0.0f || m->kd[1] > 0.0f || m->kd[2] > 0.0f;
-    int want_s = spec && m->spec == GIB_SPEC_PHONG;
-    for (uint32_t first = 0; first < w->gs->light_count; first += REF_NEE_LIGHTS) {
-        ref_nee_vis v;
-        ref_nee_visible(w, &ps->cur, ps->wcur, want_d, want_s, m->phong_n, first, &v, rays);
-        ref_path_weights(ps, &v);
-        ref_nee_shade(&v, m, dif, want_s ? spec : NULL);
-    }
+    ref_nee_weighed(c->w, &ps->cur, m, ps->wcur, dif, spec, rays, ref_path_weigh, ps);
 }
 
 /* The light vertex's connection to cur through cur's diffuse lobe, a path one vertex longer than

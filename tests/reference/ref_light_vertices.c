@@ -172,25 +172,9 @@ static double rt_sum_render(const gib_scene *s, int comp, int max_depth, int cam
 /* The largest |z| of the image means, and of the 4x4 block means, between a and b. */
 static void rt_diff(const sums *a, const sums *b, double *zmean, double *zblock)
 {
-    *zmean = *zblock = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double dm = 0.0, vm = 0.0;
-        for (int by = 0; by < H; by += NB)
-            for (int bx = 0; bx < W; bx += NB) {
-                double d = 0.0, v = 0.0;
-                for (int y = by; y < by + NB; y++)
-                    for (int x = bx; x < bx + NB; x++) {
-                        d += a->img[c][y * W + x] - b->img[c][y * W + x];
-                        v += a->var[c][y * W + x] + b->var[c][y * W + x];
-                    }
-                dm += d;
-                vm += v;
-                double z = v > 0.0 ? fabs(d) / sqrt(v) : (d != 0.0 ? INFINITY : 0.0);
-                *zblock = z > *zblock ? z : *zblock;
-            }
-        double z = vm > 0.0 ? fabs(dm) / sqrt(vm) : (dm != 0.0 ? INFINITY : 0.0);
-        *zmean = z > *zmean ? z : *zmean;
-    }
+    rt_z_diff(&a->img[0][0], &a->var[0][0], &b->img[0][0], &b->var[0][0], W, H, NB, zmean,
+              zblock);
+    *zmean = fabs(*zmean);
 }
 
 /* One component: light vertices against camera paths, independent samples, then Sobol unless

@@ -134,30 +134,11 @@ static void rt_add(const gib_scene *s, int comp, int spp, sums *acc, sums *acc2,
     gib_image_free(&sd);
 }
 
-/* The largest |z| of the image means, and of the 4x4 block means, between a and b over the three
- * channels. A block whose difference and variance are both 0 (deterministic on both sides, e.g.
- * a mirror reflecting a directly lit wall) agrees exactly: z = 0. */
+/* The image means' z (signed) and the largest |z| of the 4x4 block means between a and b. */
 static void rt_diff(const sums *a, const sums *b, double *zmean, double *zblock)
 {
-    *zmean = *zblock = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double dm = 0.0, vm = 0.0;
-        for (int by = 0; by < H; by += NB)
-            for (int bx = 0; bx < W; bx += NB) {
-                double d = 0.0, v = 0.0;
-                for (int y = by; y < by + NB; y++)
-                    for (int x = bx; x < bx + NB; x++) {
-                        d += a->img[c][y * W + x] - b->img[c][y * W + x];
-                        v += a->var[c][y * W + x] + b->var[c][y * W + x];
-                    }
-                dm += d;
-                vm += v;
-                double z = v > 0.0 ? fabs(d) / sqrt(v) : (d != 0.0 ? INFINITY : 0.0);
-                *zblock = z > *zblock ? z : *zblock;
-            }
-        double z = vm > 0.0 ? dm / sqrt(vm) : (dm != 0.0 ? INFINITY : 0.0);
-        *zmean = fabs(z) > fabs(*zmean) ? z : *zmean;
-    }
+    rt_z_diff(&a->img[0][0], &a->var[0][0], &b->img[0][0], &b->var[0][0], W, H, NB, zmean,
+              zblock);
 }
 
 static void rt_sum(int sky)

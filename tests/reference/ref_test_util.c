@@ -293,3 +293,29 @@ void rt_zstats_check(rt_zstats *z, const char *what)
         CHECK_NEAR(label, 1, z->var_r / z->var_a, 0.05,
                    "the renderer estimates the same variance from thousands of pixels");
 }
+
+void rt_z_diff(const double *a_img, const double *a_var, const double *b_img, const double *b_var,
+               int w, int h, int nb, double *zmean, double *zblock)
+{
+    *zmean = *zblock = 0.0;
+    for (int c = 0; c < 3; c++) {
+        size_t o = (size_t)c * (size_t)w * (size_t)h;
+        double dm = 0.0, vm = 0.0;
+        for (int by = 0; by < h; by += nb)
+            for (int bx = 0; bx < w; bx += nb) {
+                double d = 0.0, v = 0.0;
+                for (int y = by; y < by + nb && y < h; y++)
+                    for (int x = bx; x < bx + nb && x < w; x++) {
+                        size_t i = o + (size_t)y * (size_t)w + (size_t)x;
+                        d += a_img[i] - b_img[i];
+                        v += a_var[i] + b_var[i];
+                    }
+                dm += d;
+                vm += v;
+                double z = v > 0.0 ? fabs(d) / sqrt(v) : (d != 0.0 ? INFINITY : 0.0);
+                *zblock = z > *zblock ? z : *zblock;
+            }
+        double z = vm > 0.0 ? dm / sqrt(vm) : (dm != 0.0 ? INFINITY : 0.0);
+        *zmean = fabs(z) > fabs(*zmean) ? z : *zmean;
+    }
+}

@@ -46,6 +46,14 @@ void rt_scene_mixed(gib_scene *s);
  * the fraction of cosine-weighted directions that hit the polygon. */
 double rt_form_factor_up(double R[][3], int n);
 
+/* Two renders' images a and b, three planar channels of w x h (img[c * w * h + y * w + x]) with
+ * each pixel's variance of the mean: the image means' difference in standard errors (the two
+ * variances added; signed, the channel with the largest |z|) into *zmean, and the largest |z| of
+ * the nb x nb block means into *zblock. A block whose difference and variance are both 0
+ * (deterministic on both sides) agrees exactly: z = 0. */
+void rt_z_diff(const double *a_img, const double *a_var, const double *b_img, const double *b_var,
+               int w, int h, int nb, double *zmean, double *zblock);
+
 /* Default parameters: quiet, seed 1, all cores. */
 gib_ref_params rt_params(int component, int w, int h, int spp);
 
