@@ -6,6 +6,7 @@ read back as the component's mean ratio and RMSE over black's (a tiny procedural
 scenes are needed). A patch that no longer applies fails here, not an hour into make
 energy-controls."""
 import csv
+import functools
 import importlib.util
 import math
 import os
@@ -39,9 +40,15 @@ def changed_files(copy):
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def listing(gibench):
+    """`gibench list`'s text, read once: it loads every scene (7 s with the shared scenes here)."""
+    return subprocess.run([gibench, "list"], capture_output=True, text=True).stdout
+
+
 def parameters(gibench, technique):
     """The parameter names `gibench list` prints for technique."""
-    text = subprocess.run([gibench, "list"], capture_output=True, text=True).stdout
+    text = listing(gibench)
     names, inside = set(), False
     for line in text.splitlines():
         words = line.split()

@@ -31,7 +31,7 @@ static char check_msg[512]; /* what a CHECK_TRUE line says */
 static int render_indirect(gib_gl_fixture *fx, const gib_technique *t, const char *cone,
                            gib_image *out)
 {
-    char cone_kv[16];
+    char cone_kv[24];
     snprintf(cone_kv, sizeof cone_kv, "cone=%s", cone);
     const char *const params[] = {"voxel_res=64", cone_kv, NULL};
     return gib_fixture_render(fx, t->name, params, 0, W, H, GIB_OUT_INDIRECT, out);
@@ -47,7 +47,7 @@ static int check(gib_gl_fixture *fx, const char *name)
     double *sum = calloc((size_t)n, sizeof *sum);
     int failures = 0;
     for (int i = 0; i < GIB_DIFFUSE_CONES; i++) {
-        char cone[4];
+        char cone[12];
         snprintf(cone, sizeof cone, "%d", i);
         if (render_indirect(fx, t, cone, &part) < 0) {
             failures++;
