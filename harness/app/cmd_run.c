@@ -12,6 +12,7 @@
 #include "runner.h"
 #include "app.h"
 #include "csv.h"
+#include "refset.h"
 #include "history.h"
 #include "harness/base/status.h"
 #include "harness/base/hash.h"
@@ -81,23 +82,6 @@ static int run_done(const gib_run_ctx *ctx, const gib_matrix_run *mr)
     return 1;
 }
 
-static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, size_t len)
-{
-    if ((s->features & t->scene_needs) != t->scene_needs) {
-        char f[256];
-        gib_features_str(t->scene_needs & ~s->features, f, sizeof f);
-        snprintf(why, len, "scene lacks %s", f);
-        return 0;
-    }
-    if (t->scene_needs_any && !(s->features & t->scene_needs_any)) {
-        char f[256];
-        gib_features_str(t->scene_needs_any, f, sizeof f);
-        snprintf(why, len, "scene has none of %s", f);
-        return 0;
-    }
-    return 1;
-}
-
 /* Marks this process's unfinished runs of scene sname (from run `from` on) with state; they
  * count as done for the progress. */
 static void mark_scene_runs(gib_run_ctx *ctx, int from, const char *sname, char state)
@@ -111,18 +95,44 @@ static void mark_scene_runs(gib_run_ctx *ctx, int from, const char *sname, char 
     gib_progress_report(&ctx->progress);
 }
 
+/* The references this process's unfinished runs of the scene ask for first, each view's
+ * rendered together (refset.h: the same pixels and keys as one at a time, the scene's world
+ * built once a view): the runs then find them in the cache. A failure here is left to the runs,
+ * which ask again and report their own. */
+static void prefetch_scene_refs(gib_run_ctx *ctx, int from, const gib_scene *scene)
+{
+    const gib_matrix *m = ctx->m;
+    enum { MAX_REQUESTS = 1024 };
+    char *want = ctx->timing_only ? NULL : calloc((size_t)m->run_count, 1);
+    gib_ref_request *rq = want ? malloc(MAX_REQUESTS * sizeof *rq) : NULL;
+    for (int j = from; rq && j < m->run_count; j++) {
+        const gib_matrix_run *mr = &m->runs[j];
+        char why[512];
+        want[j] = !strcmp(mr->scene, m->runs[from].scene) && run_mine(ctx, j) &&
+                  !run_done(ctx, mr) && gib_scene_wanted(scene, mr->technique, why, sizeof why);
+    }
+    int n = rq ? gib_matrix_ref_requests(m, ctx->cache, scene, want, rq, MAX_REQUESTS) : 0;
+    gib_error err;
+    if (n > 1 && gib_reference_prefetch(rq, n, &err) < 0)
+        fprintf(stderr, "gibench run: %s's references, rendered together: %s (each run asks "
+                        "again)\n", scene->name, err.msg);
+    free(rq);
+    free(want);
+}
+
 /* Runs this process's unfinished runs of an uploaded scene (from run `from` on). */
 static void run_scene_runs(gib_run_ctx *ctx, int from, const gib_scene *scene,
                            const gib_gpu_scene *gpu)
 {
     const gib_matrix *m = ctx->m;
     const char *sname = m->runs[from].scene;
+    prefetch_scene_refs(ctx, from, scene);
     for (int j = from; j < m->run_count && !ctx->write_failed; j++) {
         const gib_matrix_run *mr = &m->runs[j];
         if (strcmp(mr->scene, sname) || !run_mine(ctx, j) || run_done(ctx, mr))
             continue;
         char why[512];
-        if (!scene_wanted(scene, mr->technique, why, sizeof why)) {
+        if (!gib_scene_wanted(scene, mr->technique, why, sizeof why)) {
             gib_progress_clear(&ctx->progress);
             printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
             ctx->runs_skipped++;

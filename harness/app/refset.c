@@ -1,0 +1,115 @@
+/* gibench — the references a matrix's runs ask for, and each view's rendered together: a view
+ * (scene, camera, size, instant) whose runs score several components (direct, indirect and
+ * glossy of `lrsm` and `vct`; indirect and caustic of the thesis' techniques) is rendered by one
+ * gib_reference_render_set, which builds the scene's world once and traces each pixel's primary
+ * ray once, instead of one render per component. Each image is what its render alone gives, bit
+ * for bit, stored under the key its request alone has, so prefetching changes no pixel and no
+ * key: only the time a run spends on its references. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "refset.h"
+
+int gib_scene_wanted(const gib_scene *s, const gib_technique *t, char *why, size_t len)
+{
+    if ((s->features & t->scene_needs) != t->scene_needs) {
+        char f[256];
+        gib_features_str(t->scene_needs & ~s->features, f, sizeof f);
+        if (why)
+            snprintf(why, len, "scene lacks %s", f);
+        return 0;
+    }
+    if (t->scene_needs_any && !(s->features & t->scene_needs_any)) {
+        char f[256];
+        gib_features_str(t->scene_needs_any, f, sizeof f);
+        if (why)
+            snprintf(why, len, "scene has none of %s", f);
+        return 0;
+    }
+    return 1;
+}
+
+int gib_matrix_ref_request(const gib_matrix *m, const char *cache, const gib_scene *scene,
+                           const gib_matrix_run *mr, unsigned bit, gib_ref_request *rq)
+{
+    int component = gib_component_parse(gib_output_name(bit));
+    *rq = (gib_ref_request){.scene = scene, .camera = m->camera, .width = mr->width,
+                            .height = mr->height, .time = (float)mr->time, .component = component,
+                            .spp = component >= 0 && m->ref_spp[component]
+                                       ? m->ref_spp[component] : 64,
+                            .cache_dir = cache};
+    gib_ref_request_match(rq, mr->technique, &mr->params, bit);
+    return component;
+}
+
+int gib_matrix_ref_requests(const gib_matrix *m, const char *cache, const gib_scene *scene,
+                            const char *want, gib_ref_request *out, int max)
+{
+    int n = 0;
+    uint64_t keys[1024];
+    for (int j = 0; j < m->run_count; j++) {
+        const gib_matrix_run *mr = &m->runs[j];
+        if (want ? !want[j] : strcmp(mr->scene, scene->name) != 0)
+            continue;
+        for (unsigned bit = 1; bit <= GIB_OUT_CAUSTIC; bit <<= 1) {
+            gib_ref_request rq;
+            if (!(mr->technique->components & bit) ||
+                gib_matrix_ref_request(m, cache, scene, mr, bit, &rq) < 0)
+                continue;
+            gib_ref_params p = gib_ref_request_params(&rq);
+            uint64_t key = gib_reference_cache_key(scene, &p);
+            int seen = 0;
+            for (int i = 0; i < n && !seen; i++)
+                seen = keys[i] == key;
+            if (!seen && n < max && n < (int)(sizeof keys / sizeof keys[0]))
+                keys[n] = key, out[n++] = rq;
+        }
+    }
+    return n;
+}
+
+int gib_ref_views(const gib_ref_request *rq, int n, int *view)
+{
+    int groups = 0;
+    for (int i = 0; i < n; i++) {
+        gib_ref_params pi = gib_ref_request_params(&rq[i]), qi;
+        gib_reference_normalize(rq[i].scene, &pi, &qi); /* a static scene's instants are one */
+        view[i] = -1;
+        for (int j = 0; j < i && view[i] < 0; j++) {
+            gib_ref_params pj = gib_ref_request_params(&rq[j]), qj;
+            gib_reference_normalize(rq[j].scene, &pj, &qj);
+            if (rq[j].scene == rq[i].scene && qj.camera == qi.camera && qj.width == qi.width &&
+                qj.height == qi.height && qj.time == qi.time)
+                view[i] = view[j];
+        }
+        if (view[i] < 0)
+            view[i] = groups++;
+    }
+    return groups;
+}
+
+int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err)
+{
+    int *view = malloc((size_t)(n > 0 ? n : 1) * sizeof *view);
+    if (!view)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "reference prefetch: out of memory");
+    int groups = gib_ref_views(rq, n, view), rc = 0;
+    for (int g = 0; g < groups && rc == 0; g++) {
+        gib_ref_request set[GIB_REF_SET_MAX];
+        int k = 0;
+        for (int i = 0; i <= n && rc == 0; i++) {
+            if (i < n && view[i] == g)
+                set[k++] = rq[i];
+            if (k < 2 || (k < GIB_REF_SET_MAX && i < n)) /* one request: left to its run */
+                continue;
+            gib_ref_result res[GIB_REF_SET_MAX];
+            rc = gib_reference_get_set(set, k, res, err);
+            for (int j = 0; rc == 0 && j < k; j++)
+                gib_image_free(&res[j].image);
+            k = 0;
+        }
+    }
+    free(view);
+    return rc;
+}
