@@ -45,6 +45,8 @@ void ref_run_free(ref_run *r);
  * order into r's statistics. */
 void ref_pixel_samples(ref_run *r, size_t pix, const ref_hit *h, const float wo[3],
                        long long *rays);
+/* Sample s's value v of pixel pix into r's statistics (samples in order). */
+void ref_pixel_add(ref_run *r, size_t pix, int s, const float v[3]);
 /* The primary ray of pixel (x, y) and its footprint (ref_pixel_hit without the component's own
  * part): 0 on a miss. Differentials and albedo are skipped on a back face unless keep_back. */
 int ref_primary_hit(const ref_ctx *c, int x, int y, int keep_back, ref_hit *h, float wo[3],

@@ -100,14 +100,18 @@ void ref_pixel_samples(ref_run *r, size_t pix, const ref_hit *h, const float wo[
             ref_rng_seed_sample(&rng[i], c->p.sampler, pix, (uint64_t)(s0 + i), c->p.seed,
                                 c->p.component);
         ref_sample_camera(c, h, wo, nb, rng, v, rays);
-        for (int i = 0; i < nb; i++) {
-            ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s0 + i + 1, v[i]);
-            if (r->cb)
-                for (int k = 0; k < 3; k++)
-                    r->cb[(pix * 3 + k) * GIB_REF_SOBOL_BATCHES +
-                          (size_t)(s0 + i) % GIB_REF_SOBOL_BATCHES] += (double)v[i][k];
-        }
+        for (int i = 0; i < nb; i++)
+            ref_pixel_add(r, pix, s0 + i, v[i]);
     }
+}
+
+void ref_pixel_add(ref_run *r, size_t pix, int s, const float v[3])
+{
+    ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s + 1, v);
+    if (r->cb)
+        for (int k = 0; k < 3; k++)
+            r->cb[(pix * 3 + k) * GIB_REF_SOBOL_BATCHES + (size_t)s % GIB_REF_SOBOL_BATCHES] +=
+                (double)v[k];
 }
 
 static void ref_row_task(void *ctx, int y)

@@ -1,10 +1,10 @@
-/* gibench bench references — what a matrix profile's references cost rendered one component at a
- * time (gib_reference_render per request, as runs asked before) against each view's components
- * together (gib_reference_render_set, as `gibench run` prefetches them now: refset.h). The
- * requests are those a run of the matrices asks first (each output at the matrix's spp, one per
- * cache key, a key an earlier matrix already asked for left out, as the cache would), grouped by
- * view; a view of one request is rendered once and counted on both sides. One CSV row per view
- * and a total row: seconds each way (the least of --repeat rounds, the world's build included),
+/* gibench bench references — what a matrix profile's references cost rendered one request at a
+ * time (gib_reference_render each, as runs asked before) against each world's requests together
+ * (gib_reference_render_set, as `gibench run` prefetches them now: refset.h). The requests are
+ * those a run of the matrices asks first (each output at the matrix's spp, one per cache key, a
+ * key an earlier matrix already asked for left out, as the cache would), grouped by scene and
+ * instant (one world); a set of one request is rendered once and counted on both sides. One CSV
+ * row per set and a total row: seconds each way (the least of --repeat rounds, the world's build included),
  * the noise RMSE each way, and whether every image came out bit for bit the same. Performance is
  * measured here, never asserted by a test. */
 #include <stdio.h>
@@ -21,8 +21,8 @@
 static const gib_command_doc doc = {
     "bench", "references MATRIX... [--profile P] [--out F.csv] [options]",
     "Renders the references the matrices' runs ask for first (profile P, default quick) two ways:\n"
-    "one request at a time, and each view's requests together (one world, one primary ray a\n"
-    "pixel; each image the same bits). Scenes whose data is absent are skipped. --repeat N\n"
+    "one request at a time, and each scene's requests at one instant together (one world, one\n"
+    "primary ray a pixel of each view; each image the same bits). Scenes whose data is absent are skipped. --repeat N\n"
     "rounds (default 1) keep each side's least time; --threads N (default every core).\n"};
 
 #define BR_MAX_REQUESTS 1024
@@ -30,7 +30,7 @@ static const gib_command_doc doc = {
 typedef struct br_total {
     char machine[256];
     long cores;
-    int repeat, threads, views, requests, differ;
+    int repeat, threads, sets, requests, differ;
     double each, together;
     FILE *csv;
 } br_total;
@@ -50,8 +50,8 @@ static int br_same(const gib_image *a, const gib_image *b)
            memcmp(a->px, b->px, n * sizeof *a->px) == 0;
 }
 
-/* One view's requests both ways, its CSV row. 0, or -1 with err. */
-static int br_view(br_total *t, const char *matrix, const gib_scene *scene,
+/* One set's requests both ways, its CSV row. 0, or -1 with err. */
+static int br_set(br_total *t, const char *matrix, const gib_scene *scene,
                    const gib_ref_request *rq, int n, gib_error *err)
 {
     gib_ref_params p[GIB_REF_SET_MAX];
@@ -59,13 +59,14 @@ static int br_view(br_total *t, const char *matrix, const gib_scene *scene,
     gib_ref_stats st1[GIB_REF_SET_MAX], sts[GIB_REF_SET_MAX];
     double each = 1e300, together = 1e300;
     int rc = 0, same = 1;
-    char comps[256] = "";
+    char comps[1024] = "";
     for (int k = 0; k < n; k++) {
         p[k] = gib_ref_request_params(&rq[k]);
         p[k].quiet = 1;
         p[k].threads = t->threads;
-        snprintf(comps + strlen(comps), sizeof comps - strlen(comps), "%s%s:%d", k ? "+" : "",
-                 gib_component_name(p[k].component), p[k].spp);
+        snprintf(comps + strlen(comps), sizeof comps - strlen(comps), "%s%s:%d@%dx%d",
+                 k ? "+" : "", gib_component_name(p[k].component), p[k].spp, p[k].width,
+                 p[k].height);
     }
     for (int r = 0; r < t->repeat && rc == 0; r++) {
         double t0 = br_now();
@@ -82,7 +83,7 @@ static int br_view(br_total *t, const char *matrix, const gib_scene *scene,
         each = t1 - t0 < each ? t1 - t0 : each;
         together = n > 1 ? (t2 - t1 < together ? t2 - t1 : together) : each;
     }
-    double noise1 = 0.0, noises = 0.0; /* the largest of the view's images */
+    double noise1 = 0.0, noises = 0.0; /* the largest of the set's images */
     for (int k = 0; rc == 0 && k < n; k++) {
         const gib_ref_stats *s = n > 1 ? &sts[k] : &st1[k];
         same = same && (n == 1 || br_same(&one[k], &set[k]));
@@ -93,22 +94,21 @@ static int br_view(br_total *t, const char *matrix, const gib_scene *scene,
         gib_image_free(&one[k]), gib_image_free(&set[k]);
     if (rc < 0)
         return gib_error_prefix(err, "%s %s %s", matrix, scene->name, comps);
-    t->views++;
+    t->sets++;
     t->requests += n;
     t->differ += !same;
     t->each += each;
     t->together += together;
-    printf("%-22s %-14s %4dx%-4d t=%-4g %-34s each %7.2f s  together %7.2f s  %s\n", matrix,
-           scene->name, p[0].width, p[0].height, (double)p[0].time, comps, each, together,
-           same ? "same bits" : "IMAGES DIFFER");
-    fprintf(t->csv, "%s,%s,%ld,%d,%s,%s,%d,%d,%d,%g,%s,%d,%.4f,%.4f,%.4f,%.6g,%.6g,%d\n",
+    printf("%-21s %-15s t=%-4g each %7.2f s  together %7.2f s  %s  %s\n", matrix, scene->name,
+           (double)p[0].time, each, together, same ? "same bits" : "IMAGES DIFFER", comps);
+    fprintf(t->csv, "%s,%s,%ld,%d,%s,%s,%d,%g,%s,%d,%.4f,%.4f,%.4f,%.6g,%.6g,%d\n",
             gib_git_revision(), t->machine, t->cores, t->threads, matrix, scene->name,
-            p[0].width, p[0].height, p[0].camera, (double)p[0].time, comps, n, each, together,
-            each / together, noise1, noises, same);
+            p[0].camera, (double)p[0].time, comps, n, each, together, each / together, noise1,
+            noises, same);
     return 0;
 }
 
-/* One matrix: its scenes' requests not asked before (keys in seen), view by view. */
+/* One matrix: its scenes' requests not asked before (keys in seen), world by world. */
 static int br_matrix(br_total *t, const char *path, const char *profile, uint64_t *seen,
                      int *nseen, gib_error *err)
 {
@@ -117,7 +117,7 @@ static int br_matrix(br_total *t, const char *path, const char *profile, uint64_
         return -1;
     char *want = calloc((size_t)m.run_count + 1, 1);
     gib_ref_request *rq = malloc(BR_MAX_REQUESTS * sizeof *rq);
-    int *view = malloc(BR_MAX_REQUESTS * sizeof *view), rc = want && rq && view ? 0 : -1;
+    int *world = malloc(BR_MAX_REQUESTS * sizeof *world), rc = want && rq && world ? 0 : -1;
     for (int i = 0; rc == 0 && i < m.run_count; i++) {
         int first = 1;
         for (int j = 0; j < i && first; j++)
@@ -142,20 +142,20 @@ static int br_matrix(br_total *t, const char *path, const char *profile, uint64_
             if (!dup && *nseen < 4 * BR_MAX_REQUESTS)
                 seen[(*nseen)++] = key, rq[kept++] = rq[k];
         }
-        int groups = gib_ref_views(rq, kept, view);
+        int groups = gib_ref_worlds(rq, kept, world);
         for (int g = 0; g < groups && rc == 0; g++) {
             gib_ref_request set[GIB_REF_SET_MAX];
             int k = 0;
             for (int r = 0; r < kept && k < GIB_REF_SET_MAX; r++)
-                if (view[r] == g)
+                if (world[r] == g)
                     set[k++] = rq[r];
-            rc = br_view(t, m.name, &scene, set, k, err);
+            rc = br_set(t, m.name, &scene, set, k, err);
         }
         gib_scene_free(&scene);
     }
-    if (!(want && rq && view) && rc < 0)
+    if (!(want && rq && world) && rc < 0)
         gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "bench references: out of memory");
-    free(view);
+    free(world);
     free(rq);
     free(want);
     gib_matrix_free(&m);
@@ -189,7 +189,7 @@ int gib_bench_references(int argc, char **argv)
         perror(out);
         return 1;
     }
-    fputs("revision,machine,cores,threads,matrix,scene,width,height,camera,time,components,"
+    fputs("revision,machine,cores,threads,matrix,scene,camera,time,components,"
           "requests,seconds_each,seconds_together,speedup,noise_each,noise_together,"
           "same_bits\n", t.csv);
     uint64_t *seen = malloc(4 * BR_MAX_REQUESTS * sizeof *seen);
@@ -202,11 +202,11 @@ int gib_bench_references(int argc, char **argv)
     free(seen);
     if (rc == 1)
         fprintf(stderr, "gibench bench references: %s\n", err.msg);
-    fprintf(t.csv, "%s,%s,%ld,%d,all,all,0,0,0,0,%d views,%d,%.4f,%.4f,%.4f,,,%d\n",
-            gib_git_revision(), t.machine, t.cores, t.threads, t.views, t.requests, t.each,
+    fprintf(t.csv, "%s,%s,%ld,%d,all,all,0,0,%d sets,%d,%.4f,%.4f,%.4f,,,%d\n",
+            gib_git_revision(), t.machine, t.cores, t.threads, t.sets, t.requests, t.each,
             t.together, t.together > 0 ? t.each / t.together : 0.0, t.differ == 0);
-    printf("all: %d requests in %d views: one at a time %.2f s, together %.2f s (%.2fx); %s\n",
-           t.requests, t.views, t.each, t.together, t.together > 0 ? t.each / t.together : 0.0,
+    printf("all: %d requests in %d sets: one at a time %.2f s, together %.2f s (%.2fx); %s\n",
+           t.requests, t.sets, t.each, t.together, t.together > 0 ? t.each / t.together : 0.0,
            t.differ ? "SOME IMAGES DIFFER" : "every image the same bits");
     if (out)
         fclose(t.csv);

@@ -1,8 +1,8 @@
-/* gibench — the references a matrix's runs ask for, and each view's rendered together: a view
- * (scene, camera, size, instant) whose runs score several components (direct, indirect and
- * glossy of `lrsm` and `vct`; indirect and caustic of the thesis' techniques) is rendered by one
- * gib_reference_render_set, which builds the scene's world once and traces each pixel's primary
- * ray once, instead of one render per component. Each image is what its render alone gives, bit
+/* gibench — the references a matrix's runs ask for, and each world's rendered together: the
+ * requests of one scene at one instant (direct, indirect and glossy of `lrsm` and `vct`; indirect
+ * and caustic of the thesis' techniques; each at every size of the profile) are rendered by one
+ * gib_reference_render_set, which builds the scene's world once and traces each view's primary
+ * rays once, instead of one render per request. Each image is what its render alone gives, bit
  * for bit, stored under the key its request alone has, so prefetching changes no pixel and no
  * key: only the time a run spends on its references. */
 #include <stdio.h>
@@ -69,37 +69,36 @@ int gib_matrix_ref_requests(const gib_matrix *m, const char *cache, const gib_sc
     return n;
 }
 
-int gib_ref_views(const gib_ref_request *rq, int n, int *view)
+int gib_ref_worlds(const gib_ref_request *rq, int n, int *world)
 {
     int groups = 0;
     for (int i = 0; i < n; i++) {
         gib_ref_params pi = gib_ref_request_params(&rq[i]), qi;
         gib_reference_normalize(rq[i].scene, &pi, &qi); /* a static scene's instants are one */
-        view[i] = -1;
-        for (int j = 0; j < i && view[i] < 0; j++) {
+        world[i] = -1;
+        for (int j = 0; j < i && world[i] < 0; j++) {
             gib_ref_params pj = gib_ref_request_params(&rq[j]), qj;
             gib_reference_normalize(rq[j].scene, &pj, &qj);
-            if (rq[j].scene == rq[i].scene && qj.camera == qi.camera && qj.width == qi.width &&
-                qj.height == qi.height && qj.time == qi.time)
-                view[i] = view[j];
+            if (rq[j].scene == rq[i].scene && qj.time == qi.time)
+                world[i] = world[j];
         }
-        if (view[i] < 0)
-            view[i] = groups++;
+        if (world[i] < 0)
+            world[i] = groups++;
     }
     return groups;
 }
 
 int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err)
 {
-    int *view = malloc((size_t)(n > 0 ? n : 1) * sizeof *view);
-    if (!view)
+    int *world = malloc((size_t)(n > 0 ? n : 1) * sizeof *world);
+    if (!world)
         return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "reference prefetch: out of memory");
-    int groups = gib_ref_views(rq, n, view), rc = 0;
+    int groups = gib_ref_worlds(rq, n, world), rc = 0;
     for (int g = 0; g < groups && rc == 0; g++) {
         gib_ref_request set[GIB_REF_SET_MAX];
         int k = 0;
         for (int i = 0; i <= n && rc == 0; i++) {
-            if (i < n && view[i] == g)
+            if (i < n && world[i] == g)
                 set[k++] = rq[i];
             if (k < 2 || (k < GIB_REF_SET_MAX && i < n)) /* one request: left to its run */
                 continue;
@@ -110,6 +109,6 @@ int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err)
             k = 0;
         }
     }
-    free(view);
+    free(world);
     return rc;
 }

@@ -22,14 +22,14 @@ int gib_matrix_ref_request(const gib_matrix *m, const char *cache, const gib_sce
 int gib_matrix_ref_requests(const gib_matrix *m, const char *cache, const gib_scene *scene,
                             const char *want, gib_ref_request *out, int max);
 
-/* Views: requests are grouped by what they see (camera, size, the instant of a moving scene);
- * view[i] gets request i's group, groups numbered from 0 in order of first appearance. Returns
- * the group count. */
-int gib_ref_views(const gib_ref_request *rq, int n, int *view);
+/* Worlds: requests are grouped by the scene they render and its instant (a moving scene's time;
+ * a static scene has one), what one world serves; world[i] gets request i's group, groups
+ * numbered from 0 in order of first appearance. Returns the group count. */
+int gib_ref_worlds(const gib_ref_request *rq, int n, int *world);
 
-/* Renders what the cache lacks of the requests, each view's together (gib_reference_get_set, at
+/* Renders what the cache lacks of the requests, each world's together (gib_reference_get_set, at
  * most GIB_REF_SET_MAX a set), each stored as its own entry under the key its request alone has
- * and with the pixels its render alone gives; a later gib_reference_get finds it. A view with one
+ * and with the pixels its render alone gives; a later gib_reference_get finds it. A world with one
  * request is left to it. 0, or -1 / GIB_REF_WRITE_FAILED with err. */
 int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err);
 

@@ -5,16 +5,18 @@
  * Scene: ref_determinism's (a floor, an alpha-masked two-sided Phong board, a mirror wall, a
  * point light): every estimator runs on it, light tracing included. Checks:
  *  - every component (ao, direct, indirect, glossy, caustic, full, higher, albedo, normal,
- *    depth) in one set, each with its own spp, two toward a target noise (their own rounds),
- *    against each rendered alone: the same image and standard-error bits, and the same spp,
- *    rounds, mean, noise, rays, target reached and strategies; on 1 thread as on all;
+ *    depth) in one set, each with its own spp, two toward a target noise (their own rounds), with
+ *    two more AO images (bounded, obscurance: the set shares their rays) and indirect at another
+ *    size (a second view of the world), against each rendered alone: the same image and
+ *    standard-error bits, and the same spp, rounds, mean, noise, rays, target reached and
+ *    strategies; on 1 thread as on all;
  *  - the set's components add up: with max_depth 2, full = direct + indirect + glossy + caustic
  *    + higher in expectation (tests/reference/ref_sum.c, there from separate renders): image
  *    means within 4 standard errors of their difference per channel (the renders' own errors in
  *    quadrature; independent samples, each component on its own streams), every 4x4 block's
  *    within 4.5 (64 blocks x 3 channels); a negative control, the sum without higher, must part
  *    by more than 4, else the check could not see a component missing;
- *  - a set whose components see different views is refused;
+ *  - a set of more components than it holds is refused;
  *  - through the cache: the set's entries are found by single requests, with the set's pixels,
  *    and a second set finds them all. */
 #include <math.h>
@@ -41,46 +43,53 @@ static int same_bits(const gib_image *a, const gib_image *b)
            !memcmp(a->px, b->px, (size_t)a->width * a->height * a->channels * sizeof *a->px);
 }
 
-/* Every component together against each alone. */
+/* Every component together against each alone, and three more: AO within 0.5 m and obscurance
+ * within 1 m (whose rays the set shares with the unbounded AO's), indirect at another size. */
+enum { NSET = GIB_COMP_COUNT + 3 };
 static void check_bits(const gib_scene *s, int threads)
 {
-    gib_ref_params p[GIB_COMP_COUNT];
-    static const int spp[GIB_COMP_COUNT] = {16, 1, 16, 24, 32, 16, 8, 1, 1, 1};
-    for (int c = 0; c < GIB_COMP_COUNT; c++) {
-        p[c] = rt_params(c, W, H, spp[c]);
+    gib_ref_params p[NSET];
+    static const int spp[NSET] = {16, 1, 16, 24, 32, 16, 8, 1, 1, 1, 16, 24, 16};
+    for (int c = 0; c < NSET; c++) {
+        static const int extra[3] = {GIB_COMP_AO, GIB_COMP_AO, GIB_COMP_INDIRECT};
+        p[c] = rt_params(c < GIB_COMP_COUNT ? c : extra[c - GIB_COMP_COUNT], W, H, spp[c]);
         p[c].max_depth = 4;
         p[c].threads = threads;
     }
+    p[GIB_COMP_COUNT].dmax = 0.5f;
+    p[GIB_COMP_COUNT + 1].dmax = 1.0f;
+    p[GIB_COMP_COUNT + 1].obscurance = 1;
+    p[GIB_COMP_COUNT + 2].width = W / 2;
+    p[GIB_COMP_COUNT + 2].height = H - 8;
     p[GIB_COMP_INDIRECT].target_noise = 0.3; /* rounds of its own: 16, 64, ... */
     p[GIB_COMP_INDIRECT].max_spp = 256;
     p[GIB_COMP_HIGHER].target_noise = 0.5;
     p[GIB_COMP_HIGHER].max_spp = 64;
-    gib_image img[GIB_COMP_COUNT], sd[GIB_COMP_COUNT];
-    gib_ref_stats st[GIB_COMP_COUNT];
+    gib_image img[NSET], sd[NSET];
+    gib_ref_stats st[NSET];
     gib_error err;
-    int rc = gib_reference_render_set(s, p, GIB_COMP_COUNT, img, sd, st, &err);
+    int rc = gib_reference_render_set(s, p, NSET, img, sd, st, &err);
     CHECK(rc == 0, "the set failed: %s", err.msg);
     if (rc < 0)
         return;
     int rounds_differ = 0;
-    for (int c = 0; c < GIB_COMP_COUNT; c++) {
+    for (int c = 0; c < NSET; c++) {
         gib_image a, asd;
         gib_ref_stats as;
         rt_render(s, &p[c], &a, &asd, &as);
         const gib_ref_stats *b = &st[c];
-        printf("  %-8s threads %d: %3d spp, %d rounds, mean %.6g noise %.4g rays %lld\n",
-               gib_component_name(c), threads, b->spp, b->rounds, b->mean, b->noise_rmse,
-               b->rays);
+        const char *name = gib_component_name(p[c].component);
+        printf("  %-8s %2dx%2d dmax %-3g threads %d: %3d spp, %d rounds, mean %.6g noise %.4g "
+               "rays %lld\n", name, p[c].width, p[c].height, (double)p[c].dmax, threads, b->spp,
+               b->rounds, b->mean, b->noise_rmse, b->rays);
         CHECK(same_bits(&a, &img[c]) && same_bits(&asd, &sd[c]),
-              "%s: the set's image or standard error differs from its render alone",
-              gib_component_name(c));
+              "%s %d: the set's image or standard error differs from its render alone", name, c);
         CHECK(as.spp == b->spp && as.rounds == b->rounds && as.mean == b->mean &&
                   as.noise_rmse == b->noise_rmse && as.rays == b->rays &&
                   as.target_reached == b->target_reached &&
                   as.light_vertices == b->light_vertices && as.pilot_gain == b->pilot_gain,
               "%s: the set's statistics differ from its render alone (spp %d/%d, rounds %d/%d, "
-              "rays %lld/%lld)", gib_component_name(c), b->spp, as.spp, b->rounds, as.rounds,
-              b->rays, as.rays);
+              "rays %lld/%lld)", name, b->spp, as.spp, b->rounds, as.rounds, b->rays, as.rays);
         rounds_differ |= b->rounds != st[0].rounds;
         gib_image_free(&a), gib_image_free(&asd);
         gib_image_free(&img[c]), gib_image_free(&sd[c]);
@@ -175,13 +184,14 @@ static void check_sum(const gib_scene *s)
 
 static void check_refused(const gib_scene *s)
 {
-    gib_ref_params p[2] = {rt_params(GIB_COMP_DIRECT, W, H, 1),
-                           rt_params(GIB_COMP_INDIRECT, W, H / 2, 16)};
-    gib_image img[2];
+    gib_ref_params p[GIB_REF_SET_MAX + 1];
+    for (int k = 0; k <= GIB_REF_SET_MAX; k++)
+        p[k] = rt_params(GIB_COMP_DIRECT, W, H, 1);
+    gib_image img[GIB_REF_SET_MAX + 1];
     gib_error err = {0};
-    int rc = gib_reference_render_set(s, p, 2, img, NULL, NULL, &err);
-    CHECK(rc < 0 && strstr(err.msg, "one view"), "two views in one set: rc %d, '%s'", rc,
-          err.msg);
+    int rc = gib_reference_render_set(s, p, GIB_REF_SET_MAX + 1, img, NULL, NULL, &err);
+    CHECK(rc < 0 && strstr(err.msg, "a set holds"), "%d components in one set: rc %d, '%s'",
+          GIB_REF_SET_MAX + 1, rc, err.msg);
 }
 
 /* Through the cache: a set's entries serve single requests, then a second set. */
