@@ -9,6 +9,7 @@
  *   ref_path.c       full and higher: camera paths with next-event estimation and Russian roulette
  *   ref_light.c      light tracing: the mirror-first paths of caustic, full and higher
  *   reference.c      the render loop: rounds, per-pixel statistics, target noise, threads
+ *   ref_set.c        several components of one scene at one instant rendered together
  *   ref_progress.c   the progress bar / log lines, and the thread pool
  *   ref_params.c     component names, parameter normalisation, hashing and EXR attributes
  *   ref_bench.c      the throughput benchmark */
