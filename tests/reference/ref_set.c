@@ -98,40 +98,17 @@ static void check_bits(const gib_scene *s, int threads)
 }
 
 typedef struct planes { /* per channel: pixel values and variances of the mean */
-    double v[3][W * H], var[3][W * H];
+    double v[3 * W * H], var[3 * W * H];
 } planes;
 
-/* Adds (sign +1) or subtracts (-1) an image and its variances into acc. */
-static void accumulate(planes *acc, const gib_image *img, const gib_image *sd, int sign)
+/* Adds an image and its variances into acc. */
+static void accumulate(planes *acc, const gib_image *img, const gib_image *sd)
 {
     for (int i = 0; i < W * H; i++)
         for (int c = 0; c < 3; c++) {
-            acc->v[c][i] += sign * (double)img->px[3 * i + c];
-            acc->var[c][i] += (double)sd->px[3 * i + c] * sd->px[3 * i + c];
+            acc->v[c * W * H + i] += (double)img->px[3 * i + c];
+            acc->var[c * W * H + i] += (double)sd->px[3 * i + c] * sd->px[3 * i + c];
         }
-}
-
-/* The largest |z| of acc's image means (zmean) and 4x4 block means (zblock): acc holds a
- * difference whose expectation is 0. */
-static void z_of(const planes *acc, double *zmean, double *zblock)
-{
-    *zmean = *zblock = 0.0;
-    for (int c = 0; c < 3; c++) {
-        double d = 0.0, v = 0.0;
-        for (int b = 0; b < (W / NB) * (H / NB); b++) {
-            double bd = 0.0, bv = 0.0;
-            for (int k = 0; k < NB * NB; k++) {
-                int i = (b / (W / NB) * NB + k / NB) * W + b % (W / NB) * NB + k % NB;
-                bd += acc->v[c][i];
-                bv += acc->var[c][i];
-            }
-            d += bd, v += bv;
-            double z = bv > 0.0 ? fabs(bd) / sqrt(bv) : (bd != 0.0 ? INFINITY : 0.0);
-            *zblock = z > *zblock ? z : *zblock;
-        }
-        double z = v > 0.0 ? fabs(d) / sqrt(v) : (d != 0.0 ? INFINITY : 0.0);
-        *zmean = z > *zmean ? z : *zmean;
-    }
 }
 
 /* full = direct + indirect + glossy + caustic + higher (max_depth 2), all from one set. */
@@ -153,21 +130,23 @@ static void check_sum(const gib_scene *s)
         CHECK(0, "the set failed: %s", err.msg);
         return;
     }
-    planes *all = calloc(1, sizeof *all), *control = calloc(1, sizeof *control);
-    if (!all || !control) {
+    planes *full = calloc(1, sizeof *full), *sum = calloc(1, sizeof *sum),
+           *control = calloc(1, sizeof *control);
+    if (!full || !sum || !control) {
         fprintf(stderr, "out of memory\n");
         exit(1);
     }
     for (int k = 0; k < N; k++) {
-        accumulate(all, &img[k], &sd[k], k == 0 ? 1 : -1);
-        if (comps[k] != GIB_COMP_HIGHER)
-            accumulate(control, &img[k], &sd[k], k == 0 ? 1 : -1);
+        accumulate(k == 0 ? full : sum, &img[k], &sd[k]);
+        if (k > 0 && comps[k] != GIB_COMP_HIGHER)
+            accumulate(control, &img[k], &sd[k]);
         printf("  %-8s %d spp: mean %.6g noise %.4g\n", gib_component_name(comps[k]), st[k].spp,
                st[k].mean, st[k].noise_rmse);
     }
     double zm, zb, cm, cb;
-    z_of(all, &zm, &zb);
-    z_of(control, &cm, &cb);
+    rt_z_diff(full->v, full->var, sum->v, sum->var, W, H, NB, &zm, &zb);
+    rt_z_diff(full->v, full->var, control->v, control->var, W, H, NB, &cm, &cb);
+    zm = fabs(zm), cm = fabs(cm);
     printf("  full - (direct + indirect + glossy + caustic + higher): image means %.2f sigma, "
            "worst 4x4 block %.2f; without higher %.2f\n", zm, zb, cm);
     CHECK_AT_MOST("set sum rule: image means (standard errors)", zm, 4.0,
@@ -178,7 +157,8 @@ static void check_sum(const gib_scene *s)
                     "check has no power", cm);
     for (int k = 0; k < N; k++)
         gib_image_free(&img[k]), gib_image_free(&sd[k]);
-    free(all);
+    free(full);
+    free(sum);
     free(control);
 }
 
