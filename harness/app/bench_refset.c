@@ -1,12 +1,12 @@
 /* gibench bench references — what a matrix profile's references cost rendered one request at a
  * time (gib_reference_render each, as runs asked before) against each world's requests together
- * (gib_reference_render_set, as `gibench run` prefetches them now: refset.h). The requests are
- * those a run of the matrices asks first (each output at the matrix's spp, one per cache key, a
- * key an earlier matrix already asked for left out, as the cache would), grouped by scene and
- * instant (one world); a set of one request is rendered once and counted on both sides. One CSV
- * row per set and a total row: seconds each way (the least of --repeat rounds, the world's build included),
- * the noise RMSE each way, and whether every image came out bit for bit the same. Performance is
- * measured here, never asserted by a test. */
+ * (gib_reference_render_set, as `gibench run` now renders a scene's references when it first
+ * loads it, for that matrix and the later ones of the run: refset.h, cmd_run.c). The requests are
+ * those the runs ask first (each output at its matrix's spp, one per cache key), gathered per
+ * scene over every matrix and grouped by instant (one world); a set of one request is rendered
+ * once and counted on both sides. One CSV row per set and a total row: seconds each way (the least
+ * of --repeat rounds, the world's build included), the noise RMSE each way, and whether every
+ * image came out bit for bit the same. Performance is measured here, never asserted by a test. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -99,7 +99,7 @@ static int br_set(br_total *t, const char *matrix, const gib_scene *scene,
     t->differ += !same;
     t->each += each;
     t->together += together;
-    printf("%-21s %-15s t=%-4g each %7.2f s  together %7.2f s  %s  %s\n", matrix, scene->name,
+    printf("%-40s %-15s t=%-4g each %7.2f s  together %7.2f s  %s  %s\n", matrix, scene->name,
            (double)p[0].time, each, together, same ? "same bits" : "IMAGES DIFFER", comps);
     fprintf(t->csv, "%s,%s,%ld,%d,%s,%s,%d,%g,%s,%d,%.4f,%.4f,%.4f,%.6g,%.6g,%d\n",
             gib_git_revision(), t->machine, t->cores, t->threads, matrix, scene->name,
@@ -108,57 +108,67 @@ static int br_set(br_total *t, const char *matrix, const gib_scene *scene,
     return 0;
 }
 
-/* One matrix: its scenes' requests not asked before (keys in seen), world by world. */
-static int br_matrix(br_total *t, const char *path, const char *profile, uint64_t *seen,
-                     int *nseen, gib_error *err)
+typedef struct br_scene_ctx {
+    br_total *t;
+    const char *names;
+    const gib_scene *scene;
+    gib_error *err;
+} br_scene_ctx;
+
+/* gib_ref_each_set's step: one set both ways. */
+static int br_each(void *ctx, const gib_ref_request *set, int k)
 {
-    gib_matrix m;
-    if (gib_matrix_load(path, profile, &m, err) < 0)
-        return -1;
-    char *want = calloc((size_t)m.run_count + 1, 1);
-    gib_ref_request *rq = malloc(BR_MAX_REQUESTS * sizeof *rq);
-    int *world = malloc(BR_MAX_REQUESTS * sizeof *world), rc = want && rq && world ? 0 : -1;
-    for (int i = 0; rc == 0 && i < m.run_count; i++) {
-        int first = 1;
-        for (int j = 0; j < i && first; j++)
-            first = strcmp(m.runs[j].scene, m.runs[i].scene) != 0;
-        gib_scene scene;
-        gib_error serr;
-        if (!first || gib_scene_load(m.runs[i].scene, &scene, &serr) < 0) {
-            if (first)
-                printf("%s: scene %s skipped: %s\n", m.name, m.runs[i].scene, serr.msg);
-            continue;
-        }
-        for (int j = 0; j < m.run_count; j++)
-            want[j] = !strcmp(m.runs[j].scene, m.runs[i].scene) &&
-                      gib_scene_wanted(&scene, m.runs[j].technique, NULL, 0);
-        int n = gib_matrix_ref_requests(&m, NULL, &scene, want, rq, BR_MAX_REQUESTS), kept = 0;
-        for (int k = 0; k < n; k++) { /* what an earlier matrix asked for is in the cache */
-            gib_ref_params p = gib_ref_request_params(&rq[k]);
-            uint64_t key = gib_reference_cache_key(&scene, &p);
-            int dup = 0;
-            for (int s = 0; s < *nseen && !dup; s++)
-                dup = seen[s] == key;
-            if (!dup && *nseen < 4 * BR_MAX_REQUESTS)
-                seen[(*nseen)++] = key, rq[kept++] = rq[k];
-        }
-        int groups = gib_ref_worlds(rq, kept, world);
-        for (int g = 0; g < groups && rc == 0; g++) {
-            gib_ref_request set[GIB_REF_SET_MAX];
-            int k = 0;
-            for (int r = 0; r < kept && k < GIB_REF_SET_MAX; r++)
-                if (world[r] == g)
-                    set[k++] = rq[r];
-            rc = br_set(t, m.name, &scene, set, k, err);
-        }
-        gib_scene_free(&scene);
+    br_scene_ctx *sc = ctx;
+    return br_set(sc->t, sc->names, sc->scene, set, k, sc->err);
+}
+
+/* One scene: the requests of its runs in every matrix (the first to load it renders them all,
+ * as `gibench run` does), one per key, world by world. */
+static int br_scene(br_total *t, const gib_matrix *ms, int nm, const char *sname, gib_error *err)
+{
+    gib_scene scene;
+    gib_error serr;
+    if (gib_scene_load(sname, &scene, &serr) < 0) {
+        printf("scene %s skipped: %s\n", sname, serr.msg);
+        return 0;
     }
-    if (!(want && rq && world) && rc < 0)
-        gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "bench references: out of memory");
+    int most = 1, n = 0, rc = 0;
+    for (int i = 0; i < nm; i++)
+        most = ms[i].run_count > most ? ms[i].run_count : most;
+    char *want = calloc((size_t)most, 1), names[256] = "";
+    gib_ref_request *rq = malloc(BR_MAX_REQUESTS * sizeof *rq);
+    int *world = malloc(BR_MAX_REQUESTS * sizeof *world);
+    uint64_t *key = malloc(BR_MAX_REQUESTS * sizeof *key);
+    if (!want || !rq || !world || !key)
+        rc = gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "bench references: out of memory");
+    for (int i = 0; rc == 0 && i < nm; i++) {
+        int before = n, got;
+        for (int j = 0; j < ms[i].run_count; j++)
+            want[j] = !strcmp(ms[i].runs[j].scene, sname) &&
+                      gib_scene_wanted(&scene, ms[i].runs[j].technique, NULL, 0);
+        got = gib_matrix_ref_requests(&ms[i], NULL, &scene, want, rq + n, BR_MAX_REQUESTS - n);
+        for (int k = n; k < n + got; k++) { /* a key asked before is in the cache */
+            gib_ref_params p = gib_ref_request_params(&rq[k]);
+            uint64_t kk = gib_reference_cache_key(&scene, &p);
+            int dup = 0;
+            for (int j = 0; j < before && !dup; j++)
+                dup = key[j] == kk;
+            if (!dup)
+                key[before] = kk, rq[before++] = rq[k];
+        }
+        if (before > n)
+            snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s",
+                     names[0] ? "+" : "", ms[i].name);
+        n = before;
+    }
+    br_scene_ctx sc = {.t = t, .names = names, .scene = &scene, .err = err};
+    if (rc == 0)
+        rc = gib_ref_each_set(rq, n, world, gib_ref_worlds(rq, n, world), br_each, &sc);
+    free(key);
     free(world);
     free(rq);
     free(want);
-    gib_matrix_free(&m);
+    gib_scene_free(&scene);
     return rc;
 }
 
@@ -189,17 +199,31 @@ int gib_bench_references(int argc, char **argv)
         perror(out);
         return 1;
     }
-    fputs("revision,machine,cores,threads,matrix,scene,camera,time,components,"
+    fputs("revision,machine,cores,threads,matrices,scene,camera,time,components,"
           "requests,seconds_each,seconds_together,speedup,noise_each,noise_together,"
           "same_bits\n", t.csv);
-    uint64_t *seen = malloc(4 * BR_MAX_REQUESTS * sizeof *seen);
-    int nseen = 0;
+    gib_matrix *ms = calloc((size_t)nfiles, sizeof *ms);
     gib_error err = {0};
-    rc = seen ? 0 : 1;
-    for (int i = 0; i < nfiles && rc == 0; i++)
-        if (br_matrix(&t, files[i], profile, seen, &nseen, &err) < 0)
+    int nm = 0;
+    rc = ms ? 0 : 1;
+    while (rc == 0 && nm < nfiles)
+        if (gib_matrix_load(files[nm], profile, &ms[nm], &err) < 0)
             rc = 1;
-    free(seen);
+        else
+            nm++;
+    for (int i = 0; rc == 0 && i < nm; i++) /* each scene at its first run, as a run meets it */
+        for (int j = 0; rc == 0 && j < ms[i].run_count; j++) {
+            const char *sname = ms[i].runs[j].scene;
+            int first = 1;
+            for (int a = 0; a <= i && first; a++)
+                for (int b = 0; b < (a < i ? ms[a].run_count : j) && first; b++)
+                    first = strcmp(ms[a].runs[b].scene, sname) != 0;
+            if (first && br_scene(&t, ms, nm, sname, &err) < 0)
+                rc = 1;
+        }
+    for (int i = 0; i < nm; i++)
+        gib_matrix_free(&ms[i]);
+    free(ms);
     if (rc == 1)
         fprintf(stderr, "gibench bench references: %s\n", err.msg);
     fprintf(t.csv, "%s,%s,%ld,%d,all,all,0,0,%d sets,%d,%.4f,%.4f,%.4f,,,%d\n",

@@ -272,8 +272,9 @@ static int entry_store(const gib_ref_request *rq, const char *key_hex, const gib
     out->noise_rmse = st->noise_rmse;
     out->seconds = st->seconds;
     if (!rq->quiet)
-        fprintf(stderr, "gibench: reference %s done in %.1f s, %d spp, noise RMSE %.3g\n",
-                gib_component_name(rq->component), st->seconds, st->spp, st->noise_rmse);
+        fprintf(stderr, "gibench: reference %s %dx%d done in %.1f s, %d spp, noise RMSE %.3g\n",
+                gib_component_name(rq->component), rq->width, rq->height, st->seconds, st->spp,
+                st->noise_rmse);
     return 0;
 }
 
@@ -321,8 +322,8 @@ int gib_reference_get_set(const gib_ref_request *rq, int n, gib_ref_result *out,
     }
     if (rc == 0 && nmiss > 0) {
         if (!rq[0].quiet)
-            fprintf(stderr, "gibench: rendering %d references of %s %dx%d together\n", nmiss,
-                    rq[0].scene->name, rq[0].width, rq[0].height);
+            fprintf(stderr, "gibench: rendering %d references of %s together\n", nmiss,
+                    rq[0].scene->name);
         p[0].interrupt = NULL; /* a set is not interrupted (reference.h) */
         rc = gib_reference_render_set(rq[0].scene, p, nmiss, img, NULL, st, err);
         if (rc < 0)

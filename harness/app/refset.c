@@ -88,27 +88,55 @@ int gib_ref_worlds(const gib_ref_request *rq, int n, int *world)
     return groups;
 }
 
-int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err)
+int gib_ref_each_set(const gib_ref_request *rq, int n, const int *world, int groups,
+                     gib_ref_set_fn fn, void *ctx)
 {
-    int *world = malloc((size_t)(n > 0 ? n : 1) * sizeof *world);
-    if (!world)
-        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "reference prefetch: out of memory");
-    int groups = gib_ref_worlds(rq, n, world), rc = 0;
+    int rc = 0;
     for (int g = 0; g < groups && rc == 0; g++) {
         gib_ref_request set[GIB_REF_SET_MAX];
         int k = 0;
         for (int i = 0; i <= n && rc == 0; i++) {
             if (i < n && world[i] == g)
                 set[k++] = rq[i];
-            if (k < 2 || (k < GIB_REF_SET_MAX && i < n)) /* one request: left to its run */
-                continue;
-            gib_ref_result res[GIB_REF_SET_MAX];
-            rc = gib_reference_get_set(set, k, res, err);
-            for (int j = 0; rc == 0 && j < k; j++)
-                gib_image_free(&res[j].image);
-            k = 0;
+            if (k > 0 && (k == GIB_REF_SET_MAX || i == n)) {
+                rc = fn(ctx, set, k);
+                k = 0;
+            }
         }
     }
+    return rc;
+}
+
+/* gib_ref_each_set's step of the prefetch: a set of two or more through the cache. */
+static int prefetch_set(void *ctx, const gib_ref_request *set, int k)
+{
+    if (k < 2) /* one request: left to its run */
+        return 0;
+    gib_ref_result res[GIB_REF_SET_MAX];
+    int rc = gib_reference_get_set(set, k, res, ctx);
+    for (int j = 0; rc == 0 && j < k; j++)
+        gib_image_free(&res[j].image);
+    return rc;
+}
+
+int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err)
+{
+    int *world = malloc((size_t)(n > 0 ? n : 1) * sizeof *world);
+    uint64_t *key = malloc((size_t)(n > 0 ? n : 1) * sizeof *key);
+    if (!world || !key) {
+        free(world), free(key);
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY, "reference prefetch: out of memory");
+    }
+    int groups = gib_ref_worlds(rq, n, world), rc = 0;
+    for (int i = 0; i < n; i++) { /* a key asked twice (two matrices) is rendered once */
+        gib_ref_params p = gib_ref_request_params(&rq[i]);
+        key[i] = gib_reference_cache_key(rq[i].scene, &p);
+        for (int j = 0; j < i && world[i] >= 0; j++)
+            if (key[j] == key[i] && world[j] >= 0)
+                world[i] = -1;
+    }
+    rc = gib_ref_each_set(rq, n, world, groups, prefetch_set, err);
+    free(key);
     free(world);
     return rc;
 }

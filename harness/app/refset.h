@@ -27,10 +27,17 @@ int gib_matrix_ref_requests(const gib_matrix *m, const char *cache, const gib_sc
  * numbered from 0 in order of first appearance. Returns the group count. */
 int gib_ref_worlds(const gib_ref_request *rq, int n, int *world);
 
+/* fn(ctx, set, k) for each world g < groups in turn: its requests (world[i] == g; a request of
+ * world < 0 is left out) in order, in sets of at most GIB_REF_SET_MAX. Stops at the first nonzero
+ * return, which it returns; else 0. */
+typedef int (*gib_ref_set_fn)(void *ctx, const gib_ref_request *set, int k);
+int gib_ref_each_set(const gib_ref_request *rq, int n, const int *world, int groups,
+                     gib_ref_set_fn fn, void *ctx);
+
 /* Renders what the cache lacks of the requests, each world's together (gib_reference_get_set, at
- * most GIB_REF_SET_MAX a set), each stored as its own entry under the key its request alone has
- * and with the pixels its render alone gives; a later gib_reference_get finds it. A world with one
- * request is left to it. 0, or -1 / GIB_REF_WRITE_FAILED with err. */
+ * most GIB_REF_SET_MAX a set; a key asked twice once), each stored as its own entry under the key
+ * its request alone has and with the pixels its render alone gives; a later gib_reference_get
+ * finds it. A world with one request is left to it. 0, or -1 / GIB_REF_WRITE_FAILED with err. */
 int gib_reference_prefetch(const gib_ref_request *rq, int n, gib_error *err);
 
 /* gibench bench references (harness/app/bench_refset.c): argv[0] is "references". */
