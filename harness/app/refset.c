@@ -88,19 +88,36 @@ int gib_ref_worlds(const gib_ref_request *rq, int n, int *world)
     return groups;
 }
 
+/* A set's statistics live together: at most this many bytes of them a set (a 1280x720 image
+ * holds ~0.3 GB: per pixel and channel a mean, M2, 8 Sobol batch sums and the light part's). */
+#define REFSET_MAX_BYTES (1ull << 30)
+
+/* An upper bound of a request's statistics in bytes. */
+static unsigned long long request_bytes(const gib_ref_request *rq)
+{
+    return (unsigned long long)rq->width * (unsigned long long)rq->height * 3ull * 8ull *
+           (4ull + GIB_REF_SOBOL_BATCHES);
+}
+
 int gib_ref_each_set(const gib_ref_request *rq, int n, const int *world, int groups,
                      gib_ref_set_fn fn, void *ctx)
 {
     int rc = 0;
     for (int g = 0; g < groups && rc == 0; g++) {
         gib_ref_request set[GIB_REF_SET_MAX];
+        unsigned long long bytes = 0;
         int k = 0;
         for (int i = 0; i <= n && rc == 0; i++) {
-            if (i < n && world[i] == g)
-                set[k++] = rq[i];
-            if (k > 0 && (k == GIB_REF_SET_MAX || i == n)) {
+            int in = i < n && world[i] == g;
+            if (in && k > 0 && bytes + request_bytes(&rq[i]) > REFSET_MAX_BYTES) {
+                rc = fn(ctx, set, k); /* full: this one starts the next set */
+                k = 0, bytes = 0;
+            }
+            if (in && rc == 0)
+                set[k++] = rq[i], bytes += request_bytes(&rq[i]);
+            if (rc == 0 && k > 0 && (k == GIB_REF_SET_MAX || i == n)) {
                 rc = fn(ctx, set, k);
-                k = 0;
+                k = 0, bytes = 0;
             }
         }
     }

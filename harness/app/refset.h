@@ -28,8 +28,8 @@ int gib_matrix_ref_requests(const gib_matrix *m, const char *cache, const gib_sc
 int gib_ref_worlds(const gib_ref_request *rq, int n, int *world);
 
 /* fn(ctx, set, k) for each world g < groups in turn: its requests (world[i] == g; a request of
- * world < 0 is left out) in order, in sets of at most GIB_REF_SET_MAX. Stops at the first nonzero
- * return, which it returns; else 0. */
+ * world < 0 is left out) in order, in sets of at most GIB_REF_SET_MAX requests and 1 GiB of
+ * their statistics. Stops at the first nonzero return, which it returns; else 0. */
 typedef int (*gib_ref_set_fn)(void *ctx, const gib_ref_request *set, int k);
 int gib_ref_each_set(const gib_ref_request *rq, int n, const int *world, int groups,
                      gib_ref_set_fn fn, void *ctx);
