@@ -29,7 +29,7 @@
 
 enum { W = 32, H = 32, NB = 4 };
 /* The sum rule's samples per pixel: the negative control parts by 12 standard errors. The whole
- * test takes ~1.5 s here, ~6 s under AddressSanitizer: no smaller count is needed there. */
+ * test takes ~1.5 s in release, ~3 s under AddressSanitizer: no smaller count is needed there. */
 enum { SPP = 1024 };
 
 static int same_bits(const gib_image *a, const gib_image *b)
