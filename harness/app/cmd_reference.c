@@ -1,6 +1,7 @@
 /* gibench reference — renders one light-transport component with the Embree path tracer and
  * writes it as EXR with its metadata (and a PNG preview beside it), directly (--out) or through
- * the reference cache (--cache DIR, --force to render again). */
+ * the reference cache (--cache DIR, --force to render again); or a list of components of one view
+ * together (gib_reference_render_set), one file or cache entry each. */
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
@@ -16,7 +17,7 @@
 #include "options.h"
 
 static const gib_command_doc doc = {
-    "reference", "--scene S --component C (--out F.exr | --cache DIR) [options]",
+    "reference", "--scene S --component C[:N][,C[:N]...] (--out F.exr | --cache DIR) [options]",
     "Components (paths in Heckbert notation, reference/reference.h):\n"
     "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
     "            weights an occluder at distance d by min(d / dmax, 1) (Zhukov et al. 1998; needs\n"
@@ -31,6 +32,11 @@ static const gib_command_doc doc = {
     "            along the normal, five 60 degrees from it; harness/base/cone_set.h) with\n"
     "            --cone-aperture DEG (default 60): rho_d times the cap's mean radiance, what\n"
     "            `lrsm` and `vct` render with --param cone=I\n"
+    "\n"
+    "A list of components (--component direct,indirect:64,glossy) renders them together from\n"
+    "one world and one primary ray a pixel, each with its own spp (N, else --spp) and rounds,\n"
+    "each image the bits of its render alone: one cache entry each (the key a request of it\n"
+    "alone has), or with --out F.exr one file F.C.exr each (and --stderr likewise).\n"
     "\n"
     "--spp N (default 16) is the sample count, or with --target-noise X the first round's:\n"
     "rounds are added until the noise RMSE is at most X times the image mean, or --max-spp\n"
