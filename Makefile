@@ -32,12 +32,12 @@ BUNDLE ?= build-bundle
 MATRICES = $(wildcard harness/matrices/*.matrix)
 STUDIES  = $(wildcard harness/matrices/studies/*.matrix)
 
-.PHONY: all deps build build-asan install test tsan tsan-build reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-cycles bench-timing bundle clean help
+.PHONY: all deps build build-asan install test tsan tsan-build reproduce reproduce-studies cone-study cone-study-sponza cone-study-rooms cone-study-sponza-spot cone-controls-sponza-spot vct-floor-control energy-controls plots report baselines fuzz bench bench-cycles bench-references bench-timing bundle clean help
 
 all: build
 
 help:
-	@echo "make install PREFIX=DIR | make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-cycles | make bench-timing | make bundle | make clean"
+	@echo "make install PREFIX=DIR | make reproduce | make reproduce-studies | make cone-study | make energy-controls | make test | make deps | make build | make plots | make report | make baselines | make fuzz | make bench | make bench-cycles | make bench-references | make bench-timing | make bundle | make clean"
 
 # Installs only what is missing, with sudo when not root, without recommended packages.
 deps:
@@ -173,7 +173,15 @@ bench: build
 	  --out $(RESULTS)/bench_reference.csv
 	$(BUILD)/gibench bench scoring --repeat 9 --out $(RESULTS)/bench_scoring.csv
 	$(MAKE) --no-print-directory bench-cycles
+	$(MAKE) --no-print-directory bench-references
 	$(MAKE) --no-print-directory bench-timing
+
+# The quick profile's references rendered one request at a time and each scene's together at one
+# instant (gibench bench references; reference/PERFORMANCE.md, "One world, every component"):
+# seconds and noise each way, whether every image came out the same bits; ~3 min on 2 cores.
+bench-references: build
+	$(BUILD)/gibench bench references harness/matrices/*.matrix --profile quick --repeat 3 \
+	  --out $(RESULTS)/bench_references.csv
 
 # The reference's `full` against Blender Cycles (CPU, no denoising) on one closed room, 128x128 at
 # 256 spp, 8 seeds each: time, noise and efficiency (reference/PERFORMANCE.md, "Against Blender

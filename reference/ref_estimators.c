@@ -54,22 +54,33 @@ void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref
  * but gives no falloff): we use Zhukov's linear rho(d) = min(d / dmax, 1), so an occluder at the
  * surface blocks fully, one at dmax or beyond not at all; the sample's value is rho(d), 1 on a
  * miss. d is measured from the ray origin (the point moved off the surface by the ray offset). */
+void ref_ao_ray(const ref_world *w, const ref_hit *h, ref_rng *rng, float o[3], float d[3])
+{
+    float u1, u2;
+    ref_rng_2d(rng, &u1, &u2);
+    ref_sample_cosine(h->n, u1, u2, d);
+    ref_offset_origin(w, h, d, o);
+}
+
+float ref_ao_value(float t, float dmax, int obscurance)
+{
+    int bounded = dmax > 0.0f && isfinite(dmax);
+    if (obscurance && bounded)
+        return t >= dmax ? 1.0f : t / dmax;
+    return t <= (bounded ? dmax : INFINITY) && t < INFINITY ? 0.0f : 1.0f;
+}
+
 float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_rng *rng,
                  long long *rays)
 {
     if (h->back)
         return 0.0f;
-    float u1, u2;
-    ref_rng_2d(rng, &u1, &u2);
     float d[3], o[3];
-    ref_sample_cosine(h->n, u1, u2, d);
-    ref_offset_origin(w, h, d, o);
+    ref_ao_ray(w, h, rng, o, d);
     int bounded = dmax > 0.0f && isfinite(dmax);
     ++*rays;
-    if (obscurance && bounded) {
-        float t = ref_hit_distance(w, o, d, dmax);
-        return t >= dmax ? 1.0f : t / dmax;
-    }
+    if (obscurance && bounded)
+        return ref_ao_value(ref_hit_distance(w, o, d, dmax), dmax, 1);
     return ref_occluded(w, o, d, bounded ? dmax : INFINITY) ? 0.0f : 1.0f;
 }
 

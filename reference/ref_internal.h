@@ -9,6 +9,7 @@
  *   ref_path.c       full and higher: camera paths with next-event estimation and Russian roulette
  *   ref_light.c      light tracing: the mirror-first paths of caustic, full and higher
  *   reference.c      the render loop: rounds, per-pixel statistics, target noise, threads
+ *   ref_set.c        several components of one scene at one instant rendered together
  *   ref_progress.c   the progress bar / log lines, and the thread pool
  *   ref_params.c     component names, parameter normalisation, hashing and EXR attributes
  *   ref_bench.c      the throughput benchmark */
@@ -366,6 +367,13 @@ void ref_est_direct(const ref_world *w, const ref_hit *h, const float wo[3], ref
  * with obscurance, min(d / dmax, 1). */
 float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscurance, ref_rng *rng,
                  long long *rays);
+/* ref_est_ao in parts, for AO images of one view that differ only in dmax and obscurance: their
+ * samples draw the same numbers (the same seeds), hence the same ray, so one closest-hit ray cast
+ * as far as the farthest dmax serves them all (ref_set.c). ref_ao_ray: the sample's ray (its two
+ * numbers); ref_ao_value: the sample's value when the first surface on it lies at t (INFINITY:
+ * none as far as it was cast, which is at least dmax), what ref_est_ao returns bit for bit. */
+void ref_ao_ray(const ref_world *w, const ref_hit *h, ref_rng *rng, float o[3], float d[3]);
+float ref_ao_value(float t, float dmax, int obscurance);
 /* cone >= 1: only diffuse cone cone - 1 of the cone set, the cap of half-angle cone_half (radians),
  * sampled uniformly: rho_d times the cap's mean radiance. */
 void ref_est_indirect(const ref_world *w, const ref_hit *h, int cone, float cone_half,

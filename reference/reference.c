@@ -21,32 +21,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "ref_internal.h"
+#include "ref_run.h"
 
 #define REF_MAX_THREADS 256
 #define REF_MAX_SIZE 32768
 #define REF_GROUP_PIXELS (1 << 20) /* pass images held at once, in pixels (24 MiB) */
 
-typedef struct ref_run {
-    ref_ctx c;
-    ref_progress *prog;
-    double *cm, *cm2;         /* camera part: per pixel and channel, mean and Welford's M2 */
-    double *cb;               /* sobol: per pixel, channel and batch (innermost), the batch's sum */
-    double *lm, *lm2;         /* light part */
-    int s0, s1;               /* this round's samples */
-    /* light passes in flight: passes g0 .. g0+gn-1, chunks per pass, their splats and images */
-    int g0, gn, chunks, group;
-    ref_splats *splats;       /* gn * chunks */
-    double *pass_img;         /* gn * W*H*3 */
-    int oom;
-    /* Interrupts (gib_ref_interrupt): the statistics as the last finished round left them, so a
-     * round in progress can be abandoned at once (its tasks skip their work) and undone. */
-    const gib_ref_interrupt *stop;
-    double *saved;            /* cm, cm2, lm, lm2 of the last finished round; NULL: none kept */
-    int can_abandon;          /* a finished round is saved */
-    double pilot_gain;        /* ref_choose_strategies: the pilot's figure, 0 without one */
-    atomic_int abandoned;     /* a task of this round skipped its work */
-} ref_run;
 
 /* 1 when the task should skip its work: an interrupt was requested and a finished round is saved
  * to fall back to (without one, the round in progress is finished instead). */
@@ -67,22 +47,31 @@ static inline void ref_welford(double *mean, double *m2, int n, const float v[3]
     }
 }
 
-int ref_pixel_hit(const ref_ctx *c, int x, int y, ref_hit *h, float wo[3], long long *rays)
+int ref_primary_hit(const ref_ctx *c, int x, int y, int keep_back, ref_hit *h, float wo[3],
+                    long long *rays)
 {
     const int W = c->p.width, H = c->p.height;
-    const int aux = c->p.component >= GIB_COMP_ALBEDO;
     float o[3], d[3];
     /* Pixel centres only, no jitter: the GL techniques rasterise there without anti-aliasing,
      * so both sides see the same surface point and the error measures light transport, not
      * aliasing. */
     gib_camera_ray(c->cam, W, H, (float)x + 0.5f, (float)y + 0.5f, o, d);
     ++*rays;
-    if (!ref_trace(c->w, o, d, h) || (h->back && !aux))
-        return 0; /* a miss, or the back of a one-sided surface: 0, exactly */
+    if (!ref_trace(c->w, o, d, h))
+        return 0; /* a miss: 0, exactly */
+    wo[0] = -d[0], wo[1] = -d[1], wo[2] = -d[2];
+    if (h->back && !keep_back)
+        return 1;
     ref_hit_differentials(c->w, c->cam, W, H, x, y, h);
     ref_albedo(c->w, h, h->kd); /* trilinear once per pixel, not once per sample */
     h->has_kd = 1;
-    wo[0] = -d[0], wo[1] = -d[1], wo[2] = -d[2];
+    return 1;
+}
+
+int ref_pixel_ready(const ref_ctx *c, ref_hit *h, const float wo[3], long long *rays)
+{
+    if (h->back && c->p.component < GIB_COMP_ALBEDO)
+        return 0; /* the back of a one-sided surface: 0, exactly */
     if (c->p.component == GIB_COMP_FULL) { /* next-event estimation at x1: once per pixel */
         ref_mat m;
         ref_material(c->w, h, &m);
@@ -90,6 +79,39 @@ int ref_pixel_hit(const ref_ctx *c, int x, int y, ref_hit *h, float wo[3], long 
         h->has_nee = 1;
     }
     return 1;
+}
+
+int ref_pixel_hit(const ref_ctx *c, int x, int y, ref_hit *h, float wo[3], long long *rays)
+{
+    return ref_primary_hit(c, x, y, c->p.component >= GIB_COMP_ALBEDO, h, wo, rays) &&
+           ref_pixel_ready(c, h, wo, rays);
+}
+
+void ref_pixel_samples(ref_run *r, size_t pix, const ref_hit *h, const float wo[3],
+                       long long *rays)
+{
+    const ref_ctx *c = &r->c;
+    /* the pixel's samples in batches, each on its sample's own stream (ref_sample_camera) */
+    for (int s0 = r->s0; s0 < r->s1; s0 += REF_PATH_BATCH) {
+        int nb = r->s1 - s0 < REF_PATH_BATCH ? r->s1 - s0 : REF_PATH_BATCH;
+        ref_rng rng[REF_PATH_BATCH];
+        float v[REF_PATH_BATCH][3];
+        for (int i = 0; i < nb; i++)
+            ref_rng_seed_sample(&rng[i], c->p.sampler, pix, (uint64_t)(s0 + i), c->p.seed,
+                                c->p.component);
+        ref_sample_camera(c, h, wo, nb, rng, v, rays);
+        for (int i = 0; i < nb; i++)
+            ref_pixel_add(r, pix, s0 + i, v[i]);
+    }
+}
+
+void ref_pixel_add(ref_run *r, size_t pix, int s, const float v[3])
+{
+    ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s + 1, v);
+    if (r->cb)
+        for (int k = 0; k < 3; k++)
+            r->cb[(pix * 3 + k) * GIB_REF_SOBOL_BATCHES + (size_t)s % GIB_REF_SOBOL_BATCHES] +=
+                (double)v[k];
 }
 
 static void ref_row_task(void *ctx, int y)
@@ -104,25 +126,8 @@ static void ref_row_task(void *ctx, int y)
         size_t pix = (size_t)y * (size_t)W + (size_t)x;
         ref_hit h;
         float wo[3];
-        if (!ref_pixel_hit(c, x, y, &h, wo, &rays))
-            continue;
-        /* the pixel's samples in batches, each on its sample's own stream (ref_sample_camera) */
-        for (int s0 = r->s0; s0 < r->s1; s0 += REF_PATH_BATCH) {
-            int nb = r->s1 - s0 < REF_PATH_BATCH ? r->s1 - s0 : REF_PATH_BATCH;
-            ref_rng rng[REF_PATH_BATCH];
-            float v[REF_PATH_BATCH][3];
-            for (int i = 0; i < nb; i++)
-                ref_rng_seed_sample(&rng[i], c->p.sampler, pix, (uint64_t)(s0 + i), c->p.seed,
-                                    c->p.component);
-            ref_sample_camera(c, &h, wo, nb, rng, v, &rays);
-            for (int i = 0; i < nb; i++) {
-                ref_welford(&r->cm[pix * 3], &r->cm2[pix * 3], s0 + i + 1, v[i]);
-                if (r->cb)
-                    for (int k = 0; k < 3; k++)
-                        r->cb[(pix * 3 + k) * GIB_REF_SOBOL_BATCHES +
-                              (size_t)(s0 + i) % GIB_REF_SOBOL_BATCHES] += (double)v[i][k];
-            }
-        }
+        if (ref_pixel_hit(c, x, y, &h, wo, &rays))
+            ref_pixel_samples(r, pix, &h, wo, &rays);
     }
     atomic_fetch_add(&r->prog->rays, rays);
     atomic_fetch_add(&r->prog->units, (long long)W * (r->s1 - r->s0));
@@ -168,7 +173,7 @@ static void ref_pass_rows_task(void *ctx, int y)
     }
 }
 
-static int ref_light_round(ref_run *r, int nthreads)
+int ref_light_round(ref_run *r, int nthreads)
 {
     const ref_ctx *c = &r->c;
     const size_t npx = (size_t)c->p.width * (size_t)c->p.height;
@@ -241,7 +246,7 @@ int ref_check_params(const gib_scene *scene, const gib_ref_params *p, gib_error 
     return 0;
 }
 
-static int ref_thread_count(const gib_ref_params *p)
+int ref_thread_count(const gib_ref_params *p)
 {
     long n = p->threads > 0 ? p->threads : sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > REF_MAX_THREADS ? REF_MAX_THREADS : (int)n;
@@ -338,7 +343,7 @@ static void ref_run_saved(ref_run *r, int save)
         }
 }
 
-static void ref_run_free(ref_run *r)
+void ref_run_free(ref_run *r)
 {
     free(r->saved);
     if (r->splats)
@@ -385,14 +390,6 @@ static void ref_choose_strategies(ref_run *r, int nthreads)
     }
 }
 
-/* How a render's rounds went, and when it began. */
-typedef struct ref_tally {
-    int n, rounds, reached, interrupted; /* n: the samples per pixel the image holds */
-    double mean, noise;
-    double t0;   /* ref_now() at the start */
-    uint64_t k0; /* ref_ticks() at the start (with w->time_embree) */
-} ref_tally;
-
 static void ref_progress_init(ref_progress *prog, const ref_run *r, const gib_ref_params *p,
                               double t0)
 {
@@ -409,6 +406,35 @@ static void ref_progress_init(ref_progress *prog, const ref_run *r, const gib_re
     atomic_init(&prog->units, 0);
     atomic_init(&prog->rays, 0);
     atomic_init(&prog->embree_ticks, 0);
+}
+
+int ref_round_end(ref_run *r, ref_tally *t, int *goal)
+{
+    const gib_ref_params *np = &r->c.p;
+    t->n = *goal;
+    ref_summary(r, t->n, &t->mean, &t->noise);
+    double rel = t->mean > 0.0 ? t->noise / t->mean : (t->noise > 0.0 ? INFINITY : 0.0);
+    ref_progress_round(r->prog, t->n, rel);
+    if (!(np->target_noise > 0.0))
+        return 1;
+    t->reached = rel <= np->target_noise;
+    if (t->reached || t->n >= np->max_spp)
+        return 1;
+    *goal = ref_next_goal(t->n, rel, np->target_noise, np->max_spp,
+                          np->sampler == GIB_REF_SAMPLER_SOBOL);
+    return 0;
+}
+
+int ref_run_setup(ref_run *r, const ref_world *w, const gib_scene *scene, const gib_ref_params *p,
+                  ref_progress *prog, double t0, int nthreads, gib_error *err)
+{
+    memset(r, 0, sizeof *r);
+    ref_ctx_init(&r->c, w, scene, p);
+    r->prog = prog;
+    ref_progress_init(prog, r, p, t0);
+    ref_choose_strategies(r, nthreads);
+    atomic_init(&r->abandoned, 0);
+    return ref_run_alloc(r, err);
 }
 
 /* The rounds: each takes every pixel's samples up to its goal, until the target noise or
@@ -437,16 +463,10 @@ static int ref_rounds(ref_run *r, const gib_ref_params *p, int nthreads, ref_tal
             t->interrupted = 1;
             break;
         }
-        t->n = goal;
-        ref_summary(r, t->n, &t->mean, &t->noise);
-        double rel = t->mean > 0.0 ? t->noise / t->mean : (t->noise > 0.0 ? INFINITY : 0.0);
-        ref_progress_round(prog, t->n, rel);
+        int last = ref_round_end(r, t, &goal);
         if (p->interrupt)
             atomic_store(&p->interrupt->rounds_done, t->rounds);
-        if (!(np->target_noise > 0.0))
-            break;
-        t->reached = rel <= np->target_noise;
-        if (t->reached || t->n >= np->max_spp)
+        if (last)
             break;
         if (p->interrupt && atomic_load(&p->interrupt->requested)) {
             t->interrupted = 1;
@@ -456,15 +476,12 @@ static int ref_rounds(ref_run *r, const gib_ref_params *p, int nthreads, ref_tal
             ref_run_saved(r, 1);
             r->can_abandon = 1;
         }
-        goal = ref_next_goal(t->n, rel, np->target_noise, np->max_spp,
-                             np->sampler == GIB_REF_SAMPLER_SOBOL);
     }
     ref_progress_end(prog);
     return 0;
 }
 
-/* The image (camera and light parts summed) and, when asked, each pixel's standard error. */
-static void ref_write_images(const ref_run *r, int n, gib_image *out, gib_image *stderr_img)
+void ref_write_images(const ref_run *r, int n, gib_image *out, gib_image *stderr_img)
 {
     const size_t count = (size_t)r->c.p.width * r->c.p.height * 3;
     for (size_t i = 0; i < count; i++) {
@@ -475,8 +492,8 @@ static void ref_write_images(const ref_run *r, int n, gib_image *out, gib_image 
     }
 }
 
-static void ref_fill_stats(gib_ref_stats *stats, const ref_run *r, const gib_scene *scene,
-                           const gib_ref_params *p, const ref_tally *t)
+void ref_fill_stats(gib_ref_stats *stats, const ref_run *r, const gib_scene *scene,
+                    const gib_ref_params *p, const ref_tally *t)
 {
     const ref_world *w = r->c.w;
     const gib_ref_params *np = &r->c.p;
@@ -516,20 +533,14 @@ int ref_render_world(const ref_world *w, const gib_scene *scene, const gib_ref_p
     if (stderr_img)
         memset(stderr_img, 0, sizeof *stderr_img);
     ref_run r;
-    memset(&r, 0, sizeof r);
-    ref_ctx_init(&r.c, w, scene, p);
-    const gib_ref_params *np = &r.c.p;
-    const int W = np->width, H = np->height, nthreads = ref_thread_count(p);
     ref_progress prog;
-    r.prog = &prog;
-    ref_progress_init(&prog, &r, p, t.t0);
-    ref_choose_strategies(&r, nthreads);
+    const int nthreads = ref_thread_count(p);
     int rc = -1;
-    if (ref_run_alloc(&r, err) < 0)
+    if (ref_run_setup(&r, w, scene, p, &prog, t.t0, nthreads, err) < 0)
         goto done;
+    const int W = r.c.p.width, H = r.c.p.height;
     r.stop = p->interrupt;
-    atomic_init(&r.abandoned, 0);
-    if (r.stop && np->target_noise > 0.0 &&
+    if (r.stop && r.c.p.target_noise > 0.0 &&
         !(r.saved = gib_calloc((size_t)W * H * 3 * (4 + GIB_REF_SOBOL_BATCHES), sizeof *r.saved,
                                err)))
         goto done;

@@ -149,6 +149,18 @@ typedef struct gib_ref_stats {
 int gib_reference_render(const gib_scene *scene, const gib_ref_params *p, gib_image *out,
                          gib_image *stderr_img, gib_ref_stats *stats, gib_error *err);
 
+/* Renders n components of one scene at one instant together: p[0..n-1] are the parameters each
+ * would be rendered with alone (the same time; sizes and cameras may differ; threads and quiet
+ * from p[0]; interrupt is not heard). The world is built once, each view's (camera and size)
+ * primary ray per pixel is traced once a round, and each component otherwise runs as alone, with
+ * its own statistics, random streams, light passes and rounds toward its own target noise, so
+ * out[i], stderr_img[i] (NULL: none) and stats[i] are gib_reference_render's for p[i], bit for
+ * bit, but for stats[i].seconds: the whole set's. 0, or -1 with err (nothing allocated). */
+#define GIB_REF_SET_MAX 16
+int gib_reference_render_set(const gib_scene *scene, const gib_ref_params *p, int n,
+                             gib_image *out, gib_image *stderr_img, gib_ref_stats *stats,
+                             gib_error *err);
+
 /* The parameters as the renderer uses them: defaults filled in, and every field that cannot change
  * this component's image set to a fixed value (dmax of `direct`, spp of a deterministic
  * estimator, ...), so that two requests for the same image compare and hash equal. threads and

@@ -94,6 +94,12 @@ typedef struct gib_ref_result {
  * entry could not be written (a full disk): nothing of it is left behind. */
 #define GIB_REF_WRITE_FAILED (-2)
 int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err);
+/* n requests of one scene at one instant: each found in the cache as
+ * gib_reference_get finds it; those missing are rendered together (gib_reference_render_set, each
+ * the pixels its render alone gives) and each stored as its own entry under its own key. The
+ * requests' interrupts are not heard. out[i] as gib_reference_get's; on error none holds an
+ * image. */
+int gib_reference_get_set(const gib_ref_request *rq, int n, gib_ref_result *out, gib_error *err);
 
 /* Sets the reference settings of output `output` (a GIB_OUT_* bit) from the technique's declared
  * bindings (technique.h, gib_ref_binding), so the reference models what the technique estimates;

@@ -13,6 +13,7 @@
 #include "app.h"
 #include "bench_scoring.h"
 #include "options.h"
+#include "refset.h"
 
 static const gib_command_doc doc = {
     "bench", "reference [--efficiency] [options]",
@@ -644,10 +645,14 @@ int gib_cmd_bench(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "scoring") == 0)
         return gib_bench_scoring(argc - 1, argv + 1);
+    if (argc >= 2 && strcmp(argv[1], "references") == 0)
+        return gib_bench_references(argc - 1, argv + 1);
     if (argc < 2 || strcmp(argv[1], "reference") != 0) {
         if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
             gib_options_usage(stdout, &doc, NULL);
             puts("\ngibench bench scoring --help: the scoring of a row, by thread count.");
+            puts("gibench bench references --help: a profile's references, one at a time and "
+                 "each view's together.");
             return 0;
         }
         fputs("gibench bench: what to measure? ('reference' or 'scoring')\n", stderr);

@@ -1,6 +1,7 @@
 /* gibench reference — renders one light-transport component with the Embree path tracer and
  * writes it as EXR with its metadata (and a PNG preview beside it), directly (--out) or through
- * the reference cache (--cache DIR, --force to render again). */
+ * the reference cache (--cache DIR, --force to render again); or a list of components of one view
+ * together (gib_reference_render_set), one file or cache entry each. */
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
@@ -16,7 +17,7 @@
 #include "options.h"
 
 static const gib_command_doc doc = {
-    "reference", "--scene S --component C (--out F.exr | --cache DIR) [options]",
+    "reference", "--scene S --component C[:N][,C[:N]...] (--out F.exr | --cache DIR) [options]",
     "Components (paths in Heckbert notation, reference/reference.h):\n"
     "  ao        ambient occlusion within --dmax (default, 0 and inf: unbounded); --obscurance 1\n"
     "            weights an occluder at distance d by min(d / dmax, 1) (Zhukov et al. 1998; needs\n"
@@ -31,6 +32,11 @@ static const gib_command_doc doc = {
     "            along the normal, five 60 degrees from it; harness/base/cone_set.h) with\n"
     "            --cone-aperture DEG (default 60): rho_d times the cap's mean radiance, what\n"
     "            `lrsm` and `vct` render with --param cone=I\n"
+    "\n"
+    "A list of components (--component direct,indirect:64,glossy) renders them together from\n"
+    "one world and one primary ray a pixel, each with its own spp (N, else --spp) and rounds,\n"
+    "each image the bits of its render alone: one cache entry each (the key a request of it\n"
+    "alone has), or with --out F.exr one file F.C.exr each (and --stderr likewise).\n"
     "\n"
     "--spp N (default 16) is the sample count, or with --target-noise X the first round's:\n"
     "rounds are added until the noise RMSE is at most X times the image mean, or --max-spp\n"
@@ -139,6 +145,10 @@ typedef struct ref_opts {
     int sampler, strategies, force, quiet;
     double dmax, target, time, cone_aperture;
     int component, w, h; /* from comp and size (check_args) */
+    /* --component C[:N],C[:N],...: a set of one view, rendered together (ncomp > 1, or a
+     * component given its own spp); component is comps[0] */
+    int ncomp, comps[GIB_REF_SET_MAX];
+    long spps[GIB_REF_SET_MAX];
 } ref_opts;
 
 #define PROCEED GIB_OPTIONS_PROCEED /* parse_args, check_args: go on (else the exit status) */
@@ -182,7 +192,8 @@ static int parse_args(int argc, char **argv, ref_opts *o)
 {
     const gib_option opts[] = {
         GIB_OPTION_TEXT("--scene", &o->scene_name, "S", "the scene (gibench list)"),
-        GIB_OPTION_TEXT("--component", &o->comp, "C", "the component (below)"),
+        GIB_OPTION_TEXT("--component", &o->comp, "C[:N][,C[:N]...]",
+                        "the component (below); a list renders them together, N its spp"),
         GIB_OPTION_INT("--spp", &o->spp, 1, 1 << 24, "N", "samples per pixel (default 16)"),
         GIB_OPTION_TEXT("--size", &o->size, "WxH", "the image size"),
         GIB_OPTION_TEXT("--out", &o->out, "F.exr", "write the image here"),
@@ -213,6 +224,46 @@ static int parse_args(int argc, char **argv, ref_opts *o)
     return gib_options_parse(&doc, opts, argc, argv, NULL, NULL, 0);
 }
 
+/* --component's list: each name, and its spp after a colon (else --spp); a name twice is
+ * refused (one entry each). -1 after saying why. */
+static int parse_components(ref_opts *o)
+{
+    char list[512];
+    snprintf(list, sizeof list, "%s", o->comp);
+    o->ncomp = 0;
+    for (char *save = NULL, *tok = strtok_r(list, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        char *colon = strchr(tok, ':'), *end = NULL;
+        long spp = o->spp;
+        if (colon) {
+            *colon = '\0';
+            spp = strtol(colon + 1, &end, 10);
+        }
+        int c = gib_component_parse(tok);
+        if (c < 0 || (colon && (*end || spp < 1 || spp > (1 << 24))) ||
+            o->ncomp == GIB_REF_SET_MAX) {
+            fprintf(stderr, "gibench reference: --component '%s': components (ao, direct, "
+                            "indirect, glossy, caustic, full, higher, albedo, normal, depth), "
+                            "each with an optional :SPP, at most %d\n", o->comp, GIB_REF_SET_MAX);
+            return -1;
+        }
+        for (int i = 0; i < o->ncomp; i++)
+            if (o->comps[i] == c) {
+                fprintf(stderr, "gibench reference: --component names %s twice\n", tok);
+                return -1;
+            }
+        o->comps[o->ncomp] = c;
+        o->spps[o->ncomp++] = spp;
+    }
+    if (o->ncomp == 0) {
+        fprintf(stderr, "gibench reference: --component names no component\n");
+        return -1;
+    }
+    o->component = o->comps[0];
+    o->spp = o->spps[0]; /* one component: its own spp, or --spp */
+    return 0;
+}
+
 /* What the cache cannot hold, and the component and size; sets component, w and h. */
 static int check_cache_args(ref_opts *o)
 {
@@ -232,13 +283,12 @@ static int check_cache_args(ref_opts *o)
                         "--cache\n");
         return 2;
     }
-    o->component = gib_component_parse(o->comp);
-    if (o->component < 0) {
-        fprintf(stderr, "gibench reference: unknown component '%s' (ao, direct, indirect, glossy, "
-                        "caustic, full, higher, albedo, normal, depth)\n", o->comp);
+    if (parse_components(o) < 0)
         return 2;
-    }
-    if ((o->cone || o->cone_aperture > 0) && o->component != GIB_COMP_INDIRECT) {
+    int has_indirect = 0;
+    for (int i = 0; i < o->ncomp; i++)
+        has_indirect |= o->comps[i] == GIB_COMP_INDIRECT;
+    if ((o->cone || o->cone_aperture > 0) && !has_indirect) {
         fprintf(stderr, "gibench reference: --cone and --cone-aperture go with --component "
                         "indirect (one diffuse cone's share of it), not %s\n", o->comp);
         return 2;
@@ -297,28 +347,28 @@ typedef struct ref_job {
     const char *where;  /* the image's EXR: --out, or the cache entry (res.path) */
 } ref_job;
 
-/* Through the cache: the entry, rendered when missing (and its PNG preview then). 0, or the exit
- * status. */
-static int render_through_cache(ref_job *j)
+/* The job's request of the cache. */
+static gib_ref_request job_request(const ref_job *j)
+{
+    const ref_opts *o = j->o;
+    return (gib_ref_request){.scene = &j->scene, .camera = (int)o->camera, .width = o->w,
+                             .height = o->h, .component = o->component, .spp = (int)o->spp,
+                             .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
+                             .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
+                             .max_specular = (int)o->max_spec, .cone = (int)o->cone,
+                             .cone_aperture = (float)o->cone_aperture, .target_noise = o->target,
+                             .max_spp = (int)o->max_spp, .cache_dir = o->cache, .force = o->force,
+                             .quiet = o->quiet, .threads = (int)o->threads,
+                             .interrupt = j->p.interrupt, .time = (float)o->time};
+}
+
+/* What the cache gave (j->res): the image, its figures, its PNG preview when just rendered, and
+ * the line saying where it is. */
+static void take_result(ref_job *j)
 {
     const ref_opts *o = j->o;
     gib_error err = {0};
     gib_ref_result *res = &j->res;
-    gib_ref_request rq = {.scene = &j->scene, .camera = (int)o->camera, .width = o->w,
-                          .height = o->h, .component = o->component, .spp = (int)o->spp,
-                          .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
-                          .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
-                          .max_specular = (int)o->max_spec, .cone = (int)o->cone,
-                          .cone_aperture = (float)o->cone_aperture, .target_noise = o->target,
-                          .max_spp = (int)o->max_spp, .cache_dir = o->cache, .force = o->force,
-                          .quiet = o->quiet, .threads = (int)o->threads,
-                          .interrupt = j->p.interrupt, .time = (float)o->time};
-    int grc = gib_reference_get(&rq, res, &err);
-    interrupt_restore();
-    if (grc < 0) {
-        fprintf(stderr, "gibench reference: %s\n", err.msg);
-        return res->interrupted ? 130 : 1;
-    }
     j->img = res->image;
     j->st.spp = res->spp;
     j->st.seconds = res->seconds;
@@ -329,6 +379,21 @@ static int render_through_cache(ref_job *j)
            res->from_cache ? "from cache" : "rendered into cache", res->path, res->spp,
            res->noise_rmse);
     j->where = res->path;
+}
+
+/* Through the cache: the entry, rendered when missing (and its PNG preview then). 0, or the exit
+ * status. */
+static int render_through_cache(ref_job *j)
+{
+    gib_error err = {0};
+    gib_ref_request rq = job_request(j);
+    int grc = gib_reference_get(&rq, &j->res, &err);
+    interrupt_restore();
+    if (grc < 0) {
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+        return j->res.interrupted ? 130 : 1;
+    }
+    take_result(j);
     return 0;
 }
 
@@ -405,20 +470,88 @@ static int write_outputs(ref_job *j)
     return o->cache ? 0 : report_render(j);
 }
 
-/* The render, through the cache or not, and the files. Returns the exit status. */
-static int run_reference(ref_job *j)
+/* The render's parameters. */
+static gib_ref_params job_params(const ref_opts *o)
 {
-    const ref_opts *o = j->o;
-    gib_error err = {0};
-    j->p = (gib_ref_params){.component = o->component, .width = o->w, .height = o->h,
+    return (gib_ref_params){.component = o->component, .width = o->w, .height = o->h,
                             .spp = (int)o->spp, .dmax = (float)o->dmax, .obscurance = (int)o->obsc,
                             .max_depth = (int)o->max_depth, .min_depth = (int)o->min_depth,
                             .max_specular = (int)o->max_spec, .cone = (int)o->cone,
                             .cone_aperture = (float)o->cone_aperture, .target_noise = o->target,
                             .max_spp = (int)o->max_spp, .seed = (uint64_t)o->seed,
                             .threads = (int)o->threads, .camera = (int)o->camera,
-                            .time = (float)o->time, .sampler = o->sampler, .strategies = o->strategies,
-                            .quiet = o->quiet};
+                            .time = (float)o->time, .sampler = o->sampler,
+                            .strategies = o->strategies, .quiet = o->quiet};
+}
+
+/* F.exr with ".C" before its extension: a set's file for component C. */
+static void set_path(const char *path, const char *comp, char *out, size_t cap)
+{
+    snprintf(out, cap, "%.*s.%s.exr", (int)strlen(path) - 4, path, comp);
+}
+
+/* A set (--component with a list): every component of the view rendered together, through the
+ * cache (each its own entry) or into --out's and --stderr's files with ".C" inserted. Returns
+ * the exit status. */
+static int run_set(ref_job *j)
+{
+    const ref_opts *o = j->o;
+    const int n = o->ncomp;
+    gib_error err = {0};
+    ref_opts ko[GIB_REF_SET_MAX];
+    ref_job kj[GIB_REF_SET_MAX];
+    gib_ref_params p[GIB_REF_SET_MAX];
+    gib_ref_request rq[GIB_REF_SET_MAX];
+    gib_ref_result res[GIB_REF_SET_MAX];
+    gib_image img[GIB_REF_SET_MAX] = {{0}}, se[GIB_REF_SET_MAX] = {{0}};
+    gib_ref_stats st[GIB_REF_SET_MAX];
+    char outs[GIB_REF_SET_MAX][1100], ses[GIB_REF_SET_MAX][1100];
+    int rc = 0;
+    for (int k = 0; k < n; k++) {
+        ko[k] = *o;
+        ko[k].comp = gib_component_name(o->comps[k]);
+        ko[k].component = o->comps[k];
+        ko[k].spp = o->spps[k];
+        ko[k].ncomp = 1;
+        if (o->out)
+            set_path(o->out, ko[k].comp, outs[k], sizeof outs[k]), ko[k].out = outs[k];
+        if (o->se_out)
+            set_path(o->se_out, ko[k].comp, ses[k], sizeof ses[k]), ko[k].se_out = ses[k];
+        kj[k] = (ref_job){.o = &ko[k], .scene = j->scene, .where = ko[k].out};
+        kj[k].p = p[k] = job_params(&ko[k]);
+        rq[k] = job_request(&kj[k]);
+    }
+    if (o->cache ? gib_reference_get_set(rq, n, res, &err) < 0
+                 : gib_reference_render_set(&j->scene, p, n, img, o->se_out ? se : NULL, st,
+                                            &err) < 0) {
+        fprintf(stderr, "gibench reference: %s\n", err.msg);
+        return 1;
+    }
+    for (int k = 0; k < n; k++) {
+        if (o->cache) {
+            kj[k].res = res[k];
+            take_result(&kj[k]);
+        } else {
+            kj[k].img = img[k], kj[k].se = se[k], kj[k].st = st[k];
+        }
+    }
+    for (int k = 0; k < n; k++) {
+        if (o->out && rc == 0)
+            rc = write_outputs(&kj[k]);
+        gib_image_free(&kj[k].img);
+        gib_image_free(&kj[k].se);
+    }
+    return rc;
+}
+
+/* The render, through the cache or not, and the files. Returns the exit status. */
+static int run_reference(ref_job *j)
+{
+    const ref_opts *o = j->o;
+    gib_error err = {0};
+    if (o->ncomp > 1)
+        return run_set(j);
+    j->p = job_params(o);
     j->where = o->out;
     if (o->target > 0) { /* rounds: Ctrl-C keeps the rounds done */
         atomic_init(&interrupt_req.requested, 0);

@@ -12,6 +12,7 @@
 #include "runner.h"
 #include "app.h"
 #include "csv.h"
+#include "refset.h"
 #include "history.h"
 #include "harness/base/status.h"
 #include "harness/base/hash.h"
@@ -81,23 +82,6 @@ static int run_done(const gib_run_ctx *ctx, const gib_matrix_run *mr)
     return 1;
 }
 
-static int scene_wanted(const gib_scene *s, const gib_technique *t, char *why, size_t len)
-{
-    if ((s->features & t->scene_needs) != t->scene_needs) {
-        char f[256];
-        gib_features_str(t->scene_needs & ~s->features, f, sizeof f);
-        snprintf(why, len, "scene lacks %s", f);
-        return 0;
-    }
-    if (t->scene_needs_any && !(s->features & t->scene_needs_any)) {
-        char f[256];
-        gib_features_str(t->scene_needs_any, f, sizeof f);
-        snprintf(why, len, "scene has none of %s", f);
-        return 0;
-    }
-    return 1;
-}
-
 /* Marks this process's unfinished runs of scene sname (from run `from` on) with state; they
  * count as done for the progress. */
 static void mark_scene_runs(gib_run_ctx *ctx, int from, const char *sname, char state)
@@ -111,18 +95,68 @@ static void mark_scene_runs(gib_run_ctx *ctx, int from, const char *sname, char 
     gib_progress_report(&ctx->progress);
 }
 
+/* Which runs of matrix m are of the scene and can run on it (want[j]); with `mine`, only this
+ * process's unfinished ones (ctx's matrix). */
+static void scene_runs(const gib_run_ctx *ctx, const gib_matrix *m, const gib_scene *scene,
+                       const char *sname, int mine, char *want)
+{
+    for (int j = 0; j < m->run_count; j++) {
+        const gib_matrix_run *mr = &m->runs[j];
+        want[j] = !strcmp(mr->scene, sname) && gib_scene_wanted(scene, mr->technique, NULL, 0) &&
+                  (!mine || (run_mine(ctx, j) && !run_done(ctx, mr)));
+    }
+}
+
+/* The references this process's unfinished runs of the scene ask for first, and without --shard
+ * those of the runs of the scene in the run's later matrices whose tables do not exist yet
+ * (fresh: every run to do), each world's rendered together (refset.h: the same pixels and keys
+ * as one at a time, the scene's world built once an instant instead of once a request and
+ * matrix): the runs then find them in the cache. A failure here is left to the runs, which ask
+ * again and report their own. */
+static void prefetch_scene_refs(gib_run_ctx *ctx, int from, const gib_scene *scene)
+{
+    const gib_matrix *m = ctx->m;
+    enum { MAX_REQUESTS = 1024 };
+    int most = m->run_count;
+    for (int k = 0; k < ctx->nlater; k++)
+        most = ctx->later[k].run_count > most ? ctx->later[k].run_count : most;
+    char *want = ctx->timing_only ? NULL : calloc((size_t)most + 1, 1);
+    gib_ref_request *rq = want ? malloc(MAX_REQUESTS * sizeof *rq) : NULL;
+    int n = 0;
+    if (rq) {
+        scene_runs(ctx, m, scene, m->runs[from].scene, 1, want);
+        n = gib_matrix_ref_requests(m, ctx->cache, scene, want, rq, MAX_REQUESTS);
+    }
+    for (int k = 0; rq && !ctx->shard.count && k < ctx->nlater; k++) {
+        const gib_matrix *l = &ctx->later[k];
+        char table[2048];
+        snprintf(table, sizeof table, "%s/%s.csv", ctx->out, l->name);
+        if (access(table, F_OK) == 0)
+            continue; /* a table to resume: its done runs need no reference */
+        scene_runs(ctx, l, scene, m->runs[from].scene, 0, want);
+        n += gib_matrix_ref_requests(l, ctx->cache, scene, want, rq + n, MAX_REQUESTS - n);
+    }
+    gib_error err;
+    if (n > 1 && gib_reference_prefetch(rq, n, &err) < 0)
+        fprintf(stderr, "gibench run: %s's references, rendered together: %s (each run asks "
+                        "again)\n", scene->name, err.msg);
+    free(rq);
+    free(want);
+}
+
 /* Runs this process's unfinished runs of an uploaded scene (from run `from` on). */
 static void run_scene_runs(gib_run_ctx *ctx, int from, const gib_scene *scene,
                            const gib_gpu_scene *gpu)
 {
     const gib_matrix *m = ctx->m;
     const char *sname = m->runs[from].scene;
+    prefetch_scene_refs(ctx, from, scene);
     for (int j = from; j < m->run_count && !ctx->write_failed; j++) {
         const gib_matrix_run *mr = &m->runs[j];
         if (strcmp(mr->scene, sname) || !run_mine(ctx, j) || run_done(ctx, mr))
             continue;
         char why[512];
-        if (!scene_wanted(scene, mr->technique, why, sizeof why)) {
+        if (!gib_scene_wanted(scene, mr->technique, why, sizeof why)) {
             gib_progress_clear(&ctx->progress);
             printf("  %s on %s skipped: %s\n", mr->technique->name, sname, why);
             ctx->runs_skipped++;
@@ -506,8 +540,11 @@ int gib_cmd_run(int argc, char **argv)
     if (ctx.info.device[0])
         printf("gibench run: EGL %s\n", ctx.info.device);
     int status = 0;
-    for (int i = 0; i < o.nfiles && !ctx.write_failed; i++)
+    for (int i = 0; i < o.nfiles && !ctx.write_failed; i++) {
+        ctx.later = &ms[i + 1];
+        ctx.nlater = o.nfiles - i - 1;
         status |= run_one_matrix(&ctx, &ms[i], &layouts[i]);
+    }
     printf("gibench run: %d rows written (%d not ok, %d out of memory), %d runs skipped\n",
            ctx.rows_written, ctx.rows_failed, ctx.rows_out_of_memory, ctx.runs_skipped);
     if (ctx.hist)

@@ -213,35 +213,35 @@ static int entry_check_written(const char *path, const gib_ref_request *rq, cons
     return 0;
 }
 
-int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err)
+/* The entry's key and path in out->path; 0, or -1 with err. */
+static int entry_prepare(const gib_ref_request *rq, gib_ref_result *out, char key_hex[17],
+                         gib_error *err)
 {
     memset(out, 0, sizeof *out);
     if (rq->camera < 0 || (uint32_t)rq->camera >= rq->scene->camera_count)
         return gib_fail(err, "reference %s: camera %d of %u", rq->scene->name, rq->camera,
                         rq->scene->camera_count);
     gib_ref_params p = gib_ref_request_params(rq);
-    char key_hex[17];
     gib_hash_hex(gib_reference_cache_key(rq->scene, &p), key_hex);
     if (gib_mkdirs(rq->cache_dir, err) < 0)
         return -1;
     snprintf(out->path, sizeof out->path, "%s/%s_%s_%dx%d_%s.exr", rq->cache_dir, rq->scene->name,
              gib_component_name(rq->component), rq->width, rq->height, key_hex);
-    if (!rq->force && entry_valid(out->path, rq, key_hex, &out->image, out)) {
-        out->from_cache = 1;
-        return 0;
-    }
-    gib_ref_stats st;
-    if (!rq->quiet)
-        fprintf(stderr, "gibench: rendering reference %s/%s %dx%d at %d spp%s\n", rq->scene->name,
-                gib_component_name(rq->component), rq->width, rq->height, rq->spp,
-                rq->target_noise > 0 ? " per round, toward the target noise" : "");
-    if (gib_reference_render(rq->scene, &p, &out->image, NULL, &st, err) < 0)
-        return gib_error_prefix(err, "reference %s/%s", rq->scene->name,
-                                gib_component_name(rq->component));
+    return 0;
+}
+
+/* A fresh render (out->image, its stats st) stored as the request's entry: written under a
+ * temporary name, renamed, read back and checked. An interrupted render's rounds go beside the
+ * entry instead (an error). 0, -1 or GIB_REF_WRITE_FAILED with err; out->image is freed on
+ * error. */
+static int entry_store(const gib_ref_request *rq, const char *key_hex, const gib_ref_stats *st,
+                       gib_ref_result *out, gib_error *err)
+{
+    gib_ref_params p = gib_ref_request_params(rq);
     gib_kv attrs[GIB_REF_ATTR_COUNT + 1];
-    int n = gib_reference_attrs(rq->scene, &p, &st, attrs, GIB_REF_ATTR_COUNT);
+    int n = gib_reference_attrs(rq->scene, &p, st, attrs, GIB_REF_ATTR_COUNT);
     n = gib_ref_seal(&out->image, attrs, n, GIB_REF_ATTR_COUNT + 1);
-    if (st.interrupted) { /* the rounds done missed the entry's target: kept beside it, not as it */
+    if (st->interrupted) { /* the rounds done missed the entry's target: kept beside it, not as it */
         out->interrupted = 1;
         char kept[1100];
         snprintf(kept, sizeof kept, "%.*s.interrupted.exr", (int)strlen(out->path) - 4, out->path);
@@ -251,7 +251,7 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
             return gib_error_prefix(err, "interrupted, and writing the rounds done to %s", kept);
         return gib_fail(err, "interrupted after %d spp (noise RMSE %.3g, target not reached): "
                              "the rounds done are in %s; no cache entry was written",
-                        st.spp, st.noise_rmse, kept);
+                        st->spp, st->noise_rmse, kept);
     }
     /* Write to a temporary name and rename, so an interrupted write never leaves a valid-looking
      * entry behind. */
@@ -268,11 +268,74 @@ int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error 
         gib_image_free(&out->image);
         return -1;
     }
-    out->spp = st.spp;
-    out->noise_rmse = st.noise_rmse;
-    out->seconds = st.seconds;
+    out->spp = st->spp;
+    out->noise_rmse = st->noise_rmse;
+    out->seconds = st->seconds;
     if (!rq->quiet)
-        fprintf(stderr, "gibench: reference done in %.1f s, %d spp, noise RMSE %.3g\n", st.seconds,
-                st.spp, st.noise_rmse);
+        fprintf(stderr, "gibench: reference %s %dx%d done in %.1f s, %d spp, noise RMSE %.3g\n",
+                gib_component_name(rq->component), rq->width, rq->height, st->seconds, st->spp,
+                st->noise_rmse);
     return 0;
+}
+
+int gib_reference_get(const gib_ref_request *rq, gib_ref_result *out, gib_error *err)
+{
+    char key_hex[17];
+    if (entry_prepare(rq, out, key_hex, err) < 0)
+        return -1;
+    if (!rq->force && entry_valid(out->path, rq, key_hex, &out->image, out)) {
+        out->from_cache = 1;
+        return 0;
+    }
+    gib_ref_stats st;
+    if (!rq->quiet)
+        fprintf(stderr, "gibench: rendering reference %s/%s %dx%d at %d spp%s\n", rq->scene->name,
+                gib_component_name(rq->component), rq->width, rq->height, rq->spp,
+                rq->target_noise > 0 ? " per round, toward the target noise" : "");
+    gib_ref_params p = gib_ref_request_params(rq);
+    if (gib_reference_render(rq->scene, &p, &out->image, NULL, &st, err) < 0)
+        return gib_error_prefix(err, "reference %s/%s", rq->scene->name,
+                                gib_component_name(rq->component));
+    return entry_store(rq, key_hex, &st, out, err);
+}
+
+int gib_reference_get_set(const gib_ref_request *rq, int n, gib_ref_result *out, gib_error *err)
+{
+    char key_hex[GIB_REF_SET_MAX][17];
+    gib_ref_params p[GIB_REF_SET_MAX];
+    gib_image img[GIB_REF_SET_MAX] = {{0}};
+    gib_ref_stats st[GIB_REF_SET_MAX];
+    int miss[GIB_REF_SET_MAX], nmiss = 0, rc = 0;
+    if (n < 1 || n > GIB_REF_SET_MAX)
+        return gib_fail(err, "reference: a set holds 1 to %d requests, got %d", GIB_REF_SET_MAX,
+                        n);
+    for (int i = 0; i < n; i++)
+        memset(&out[i], 0, sizeof out[i]);
+    for (int i = 0; i < n && rc == 0; i++) {
+        if (entry_prepare(&rq[i], &out[i], key_hex[i], err) < 0)
+            rc = -1;
+        else if (!rq[i].force && entry_valid(out[i].path, &rq[i], key_hex[i], &out[i].image,
+                                             &out[i]))
+            out[i].from_cache = 1;
+        else
+            p[nmiss] = gib_ref_request_params(&rq[i]), miss[nmiss++] = i;
+    }
+    if (rc == 0 && nmiss > 0) {
+        if (!rq[0].quiet)
+            fprintf(stderr, "gibench: rendering %d references of %s together\n", nmiss,
+                    rq[0].scene->name);
+        p[0].interrupt = NULL; /* a set is not interrupted (reference.h) */
+        rc = gib_reference_render_set(rq[0].scene, p, nmiss, img, NULL, st, err);
+        if (rc < 0)
+            gib_error_prefix(err, "references of %s", rq[0].scene->name);
+        for (int k = 0; k < nmiss; k++) {
+            out[miss[k]].image = img[k];
+            if (rc == 0)
+                rc = entry_store(&rq[miss[k]], key_hex[miss[k]], &st[k], &out[miss[k]], err);
+        }
+    }
+    if (rc < 0)
+        for (int i = 0; i < n; i++)
+            gib_image_free(&out[i].image);
+    return rc;
 }

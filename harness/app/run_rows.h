@@ -42,6 +42,9 @@ typedef struct gib_run_ctx {
     int rows_written, rows_failed, rows_out_of_memory, runs_skipped;
     int write_failed; /* a table could not be written (a full disk): the run stops there */
     gib_shard shard;
+    const gib_matrix *later; /* the run's matrices after this one (nlater): their references of a
+                              * scene are rendered with this one's (cmd_run.c) */
+    int nlater;
     const int *owner; /* with --shard: each run's shard (shard.h) */
     char *state;      /* with --shard: 'e' rows expected, 's' skipped, 'f' failed; 0 not ours */
     gib_progress progress;

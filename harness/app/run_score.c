@@ -12,21 +12,7 @@
 #include "harness/base/status.h"
 #include "harness/imaging/temporal.h"
 #include "refrank.h"
-
-/* The reference request of a row (component GIB_OUT_* bit `bit` of run mr), at the matrix's spp.
- * Returns the reference component, -1 when there is no estimator for it. */
-static int row_request(const gib_run_ctx *ctx, const gib_scene *scene, const gib_matrix_run *mr,
-                       unsigned bit, gib_ref_request *rq)
-{
-    int component = gib_component_parse(gib_output_name(bit));
-    *rq = (gib_ref_request){.scene = scene, .camera = ctx->m->camera, .width = mr->width,
-                            .height = mr->height, .time = (float)mr->time, .component = component,
-                            .spp = component >= 0 && ctx->m->ref_spp[component]
-                                       ? ctx->m->ref_spp[component] : 64,
-                            .cache_dir = ctx->cache};
-    gib_ref_request_match(rq, mr->technique, &mr->params, bit);
-    return component;
-}
+#include "refset.h"
 
 /* The row's error beside what a black image scores and with the reference's noise taken out
  * (metrics.h, gib_rmse_interval). */
@@ -290,7 +276,7 @@ static void score_component(gib_run_ctx *ctx, const gib_scene *scene, const gib_
     gib_error err;
     gib_ref_request rq;
     const gib_image *img = &res->images[index];
-    int component = row_request(ctx, scene, mr, bit, &rq);
+    int component = gib_matrix_ref_request(ctx->m, ctx->cache, scene, mr, bit, &rq);
     gib_ref_result ref;
     int grc = component < 0 ? -1
                             : gib_reference_to_rank(&rq, img, scene->exposure,

@@ -8,7 +8,8 @@
 # written are refused before rendering; the --stderr map is marked as one; Ctrl-C during a
 # --target-noise render keeps the rounds done (exit 130), equal to a plain render of that spp;
 # --cone (one diffuse cone of indirect) has entries and a header of its own; the temporaries of
-# writers killed mid-write are removed at the entry's next write.
+# writers killed mid-write are removed at the entry's next write; a set of components (--component
+# with a list) writes one entry or file each, each its render alone.
 # Usage: ref_cache_cli.sh GIBENCH WORKDIR. Expected values are exact strings and an RMSE of 0.
 set -u
 G="$1"
@@ -195,4 +196,18 @@ kill -INT $pid
 wait_for "(round 4)" "$D/ign.log"
 check "an inherited SIGINT ignore is kept" "(round 4)" "$(cat "$D/ign.log")"
 kill -TERM $pid; finish 2> /dev/null
+
+# a set (--component with a list): one entry a component, which single requests find; --out
+# writes F.C.exr a component, each the pixels of its render alone
+set_ref() { "$G" reference --scene cornell --size 16x12 --spp 4 --quiet "$@" 2>&1; }
+out=$(set_ref --component ao,direct,indirect:8 --cache "$D/scache")
+check "a set renders each component into the cache" "indirect 16x12: rendered into cache" "$out"
+out=$(set_ref --component indirect:8 --cache "$D/scache")
+check "... where a single request finds it" "from cache" "$out"
+set_ref --component ao,indirect:8 --out "$D/set.exr" > /dev/null
+set_ref --component indirect:8 --out "$D/one.exr" > /dev/null
+out=$("$G" compare "$D/one.exr" "$D/set.indirect.exr" --json 2>&1)
+check "a set's --out file is its component's render alone" '"rmse": 0,' "$out"
+out=$(set_ref --component ao,ao --out "$D/twice.exr")
+check "a component named twice is refused" "twice" "$out"
 exit $fail
