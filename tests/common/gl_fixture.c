@@ -1,16 +1,12 @@
 #include "gl_fixture.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "block_stats.h"
+#include "harness/app/app.h"
 #include "harness/app/runner.h"
 #include "reference/reference.h"
 
@@ -46,55 +42,31 @@ int gib_fixture_open_text(gib_gl_fixture *f, const char *dir, const char *name, 
     return gib_fixture_open(f, path);
 }
 
-/* The references several tests ask for alike (ctest sets GIB_TEST_REF_CACHE for them; the test
- * fixture_ref_cache_reset empties the folder before each ctest run, so an entry is this build's):
- * the first test to ask renders and stores the image and its statistics, the others read them,
- * bit for bit what they would have rendered (the render is deterministic for a seed). A flock per
- * entry makes a second test asking at once wait for the first's render instead of repeating it.
- * Without the variable (a test run by hand) every test renders its own. Entry: magic, the
- * statistics, width, height, channels, the pixels; written to a temporary file and renamed. */
-#define REF_CACHE_MAGIC "gibench test reference 1\n"
-
-static int ref_cache_read(const char *path, gib_image *out, gib_ref_stats *st)
+/* The references several tests ask for alike come from the harness's reference cache
+ * (harness/app/refcache.c) in the folder ctest names in GIB_TEST_REF_CACHE for them; the test
+ * fixture_ref_cache_reset empties it before each ctest run, so an entry is this build's. The
+ * first test to ask renders and stores the image, the others read it: the pixels a render gives,
+ * bit for bit (the render is deterministic for its seed). Without the variable (a test run by
+ * hand) every test renders its own. */
+static int fixture_cached_reference(const gib_gl_fixture *f, const char *dir,
+                                    const gib_ref_params *rp, gib_image *out, gib_ref_stats *st)
 {
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return -1;
-    char magic[sizeof REF_CACHE_MAGIC];
-    int dims[3];
-    gib_image im = {0};
-    int ok = fread(magic, sizeof magic, 1, fp) == 1 && !memcmp(magic, REF_CACHE_MAGIC, sizeof magic) &&
-             fread(st, sizeof *st, 1, fp) == 1 && fread(dims, sizeof dims, 1, fp) == 1 &&
-             dims[0] > 0 && dims[1] > 0 && dims[2] > 0;
-    if (ok) {
-        size_t n = (size_t)dims[0] * (size_t)dims[1] * (size_t)dims[2];
-        im = (gib_image){.width = dims[0], .height = dims[1], .channels = dims[2],
-                         .px = malloc(n * sizeof(float))};
-        ok = im.px && fread(im.px, sizeof(float), n, fp) == n && fgetc(fp) == EOF;
-    }
-    fclose(fp);
-    if (!ok) {
-        free(im.px);
+    gib_ref_request rq = {.scene = &f->scene, .width = rp->width, .height = rp->height,
+                          .component = rp->component, .spp = rp->spp, .cache_dir = dir,
+                          .quiet = 1};
+    gib_ref_result res;
+    gib_error err;
+    if (gib_reference_get(&rq, &res, &err) < 0) {
+        printf("FAIL: reference: %s\n", err.msg);
         return -1;
     }
-    *out = im;
+    if (res.from_cache)
+        printf("reference %s %dx%d %d spp (component %d): shared, rendered by another test\n",
+               f->scene.name, rp->width, rp->height, rp->spp, rp->component);
+    *out = res.image;
+    *st = (gib_ref_stats){.spp = res.spp, .noise_rmse = res.noise_rmse,
+                          .seconds = res.seconds, .mean = gib_rgb_mean(out)};
     return 0;
-}
-
-static void ref_cache_write(const char *path, const gib_image *im, const gib_ref_stats *st)
-{
-    char tmp[600];
-    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
-    FILE *fp = fopen(tmp, "wb");
-    if (!fp)
-        return;
-    int dims[3] = {im->width, im->height, im->channels};
-    size_t n = (size_t)im->width * (size_t)im->height * (size_t)im->channels;
-    int ok = fwrite(REF_CACHE_MAGIC, sizeof REF_CACHE_MAGIC, 1, fp) == 1 &&
-             fwrite(st, sizeof *st, 1, fp) == 1 && fwrite(dims, sizeof dims, 1, fp) == 1 &&
-             fwrite(im->px, sizeof(float), n, fp) == n;
-    if (fclose(fp) != 0 || !ok || rename(tmp, path) != 0)
-        remove(tmp);
 }
 
 int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, int spp,
@@ -105,36 +77,15 @@ int gib_fixture_reference(const gib_gl_fixture *f, int component, int w, int h, 
     gib_ref_stats own;
     if (!st)
         st = &own;
-    char path[512] = "";
-    int lock = -1;
     const char *dir = getenv("GIB_TEST_REF_CACHE");
-    if (dir && dir[0] && (mkdir(dir, 0777) == 0 || errno == EEXIST)) {
-        snprintf(path, sizeof path, "%s/%016llx_c%d_%dx%d_spp%d_seed%llu.ref", dir,
-                 (unsigned long long)f->scene.content_hash, component, w, h, spp,
-                 (unsigned long long)rp.seed);
-        char lock_path[600];
-        snprintf(lock_path, sizeof lock_path, "%s.lock", path);
-        lock = open(lock_path, O_RDWR | O_CREAT, 0666);
-        if (lock >= 0 && flock(lock, LOCK_EX) != 0) {
-            close(lock);
-            lock = -1;
-        }
-        if (lock >= 0 && ref_cache_read(path, out, st) == 0) {
-            printf("reference %s %dx%d %d spp (component %d): shared, rendered by another test\n",
-                   f->scene.name, w, h, spp, component);
-            close(lock);
-            return 0;
-        }
-    }
+    if (dir && dir[0])
+        return fixture_cached_reference(f, dir, &rp, out, st);
     gib_error err;
-    int rc = gib_reference_render(&f->scene, &rp, out, NULL, st, &err);
-    if (rc < 0)
+    if (gib_reference_render(&f->scene, &rp, out, NULL, st, &err) < 0) {
         printf("FAIL: reference: %s\n", err.msg);
-    else if (lock >= 0)
-        ref_cache_write(path, out, st);
-    if (lock >= 0)
-        close(lock);
-    return rc < 0 ? -1 : 0;
+        return -1;
+    }
+    return 0;
 }
 
 int gib_fixture_render(gib_gl_fixture *f, const char *name, const char *const *params, int camera,
