@@ -80,6 +80,8 @@ typedef struct ref_world {
                               * proportion to its power (ref_connect.c); NULL: no light emits */
     int has_specular;        /* some material has a specular lobe (Phong or mirror) */
     int has_mirror;          /* some material is a mirror */
+    RTCScene mirrors;        /* the mirror triangles alone (ref_may_hit_mirror); NULL when there
+                              * are none or when one has a cut-out mask */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
     ref_raylog *log;         /* bench: non-NULL records every ray (single thread only) */
     int time_embree;         /* bench: count the clock ticks spent inside Embree's ray calls */
@@ -128,6 +130,10 @@ typedef struct ref_pending {
 } ref_pending;
 int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq);
 void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit);
+/* 0 when the ray (o, d) meets no mirror triangle, so its first hit cannot be a mirror; 1 when it
+ * meets one or when the world cannot tell (a mirror with a cut-out mask). The light tracer asks
+ * before tracing a particle's first ray through the whole scene: only a mirror there continues. */
+int ref_may_hit_mirror(const ref_world *w, const float o[3], const float d[3]);
 /* Fills an Embree ray (o, d) over [0, tfar], time 0, every mask bit. */
 void ref_ray_init(struct RTCRay *r, const float o[3], const float d[3], float tfar);
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */

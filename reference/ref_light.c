@@ -223,7 +223,9 @@ static void ref_particle(const ref_ctx *c, ref_pcg32 *rng, ref_splats *out, long
     for (int verts = 1;; verts++) {
         ref_hit y;
         ++*rays;
-        if (!ref_trace(w, o, d, &y) || y.back)
+        /* every path here starts at a mirror: a first ray that meets none ends the particle as
+         * its trace through the whole scene would, for a fraction of the work */
+        if ((verts == 1 && !ref_may_hit_mirror(w, o, d)) || !ref_trace(w, o, d, &y) || y.back)
             return;
         ref_mat m;
         ref_material(w, &y, &m);

@@ -212,6 +212,13 @@ static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
     return 0;
 }
 
+/* The material is a mirror as ref_material reads it: a mirror lobe with some reflectance. */
+static int ref_is_mirror(const gib_material *m)
+{
+    return m->spec_type == GIB_SPEC_MIRROR &&
+           (m->specular[0] > 0.0f || m->specular[1] > 0.0f || m->specular[2] > 0.0f);
+}
+
 /* Triangle records, mip pyramids of the albedo textures, the specular flags and the bounding
  * sphere. */
 static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
@@ -223,7 +230,7 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
         int spec = mt->spec_type != GIB_SPEC_NONE &&
                    (mt->specular[0] > 0.0f || mt->specular[1] > 0.0f || mt->specular[2] > 0.0f);
         w->has_specular |= spec;
-        w->has_mirror |= spec && mt->spec_type == GIB_SPEC_MIRROR;
+        w->has_mirror |= ref_is_mirror(mt);
     }
     if (gs->texture_count > 0 && ref_world_textures(w, gs, err) < 0)
         return -1;
@@ -247,9 +254,21 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
     return ref_light_pick_build(w, err);
 }
 
-/* One triangle geometry holding the scene's opaque (g = 0) or masked (g = 1) triangles, with
- * geomID g; its primitive k is triangle record geo_base[g] + k. */
-static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
+/* A scene of the world's device with the flags every one of its scenes is built with. ROBUST: no
+ * traversal shortcuts that can let a ray slip through a shared edge, which would leak light or
+ * visibility into a reference. HIGH quality: the BVH is built once and traced millions of times. */
+static RTCScene ref_new_scene(const ref_world *w)
+{
+    RTCScene s = rtcNewScene(w->device);
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    return s;
+}
+
+/* One triangle geometry of `count` triangles, the scene's triangle of record rec[k] as primitive k,
+ * over a copy of every vertex; NULL with err when Embree cannot allocate it. */
+static RTCGeometry ref_new_geometry(ref_world *w, const uint32_t *rec, uint32_t count,
+                                    gib_error *err)
 {
     const gib_scene *gs = w->gs;
     RTCGeometry geo = rtcNewGeometry(w->device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -261,15 +280,30 @@ static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
                                            3 * sizeof(unsigned), count);
     if (!vb || !ib) {
         rtcReleaseGeometry(geo);
-        return gib_fail(err, "scene '%s': %s", gs->name,
-                        w->embree_msg[0] ? w->embree_msg
-                                         : "Embree could not allocate geometry buffers");
+        gib_fail(err, "scene '%s': %s", gs->name,
+                 w->embree_msg[0] ? w->embree_msg : "Embree could not allocate geometry buffers");
+        return NULL;
     }
     memcpy(vb, gs->positions, 3 * sizeof(float) * gs->vertex_count);
-    for (uint32_t k = 0; k < count; k++) {
-        uint32_t t = w->rec_tri[w->geo_base[g] + k];
-        memcpy(ib + 3 * (size_t)k, gs->indices + 3 * (size_t)t, 3 * sizeof(unsigned));
-    }
+    for (uint32_t k = 0; k < count; k++)
+        memcpy(ib + 3 * (size_t)k, gs->indices + 3 * (size_t)w->rec_tri[rec[k]],
+               3 * sizeof(unsigned));
+    return geo;
+}
+
+/* One triangle geometry holding the scene's opaque (g = 0) or masked (g = 1) triangles, with
+ * geomID g; its primitive k is triangle record geo_base[g] + k. */
+static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
+{
+    uint32_t *rec = gib_calloc(count, sizeof *rec, err);
+    RTCGeometry geo = NULL;
+    for (uint32_t k = 0; rec && k < count; k++)
+        rec[k] = w->geo_base[g] + k;
+    if (rec)
+        geo = ref_new_geometry(w, rec, count, err);
+    free(rec);
+    if (!geo)
+        return -1;
     rtcSetGeometryUserData(geo, w);
     if (g == REF_GEOM_MASKED) {
         rtcSetGeometryIntersectFilterFunction(geo, ref_alpha_filter);
@@ -278,6 +312,42 @@ static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
     rtcCommitGeometry(geo);
     rtcAttachGeometryByID(w->scene, geo, (unsigned)g);
     rtcReleaseGeometry(geo);
+    return 0;
+}
+
+/* w->mirrors: the mirror triangles in a scene of their own, with the main scene's flags, so that
+ * Embree's test of each triangle is the same in both. A ray whose closest hit in the main scene is
+ * a mirror triangle meets that triangle here too; a ray that meets none here has no mirror as its
+ * first hit. A mirror with a cut-out mask would need the mask's filter and its records: then there
+ * is no such scene and every particle is traced whole. */
+static int ref_build_mirrors(ref_world *w, gib_error *err)
+{
+    const gib_scene *gs = w->gs;
+    uint32_t count = 0;
+    for (uint32_t r = 0; r < gs->triangle_count; r++) {
+        const gib_material *m = &gs->materials[w->tris[r].mat];
+        if (ref_is_mirror(m) && m->alpha_tex >= 0)
+            return 0;
+        count += (uint32_t)ref_is_mirror(m);
+    }
+    uint32_t *rec = count ? gib_calloc(count, sizeof *rec, err) : NULL;
+    if (count && !rec)
+        return -1;
+    count = 0;
+    for (uint32_t r = 0; r < gs->triangle_count; r++)
+        if (ref_is_mirror(&gs->materials[w->tris[r].mat]))
+            rec[count++] = r;
+    w->mirrors = ref_new_scene(w);
+    RTCGeometry geo = count ? ref_new_geometry(w, rec, count, err) : NULL;
+    free(rec);
+    if (count && !geo)
+        return -1;
+    if (geo) {
+        rtcCommitGeometry(geo);
+        rtcAttachGeometry(w->mirrors, geo);
+        rtcReleaseGeometry(geo);
+    }
+    rtcCommitScene(w->mirrors);
     return 0;
 }
 
@@ -311,12 +381,7 @@ int ref_world_build(ref_world *w, const gib_scene *scene, gib_error *err)
     }
     rtcSetDeviceErrorFunction(w->device, ref_embree_error, w);
 
-    w->scene = rtcNewScene(w->device);
-    /* ROBUST: no traversal shortcuts that can let a ray slip through a shared edge, which would
-     * leak light or visibility into a reference. HIGH quality: the BVH is built once and traced
-     * millions of times. */
-    rtcSetSceneFlags(w->scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(w->scene, RTC_BUILD_QUALITY_HIGH);
+    w->scene = ref_new_scene(w);
 
     /* Two geometries: opaque triangles, and those whose material has a cut-out mask, so that only
      * the latter pay for the filter callback. Sponza's plants hold 3% of its triangles; a filter on
@@ -333,6 +398,10 @@ int ref_world_build(ref_world *w, const gib_scene *scene, gib_error *err)
         }
     }
     rtcCommitScene(w->scene);
+    if (w->has_mirror && ref_build_mirrors(w, err) < 0) {
+        ref_world_free(w);
+        return -1;
+    }
     if (rtcGetDeviceError(w->device) != RTC_ERROR_NONE) {
         gib_fail(err, "scene '%s': building the Embree BVH failed: %s", gs->name,
                  w->embree_msg[0] ? w->embree_msg : "(no message)");
@@ -368,6 +437,9 @@ void ref_world_free(ref_world *w)
         w->frame = NULL;
         w->gs = NULL;
     }
+    if (w->mirrors)
+        rtcReleaseScene(w->mirrors);
+    w->mirrors = NULL;
     if (w->scene)
         rtcReleaseScene(w->scene);
     if (w->device)
@@ -531,6 +603,24 @@ static int ref_intersect(const ref_world *w, const float o[3], const float d[3],
     if (w->time_embree)
         ref_embree_ticks += ref_ticks() - t0;
     return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+int ref_may_hit_mirror(const ref_world *w, const float o[3], const float d[3])
+{
+    if (!w->has_mirror || !w->scene)
+        return 0;
+    if (!w->mirrors)
+        return 1;
+    struct RTCIntersectContext ctx;
+    struct RTCRayHit rh;
+    rtcInitIntersectContext(&ctx);
+    ref_ray_init(&rh.ray, o, d, INFINITY);
+    rh.hit.geomID = rh.hit.primID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    uint64_t t0 = w->time_embree ? ref_ticks() : 0;
+    rtcIntersect1(w->mirrors, &ctx, &rh);
+    if (w->time_embree)
+        ref_embree_ticks += ref_ticks() - t0;
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq)
