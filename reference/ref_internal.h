@@ -80,6 +80,8 @@ typedef struct ref_world {
                               * proportion to its power (ref_connect.c); NULL: no light emits */
     int has_specular;        /* some material has a specular lobe (Phong or mirror) */
     int has_mirror;          /* some material is a mirror */
+    int8_t *diffuse_known;   /* per material: 1 when every point's rho_d has a channel > 0, 0 when
+                              * none can, -1 when its texture decides (ref_world_diffuse_known) */
     RTCScene mirrors;        /* the mirror triangles alone (ref_may_hit_mirror); NULL when there
                               * are none or when one has a cut-out mask */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
@@ -130,6 +132,12 @@ typedef struct ref_pending {
 } ref_pending;
 int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq);
 void ref_trace_finish(const ref_world *w, const ref_pending *pq, ref_hit *hit);
+/* What ref_material's kd has at every point of material m without a texture lookup: 1 some
+ * channel > 0, 0 none, -1 the texel decides. */
+static inline int ref_diffuse_known(const ref_world *w, uint32_t m)
+{
+    return w->diffuse_known ? w->diffuse_known[m] : -1;
+}
 /* 0 when the ray (o, d) meets no mirror triangle, so its first hit cannot be a mirror; 1 when it
  * meets one or when the world cannot tell (a mirror with a cut-out mask). The light tracer asks
  * before tracing a particle's first ray through the whole scene: only a mirror there continues. */

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <stdint.h>
 #include <string.h>
+#include <unistd.h>
 #include <sys/mman.h>
 #include <time.h>
 #if defined(__x86_64__) || defined(__i386__)
@@ -219,6 +220,58 @@ static int ref_is_mirror(const gib_material *m)
            (m->specular[0] > 0.0f || m->specular[1] > 0.0f || m->specular[2] > 0.0f);
 }
 
+/* Whether a material's rho_d can be zero anywhere, known without its texels: kd = albedo x the
+ * level-0 texel's bilinear blend. The blend of texels whose channel is at least 1e-6 is at least
+ * that (a convex combination), and such a value is stored as itself or as an sRGB code of 1 or
+ * more (ref_texture.c stores 8-bit sRGB only where every value is within 1e-9 of a code's, and
+ * code 1 is 3e-4), so albedo > 1e-6 in that channel makes kd > 0 at every point. */
+typedef struct ref_min_job {
+    const gib_scene *gs;
+    float (*least)[3]; /* per texture: the least of each colour channel over its texels */
+} ref_min_job;
+
+static void ref_texture_least(void *ctx, int t)
+{
+    ref_min_job *j = ctx;
+    const gib_texture *tx = &j->gs->textures[t];
+    float lo[3] = {INFINITY, INFINITY, INFINITY};
+    int nan = 0;
+    const size_t n = tx->rgba ? (size_t)tx->width * (size_t)tx->height : 0;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            float v = tx->rgba[4 * i + k];
+            nan |= isnan(v);
+            lo[k] = v < lo[k] ? v : lo[k];
+        }
+    for (int k = 0; k < 3; k++) /* no texels or a NaN: nothing is known */
+        j->least[t][k] = n > 0 && !nan ? lo[k] : 0.0f;
+}
+
+static int ref_world_diffuse_known(ref_world *w, const gib_scene *gs, gib_error *err)
+{
+    w->diffuse_known = gib_calloc(gs->material_count ? gs->material_count : 1, 1, err);
+    ref_min_job j = {gs, gs->texture_count ? gib_calloc(gs->texture_count, sizeof *j.least, err)
+                                           : NULL};
+    if (!w->diffuse_known || (gs->texture_count && !j.least)) {
+        free(j.least);
+        return -1;
+    }
+    ref_parallel((int)sysconf(_SC_NPROCESSORS_ONLN), (int)gs->texture_count, ref_texture_least,
+                 &j, NULL);
+    for (uint32_t m = 0; m < gs->material_count; m++) {
+        const gib_material *mt = &gs->materials[m];
+        int any = 0, sure = 0;
+        for (int k = 0; k < 3; k++) {
+            any |= mt->albedo[k] > 0.0f;
+            sure |= mt->albedo_tex >= 0 && (uint32_t)mt->albedo_tex < gs->texture_count &&
+                    mt->albedo[k] > 1e-6f && j.least[mt->albedo_tex][k] >= 1e-6f;
+        }
+        w->diffuse_known[m] = (int8_t)(mt->albedo_tex < 0 ? any : sure ? 1 : any ? -1 : 0);
+    }
+    free(j.least);
+    return 0;
+}
+
 /* Triangle records, mip pyramids of the albedo textures, the specular flags and the bounding
  * sphere. */
 static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
@@ -233,6 +286,8 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
         w->has_mirror |= ref_is_mirror(mt);
     }
     if (gs->texture_count > 0 && ref_world_textures(w, gs, err) < 0)
+        return -1;
+    if (ref_world_diffuse_known(w, gs, err) < 0)
         return -1;
     if (gs->light_count > 0 && !(w->spot_cos = gib_calloc(gs->light_count, sizeof(float), err)))
         return -1;
@@ -425,6 +480,8 @@ void ref_world_free(ref_world *w)
     w->masks = NULL;
     free(w->spot_cos);
     w->spot_cos = NULL;
+    free(w->diffuse_known);
+    w->diffuse_known = NULL;
     free(w->light_pick);
     w->light_pick = NULL;
     ref_free_huge(w->tris, w->gs ? (size_t)w->gs->triangle_count * sizeof *w->tris : 0);
