@@ -81,7 +81,7 @@ typedef struct ref_world {
     int has_specular;        /* some material has a specular lobe (Phong or mirror) */
     int has_mirror;          /* some material is a mirror */
     int8_t *diffuse_known;   /* per material: 1 when every point's rho_d has a channel > 0, 0 when
-                              * none can, -1 when its texture decides (ref_world_diffuse_known) */
+                              * none can, -1 when its texels decide (ref_world_diffuse_known) */
     RTCScene mirrors;        /* the mirror triangles alone (ref_may_hit_mirror); NULL when there
                               * are none or when one has a cut-out mask */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */

@@ -260,13 +260,14 @@ static int ref_world_diffuse_known(ref_world *w, const gib_scene *gs, gib_error 
                  &j, NULL);
     for (uint32_t m = 0; m < gs->material_count; m++) {
         const gib_material *mt = &gs->materials[m];
-        int any = 0, sure = 0;
+        int any = 0, sure = 0, finite = 1;
         for (int k = 0; k < 3; k++) {
             any |= mt->albedo[k] > 0.0f;
+            finite &= isfinite(mt->albedo[k]);
             sure |= mt->albedo_tex >= 0 && (uint32_t)mt->albedo_tex < gs->texture_count &&
                     mt->albedo[k] > 1e-6f && j.least[mt->albedo_tex][k] >= 1e-6f;
         }
-        w->diffuse_known[m] = (int8_t)(mt->albedo_tex < 0 ? any : sure ? 1 : any ? -1 : 0);
+        w->diffuse_known[m] = (int8_t)(mt->albedo_tex >= 0 ? (sure ? 1 : -1) : finite ? any : -1);
     }
     free(j.least);
     return 0;
