@@ -84,23 +84,44 @@ float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscuranc
     return ref_occluded(w, o, d, bounded ? dmax : INFINITY) ? 0.0f : 1.0f;
 }
 
-/* The diffuse-only direct light leaving y toward -d (the D vertex next to the light in L D D E
- * and L D S E), the sky's included. A bounce ray that escapes contributes nothing: that path
- * (L_sky D E or L_sky S E) is one vertex long and `direct` counts it, by its own sky sampling. */
-static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float d[3],
-                              ref_rng *rng, float L[3], long long *rays)
+/* A bounce from the visible point in two halves, so that a pixel's batch of samples casts every
+ * bounce ray before it shades any hit: each hit's triangle record and albedo texel, prefetched
+ * when its ray returns, arrive while the other rays are traced. Each sample keeps its own stream
+ * and arithmetic, so the values are those of the samples taken one at a time. */
+typedef struct ref_bounce {
+    ref_pending pq;
+    float scale[3]; /* what the bounce's light is multiplied by: rho_d, or rho_s x the lobe weight */
+    int live;       /* the ray was cast and met a surface */
+} ref_bounce;
+
+static void ref_bounce_cast(const ref_world *w, const ref_hit *h, const float d[3],
+                            ref_bounce *b, long long *rays)
 {
-    L[0] = L[1] = L[2] = 0.0f;
+    b->live = 0;
     if (!(ref_dot(d, h->ng) > 0.0f))
-        return 0;
+        return;
     float o[3];
     ref_offset_origin(w, h, d, o);
-    ref_hit y;
     ++*rays;
-    if (!ref_trace(w, o, d, &y) || y.back)
+    b->live = ref_trace_start(w, o, d, &b->pq);
+}
+
+/* The diffuse-only direct light leaving the bounce's hit y back along the ray (the D vertex next
+ * to the light in L D D E and L D S E), the sky's included. Returns 0 when the ray escaped or met
+ * a one-sided back: such a sample adds nothing (an escaping ray's path, L_sky D E or L_sky S E, is
+ * one vertex long and `direct` counts it, by its own sky sampling). */
+static int ref_bounce_light(const ref_world *w, const ref_bounce *b, ref_rng *rng, float L[3],
+                            long long *rays)
+{
+    L[0] = L[1] = L[2] = 0.0f;
+    ref_hit y;
+    if (!b->live)
+        return 0;
+    ref_trace_finish(w, &b->pq, &y);
+    if (y.back)
         return 0;
     ref_mat m;
-    const float wo[3] = {-d[0], -d[1], -d[2]};
+    const float wo[3] = {-b->pq.d[0], -b->pq.d[1], -b->pq.d[2]};
     int want_d = ref_diffuse_known(w, w->tris[y.prim].mat);
     if (want_d >= 0 && w->gs->light_count <= REF_NEE_LIGHTS && !ref_has_sky(w->gs)) {
         /* ref_nee's shadow rays first, the albedo's texel only where light arrives: the same
@@ -121,20 +142,20 @@ static int ref_bounce_diffuse(const ref_world *w, const ref_hit *h, const float 
 
 /* Indirect, L D D E: a cosine-weighted bounce from the visible point's diffuse lobe
  * (f cos / pdf = rho_d), then the diffuse lobe of the bounce point lit by next-event estimation.
- * Specular lobes at either vertex belong to glossy (x1) and caustic (x2). */
-void ref_est_indirect(const ref_world *w, const ref_hit *h, int cone, float cone_half,
-                      ref_rng *rng, float out[3], long long *rays)
+ * Specular lobes at either vertex belong to glossy (x1) and caustic (x2). cone >= 1: only diffuse
+ * cone cone - 1 of the cone set, the cap of half-angle cone_half (radians), sampled uniformly:
+ * rho_d times the cap's mean radiance. The bounce's direction d and weight; 0 when the sample
+ * adds nothing. */
+static int ref_indirect_bounce(const ref_world *w, const ref_hit *h, int cone, float cone_half,
+                               ref_rng *rng, float d[3], float scale[3])
 {
-    out[0] = out[1] = out[2] = 0.0f;
     float u1, u2;
     ref_rng_2d(rng, &u1, &u2);
     if (h->back)
-        return;
-    float kd[3];
-    ref_albedo(w, h, kd);
-    if (kd[0] <= 0.0f && kd[1] <= 0.0f && kd[2] <= 0.0f)
-        return;
-    float d[3], L[3];
+        return 0;
+    ref_albedo(w, h, scale);
+    if (scale[0] <= 0.0f && scale[1] <= 0.0f && scale[2] <= 0.0f)
+        return 0;
     if (cone > 0) { /* f cos / pdf becomes rho_d x L's cap mean: each direction weighs 1 / n */
         float axis[3];
         gib_diffuse_cone_dir(cone - 1, h->n, axis);
@@ -142,36 +163,57 @@ void ref_est_indirect(const ref_world *w, const ref_hit *h, int cone, float cone
     } else {
         ref_sample_cosine(h->n, u1, u2, d);
     }
-    if (ref_bounce_diffuse(w, h, d, rng, L, rays))
-        for (int k = 0; k < 3; k++)
-            out[k] = kd[k] * L[k];
+    return 1;
 }
 
 /* Glossy, L D S E: the visible point's specular lobe (Phong, importance-sampled; or the mirror
- * direction) sees a diffuse surface lit by next-event estimation. */
-void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
-                    float out[3], long long *rays)
+ * direction) sees a diffuse surface lit by next-event estimation. The bounce's direction d and
+ * weight; 0 when the sample adds nothing. */
+static int ref_glossy_bounce(const ref_world *w, const ref_hit *h, const float wo[3],
+                             ref_rng *rng, float d[3], float scale[3])
 {
-    out[0] = out[1] = out[2] = 0.0f;
     float u1, u2;
     ref_rng_2d(rng, &u1, &u2);
     if (h->back)
-        return;
+        return 0;
     ref_mat m;
     ref_material(w, h, &m);
     if (m.spec == GIB_SPEC_NONE)
-        return;
-    float r[3], d[3], wgt = 1.0f, L[3];
+        return 0;
+    float r[3], wgt = 1.0f;
     ref_reflect(wo, h->n, r);
     if (m.spec == GIB_SPEC_PHONG)
         wgt = ref_sample_phong(r, m.phong_n, h->n, u1, u2, d);
     else
         d[0] = r[0], d[1] = r[1], d[2] = r[2];
     if (!(wgt > 0.0f))
-        return;
-    if (ref_bounce_diffuse(w, h, d, rng, L, rays))
-        for (int k = 0; k < 3; k++)
-            out[k] = m.ks[k] * wgt * L[k];
+        return 0;
+    for (int k = 0; k < 3; k++)
+        scale[k] = m.ks[k] * wgt;
+    return 1;
+}
+
+/* n <= REF_PATH_BATCH samples of indirect or glossy: every bounce cast, then every hit shaded. */
+static void ref_sample_bounces(const ref_ctx *c, const ref_hit *h, const float wo[3], int n,
+                               ref_rng *rng, float (*out)[3], long long *rays)
+{
+    ref_bounce b[REF_PATH_BATCH];
+    const float cone_half = 0.5f * c->p.cone_aperture * 0.017453293f;
+    for (int i = 0; i < n; i++) {
+        float d[3];
+        out[i][0] = out[i][1] = out[i][2] = 0.0f;
+        b[i].live = 0;
+        if (c->p.component == GIB_COMP_INDIRECT
+                ? ref_indirect_bounce(c->w, h, c->p.cone, cone_half, &rng[i], d, b[i].scale)
+                : ref_glossy_bounce(c->w, h, wo, &rng[i], d, b[i].scale))
+            ref_bounce_cast(c->w, h, d, &b[i], rays);
+    }
+    for (int i = 0; i < n; i++) {
+        float L[3];
+        if (ref_bounce_light(c->w, &b[i], &rng[i], L, rays))
+            for (int k = 0; k < 3; k++)
+                out[i][k] = b[i].scale[k] * L[k];
+    }
 }
 
 /* Auxiliary images of the visible point. albedo: rho_d, filtered like the GL G-buffer's (0 on the
@@ -209,13 +251,6 @@ static void ref_sample_one(const ref_ctx *c, const ref_hit *h, const float wo[3]
     case GIB_COMP_DIRECT:
         ref_est_direct(c->w, h, wo, rng, out, rays);
         break;
-    case GIB_COMP_INDIRECT:
-        ref_est_indirect(c->w, h, c->p.cone, 0.5f * c->p.cone_aperture * 0.017453293f, rng, out,
-                         rays);
-        break;
-    case GIB_COMP_GLOSSY:
-        ref_est_glossy(c->w, h, wo, rng, out, rays);
-        break;
     case GIB_COMP_ALBEDO:
     case GIB_COMP_NORMAL:
     case GIB_COMP_DEPTH:
@@ -231,6 +266,10 @@ void ref_sample_camera(const ref_ctx *c, const ref_hit *h, const float wo[3], in
 {
     if (c->p.component == GIB_COMP_FULL || c->p.component == GIB_COMP_HIGHER) {
         ref_est_paths(c, h, wo, c->p.component == GIB_COMP_HIGHER, n, rng, out, rays);
+        return;
+    }
+    if (c->p.component == GIB_COMP_INDIRECT || c->p.component == GIB_COMP_GLOSSY) {
+        ref_sample_bounces(c, h, wo, n, rng, out, rays);
         return;
     }
     for (int i = 0; i < n; i++)

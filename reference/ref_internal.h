@@ -388,12 +388,6 @@ float ref_est_ao(const ref_world *w, const ref_hit *h, float dmax, int obscuranc
  * none as far as it was cast, which is at least dmax), what ref_est_ao returns bit for bit. */
 void ref_ao_ray(const ref_world *w, const ref_hit *h, ref_rng *rng, float o[3], float d[3]);
 float ref_ao_value(float t, float dmax, int obscurance);
-/* cone >= 1: only diffuse cone cone - 1 of the cone set, the cap of half-angle cone_half (radians),
- * sampled uniformly: rho_d times the cap's mean radiance. */
-void ref_est_indirect(const ref_world *w, const ref_hit *h, int cone, float cone_half,
-                      ref_rng *rng, float out[3], long long *rays);
-void ref_est_glossy(const ref_world *w, const ref_hit *h, const float wo[3], ref_rng *rng,
-                    float out[3], long long *rays);
 /* caustic, camera part: L S+ D E whose light-side vertex is Phong. */
 void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_rng *rng, float out[3],
                      long long *rays);
