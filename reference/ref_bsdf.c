@@ -32,8 +32,13 @@ void ref_albedo(const ref_world *w, const ref_hit *h, float a[3])
 
 void ref_material(const ref_world *w, const ref_hit *h, ref_mat *m)
 {
-    const gib_material *g = h->mat;
     ref_albedo(w, h, m->kd);
+    ref_material_specular(h, m);
+}
+
+void ref_material_specular(const ref_hit *h, ref_mat *m)
+{
+    const gib_material *g = h->mat;
     m->spec = g->spec_type;
     m->phong_n = g->phong_n;
     for (int k = 0; k < 3; k++)

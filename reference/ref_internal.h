@@ -204,6 +204,8 @@ typedef struct ref_mat {
 } ref_mat;
 
 void ref_material(const ref_world *w, const ref_hit *h, ref_mat *m);
+/* ref_material's specular lobe alone (spec, phong_n, ks), without the albedo's texel: kd untouched. */
+void ref_material_specular(const ref_hit *h, ref_mat *m);
 /* rho_d at the hit: albedo times its texture, trilinear at primary hits, level 0 elsewhere. */
 void ref_albedo(const ref_world *w, const ref_hit *h, float a[3]);
 

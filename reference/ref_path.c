@@ -356,15 +356,15 @@ void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_rng *rng, float out
         ++*rays;
         if (!ref_trace(w, o, d, &cur) || cur.back)
             return;
-        ref_mat m;
-        ref_material(w, &cur, &m);
+        ref_mat m; /* the specular lobe alone: this vertex's diffuse lobe is not caustic's */
+        m.kd[0] = m.kd[1] = m.kd[2] = 0.0f;
+        ref_material_specular(&cur, &m);
         if (m.spec == GIB_SPEC_NONE)
             return;
         const float wo[3] = {-d[0], -d[1], -d[2]};
         /* x_verts next to the light, through its specular lobe: the delta lights through a Phong
          * lobe, the sky through a Phong lobe or a mirror */
-        ref_mat ms = m;
-        ms.kd[0] = ms.kd[1] = ms.kd[2] = 0.0f;
+        const ref_mat ms = m;
         float dif[3], spec[3];
         ref_nee(w, &cur, &ms, wo, dif, spec, rays);
         ref_nee_sky(w, &cur, &ms, wo, rng, dif, spec, rays);
