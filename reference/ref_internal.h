@@ -82,8 +82,8 @@ typedef struct ref_world {
     int has_mirror;          /* some material is a mirror */
     int8_t *diffuse_known;   /* per material: 1 when every point's rho_d has a channel > 0, 0 when
                               * none can, -1 when its texels decide (ref_world_diffuse_known) */
-    RTCScene mirrors;        /* the mirror triangles alone (ref_may_hit_mirror); NULL when there
-                              * are none or when one has a cut-out mask */
+    RTCScene mirrors;        /* the mirror triangles alone (ref_may_hit_mirror) and those with a */
+    RTCScene speculars;      /* specular lobe (ref_may_hit_specular); NULL: see ref_build_subset */
     float bcentre[3], bradius; /* bounding sphere of the vertices (directional light emission) */
     ref_raylog *log;         /* bench: non-NULL records every ray (single thread only) */
     int time_embree;         /* bench: count the clock ticks spent inside Embree's ray calls */
@@ -139,9 +139,12 @@ static inline int ref_diffuse_known(const ref_world *w, uint32_t m)
     return w->diffuse_known ? w->diffuse_known[m] : -1;
 }
 /* 0 when the ray (o, d) meets no mirror triangle, so its first hit cannot be a mirror; 1 when it
- * meets one or when the world cannot tell (a mirror with a cut-out mask). The light tracer asks
+ * meets one or when the world has no scene of its mirrors (ref_build_subset). The light tracer asks
  * before tracing a particle's first ray through the whole scene: only a mirror there continues. */
 int ref_may_hit_mirror(const ref_world *w, const float o[3], const float d[3]);
+/* The same for the triangles with a specular lobe (Phong or mirror): caustic's camera paths
+ * continue only from such a vertex. */
+int ref_may_hit_specular(const ref_world *w, const float o[3], const float d[3]);
 /* Fills an Embree ray (o, d) over [0, tfar], time 0, every mask bit. */
 void ref_ray_init(struct RTCRay *r, const float o[3], const float d[3], float tfar);
 /* 1 when a surface lies on the ray (o, d) within (0, tfar]. */

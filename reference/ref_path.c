@@ -353,8 +353,8 @@ void ref_est_caustic(const ref_ctx *c, const ref_hit *h, ref_rng *rng, float out
             return;
         float o[3];
         ref_offset_origin(w, &cur, d, o);
-        ++*rays;
-        if (!ref_trace(w, o, d, &cur) || cur.back)
+        ++*rays; /* a ray that meets no specular triangle ends here as its whole trace would */
+        if (!ref_may_hit_specular(w, o, d) || !ref_trace(w, o, d, &cur) || cur.back)
             return;
         ref_mat m; /* the specular lobe alone: this vertex's diffuse lobe is not caustic's */
         m.kd[0] = m.kd[1] = m.kd[2] = 0.0f;

@@ -213,11 +213,17 @@ static int ref_build_tris(ref_world *w, const gib_scene *gs, gib_error *err)
     return 0;
 }
 
-/* The material is a mirror as ref_material reads it: a mirror lobe with some reflectance. */
+/* The material has a specular lobe as ref_material reads it: a lobe with some reflectance. */
+static int ref_is_specular(const gib_material *m)
+{
+    return m->spec_type != GIB_SPEC_NONE &&
+           (m->specular[0] > 0.0f || m->specular[1] > 0.0f || m->specular[2] > 0.0f);
+}
+
+/* ... and that lobe is a mirror. */
 static int ref_is_mirror(const gib_material *m)
 {
-    return m->spec_type == GIB_SPEC_MIRROR &&
-           (m->specular[0] > 0.0f || m->specular[1] > 0.0f || m->specular[2] > 0.0f);
+    return ref_is_specular(m) && m->spec_type == GIB_SPEC_MIRROR;
 }
 
 /* Whether a material's rho_d can be zero anywhere, known without its texels: kd = albedo x the
@@ -281,9 +287,7 @@ static int ref_world_extras(ref_world *w, const gib_scene *gs, gib_error *err)
         return -1;
     for (uint32_t m = 0; m < gs->material_count; m++) {
         const gib_material *mt = &gs->materials[m];
-        int spec = mt->spec_type != GIB_SPEC_NONE &&
-                   (mt->specular[0] > 0.0f || mt->specular[1] > 0.0f || mt->specular[2] > 0.0f);
-        w->has_specular |= spec;
+        w->has_specular |= ref_is_specular(mt);
         w->has_mirror |= ref_is_mirror(mt);
     }
     if (gs->texture_count > 0 && ref_world_textures(w, gs, err) < 0)
@@ -371,39 +375,44 @@ static int ref_add_geometry(ref_world *w, int g, uint32_t count, gib_error *err)
     return 0;
 }
 
-/* w->mirrors: the mirror triangles in a scene of their own, with the main scene's flags, so that
- * Embree's test of each triangle is the same in both. A ray whose closest hit in the main scene is
- * a mirror triangle meets that triangle here too; a ray that meets none here has no mirror as its
- * first hit. A mirror with a cut-out mask would need the mask's filter and its records: then there
- * is no such scene and every particle is traced whole. */
-static int ref_build_mirrors(ref_world *w, gib_error *err)
+/* The triangles of the materials `keep` picks in a scene of their own (*out), with the main scene's
+ * flags, so that Embree's test of each triangle is the same in both: a ray whose closest hit in
+ * the main scene is such a triangle meets that triangle here too, so a ray that meets none here
+ * has none as its first hit. No such scene (*out NULL, every ray traced whole) when a picked
+ * material has a cut-out mask (the mask's filter would be needed too), or when the picked
+ * triangles are many and over a quarter of the scene's (culling little, building much). */
+static int ref_build_subset(ref_world *w, int (*keep)(const gib_material *), RTCScene *out,
+                            gib_error *err)
 {
     const gib_scene *gs = w->gs;
     uint32_t count = 0;
+    *out = NULL;
     for (uint32_t r = 0; r < gs->triangle_count; r++) {
         const gib_material *m = &gs->materials[w->tris[r].mat];
-        if (ref_is_mirror(m) && m->alpha_tex >= 0)
+        if (keep(m) && m->alpha_tex >= 0)
             return 0;
-        count += (uint32_t)ref_is_mirror(m);
+        count += (uint32_t)keep(m);
     }
+    if (count > 65536 && count > gs->triangle_count / 4)
+        return 0;
     uint32_t *rec = count ? gib_calloc(count, sizeof *rec, err) : NULL;
     if (count && !rec)
         return -1;
     count = 0;
     for (uint32_t r = 0; r < gs->triangle_count; r++)
-        if (ref_is_mirror(&gs->materials[w->tris[r].mat]))
+        if (keep(&gs->materials[w->tris[r].mat]))
             rec[count++] = r;
-    w->mirrors = ref_new_scene(w);
     RTCGeometry geo = count ? ref_new_geometry(w, rec, count, err) : NULL;
     free(rec);
     if (count && !geo)
         return -1;
+    *out = ref_new_scene(w);
     if (geo) {
         rtcCommitGeometry(geo);
-        rtcAttachGeometry(w->mirrors, geo);
+        rtcAttachGeometry(*out, geo);
         rtcReleaseGeometry(geo);
     }
-    rtcCommitScene(w->mirrors);
+    rtcCommitScene(*out);
     return 0;
 }
 
@@ -454,7 +463,8 @@ int ref_world_build(ref_world *w, const gib_scene *scene, gib_error *err)
         }
     }
     rtcCommitScene(w->scene);
-    if (w->has_mirror && ref_build_mirrors(w, err) < 0) {
+    if ((w->has_mirror && ref_build_subset(w, ref_is_mirror, &w->mirrors, err) < 0) ||
+        (w->has_specular && ref_build_subset(w, ref_is_specular, &w->speculars, err) < 0)) {
         ref_world_free(w);
         return -1;
     }
@@ -497,7 +507,9 @@ void ref_world_free(ref_world *w)
     }
     if (w->mirrors)
         rtcReleaseScene(w->mirrors);
-    w->mirrors = NULL;
+    if (w->speculars)
+        rtcReleaseScene(w->speculars);
+    w->mirrors = w->speculars = NULL;
     if (w->scene)
         rtcReleaseScene(w->scene);
     if (w->device)
@@ -663,11 +675,13 @@ static int ref_intersect(const ref_world *w, const float o[3], const float d[3],
     return rh->hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
-int ref_may_hit_mirror(const ref_world *w, const float o[3], const float d[3])
+/* 0 when the ray meets no triangle of `subset` (built for materials the world has: `any`). */
+static int ref_may_hit(const ref_world *w, int any, RTCScene subset, const float o[3],
+                       const float d[3])
 {
-    if (!w->has_mirror || !w->scene)
+    if (!any || !w->scene)
         return 0;
-    if (!w->mirrors)
+    if (!subset)
         return 1;
     struct RTCIntersectContext ctx;
     struct RTCRayHit rh;
@@ -675,10 +689,20 @@ int ref_may_hit_mirror(const ref_world *w, const float o[3], const float d[3])
     ref_ray_init(&rh.ray, o, d, INFINITY);
     rh.hit.geomID = rh.hit.primID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     uint64_t t0 = w->time_embree ? ref_ticks() : 0;
-    rtcIntersect1(w->mirrors, &ctx, &rh);
+    rtcIntersect1(subset, &ctx, &rh);
     if (w->time_embree)
         ref_embree_ticks += ref_ticks() - t0;
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+int ref_may_hit_mirror(const ref_world *w, const float o[3], const float d[3])
+{
+    return ref_may_hit(w, w->has_mirror, w->mirrors, o, d);
+}
+
+int ref_may_hit_specular(const ref_world *w, const float o[3], const float d[3])
+{
+    return ref_may_hit(w, w->has_specular, w->speculars, o, d);
 }
 
 int ref_trace_start(const ref_world *w, const float o[3], const float d[3], ref_pending *pq)
