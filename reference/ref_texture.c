@@ -299,26 +299,41 @@ static int ref_memo_code(ref_code_memo *memo, float v)
     return memo->code[h];
 }
 
-/* Packs level 0's linear RGBA into sRGB8 tiles; returns 0 if some value is not the decode of an
- * 8-bit code (colour: ref_exact_code; alpha: within 1e-6 of k / 255). */
-static int ref_pack8(const float *src, int w, int h, uint32_t *dst)
+static void ref_memo_init(ref_code_memo *memo)
+{
+    for (int i = 0; i < REF_MEMO_SLOTS; i++) /* bits 0: +0, whose code is 0 */
+        memo->bits[i] = 0, memo->code[i] = 0;
+}
+
+/* Level 0's texel p as sRGB8, or -1 if some value is not the decode of an 8-bit code (colour:
+ * ref_exact_code; alpha: within 1e-6 of k / 255). */
+static int64_t ref_texel_code(ref_code_memo *memo, const float *p)
+{
+    int c[4];
+    for (int k = 0; k < 3; k++)
+        if ((c[k] = ref_memo_code(memo, p[k])) < 0)
+            return -1;
+    c[3] = p[3] == 1.0f ? 255 : (int)ref_unorm_code(p[3]);
+    if (!(fabsf(ref_alpha_lut[c[3]] - p[3]) <= 1e-6f))
+        return -1;
+    return (uint32_t)c[0] | (uint32_t)c[1] << 8 | (uint32_t)c[2] << 16 | (uint32_t)c[3] << 24;
+}
+
+/* Packs level 0's linear RGBA into sRGB8 tiles at dst, or, given want instead, checks that want
+ * holds exactly that packing; returns 0 if some value is not 8-bit or some texel differs. */
+static int ref_pack8(const float *src, int w, int h, uint32_t *dst, const uint32_t *want)
 {
     ref_code_memo memo;
-    for (int i = 0; i < REF_MEMO_SLOTS; i++) /* bits 0: +0, whose code is 0 */
-        memo.bits[i] = 0, memo.code[i] = 0;
+    ref_memo_init(&memo);
     int tw = (w + 3) / 4;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            const float *p = src + ((size_t)y * (size_t)w + (size_t)x) * 4;
-            int c[4];
-            for (int k = 0; k < 3; k++)
-                if ((c[k] = ref_memo_code(&memo, p[k])) < 0)
-                    return 0;
-            c[3] = p[3] == 1.0f ? 255 : (int)ref_unorm_code(p[3]);
-            if (!(fabsf(ref_alpha_lut[c[3]] - p[3]) <= 1e-6f))
+            int64_t c = ref_texel_code(&memo, src + ((size_t)y * (size_t)w + (size_t)x) * 4);
+            size_t i = ref_tiled_index(tw, x, y);
+            if (c < 0 || (want && want[i] != (uint32_t)c))
                 return 0;
-            dst[ref_tiled_index(tw, x, y)] =
-                (uint32_t)c[0] | (uint32_t)c[1] << 8 | (uint32_t)c[2] << 16 | (uint32_t)c[3] << 24;
+            if (dst)
+                dst[i] = (uint32_t)c;
         }
     return 1;
 }
@@ -465,47 +480,70 @@ static void ref_level_sample(const ref_mip *m, int l, float u, float v, float ou
         ref_bilinear(m->lv[l], m->w[l], m->h[l], u, v, out);
 }
 
+/* m's level count and sizes for a w x h texture; *total8 is the sRGB8 pyramid's texels in tiles,
+ * the result the floats of a float pyramid's levels 1 and up. */
+static size_t ref_mip_shape(ref_mip *m, int w, int h, size_t *total8)
+{
+    size_t total = 0;
+    m->levels = 1;
+    m->w[0] = w, m->h[0] = h;
+    *total8 = ref_tiled_size(w, h);
+    while ((w > 1 || h > 1) && m->levels < REF_MAX_MIPS) {
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+        m->w[m->levels] = w, m->h[m->levels] = h;
+        total += (size_t)w * (size_t)h * 4;
+        *total8 += ref_tiled_size(w, h);
+        m->levels++;
+    }
+    return total;
+}
+
+/* Whether t's level 0, packed, is exactly the sRGB8 level lv0 of its size. */
+int ref_mip_same8(const gib_texture *t, const uint32_t *lv0)
+{
+    return ref_pack8(t->rgba, t->width, t->height, NULL, lv0);
+}
+
+/* The sRGB8 pyramid of t into m (shape set), like glGenerateMipmap on an sRGB8 texture: 1 built,
+ * 0 when level 0 is not 8-bit, -1 out of memory. */
+static int ref_build8(ref_mip *m, const gib_texture *t, size_t total8, gib_error *err)
+{
+    uint32_t *p8 = ref_alloc_huge(total8 * sizeof *p8);
+    if (!p8)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "out of memory building the mip maps of texture '%s'", t->path);
+    if (!ref_pack8(t->rgba, t->width, t->height, p8, NULL)) {
+        ref_free_huge(p8, total8 * sizeof *p8);
+        return 0;
+    }
+    m->srgb8 = 1;
+    m->owned8 = p8;
+    m->owned8_bytes = total8 * sizeof *p8;
+    m->lv8[0] = p8;
+    size_t off = ref_tiled_size(m->w[0], m->h[0]);
+    for (int l = 1; l < m->levels; l++) {
+        m->lv8[l] = p8 + off;
+        ref_downsample8(m->lv8[l - 1], m->w[l - 1], m->h[l - 1], p8 + off, m->w[l], m->h[l]);
+        off += ref_tiled_size(m->w[l], m->h[l]);
+    }
+    return 1;
+}
+
 int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 {
     memset(m, 0, sizeof *m);
     if (!t || !t->rgba || t->width <= 0 || t->height <= 0)
         return 0;
     pthread_once(&ref_lut_once, ref_tables_init);
-    int w = t->width, h = t->height, levels = 1;
-    size_t total = 0, total8 = ref_tiled_size(w, h);
-    while ((w > 1 || h > 1) && levels < REF_MAX_MIPS) {
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
-        total += (size_t)w * (size_t)h * 4;
-        total8 += ref_tiled_size(w, h);
-        levels++;
-    }
-    m->levels = levels;
-    m->w[0] = t->width;
-    m->h[0] = t->height;
-    for (int l = 1; l < levels; l++) {
-        m->w[l] = m->w[l - 1] > 1 ? m->w[l - 1] / 2 : 1;
-        m->h[l] = m->h[l - 1] > 1 ? m->h[l - 1] / 2 : 1;
-    }
-    /* sRGB8 when level 0 is exactly 8-bit */
-    uint32_t *p8 = ref_alloc_huge(total8 * sizeof *p8);
-    if (!p8)
-        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                             "out of memory building the mip maps of texture '%s'", t->path);
-    if (ref_pack8(t->rgba, t->width, t->height, p8)) {
-        m->srgb8 = 1;
-        m->owned8 = p8;
-        m->owned8_bytes = total8 * sizeof *p8;
-        m->lv8[0] = p8;
-        size_t off = ref_tiled_size(m->w[0], m->h[0]);
-        for (int l = 1; l < levels; l++) {
-            m->lv8[l] = p8 + off;
-            ref_downsample8(m->lv8[l - 1], m->w[l - 1], m->h[l - 1], p8 + off, m->w[l], m->h[l]);
-            off += ref_tiled_size(m->w[l], m->h[l]);
-        }
+    size_t total8, total = ref_mip_shape(m, t->width, t->height, &total8);
+    if (ref_share_take(m, t))
         return 0;
-    }
-    ref_free_huge(p8, total8 * sizeof *p8);
+    int rc = ref_build8(m, t, total8, err); /* sRGB8 when level 0 is exactly 8-bit */
+    if (rc > 0)
+        ref_share_put(m, t->path);
+    if (rc != 0)
+        return rc < 0 ? -1 : 0;
     if (total > 0) {
         m->owned = malloc(total * sizeof(float));
         if (!m->owned)
@@ -514,7 +552,7 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
     }
     m->lv[0] = t->rgba;
     float *next = m->owned;
-    for (int l = 1; l < levels; l++) {
+    for (int l = 1; l < m->levels; l++) {
         ref_downsample(m->lv[l - 1], m->w[l - 1], m->h[l - 1], next, m->w[l], m->h[l]);
         m->lv[l] = next;
         next += (size_t)m->w[l] * (size_t)m->h[l] * 4;
@@ -525,7 +563,8 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 void ref_mip_free(ref_mip *m)
 {
     free(m->owned);
-    ref_free_huge(m->owned8, m->owned8_bytes);
+    if (m->owned8 && !ref_share_drop(m->owned8))
+        ref_free_huge(m->owned8, m->owned8_bytes);
     memset(m, 0, sizeof *m);
 }
 
