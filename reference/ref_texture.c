@@ -287,7 +287,7 @@ typedef struct ref_code_memo {
     int16_t code[REF_MEMO_SLOTS];
 } ref_code_memo;
 
-static int ref_memo_code(ref_code_memo *memo, float v)
+static inline int ref_memo_code(ref_code_memo *memo, float v)
 {
     uint32_t bits;
     memcpy(&bits, &v, sizeof bits);
@@ -307,7 +307,7 @@ static void ref_memo_init(ref_code_memo *memo)
 
 /* Level 0's texel p as sRGB8, or -1 if some value is not the decode of an 8-bit code (colour:
  * ref_exact_code; alpha: within 1e-6 of k / 255). */
-static int64_t ref_texel_code(ref_code_memo *memo, const float *p)
+static inline int64_t ref_texel_code(ref_code_memo *memo, const float *p)
 {
     int c[4];
     for (int k = 0; k < 3; k++)
