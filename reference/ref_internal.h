@@ -28,8 +28,9 @@
 #define REF_MAX_MIPS 24
 
 /* A texture's mip pyramid (box filter, built once per render). levels == 0: not an albedo
- * texture, no pyramid. srgb8: every level in 8-bit sRGB 4x4 tiles (lv8), as GL stores it;
- * otherwise floats (lv; level 0 is the scene's own texels). */
+ * texture, no pyramid. srgb8: every level in 8-bit sRGB 4x4 tiles (lv8), as GL stores it, and
+ * read-only: worlds of one process share it (ref_mip_share.c); otherwise floats (lv; level 0 is
+ * the scene's own texels). */
 typedef struct ref_mip {
     int levels, srgb8;
     int w[REF_MAX_MIPS], h[REF_MAX_MIPS];
