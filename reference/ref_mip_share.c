@@ -23,6 +23,14 @@ typedef struct ref_shared {
     unsigned long long idle_since; /* ref_share_clock when refs last fell to 0 */
 } ref_shared;
 
+/* The memory a pyramid holds: ref_alloc_huge maps whole 2 MB pages, which a small texture's
+ * first touch may fill as one huge page. */
+static size_t ref_share_bytes(const ref_shared *e)
+{
+    const size_t page = (size_t)2 << 20;
+    return (e->mip.owned8_bytes + page - 1) / page * page;
+}
+
 static pthread_mutex_t ref_share_lock = PTHREAD_MUTEX_INITIALIZER;
 static ref_shared *ref_share_list; /* newest first; all below under the lock */
 static size_t ref_share_idle;      /* bytes of the pyramids with refs == 0 */
@@ -38,7 +46,7 @@ static void ref_share_trim(void)
                 oldest = p;
         ref_shared *e = *oldest;
         *oldest = e->next;
-        ref_share_idle -= e->mip.owned8_bytes;
+        ref_share_idle -= ref_share_bytes(e);
         ref_free_huge(e->mip.owned8, e->mip.owned8_bytes);
         free(e);
     }
@@ -47,7 +55,7 @@ static void ref_share_trim(void)
 static void ref_share_release(ref_shared *e)
 {
     if (--e->refs == 0) {
-        ref_share_idle += e->mip.owned8_bytes;
+        ref_share_idle += ref_share_bytes(e);
         e->idle_since = ++ref_share_clock;
         ref_share_trim();
     }
@@ -62,7 +70,7 @@ static ref_shared *ref_share_find(const gib_texture *t)
                   strcmp(e->path, t->path) == 0))
         e = e->next;
     if (e && e->refs++ == 0)
-        ref_share_idle -= e->mip.owned8_bytes;
+        ref_share_idle -= ref_share_bytes(e);
     pthread_mutex_unlock(&ref_share_lock);
     return e;
 }
