@@ -4,6 +4,7 @@
  *                    surface points, robust ray offsets
  *   ref_texture.c    texture lookups: level-0 bilinear, mip pyramids, trilinear filtering, and the
  *                    ray differentials at primary hits that choose the level
+ *   ref_mip_share.c  sRGB8 pyramids shared between the worlds of one process
  *   ref_bsdf.c       the material model: albedo, next-event estimation, lobe sampling
  *   ref_estimators.c direct, ao/obscurance, indirect, glossy and the auxiliary images
  *   ref_path.c       full and higher: camera paths with next-event estimation and Russian roulette
@@ -27,8 +28,9 @@
 #define REF_MAX_MIPS 24
 
 /* A texture's mip pyramid (box filter, built once per render). levels == 0: not an albedo
- * texture, no pyramid. srgb8: every level in 8-bit sRGB 4x4 tiles (lv8), as GL stores it;
- * otherwise floats (lv; level 0 is the scene's own texels). */
+ * texture, no pyramid. srgb8: every level in 8-bit sRGB 4x4 tiles (lv8), as GL stores it, and
+ * read-only: worlds of one process share it (ref_mip_share.c); otherwise floats (lv; level 0 is
+ * the scene's own texels). */
 typedef struct ref_mip {
     int levels, srgb8;
     int w[REF_MAX_MIPS], h[REF_MAX_MIPS];
@@ -195,6 +197,19 @@ float ref_mask_sample(const ref_mask *m, float u, float v);
 void ref_mip_prefetch(const ref_mip *m, float u, float v);
 /* The LOD GL would use: log2(max(|duv_x * size|, |duv_y * size|)). */
 float ref_mip_lod(const ref_mip *m, const float duv[4]);
+/* Whether t's level 0, packed, is exactly the sRGB8 level lv0 of its size. */
+int ref_mip_same8(const gib_texture *t, const uint32_t *lv0);
+
+/* ---- sRGB8 pyramids shared between worlds (ref_mip_share.c) ---- */
+
+/* Into m (its shape set) a shared pyramid of t's path and size whose level 0 is t packed, held
+ * for m; 0 if there is none. */
+int ref_share_take(ref_mip *m, const gib_texture *t);
+/* Offers m's new sRGB8 pyramid, held once for m, to later worlds; without memory for the entry m
+ * keeps it alone. */
+void ref_share_put(const ref_mip *m, const char *path);
+/* Releases m's hold on the shared pyramid at p8; 0 if p8 is not shared (the caller frees it). */
+int ref_share_drop(const uint32_t *p8);
 
 /* ---- materials (ref_bsdf.c) ---- */
 

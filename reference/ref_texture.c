@@ -190,7 +190,9 @@ static void ref_downsample(const float *src, int sw, int sh, float *dst, int dw,
  * with values that are not 8-bit (built in C by tests) keep floats. */
 
 static float ref_srgb_lut[256];
-static double ref_srgb_mid[255]; /* linear value of the encoded midpoint (k + 0.5) / 255 */
+static float ref_alpha_lut[256]; /* alpha decodes as (float)k / 255.0f: those very floats */
+/* linear value of the encoded midpoint (k + 0.5) / 255; [255] is +inf, no code lies above 255 */
+static double ref_srgb_mid[256];
 static uint8_t ref_srgb_bucket[1 << 16]; /* by the top 16 bits of a float: its smallest code */
 static pthread_once_t ref_lut_once = PTHREAD_ONCE_INIT;
 
@@ -221,6 +223,7 @@ static void ref_lut_init(void)
     }
     for (int k = 0; k < 255; k++)
         ref_srgb_mid[k] = ref_srgb_decode((k + 0.5) / 255.0);
+    ref_srgb_mid[255] = INFINITY;
     for (uint32_t b = 0; b < (1u << 16); b++) {
         uint32_t bits = b << 16;
         float v;
@@ -232,7 +235,9 @@ static void ref_lut_init(void)
 /* The 8-bit code GL's upload would store for a linear value: round(encode(v) * 255), i.e. the
  * number of encoded midpoints at or below v (the encode is monotonic). Found without a pow: the
  * float's top 16 bits give the code of the bottom of its bucket (buckets are 2^-7 wide in
- * relative terms, codes at least that far apart), then a step or two up. */
+ * relative terms; midpoints are at least 0.89% apart, 2.4 / 255 / 1.055 at the top), then a step
+ * up if v is past the next midpoint: an add, not a branch, since whether it is past is a coin toss
+ * for filtered values. The loop after it never steps and is there for the argument's sake. */
 static unsigned ref_srgb_code(float v)
 {
     if (!(v > 0.0f))
@@ -242,14 +247,15 @@ static unsigned ref_srgb_code(float v)
     uint32_t bits;
     memcpy(&bits, &v, sizeof bits);
     unsigned k = ref_srgb_bucket[bits >> 16];
-    while (k < 255 && (double)v >= ref_srgb_mid[k])
+    k += (double)v >= ref_srgb_mid[k];
+    while ((double)v >= ref_srgb_mid[k])
         k++;
     return k;
 }
 
 static unsigned ref_unorm_code(float v)
 {
-    long k = lrintf(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f);
+    long k = lrintf(ref_fminf(ref_fmaxf(v, 0.0f), 1.0f) * 255.0f);
     return (unsigned)k;
 }
 
@@ -264,41 +270,182 @@ static inline size_t ref_tiled_index(int tw, int x, int y)
            (size_t)(((y & 3) << 2) | (x & 3));
 }
 
-/* Packs linear RGBA into sRGB8 tiles; returns 0 if some value is not the decode of an 8-bit code
- * (only checked when exact is set: level 0). "Is the decode" allows 2e-6 relative: the loader
- * decodes 8-bit values that the image library scaled by 1/255 in its own rounding, which can move
- * them by an ulp or two from decode(k / 255). */
-static int ref_pack8(const float *src, int w, int h, uint32_t *dst, int exact)
+/* The 8-bit sRGB code of a level-0 colour value, or -1 if the value is not the decode of one.
+ * "Is the decode" allows 2e-6 relative: the loader decodes 8-bit values that the image library
+ * scaled by 1/255 in its own rounding, which can move them by an ulp or two from decode(k / 255). */
+static int ref_exact_code(float v)
 {
+    unsigned c = ref_srgb_code(v);
+    return fabsf(ref_srgb_lut[c] - v) <= 2e-6f * v + 1e-9f ? (int)c : -1;
+}
+
+/* ref_exact_code through a direct-mapped memo of the float bits: a texture holds a few hundred
+ * distinct values, so nearly every lookup is a hit, and a hit returns what the call returned. */
+#define REF_MEMO_SLOTS 1024
+typedef struct ref_code_memo {
+    uint32_t bits[REF_MEMO_SLOTS];
+    int16_t code[REF_MEMO_SLOTS];
+} ref_code_memo;
+
+static inline int ref_memo_code(ref_code_memo *memo, float v)
+{
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    const unsigned h = (bits * 2654435761u) >> 22; /* 10 bits: REF_MEMO_SLOTS */
+    if (memo->bits[h] != bits) {
+        memo->bits[h] = bits;
+        memo->code[h] = (int16_t)ref_exact_code(v);
+    }
+    return memo->code[h];
+}
+
+static void ref_memo_init(ref_code_memo *memo)
+{
+    for (int i = 0; i < REF_MEMO_SLOTS; i++) /* bits 0: +0, whose code is 0 */
+        memo->bits[i] = 0, memo->code[i] = 0;
+}
+
+/* Level 0's texel p as sRGB8, or -1 if some value is not the decode of an 8-bit code (colour:
+ * ref_exact_code; alpha: within 1e-6 of k / 255). */
+static inline int64_t ref_texel_code(ref_code_memo *memo, const float *p)
+{
+    int c[4];
+    for (int k = 0; k < 3; k++)
+        if ((c[k] = ref_memo_code(memo, p[k])) < 0)
+            return -1;
+    c[3] = p[3] == 1.0f ? 255 : (int)ref_unorm_code(p[3]);
+    if (!(fabsf(ref_alpha_lut[c[3]] - p[3]) <= 1e-6f))
+        return -1;
+    return (uint32_t)c[0] | (uint32_t)c[1] << 8 | (uint32_t)c[2] << 16 | (uint32_t)c[3] << 24;
+}
+
+/* Packs level 0's linear RGBA into sRGB8 tiles at dst, or, given want instead, checks that want
+ * holds exactly that packing; returns 0 if some value is not 8-bit or some texel differs. */
+static int ref_pack8(const float *src, int w, int h, uint32_t *dst, const uint32_t *want)
+{
+    ref_code_memo memo;
+    ref_memo_init(&memo);
     int tw = (w + 3) / 4;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
-            const float *p = src + ((size_t)y * (size_t)w + (size_t)x) * 4;
-            unsigned c[4];
-            for (int k = 0; k < 3; k++) {
-                c[k] = ref_srgb_code(p[k]);
-                if (exact && !(fabsf(ref_srgb_lut[c[k]] - p[k]) <= 2e-6f * p[k] + 1e-9f))
-                    return 0;
-            }
-            c[3] = ref_unorm_code(p[3]);
-            if (exact && !(fabsf((float)c[3] / 255.0f - p[3]) <= 1e-6f))
+            int64_t c = ref_texel_code(&memo, src + ((size_t)y * (size_t)w + (size_t)x) * 4);
+            size_t i = ref_tiled_index(tw, x, y);
+            if (c < 0 || (want && want[i] != (uint32_t)c))
                 return 0;
-            dst[ref_tiled_index(tw, x, y)] = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
+            if (dst)
+                dst[i] = (uint32_t)c;
         }
     return 1;
 }
 
-static void ref_unpack8(const uint32_t *src, int w, int h, float *dst)
+/* ref_average8's result for n copies of one code, by channel kind (0: sRGB, 1: alpha) and n:
+ * the same sums and division, done once at start-up, so a flat block costs one lookup. */
+static uint8_t ref_flat_code[2][10][256];
+
+/* One channel of one filtered texel: the n codes decoded, summed in order, divided by n and
+ * rounded back to 8 bits, the float operations of unpack -> ref_downsample -> pack exactly. */
+static unsigned ref_average8(const uint32_t *t, int n, int sh, int alpha)
 {
-    int tw = (w + 3) / 4;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            uint32_t t = src[ref_tiled_index(tw, x, y)];
-            float *p = dst + ((size_t)y * (size_t)w + (size_t)x) * 4;
-            for (int k = 0; k < 3; k++)
-                p[k] = ref_srgb_lut[(t >> (8 * k)) & 255u];
-            p[3] = (float)(t >> 24) / 255.0f;
+    const float *lut = alpha ? ref_alpha_lut : ref_srgb_lut;
+    float acc = 0.0f;
+    for (int i = 0; i < n; i++)
+        acc += lut[(t[i] >> sh) & 255u];
+    float v = acc / (float)n;
+    return alpha ? ref_unorm_code(v) : ref_srgb_code(v);
+}
+
+/* The texel averaging the n packed texels t: each channel through ref_average8, or the flat-block
+ * table when its n codes agree. */
+static uint32_t ref_filter8(const uint32_t *t, int n)
+{
+    uint32_t out = 0;
+    for (int c = 0; c < 4; c++) {
+        const int sh = 8 * c;
+        const unsigned k = (t[0] >> sh) & 255u;
+        int flat = 1;
+        for (int i = 1; i < n; i++)
+            flat &= ((t[i] >> sh) & 255u) == k;
+        out |= (flat ? ref_flat_code[c == 3][n][k] : ref_average8(t, n, sh, c == 3)) << sh;
+    }
+    return out;
+}
+
+/* The flat-block table and the alpha decode, after the sRGB tables they use. */
+static void ref_tables_init(void)
+{
+    ref_lut_init();
+    for (int k = 0; k < 256; k++)
+        ref_alpha_lut[k] = (float)k / 255.0f;
+    for (int n = 1; n <= 9; n++)
+        for (int k = 0; k < 256; k++) {
+            uint32_t t[9];
+            for (int i = 0; i < n; i++)
+                t[i] = (uint32_t)k * 0x01010101u;
+            ref_flat_code[0][n][k] = (uint8_t)ref_average8(t, n, 0, 0);
+            ref_flat_code[1][n][k] = (uint8_t)ref_average8(t, n, 24, 1);
         }
+}
+
+/* ref_downsample's texel footprint along one axis: [*lo, *hi] of the finer level for texel i. */
+static void ref_span(int i, int dn, int sn, int *lo, int *hi)
+{
+    *lo = 2 * i;
+    *hi = (i == dn - 1 && sn > 2 * dn) ? 2 * i + 2 : 2 * i + 1;
+    if (*hi >= sn)
+        *hi = sn - 1;
+}
+
+/* ref_filter8 for the 2x2 footprint of almost every texel, unrolled. The sum starts at the
+ * first texel rather than at 0 + it: every decoded value is +0 or positive, so that add is exact. */
+static uint32_t ref_filter8_2x2(uint32_t a, uint32_t b, uint32_t c, uint32_t d)
+{
+    uint32_t out = 0;
+    for (int ch = 0; ch < 4; ch++) {
+        const int sh = 8 * ch, alpha = ch == 3;
+        const unsigned ka = (a >> sh) & 255u, kb = (b >> sh) & 255u, kc = (c >> sh) & 255u,
+                       kd = (d >> sh) & 255u;
+        unsigned code;
+        if (ka == kb && ka == kc && ka == kd) {
+            code = ref_flat_code[alpha][4][ka];
+        } else {
+            const float *lut = alpha ? ref_alpha_lut : ref_srgb_lut;
+            float v = (((lut[ka] + lut[kb]) + lut[kc]) + lut[kd]) / 4.0f;
+            code = alpha ? ref_unorm_code(v) : ref_srgb_code(v);
+        }
+        out |= code << sh;
+    }
+    return out;
+}
+
+/* One texel of an sRGB8 level from the finer level's tiles (src, stw tiles wide). */
+static uint32_t ref_texel8(const uint32_t *src, int stw, int x0, int x1, int y0, int y1)
+{
+    if (x1 == x0 + 1 && y1 == y0 + 1)
+        return ref_filter8_2x2(src[ref_tiled_index(stw, x0, y0)], src[ref_tiled_index(stw, x1, y0)],
+                               src[ref_tiled_index(stw, x0, y1)], src[ref_tiled_index(stw, x1, y1)]);
+    uint32_t t[9];
+    int n = 0;
+    for (int yy = y0; yy <= y1; yy++)
+        for (int xx = x0; xx <= x1; xx++)
+            t[n++] = src[ref_tiled_index(stw, xx, yy)];
+    return ref_filter8(t, n);
+}
+
+/* One sRGB8 level straight from the previous one's tiles, as glGenerateMipmap makes it: the
+ * texels ref_downsample would average, decoded, averaged in linear and rounded to 8 bits, with no
+ * float copy of either level. */
+static void ref_downsample8(const uint32_t *src, int sw, int sh, uint32_t *dst, int dw, int dh)
+{
+    const int stw = (sw + 3) / 4, dtw = (dw + 3) / 4;
+    for (int y = 0; y < dh; y++) {
+        int y0, y1;
+        ref_span(y, dh, sh, &y0, &y1);
+        for (int x = 0; x < dw; x++) {
+            int x0, x1;
+            ref_span(x, dw, sw, &x0, &x1);
+            dst[ref_tiled_index(dtw, x, y)] = ref_texel8(src, stw, x0, x1, y0, y1);
+        }
+    }
 }
 
 static void ref_bilinear8(const ref_mip *m, int l, float u, float v, float out[4])
@@ -333,59 +480,70 @@ static void ref_level_sample(const ref_mip *m, int l, float u, float v, float ou
         ref_bilinear(m->lv[l], m->w[l], m->h[l], u, v, out);
 }
 
+/* m's level count and sizes for a w x h texture; *total8 is the sRGB8 pyramid's texels in tiles,
+ * the result the floats of a float pyramid's levels 1 and up. */
+static size_t ref_mip_shape(ref_mip *m, int w, int h, size_t *total8)
+{
+    size_t total = 0;
+    m->levels = 1;
+    m->w[0] = w, m->h[0] = h;
+    *total8 = ref_tiled_size(w, h);
+    while ((w > 1 || h > 1) && m->levels < REF_MAX_MIPS) {
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+        m->w[m->levels] = w, m->h[m->levels] = h;
+        total += (size_t)w * (size_t)h * 4;
+        *total8 += ref_tiled_size(w, h);
+        m->levels++;
+    }
+    return total;
+}
+
+/* Whether t's level 0, packed, is exactly the sRGB8 level lv0 of its size. */
+int ref_mip_same8(const gib_texture *t, const uint32_t *lv0)
+{
+    return ref_pack8(t->rgba, t->width, t->height, NULL, lv0);
+}
+
+/* The sRGB8 pyramid of t into m (shape set), like glGenerateMipmap on an sRGB8 texture: 1 built,
+ * 0 when level 0 is not 8-bit, -1 out of memory. */
+static int ref_build8(ref_mip *m, const gib_texture *t, size_t total8, gib_error *err)
+{
+    uint32_t *p8 = ref_alloc_huge(total8 * sizeof *p8);
+    if (!p8)
+        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
+                             "out of memory building the mip maps of texture '%s'", t->path);
+    if (!ref_pack8(t->rgba, t->width, t->height, p8, NULL)) {
+        ref_free_huge(p8, total8 * sizeof *p8);
+        return 0;
+    }
+    m->srgb8 = 1;
+    m->owned8 = p8;
+    m->owned8_bytes = total8 * sizeof *p8;
+    m->lv8[0] = p8;
+    size_t off = ref_tiled_size(m->w[0], m->h[0]);
+    for (int l = 1; l < m->levels; l++) {
+        m->lv8[l] = p8 + off;
+        ref_downsample8(m->lv8[l - 1], m->w[l - 1], m->h[l - 1], p8 + off, m->w[l], m->h[l]);
+        off += ref_tiled_size(m->w[l], m->h[l]);
+    }
+    return 1;
+}
+
 int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 {
     memset(m, 0, sizeof *m);
     if (!t || !t->rgba || t->width <= 0 || t->height <= 0)
         return 0;
-    pthread_once(&ref_lut_once, ref_lut_init);
-    int w = t->width, h = t->height, levels = 1;
-    size_t total = 0, total8 = ref_tiled_size(w, h), maxlv = (size_t)w * (size_t)h;
-    while ((w > 1 || h > 1) && levels < REF_MAX_MIPS) {
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
-        total += (size_t)w * (size_t)h * 4;
-        total8 += ref_tiled_size(w, h);
-        levels++;
-    }
-    m->levels = levels;
-    m->w[0] = t->width;
-    m->h[0] = t->height;
-    for (int l = 1; l < levels; l++) {
-        m->w[l] = m->w[l - 1] > 1 ? m->w[l - 1] / 2 : 1;
-        m->h[l] = m->h[l - 1] > 1 ? m->h[l - 1] / 2 : 1;
-    }
-    /* sRGB8 when level 0 is exactly 8-bit */
-    uint32_t *p8 = ref_alloc_huge(total8 * sizeof *p8);
-    float *a = p8 ? malloc(maxlv * 4 * sizeof *a) : NULL, *b = a ? malloc(maxlv * sizeof *b) : NULL;
-    if (!b) {
-        ref_free_huge(p8, total8 * sizeof *p8);
-        free(a);
-        return gib_fail_code(err, GIB_ERR_OUT_OF_MEMORY,
-                             "out of memory building the mip maps of texture '%s'", t->path);
-    }
-    if (ref_pack8(t->rgba, t->width, t->height, p8, 1)) {
-        m->srgb8 = 1;
-        m->owned8 = p8;
-        m->owned8_bytes = total8 * sizeof *p8;
-        m->lv8[0] = p8;
-        size_t off = ref_tiled_size(m->w[0], m->h[0]);
-        for (int l = 1; l < levels; l++) {
-            /* like glGenerateMipmap on an sRGB8 texture: the previous stored level, decoded,
-             * box-filtered in linear, rounded to 8 bits */
-            ref_unpack8(m->lv8[l - 1], m->w[l - 1], m->h[l - 1], a);
-            ref_downsample(a, m->w[l - 1], m->h[l - 1], b, m->w[l], m->h[l]);
-            m->lv8[l] = p8 + off;
-            ref_pack8(b, m->w[l], m->h[l], p8 + off, 0);
-            off += ref_tiled_size(m->w[l], m->h[l]);
-        }
-        free(a);
-        free(b);
+    pthread_once(&ref_lut_once, ref_tables_init);
+    size_t total8, total = ref_mip_shape(m, t->width, t->height, &total8);
+    if (ref_share_take(m, t))
         return 0;
-    }
-    ref_free_huge(p8, total8 * sizeof *p8);
-    free(a);
-    free(b);
+    int rc = ref_build8(m, t, total8, err); /* sRGB8 when level 0 is exactly 8-bit */
+    if (rc > 0)
+        ref_share_put(m, t->path);
+    if (rc != 0)
+        return rc < 0 ? -1 : 0;
     if (total > 0) {
         m->owned = malloc(total * sizeof(float));
         if (!m->owned)
@@ -394,7 +552,7 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
     }
     m->lv[0] = t->rgba;
     float *next = m->owned;
-    for (int l = 1; l < levels; l++) {
+    for (int l = 1; l < m->levels; l++) {
         ref_downsample(m->lv[l - 1], m->w[l - 1], m->h[l - 1], next, m->w[l], m->h[l]);
         m->lv[l] = next;
         next += (size_t)m->w[l] * (size_t)m->h[l] * 4;
@@ -405,7 +563,8 @@ int ref_mip_build(ref_mip *m, const gib_texture *t, gib_error *err)
 void ref_mip_free(ref_mip *m)
 {
     free(m->owned);
-    ref_free_huge(m->owned8, m->owned8_bytes);
+    if (m->owned8 && !ref_share_drop(m->owned8))
+        ref_free_huge(m->owned8, m->owned8_bytes);
     memset(m, 0, sizeof *m);
 }
 

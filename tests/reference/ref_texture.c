@@ -213,10 +213,167 @@ static void test_mask(void)
     }
 }
 
+/* 5. The sRGB8 pyramid, which ref_mip_build makes straight from the packed texels, equals texel
+ * for texel the pyramid made the plain way: each level decoded to floats (sRGB via the loader's
+ * decode, alpha k / 255), box-filtered (2x2, 3 wide at an odd edge, sums in row order), and each
+ * value rounded to the nearest 8-bit code (sRGB: the number of encoded midpoints at or below it,
+ * counted in double). Odd sizes, single rows and columns, flat blocks and noisy ones; exact. */
+static float srgb_decode8(int k)
+{
+    float c = (float)k / 255.0f;
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+static unsigned srgb_code_plain(float v)
+{
+    unsigned k = 0;
+    while (k < 255) {
+        double c = (k + 0.5) / 255.0;
+        double mid = c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+        if (!((double)v >= mid))
+            break;
+        k++;
+    }
+    return k;
+}
+
+/* One level from the previous, both as codes (4 a texel, row-major): decode, box, round. */
+static void level_plain(const uint8_t *src, int sw, int sh, uint8_t *dst, int dw, int dh)
+{
+    for (int y = 0; y < dh; y++)
+        for (int x = 0; x < dw; x++) {
+            int y1 = (y == dh - 1 && sh > 2 * dh) ? 2 * y + 2 : 2 * y + 1;
+            int x1 = (x == dw - 1 && sw > 2 * dw) ? 2 * x + 2 : 2 * x + 1;
+            y1 = y1 < sh ? y1 : sh - 1;
+            x1 = x1 < sw ? x1 : sw - 1;
+            float acc[4] = {0, 0, 0, 0};
+            int n = 0;
+            for (int yy = 2 * y; yy <= y1; yy++)
+                for (int xx = 2 * x; xx <= x1; xx++, n++)
+                    for (int c = 0; c < 4; c++) {
+                        int k = src[((size_t)yy * sw + xx) * 4 + c];
+                        acc[c] += c < 3 ? srgb_decode8(k) : (float)k / 255.0f;
+                    }
+            for (int c = 0; c < 4; c++) {
+                float v = acc[c] / (float)n;
+                dst[((size_t)y * dw + x) * 4 + c] =
+                    (uint8_t)(c < 3 ? srgb_code_plain(v) : (unsigned)lrintf(v * 255.0f));
+            }
+        }
+}
+
+/* Mismatching texels of level l of m against the codes want (row-major), read from 4x4 tiles. */
+static int level_mismatches(const ref_mip *m, int l, const uint8_t *want)
+{
+    const int w = m->w[l], h = m->h[l], tw = (w + 3) / 4;
+    int bad = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            uint32_t got = m->lv8[l][((size_t)(y >> 2) * tw + (x >> 2)) * 16 + (y & 3) * 4 + (x & 3)];
+            for (int c = 0; c < 4; c++)
+                bad += ((got >> (8 * c)) & 255u) != want[((size_t)y * w + x) * 4 + c];
+        }
+    return bad;
+}
+
+/* A W x H 8-bit texture: codes (4 a texel) and their decoded floats; the left half flat by 4x4
+ * blocks, the right half noise. */
+static void fill_texture(int W, int H, uint32_t state, uint8_t *codes, float *rgba)
+{
+    for (int i = 0; i < W * H * 4; i++) {
+        int x = (i / 4) % W, y = (i / 4) / W;
+        state = state * 1664525u + 1013904223u;
+        int k = x < W / 2 ? (int)(((x / 4) * 37 + (y / 4) * 91 + i % 4 * 53) % 256)
+                          : (int)(state >> 24);
+        codes[i] = (uint8_t)(i % 4 == 3 && (state & 0x100) ? 255 : k);
+        rgba[i] = i % 4 < 3 ? srgb_decode8(codes[i]) : (float)codes[i] / 255.0f;
+    }
+}
+
+/* Channel values of m's levels that differ from the plain pyramid of the level-0 codes
+ * codes[0] (codes[1] and codes[0] are overwritten on the way up); *levels counts the levels. */
+static int plain_mismatches(const ref_mip *m, uint8_t (*codes)[64 * 64 * 4], int *levels)
+{
+    int bad = level_mismatches(m, 0, codes[0]);
+    for (int l = 1; l < m->levels; l++, (*levels)++) {
+        level_plain(codes[(l - 1) & 1], m->w[l - 1], m->h[l - 1], codes[l & 1], m->w[l], m->h[l]);
+        int b = level_mismatches(m, l, codes[l & 1]);
+        CHECK(b == 0, "%dx%d level %d (%dx%d): %d channel values differ", m->w[0], m->h[0], l,
+              m->w[l], m->h[l], b);
+        bad += b;
+    }
+    return bad;
+}
+
+static uint8_t codes[2][64 * 64 * 4];
+static float rgba[64 * 64 * 4];
+
+static void test_srgb8_pyramid(void)
+{
+    static const int sizes[][2] = {{37, 5}, {1, 9}, {9, 1}, {64, 64}, {33, 17}, {3, 3}, {2, 7}};
+    int levels = 0, bad = 0;
+    for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
+        const int W = sizes[s][0], H = sizes[s][1];
+        fill_texture(W, H, 777u + (uint32_t)s, codes[0], rgba);
+        gib_texture t;
+        memset(&t, 0, sizeof t);
+        t.width = W, t.height = H, t.rgba = rgba;
+        ref_mip m;
+        gib_error err;
+        if (ref_mip_build(&m, &t, &err) != 0 || !m.srgb8) {
+            CHECK(0, "%dx%d: no sRGB8 pyramid", W, H);
+            continue;
+        }
+        bad += plain_mismatches(&m, codes, &levels);
+        ref_mip_free(&m);
+    }
+    CHECK(bad == 0, "sRGB8 pyramids: %d channel values differ from decode -> box -> round", bad);
+    printf("sRGB8 pyramids of 7 sizes (37x5 .. 64x64, odd edges, flat and noisy blocks): %d "
+           "levels equal to decode -> box filter -> round, value for value: %s\n",
+           levels, bad == 0 ? "yes" : "no");
+}
+
+/* 6. A texture of the same path and size as an earlier one takes the earlier pyramid only when its
+ * level 0 packs the same: while that pyramid is held and after it is freed (kept idle); one
+ * channel of one texel changed gives a pyramid of its own, equal to the plain one. */
+static void test_srgb8_share(void)
+{
+    enum { W = 33, H = 17, LAST = (W * H - 1) * 4 + 1 };
+    fill_texture(W, H, 99u, codes[0], rgba);
+    gib_texture t;
+    memset(&t, 0, sizeof t);
+    snprintf(t.path, sizeof t.path, "%s", "ref_texture_share.png");
+    t.width = W, t.height = H, t.rgba = rgba;
+    ref_mip a, b, c, d;
+    gib_error err;
+    int rc = ref_mip_build(&a, &t, &err) | ref_mip_build(&b, &t, &err);
+    const uint32_t *first = a.lv8[0];
+    const int held = b.lv8[0] == first;
+    ref_mip_free(&a);
+    ref_mip_free(&b);
+    rc |= ref_mip_build(&c, &t, &err);
+    const int idle = c.lv8[0] == first;
+    codes[0][LAST] ^= 1;
+    rgba[LAST] = srgb_decode8(codes[0][LAST]);
+    rc |= ref_mip_build(&d, &t, &err);
+    const int own = d.lv8[0] != first;
+    int levels = 0, bad = rc == 0 && d.srgb8 ? plain_mismatches(&d, codes, &levels) : -1;
+    CHECK(rc == 0 && held && idle && own && bad == 0,
+          "sharing: shared while held %d, after freed %d, own pyramid when one texel differs %d "
+          "(%d values differ from the plain pyramid)", held, idle, own, bad);
+    printf("shared pyramids: taken while held %s, after freed %s; one texel changed: its own "
+           "pyramid %s, equal to the plain one %s\n", held ? "yes" : "no", idle ? "yes" : "no",
+           own ? "yes" : "no", bad == 0 ? "yes" : "no");
+    ref_mip_free(&c);
+    ref_mip_free(&d);
+}
+
 int main(void)
 {
     test_pyramid();
     test_floor();
     test_mask();
+    test_srgb8_pyramid();
+    test_srgb8_share();
     return failures ? 1 : 0;
 }
